@@ -1,0 +1,30 @@
+/* particle_reader.h — turns particle files into the in-memory frame the wire carries.
+ * Formats: raw little-endian float32 xyz (.f32), PLY (ascii, binary little/big
+ * endian), legacy VTK (ascii and binary POLYDATA / UNSTRUCTURED_GRID), CSV with a
+ * header line. A bad file gets FC_ERR_PARSE (or FC_ERR_IO) with a message naming
+ * the file and what is wrong; never a crash. */
+#ifndef FC_PARTICLE_READER_H
+#define FC_PARTICLE_READER_H
+
+#include "fluidcast_types.h"
+
+typedef enum fc_file_format {
+    FC_FILE_UNKNOWN = 0,
+    FC_FILE_F32,
+    FC_FILE_PLY,
+    FC_FILE_VTK,
+    FC_FILE_CSV
+} fc_file_format;
+
+/* From the file name's extension (case-insensitive): .f32 .ply .vtk .csv */
+fc_file_format fc_file_format_from_path(const char *path);
+
+/* Reads `path` (format from its extension) into *frame (zeroed first; free with
+ * fc_frame_free). Positions always; density, velocity and ids when the file has them. */
+fc_code fc_read_particles(const char *path, fc_frame *frame, fc_error *err);
+
+/* Same, from a buffer in memory; `name` is used in error messages. */
+fc_code fc_read_particles_mem(const uint8_t *data, size_t size, fc_file_format format,
+                              const char *name, fc_frame *frame, fc_error *err);
+
+#endif

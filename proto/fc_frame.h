@@ -1,0 +1,63 @@
+/* fc_frame.h — allocating, validating and measuring particle frames, camera and settings defaults. */
+#ifndef FC_FRAME_H
+#define FC_FRAME_H
+
+#include <stdbool.h>
+#include "fluidcast_types.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* Attribute bits, as carried in FRAME's attribute mask (PROTOCOL.md). */
+enum {
+    FC_ATTR_DENSITY = 1u << 0,
+    FC_ATTR_VELOCITY = 1u << 1,
+    FC_ATTR_IDS = 1u << 2
+};
+
+/* Allocates the arrays of a frame of `count` particles: positions always, the
+ * others when their bit is in `attributes`. Contents are uninitialised.
+ * Guards count*stride against overflow. On failure the frame is left empty. */
+fc_code fc_frame_alloc(fc_frame *frame, uint64_t count, uint32_t attributes, fc_error *err);
+
+/* Frees every array and zeroes the frame. Safe on a zeroed frame. */
+void fc_frame_free(fc_frame *frame);
+
+/* Attribute mask of the arrays present. */
+uint32_t fc_frame_attributes(const fc_frame *frame);
+
+/* Checks every position (and velocity/density when present) is finite.
+ * FC_ERR_INVALID_VALUE naming the first offending particle otherwise. */
+fc_code fc_frame_validate(const fc_frame *frame, fc_error *err);
+
+/* Axis-aligned bounds of the positions. count must be > 0. */
+void fc_frame_bounds(const fc_frame *frame, float lo[3], float hi[3]);
+
+/* Estimates a sphere radius that closes the surface: 0.9 x the median
+ * nearest-neighbour distance of (a deterministic sample of at most 4096)
+ * particles, found with a uniform grid. Always positive: a frame whose
+ * particles all coincide (or count <= 1) gets 1.0. */
+float fc_frame_estimate_radius(const fc_frame *frame);
+
+/* A camera that frames the frame's bounding box: it looks at the box centre
+ * along the direction (-1, 1.4, -0.9) (from the +x,-y,+z side), up = +z, vertical
+ * fov 40 degrees, far enough that the box's bounding sphere fits the smaller of the
+ * two fields of view. */
+void fc_camera_frame_bounds(const fc_frame *frame, uint32_t width, uint32_t height, fc_camera *cam);
+
+/* Checks a camera: finite vectors, eye != target, up not parallel to the view
+ * direction, fov in (0,180), width/height >= 1. */
+fc_code fc_camera_validate(const fc_camera *cam, fc_error *err);
+
+/* Default settings that make convincing water: radius 0 (auto), curvature
+ * flow with 40 iterations, a blue-green tint, ior 1.33. */
+void fc_settings_default(fc_settings *s);
+
+/* Checks every field's domain (radius >= 0 and finite, iterations <= 1000, ...). */
+fc_code fc_settings_validate(const fc_settings *s, fc_error *err);
+
+#ifdef __cplusplus
+}
+#endif
+#endif

@@ -1,0 +1,132 @@
+/* fluidcast_types.h — the data both ends of the wire share: particle frames,
+ * cameras, render settings, image requests and typed errors.
+ *
+ * This header is public (installed next to fluidcast.h) and depends on nothing
+ * but the C standard library. Everything here is plain data; the functions that
+ * operate on it live in fc_frame.h / fc_error.h (proto library). */
+#ifndef FLUIDCAST_TYPES_H
+#define FLUIDCAST_TYPES_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* ---- Errors -------------------------------------------------------------
+ * Codes 1..99 travel on the wire (ERROR message, see proto/PROTOCOL.md);
+ * codes >= 100 are local to one process and never sent. */
+typedef enum fc_code {
+    FC_OK = 0,
+    /* wire codes */
+    FC_ERR_BAD_MAGIC = 1,        /* message header does not start with "FCST"; connection closed */
+    FC_ERR_VERSION = 2,          /* no protocol version in common */
+    FC_ERR_UNKNOWN_TYPE = 3,     /* message type not defined by the negotiated version */
+    FC_ERR_TOO_LARGE = 4,        /* payload length beyond the server's message limit; connection closed */
+    FC_ERR_MALFORMED = 5,        /* payload lengths/counts inconsistent with the message layout */
+    FC_ERR_BAD_STATE = 6,        /* message not allowed now (e.g. FRAME before HELLO, RENDER before FRAME) */
+    FC_ERR_INVALID_VALUE = 7,    /* a value out of its domain: NaN/Inf position, radius <= 0, unknown setting */
+    FC_ERR_LIMIT = 8,            /* a configured limit exceeded: particles per frame, image size */
+    FC_ERR_RENDER = 9,           /* the GPU could not render this request */
+    FC_ERR_ENCODE = 10,          /* the image could not be encoded in the requested format */
+    FC_ERR_INTERNAL = 11,        /* server-side failure not caused by the request (out of memory, ...) */
+    FC_ERR_UNAUTHORIZED = 12,    /* reserved: authentication required or failed */
+    /* local codes */
+    FC_ERR_IO = 100,             /* file or socket I/O failed (see message) */
+    FC_ERR_CONNECT = 101,        /* could not reach the server */
+    FC_ERR_CLOSED = 102,         /* the peer closed the connection */
+    FC_ERR_PROTOCOL = 103,       /* the peer sent bytes that break the protocol */
+    FC_ERR_PARSE = 104,          /* a particle file is malformed */
+    FC_ERR_GL = 105,             /* EGL/GL setup or execution failed */
+    FC_ERR_NOMEM = 106,          /* allocation failed */
+    FC_ERR_USAGE = 107           /* a caller passed an invalid argument */
+} fc_code;
+
+#define FC_ERROR_MESSAGE_MAX 256
+
+/* An error value: a code plus a human-readable reason. Functions that can fail
+ * return an fc_code and, when given a non-NULL fc_error*, fill it in. */
+typedef struct fc_error {
+    fc_code code;
+    char message[FC_ERROR_MESSAGE_MAX];
+} fc_error;
+
+/* ---- Particle frame ------------------------------------------------------
+ * The in-memory frame: what a file reader produces, what FRAME carries on the
+ * wire and what the renderer consumes. Arrays are owned by the frame
+ * (free with fc_frame_free) and NULL when absent. */
+typedef struct fc_frame {
+    uint64_t count;        /* number of particles */
+    float *positions;      /* 3*count floats, x y z interleaved, world units */
+    float *density;        /* count floats, or NULL */
+    float *velocity;       /* 3*count floats, or NULL */
+    uint32_t *ids;         /* count persistent particle ids, or NULL */
+} fc_frame;
+
+/* ---- Camera --------------------------------------------------------------
+ * Right-handed, OpenGL-style look-at with a vertical field of view. The image
+ * size is part of the camera because the projection depends on the aspect. */
+typedef struct fc_camera {
+    float eye[3];
+    float target[3];
+    float up[3];
+    float fov_y_deg;       /* vertical field of view, degrees, in (0, 180) */
+    uint32_t width;        /* image width in pixels, >= 1 */
+    uint32_t height;       /* image height in pixels, >= 1 */
+} fc_camera;
+
+/* ---- Render settings -----------------------------------------------------*/
+typedef enum fc_smoothing {
+    FC_SMOOTHING_NONE = 0,
+    FC_SMOOTHING_CURVATURE = 1   /* screen-space curvature flow, van der Laan et al. 2009 */
+} fc_smoothing;
+
+typedef struct fc_settings {
+    float radius;              /* sphere radius in world units; 0 = estimate from particle spacing */
+    fc_smoothing smoothing;
+    uint32_t iterations;       /* smoothing iterations */
+    float fluid_color[3];      /* linear RGB of the fluid seen through a thick layer */
+    float absorption[3];       /* Beer-Lambert absorption per unit of thickness, per channel */
+    float ior;                 /* index of refraction (Fresnel F0 = ((ior-1)/(ior+1))^2) */
+} fc_settings;
+
+/* ---- Image request and reply -------------------------------------------*/
+typedef enum fc_image_format {
+    FC_FORMAT_PNG = 1,
+    FC_FORMAT_JPEG = 2,
+    FC_FORMAT_EXR = 3,
+    FC_FORMAT_RAW = 4          /* uncompressed rows, top to bottom: RGBA8 for colour, float32 for AOVs */
+} fc_image_format;
+
+/* What the image shows: the shaded colour or one arbitrary output variable. */
+typedef enum fc_aov {
+    FC_AOV_COLOR = 0,          /* shaded fluid over the background, RGBA */
+    FC_AOV_DEPTH = 1,          /* linear view-space depth before smoothing, 1 channel float, 0 = no fluid */
+    FC_AOV_SMOOTHED_DEPTH = 2, /* linear view-space depth after smoothing, 1 channel float, 0 = no fluid */
+    FC_AOV_THICKNESS = 3       /* accumulated fluid thickness, 1 channel float */
+} fc_aov;
+
+typedef struct fc_render_request {
+    fc_image_format format;
+    uint32_t quality;          /* JPEG quality 1..100; ignored otherwise */
+    fc_aov aov;
+} fc_render_request;
+
+/* Server-side stages whose duration is reported with every image. */
+typedef enum fc_stage {
+    FC_STAGE_UPLOAD = 0,       /* particle upload to the GPU */
+    FC_STAGE_DEPTH,            /* sphere depth splatting */
+    FC_STAGE_THICKNESS,
+    FC_STAGE_SMOOTHING,
+    FC_STAGE_COMPOSITE,
+    FC_STAGE_READBACK,
+    FC_STAGE_ENCODE,
+    FC_STAGE_TOTAL,            /* request received -> reply queued */
+    FC_STAGE_COUNT
+} fc_stage;
+
+#ifdef __cplusplus
+}
+#endif
+#endif

@@ -1,0 +1,124 @@
+/* wire.h — the protocol v1 codec: framing and every message's byte layout
+ * (normative description: proto/PROTOCOL.md). Pure C: no sockets, no GL.
+ *
+ * Encoders append one complete message (header + payload) to an fc_buf.
+ * Decoders take one payload (the bytes after the header, exactly header.length
+ * long), check every length and count before reading, and never read past it. */
+#ifndef FC_WIRE_H
+#define FC_WIRE_H
+
+#include <stdbool.h>
+#include <stddef.h>
+#include <stdint.h>
+#include "fluidcast_types.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+#define FC_PROTOCOL_VERSION 1u
+#define FC_WIRE_MAGIC "FCST"           /* first four bytes of every message */
+#define FC_WIRE_HEADER_SIZE 16u
+#define FC_DEFAULT_PORT 7450
+
+typedef enum fc_msg_type {
+    FC_MSG_HELLO = 1,      /* client -> server */
+    FC_MSG_WELCOME = 2,    /* server -> client */
+    FC_MSG_FRAME = 3,      /* client -> server */
+    FC_MSG_CAMERA = 4,     /* client -> server */
+    FC_MSG_SETTINGS = 5,   /* client -> server */
+    FC_MSG_RENDER = 6,     /* client -> server */
+    FC_MSG_IMAGE = 7,      /* server -> client */
+    FC_MSG_ERROR = 8,      /* server -> client */
+    FC_MSG_GOODBYE = 9     /* either way */
+} fc_msg_type;
+
+typedef struct fc_msg_header {
+    uint16_t type;         /* fc_msg_type */
+    uint16_t flags;        /* 0 in v1 */
+    uint32_t request_id;   /* chosen by the client; replies echo the id of the message they answer */
+    uint32_t length;       /* payload bytes following the header */
+} fc_msg_header;
+
+/* Growable output buffer. On allocation failure `failed` is set and later
+ * appends are ignored; the encoders then return FC_ERR_NOMEM. */
+typedef struct fc_buf {
+    uint8_t *data;
+    size_t len;
+    size_t cap;
+    bool failed;
+} fc_buf;
+
+void fc_buf_init(fc_buf *b);
+void fc_buf_free(fc_buf *b);
+void fc_buf_reset(fc_buf *b);                 /* len = 0, keeps capacity */
+bool fc_buf_reserve(fc_buf *b, size_t extra); /* ensure cap >= len + extra */
+
+/* ---- Framing ---- */
+void fc_wire_encode_header(uint8_t out[FC_WIRE_HEADER_SIZE], const fc_msg_header *h);
+/* FC_ERR_BAD_MAGIC, or FC_ERR_TOO_LARGE when length > max_payload. */
+fc_code fc_wire_decode_header(const uint8_t in[FC_WIRE_HEADER_SIZE], uint32_t max_payload,
+                              fc_msg_header *h, fc_error *err);
+
+/* ---- Messages ---- */
+typedef struct fc_hello {
+    uint32_t version_min;      /* lowest protocol version the client speaks */
+    uint32_t version_max;      /* highest */
+    uint32_t capabilities;     /* requested capability bits; none defined in v1 */
+    char client_name[64];      /* NUL-terminated, informational */
+} fc_hello;
+
+typedef struct fc_limits {
+    uint64_t max_particles;    /* per frame */
+    uint32_t max_width;        /* image width */
+    uint32_t max_height;
+    uint32_t max_message;      /* payload bytes of one message */
+} fc_limits;
+
+typedef struct fc_welcome {
+    uint32_t version;          /* the version chosen for this connection */
+    uint32_t capabilities;     /* granted capability bits */
+    fc_limits limits;
+    char server_version[32];   /* e.g. "fluidcastd 0.1.0" */
+    char renderer[128];        /* GL_RENDERER of the daemon's context */
+} fc_welcome;
+
+typedef struct fc_image_reply {
+    uint32_t width, height;
+    fc_image_format format;
+    fc_aov aov;
+    float stage_ms[FC_STAGE_COUNT];  /* server timings; negative = not measured */
+    const uint8_t *data;             /* encoded image; points into the decoded payload */
+    uint64_t size;
+} fc_image_reply;
+
+fc_code fc_wire_write_hello(fc_buf *out, uint32_t request_id, const fc_hello *m, fc_error *err);
+fc_code fc_wire_write_welcome(fc_buf *out, uint32_t request_id, const fc_welcome *m, fc_error *err);
+fc_code fc_wire_write_frame(fc_buf *out, uint32_t request_id, const fc_frame *m, fc_error *err);
+fc_code fc_wire_write_camera(fc_buf *out, uint32_t request_id, const fc_camera *m, fc_error *err);
+/* Writes every field of *m as key/value entries. */
+fc_code fc_wire_write_settings(fc_buf *out, uint32_t request_id, const fc_settings *m, fc_error *err);
+fc_code fc_wire_write_render(fc_buf *out, uint32_t request_id, const fc_render_request *m, fc_error *err);
+fc_code fc_wire_write_image(fc_buf *out, uint32_t request_id, const fc_image_reply *m, fc_error *err);
+/* code must be a wire code (1..99). */
+fc_code fc_wire_write_error(fc_buf *out, uint32_t request_id, const fc_error *m, fc_error *err);
+fc_code fc_wire_write_goodbye(fc_buf *out, uint32_t request_id, fc_error *err);
+
+fc_code fc_wire_read_hello(const uint8_t *p, size_t n, fc_hello *m, fc_error *err);
+fc_code fc_wire_read_welcome(const uint8_t *p, size_t n, fc_welcome *m, fc_error *err);
+/* Allocates the frame's arrays (fc_frame_free releases them). Refuses counts
+ * above max_particles with FC_ERR_LIMIT, non-finite values with
+ * FC_ERR_INVALID_VALUE, size mismatches with FC_ERR_MALFORMED. */
+fc_code fc_wire_read_frame(const uint8_t *p, size_t n, uint64_t max_particles, fc_frame *m, fc_error *err);
+fc_code fc_wire_read_camera(const uint8_t *p, size_t n, fc_camera *m, fc_error *err);
+/* Applies the entries onto *m atomically: on any error *m is unchanged. */
+fc_code fc_wire_read_settings(const uint8_t *p, size_t n, fc_settings *m, fc_error *err);
+fc_code fc_wire_read_render(const uint8_t *p, size_t n, fc_render_request *m, fc_error *err);
+/* m->data points into p: keep p alive while using it. */
+fc_code fc_wire_read_image(const uint8_t *p, size_t n, fc_image_reply *m, fc_error *err);
+fc_code fc_wire_read_error(const uint8_t *p, size_t n, fc_error *m, fc_error *err);
+
+#ifdef __cplusplus
+}
+#endif
+#endif

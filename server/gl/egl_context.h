@@ -1,0 +1,34 @@
+/* egl_context.h — a headless OpenGL 4.5 core context through EGL, with no display:
+ * a GPU through EGL_EXT_platform_device, or Mesa's surfaceless platform (llvmpipe). */
+#ifndef FC_EGL_CONTEXT_H
+#define FC_EGL_CONTEXT_H
+
+#include "fluidcast_types.h"
+
+typedef enum fc_gpu_mode {
+    FC_GPU_AUTO = 0,      /* first hardware EGL device; else software */
+    FC_GPU_SOFTWARE,      /* Mesa surfaceless (llvmpipe) */
+    FC_GPU_INDEX          /* EGL device number `index` as enumerated by eglQueryDevicesEXT */
+} fc_gpu_mode;
+
+typedef struct fc_gpu_choice {
+    fc_gpu_mode mode;
+    int index;
+} fc_gpu_choice;
+
+/* Parses "auto", "software" or a device number. */
+fc_code fc_gpu_choice_parse(const char *text, fc_gpu_choice *out, fc_error *err);
+
+typedef struct fc_gl_context fc_gl_context;
+
+/* Creates the context and makes it current on the calling thread. FC_ERR_GL with
+ * the EGL error and what was tried when no context can be made. */
+fc_code fc_gl_context_create(const fc_gpu_choice *choice, fc_gl_context **out, fc_error *err);
+void fc_gl_context_destroy(fc_gl_context *ctx);
+fc_code fc_gl_context_make_current(fc_gl_context *ctx, fc_error *err);
+
+const char *fc_gl_context_egl_vendor(const fc_gl_context *ctx);
+const char *fc_gl_context_renderer(const fc_gl_context *ctx);   /* GL_RENDERER */
+const char *fc_gl_context_version(const fc_gl_context *ctx);    /* GL_VERSION */
+
+#endif

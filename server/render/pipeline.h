@@ -1,0 +1,36 @@
+/* pipeline.h — the screen-space fluid render pipeline (van der Laan et al. 2009),
+ * independent of the network: tests and benchmarks drive it directly.
+ *
+ * Needs a current GL 4.5 core context (fc_gl_context). Not thread-safe: one
+ * pipeline per GL context, used from the context's thread. */
+#ifndef FC_PIPELINE_H
+#define FC_PIPELINE_H
+
+#include "fluidcast_types.h"
+#include "../image.h"
+
+typedef struct fc_pipeline fc_pipeline;
+
+typedef struct fc_pipeline_config {
+    const char *shader_dir;   /* NULL: shaders built into the binary; else load *.glsl from here (development) */
+} fc_pipeline_config;
+
+/* Compiles every shader; FC_ERR_GL with the info log of the first that fails. */
+fc_code fc_pipeline_create(const fc_pipeline_config *config, fc_pipeline **out, fc_error *err);
+void fc_pipeline_destroy(fc_pipeline *p);
+
+/* Uploads a frame's particles to the GPU; they stay until the next upload, so
+ * several cameras/settings can render the same frame. stage_ms (may be NULL)
+ * receives FC_STAGE_UPLOAD. The frame must be validated (finite) already. */
+fc_code fc_pipeline_upload(fc_pipeline *p, const fc_frame *frame, float *stage_ms, fc_error *err);
+
+/* Renders the uploaded frame and reads back the image the request asks for:
+ * FC_AOV_COLOR as RGBA (FC_PIXEL_U8 sRGB when `want_u8`, else FC_PIXEL_F32
+ * linear), the other AOVs as one float channel. `out` is reused across calls.
+ * stage_ms (array of FC_STAGE_COUNT, may be NULL) receives GPU times of each
+ * stage from timer queries (negative for stages that did not run).
+ * settings->radius must be > 0 (the caller resolves "auto"). */
+fc_code fc_pipeline_render(fc_pipeline *p, const fc_camera *camera, const fc_settings *settings,
+                           fc_aov aov, int want_u8, fc_image *out, float *stage_ms, fc_error *err);
+
+#endif
