@@ -1,1 +1,127 @@
-/* placeholder: being written */
+/* particle_reader.c — format detection, file loading and dispatch to the format readers. */
+#include "particle_reader.h"
+
+#include <errno.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include "fc_error.h"
+#include "fc_frame.h"
+#include "reader_cursor.h"
+#include "reader_formats.h"
+
+static const struct {
+    const char *extension;
+    fc_file_format format;
+} format_extensions[] = {
+    { "f32", FC_FILE_F32 },
+    { "ply", FC_FILE_PLY },
+    { "vtk", FC_FILE_VTK },
+    { "csv", FC_FILE_CSV },
+};
+
+fc_file_format fc_file_format_from_path(const char *path)
+{
+    if (path == NULL)
+        return FC_FILE_UNKNOWN;
+    const char *base = strrchr(path, '/');
+    const char *dot = strrchr(base ? base : path, '.');
+    if (dot == NULL)
+        return FC_FILE_UNKNOWN;
+    fc_span extension = { dot + 1, strlen(dot + 1) };
+    for (size_t i = 0; i < sizeof format_extensions / sizeof format_extensions[0]; i++) {
+        if (fc_span_iequals(extension, format_extensions[i].extension))
+            return format_extensions[i].format;
+    }
+    return FC_FILE_UNKNOWN;
+}
+
+static fc_code unknown_format(const char *name, fc_error *err)
+{
+    return fc_error_set(err, FC_ERR_PARSE, "%s: unknown particle file format (expected .f32, .ply, .vtk or .csv)",
+                        name);
+}
+
+static fc_code read_format(fc_cursor *c, fc_file_format format, fc_frame *frame, fc_error *err)
+{
+    switch (format) {
+    case FC_FILE_F32:
+        return fc_read_f32(c, frame, err);
+    case FC_FILE_PLY:
+        return fc_read_ply(c, frame, err);
+    case FC_FILE_VTK:
+        return fc_read_vtk(c, frame, err);
+    case FC_FILE_CSV:
+        return fc_read_csv(c, frame, err);
+    case FC_FILE_UNKNOWN:
+        break;
+    }
+    return unknown_format(c->name, err);
+}
+
+fc_code fc_read_particles_mem(const uint8_t *data, size_t size, fc_file_format format,
+                              const char *name, fc_frame *frame, fc_error *err)
+{
+    if (frame == NULL)
+        return fc_error_set(err, FC_ERR_USAGE, "fc_read_particles_mem: frame is NULL");
+    memset(frame, 0, sizeof *frame);
+    if (name == NULL)
+        name = "<memory>";
+    if (data == NULL && size != 0)
+        return fc_error_set(err, FC_ERR_USAGE, "%s: data is NULL but size is %zu", name, size);
+    if (size == 0)
+        return fc_error_set(err, FC_ERR_PARSE, "%s: empty file", name);
+    fc_cursor c;
+    fc_cursor_init(&c, data, size, name);
+    fc_code code = read_format(&c, format, frame, err);
+    if (code != FC_OK)
+        fc_frame_free(frame); /* never hand out a partial frame */
+    return code;
+}
+
+/* Reads the whole file into a malloc'd buffer (non-NULL even when empty). */
+static fc_code load_file(const char *path, uint8_t **data, size_t *size, fc_error *err)
+{
+    FILE *file = fopen(path, "rb");
+    if (file == NULL)
+        return fc_error_set(err, FC_ERR_IO, "%s: cannot open: %s", path, strerror(errno));
+    struct stat info;
+    if (fstat(fileno(file), &info) != 0 || !S_ISREG(info.st_mode)) {
+        fclose(file);
+        return fc_error_set(err, FC_ERR_IO, "%s: not a regular file", path);
+    }
+    *size = (size_t)info.st_size;
+    *data = malloc(*size > 0 ? *size : 1);
+    if (*data == NULL) {
+        fclose(file);
+        return fc_error_set(err, FC_ERR_NOMEM, "%s: cannot allocate %zu bytes", path, *size);
+    }
+    size_t got = fread(*data, 1, *size, file);
+    bool failed = got != *size || ferror(file);
+    fclose(file);
+    if (failed) {
+        free(*data);
+        *data = NULL;
+        return fc_error_set(err, FC_ERR_IO, "%s: read %zu of %zu bytes", path, got, *size);
+    }
+    return FC_OK;
+}
+
+fc_code fc_read_particles(const char *path, fc_frame *frame, fc_error *err)
+{
+    if (frame == NULL || path == NULL)
+        return fc_error_set(err, FC_ERR_USAGE, "fc_read_particles: path and frame must not be NULL");
+    memset(frame, 0, sizeof *frame);
+    fc_file_format format = fc_file_format_from_path(path);
+    if (format == FC_FILE_UNKNOWN)
+        return unknown_format(path, err);
+    uint8_t *data = NULL;
+    size_t size = 0;
+    fc_code code = load_file(path, &data, &size, err);
+    if (code != FC_OK)
+        return code;
+    code = fc_read_particles_mem(data, size, format, path, frame, err);
+    free(data);
+    return code;
+}

@@ -1,0 +1,15 @@
+/* reader_formats.h — internal to the particle readers: one entry point per file
+ * format. Each reads the whole of c's data into *frame (zeroed by the caller).
+ * On failure the frame may hold partial data: fc_read_particles_mem frees it. */
+#ifndef FC_READER_FORMATS_H
+#define FC_READER_FORMATS_H
+
+#include "fluidcast_types.h"
+#include "reader_cursor.h"
+
+fc_code fc_read_f32(fc_cursor *c, fc_frame *frame, fc_error *err);
+fc_code fc_read_ply(fc_cursor *c, fc_frame *frame, fc_error *err);
+fc_code fc_read_vtk(fc_cursor *c, fc_frame *frame, fc_error *err);
+fc_code fc_read_csv(fc_cursor *c, fc_frame *frame, fc_error *err);
+
+#endif
