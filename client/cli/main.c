@@ -1,1 +1,42 @@
-/* placeholder: being written */
+/* main.c — the fluidcast command: dispatches to its subcommands. */
+#include <stdio.h>
+#include <string.h>
+
+#include "cli_report.h"
+#include "snapshot.h"
+#include "wire.h"
+
+static void print_help(FILE *to)
+{
+    fputs("usage: fluidcast COMMAND [options]\n"
+          "       fluidcast --help | --version\n"
+          "\n"
+          "Client of the fluidcastd remote fluid renderer.\n"
+          "\n"
+          "commands:\n"
+          "  snapshot INPUT -o OUT   render one particle file to an image\n"
+          "                          (fluidcast snapshot --help for its options)\n"
+          "\n",
+          to);
+    fc_cli_print_exit_codes(to);
+}
+
+int main(int argc, char **argv)
+{
+    if (argc < 2) {
+        print_help(stderr);
+        return FC_EXIT_USAGE;
+    }
+    const char *command = argv[1];
+    if (strcmp(command, "--help") == 0 || strcmp(command, "-h") == 0) {
+        print_help(stdout);
+        return FC_EXIT_OK;
+    }
+    if (strcmp(command, "--version") == 0) {
+        printf("fluidcast %s (protocol %u)\n", FLUIDCAST_VERSION, FC_PROTOCOL_VERSION);
+        return FC_EXIT_OK;
+    }
+    if (strcmp(command, "snapshot") == 0)
+        return fc_snapshot_main(argc - 2, argv + 2);
+    return fc_cli_fail(FC_EXIT_USAGE, "unknown command \"%s\" (see fluidcast --help)", command);
+}

@@ -1,1 +1,163 @@
-/* placeholder: being written */
+/* fluidcast.c — connecting (HELLO/WELCOME), server info and closing. */
+#include "fluidcast.h"
+
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+#include "client_core.h"
+#include "fc_error.h"
+#include "host_port.h"
+#include "socket_io.h"
+
+#define DEFAULT_CLIENT_NAME "libfluidcast"
+#define DEFAULT_CONNECT_TIMEOUT_MS 10000u
+/* WELCOME and ERROR are a few hundred bytes; nothing larger is expected before
+ * the server has announced its limits. */
+#define HANDSHAKE_MAX_REPLY (64u * 1024u)
+/* Room for container headers and metadata on top of the largest pixel data. */
+#define IMAGE_OVERHEAD (1u << 20)
+
+/* The largest IMAGE the announced limits allow: RGBA float32 (16 bytes a pixel,
+ * the widest encoding) of the largest image, plus overhead. Bounding replies this
+ * way keeps a corrupt length from making the client allocate gigabytes. */
+static uint32_t max_image_reply(const fc_limits *limits)
+{
+    uint64_t bytes = (uint64_t)limits->max_width * limits->max_height * 16u + IMAGE_OVERHEAD;
+    return bytes > UINT32_MAX ? UINT32_MAX : (uint32_t)bytes;
+}
+
+static void copy_server_info(const fc_welcome *w, fc_server_info *info)
+{
+    memset(info, 0, sizeof *info);
+    info->protocol_version = w->version;
+    memcpy(info->server_version, w->server_version, sizeof info->server_version);
+    info->server_version[sizeof info->server_version - 1] = '\0';
+    memcpy(info->renderer, w->renderer, sizeof info->renderer);
+    info->renderer[sizeof info->renderer - 1] = '\0';
+    info->max_particles = w->limits.max_particles;
+    info->max_width = w->limits.max_width;
+    info->max_height = w->limits.max_height;
+    info->max_message = w->limits.max_message;
+}
+
+static fc_code send_hello(fc_client *c, const char *client_name, fc_error *err)
+{
+    fc_hello hello;
+    memset(&hello, 0, sizeof hello);
+    hello.version_min = FC_PROTOCOL_VERSION;
+    hello.version_max = FC_PROTOCOL_VERSION;
+    snprintf(hello.client_name, sizeof hello.client_name, "%s", client_name);
+    fc_buf_reset(&c->tx);
+    fc_code code = fc_wire_write_hello(&c->tx, fc_client_next_request_id(c), &hello, err);
+    return code != FC_OK ? code : fc_client_send_tx(c, err);
+}
+
+static fc_code receive_welcome(fc_client *c, fc_error *err)
+{
+    fc_msg_header header;
+    fc_code code = fc_client_receive(c, &header, err);
+    if (code != FC_OK)
+        return code;
+    if (header.type == FC_MSG_ERROR)
+        return fc_client_decode_server_error(c, err);
+    if (header.type != FC_MSG_WELCOME || header.request_id != c->last_request_id)
+        return fc_client_unexpected(c, &header, "WELCOME", err);
+
+    fc_welcome welcome;
+    fc_error why;
+    if (fc_wire_read_welcome(c->rx.data, c->rx.len, &welcome, &why) != FC_OK)
+        return fc_error_set(err, FC_ERR_PROTOCOL, "malformed WELCOME from the server: %s", why.message);
+    if (welcome.version != FC_PROTOCOL_VERSION)
+        return fc_error_set(err, FC_ERR_PROTOCOL, "the server chose protocol version %u; this client speaks %u",
+                            (unsigned)welcome.version, FC_PROTOCOL_VERSION);
+    copy_server_info(&welcome, &c->info);
+    c->max_reply = max_image_reply(&welcome.limits);
+    return FC_OK;
+}
+
+/* The handshake runs under the connect timeout: a server that accepts but never
+ * answers counts as unreachable in time, not as a render that takes long. */
+static fc_code handshake(fc_client *c, const fc_connect_options *opt, uint32_t connect_timeout,
+                         fc_error *err)
+{
+    const char *name = opt->client_name ? opt->client_name : DEFAULT_CLIENT_NAME;
+    fc_code code = fc_socket_set_timeout(c->fd, connect_timeout, err);
+    if (code == FC_OK)
+        code = send_hello(c, name, err);
+    if (code == FC_OK)
+        code = receive_welcome(c, err);
+    if (code == FC_OK)
+        code = fc_socket_set_timeout(c->fd, opt->reply_timeout_ms, err);
+    return code;
+}
+
+static fc_client *client_new(void)
+{
+    fc_client *c = calloc(1, sizeof *c);
+    if (!c)
+        return NULL;
+    c->fd = -1;
+    c->max_reply = HANDSHAKE_MAX_REPLY;
+    fc_buf_init(&c->tx);
+    fc_buf_init(&c->rx);
+    return c;
+}
+
+static void client_free(fc_client *c)
+{
+    if (c->fd >= 0)
+        close(c->fd);
+    fc_buf_free(&c->tx);
+    fc_buf_free(&c->rx);
+    free(c);
+}
+
+fc_code fc_client_connect(const char *host_port, const fc_connect_options *options,
+                          fc_client **out, fc_error *err)
+{
+    if (!out)
+        return fc_error_set(err, FC_ERR_USAGE, "fc_client_connect needs somewhere to store the client");
+    *out = NULL;
+    fc_connect_options defaults;
+    memset(&defaults, 0, sizeof defaults);
+    const fc_connect_options *opt = options ? options : &defaults;
+
+    char host[FC_HOST_MAX];
+    char port[FC_PORT_MAX];
+    fc_code code = fc_host_port_parse(host_port, host, port, err);
+    if (code != FC_OK)
+        return code;
+    fc_client *c = client_new();
+    if (!c)
+        return fc_error_set(err, FC_ERR_NOMEM, "no memory for a client");
+    uint32_t connect_timeout = opt->connect_timeout_ms ? opt->connect_timeout_ms : DEFAULT_CONNECT_TIMEOUT_MS;
+    code = fc_socket_connect(host, port, connect_timeout, &c->fd, err);
+    if (code == FC_OK)
+        code = handshake(c, opt, connect_timeout, err);
+    if (code != FC_OK) {
+        client_free(c);
+        return code;
+    }
+    *out = c;
+    return FC_OK;
+}
+
+void fc_client_server_info(const fc_client *client, fc_server_info *out)
+{
+    *out = client->info;
+}
+
+void fc_client_close(fc_client *client)
+{
+    if (!client)
+        return;
+    if (!client->broken) {
+        /* Best effort: the server cleans up after a plain close as well. */
+        fc_buf_reset(&client->tx);
+        if (fc_wire_write_goodbye(&client->tx, fc_client_next_request_id(client), NULL) == FC_OK)
+            fc_client_send_tx(client, NULL);
+    }
+    client_free(client);
+}

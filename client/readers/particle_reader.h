@@ -8,6 +8,13 @@
 
 #include "fluidcast_types.h"
 
+#ifdef __cplusplus
+extern "C" {
+#ifdef __cplusplus
+}
+#endif
+#endif
+
 typedef enum fc_file_format {
     FC_FILE_UNKNOWN = 0,
     FC_FILE_F32,
@@ -27,4 +34,7 @@ fc_code fc_read_particles(const char *path, fc_frame *frame, fc_error *err);
 fc_code fc_read_particles_mem(const uint8_t *data, size_t size, fc_file_format format,
                               const char *name, fc_frame *frame, fc_error *err);
 
+#ifdef __cplusplus
+}
+#endif
 #endif

@@ -1,0 +1,116 @@
+/* snapshot.c — `fluidcast snapshot`: read the particles, choose camera and
+ * settings, have the server render, write the bytes it sent. */
+#include "snapshot.h"
+
+#include <stdio.h>
+
+#include "cli_report.h"
+#include "fc_error.h"
+#include "fc_frame.h"
+#include "fluidcast.h"
+#include "output_file.h"
+#include "particle_reader.h"
+#include "snapshot_camera.h"
+#include "snapshot_options.h"
+
+static int load_particles(const char *path, fc_frame *frame)
+{
+    fc_error err;
+    if (fc_read_particles(path, frame, &err) != FC_OK)
+        return fc_cli_fail(FC_EXIT_INPUT, "%s", err.message);
+    if (frame->count == 0)
+        return fc_cli_fail(FC_EXIT_INPUT, "%s holds no particles", path);
+    if (fc_frame_validate(frame, &err) != FC_OK)
+        return fc_cli_fail(FC_EXIT_INPUT, "%s: %s", path, err.message);
+    return FC_EXIT_OK;
+}
+
+static int choose_settings(const fc_snapshot_options *o, const fc_frame *frame, fc_settings *s)
+{
+    fc_settings_default(s);
+    s->radius = o->radius > 0.0f ? o->radius : fc_frame_estimate_radius(frame);
+    if (o->has_smoothing)
+        s->smoothing = o->smoothing;
+    if (o->has_iterations)
+        s->iterations = o->iterations;
+    fc_error err;
+    if (fc_settings_validate(s, &err) != FC_OK)
+        return fc_cli_fail(FC_EXIT_USAGE, "bad render settings: %s", err.message);
+    return FC_EXIT_OK;
+}
+
+static int client_failure(const char *server, const fc_error *err)
+{
+    return fc_cli_fail(fc_cli_exit_for_client_error(err->code), "%s: %s", server, err->message);
+}
+
+/* Connects, sends frame/camera/settings and waits for the image. */
+static int render_remotely(const fc_snapshot_options *o, const fc_frame *frame, const fc_camera *cam,
+                           const fc_settings *settings, fc_image_result *image)
+{
+    fc_connect_options connect_options = { .client_name = "fluidcast snapshot" };
+    fc_client *client;
+    fc_error err;
+    /* The message of a failed connect names the host and port itself. */
+    if (fc_client_connect(o->server, &connect_options, &client, &err) != FC_OK)
+        return fc_cli_fail(fc_cli_exit_for_client_error(err.code), "%s", err.message);
+    fc_render_request request = { .format = o->format, .quality = o->quality, .aov = o->aov };
+    int status = FC_EXIT_OK;
+    /* Rejections of FRAME/CAMERA/SETTINGS arrive as the render's error. */
+    if (fc_client_send_frame(client, frame, &err) != FC_OK ||
+        fc_client_set_camera(client, cam, &err) != FC_OK ||
+        fc_client_set_settings(client, settings, &err) != FC_OK ||
+        fc_client_render(client, &request, image, &err) != FC_OK)
+        status = client_failure(o->server, &err);
+    fc_client_close(client);
+    return status;
+}
+
+static int write_image(const fc_snapshot_options *o, const fc_image_result *image, const fc_settings *settings)
+{
+    fc_error err;
+    if (fc_output_write(o->output, image->data, image->size, &err) != FC_OK)
+        return fc_cli_fail(FC_EXIT_OUTPUT, "%s", err.message);
+    printf("wrote %s: %ux%u %s, %zu bytes, server %.1f ms, radius %g%s\n", o->output, (unsigned)image->width,
+           (unsigned)image->height, fc_output_format_name(image->format), image->size,
+           (double)image->stage_ms[FC_STAGE_TOTAL], (double)settings->radius,
+           o->radius > 0.0f ? "" : " (estimated from particle spacing)");
+    return FC_EXIT_OK;
+}
+
+static int snapshot(const fc_snapshot_options *o, fc_frame *frame)
+{
+    int status = load_particles(o->input, frame);
+    if (status != FC_EXIT_OK)
+        return status;
+    fc_camera cam;
+    fc_error err;
+    if (fc_snapshot_camera(o, frame, &cam, &err) != FC_OK)
+        return fc_cli_fail(FC_EXIT_USAGE, "%s", err.message);
+    fc_settings settings;
+    status = choose_settings(o, frame, &settings);
+    if (status != FC_EXIT_OK)
+        return status;
+    fc_image_result image = { 0 };
+    status = render_remotely(o, frame, &cam, &settings, &image);
+    if (status == FC_EXIT_OK)
+        status = write_image(o, &image, &settings);
+    fc_image_result_free(&image);
+    return status;
+}
+
+int fc_snapshot_main(int argc, char **argv)
+{
+    fc_snapshot_options options;
+    fc_error err;
+    if (fc_snapshot_parse(argc, argv, &options, &err) != FC_OK)
+        return fc_cli_fail(FC_EXIT_USAGE, "%s", err.message);
+    if (options.help) {
+        fc_snapshot_print_help(stdout);
+        return FC_EXIT_OK;
+    }
+    fc_frame frame = { 0 };
+    int status = snapshot(&options, &frame);
+    fc_frame_free(&frame);
+    return status;
+}

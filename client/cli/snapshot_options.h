@@ -1,0 +1,43 @@
+/* snapshot_options.h — the command line of `fluidcast snapshot`: parsing,
+ * checking the combinations, and the help text. */
+#ifndef FC_SNAPSHOT_OPTIONS_H
+#define FC_SNAPSHOT_OPTIONS_H
+
+#include <stdbool.h>
+#include <stdint.h>
+#include <stdio.h>
+
+#include "fluidcast_types.h"
+
+#define FC_SNAPSHOT_DEFAULT_SERVER "127.0.0.1:7450"
+#define FC_SNAPSHOT_DEFAULT_FOV 40.0f
+#define FC_SNAPSHOT_DEFAULT_QUALITY 90u
+
+typedef struct fc_snapshot_options {
+    bool help;                     /* --help: print the help and do nothing else */
+    const char *input;             /* particle file */
+    const char *output;            /* image file; its extension chose `format` */
+    fc_image_format format;
+    const char *server;            /* HOST:PORT */
+    uint32_t width, height;
+    bool has_eye, has_target, has_up;
+    float eye[3], target[3], up[3];   /* up is 0,0,1 unless given */
+    bool has_fov;
+    float fov_deg;
+    float radius;                  /* 0: estimate from the particle spacing */
+    bool has_smoothing, has_iterations;
+    fc_smoothing smoothing;
+    uint32_t iterations;
+    fc_aov aov;
+    bool has_quality;
+    uint32_t quality;
+} fc_snapshot_options;
+
+/* Parses the arguments after "snapshot". FC_ERR_USAGE with the reason for an
+ * unknown option, a bad value, a missing input/output, an unsupported output
+ * extension, --aov without .exr, --quality without .jpg, or half a camera. */
+fc_code fc_snapshot_parse(int argc, char **argv, fc_snapshot_options *out, fc_error *err);
+
+void fc_snapshot_print_help(FILE *to);
+
+#endif

@@ -1,0 +1,64 @@
+/* client_core.c — see client_core.h. */
+#include "client_core.h"
+
+#include "fc_error.h"
+#include "message_io.h"
+#include "socket_io.h"
+
+fc_code fc_client_check_usable(const fc_client *c, fc_error *err)
+{
+    if (!c)
+        return fc_error_set(err, FC_ERR_USAGE, "no client given");
+    if (c->broken)
+        return fc_error_set(err, FC_ERR_CLOSED, "the connection was lost by an earlier failure; reconnect");
+    return FC_OK;
+}
+
+uint32_t fc_client_next_request_id(fc_client *c)
+{
+    c->last_request_id++;
+    if (c->last_request_id == 0)   /* 0 is left for messages that answer no request */
+        c->last_request_id = 1;
+    return c->last_request_id;
+}
+
+fc_code fc_client_send_tx(fc_client *c, fc_error *err)
+{
+    fc_code code = fc_socket_send_all(c->fd, c->tx.data, c->tx.len, err);
+    if (code != FC_OK)
+        c->broken = true;
+    return code;
+}
+
+fc_code fc_client_receive(fc_client *c, fc_msg_header *header, fc_error *err)
+{
+    fc_code code = fc_message_receive(c->fd, c->max_reply, header, &c->rx, err);
+    if (code != FC_OK)
+        c->broken = true;
+    return code;
+}
+
+fc_code fc_client_decode_server_error(fc_client *c, fc_error *out)
+{
+    fc_error server;
+    fc_error why;
+    if (fc_wire_read_error(c->rx.data, c->rx.len, &server, &why) != FC_OK) {
+        c->broken = true;
+        return fc_error_set(out, FC_ERR_PROTOCOL, "malformed ERROR from the server: %s", why.message);
+    }
+    /* Only wire codes may travel; anything else would pass for success or a local failure. */
+    if (server.code < 1 || server.code > 99) {
+        c->broken = true;
+        return fc_error_set(out, FC_ERR_PROTOCOL, "the server sent an ERROR with code %d, not a wire code",
+                            (int)server.code);
+    }
+    return fc_error_set(out, server.code, "server: %s", server.message);
+}
+
+fc_code fc_client_unexpected(fc_client *c, const fc_msg_header *header, const char *awaited,
+                             fc_error *err)
+{
+    c->broken = true;
+    return fc_error_set(err, FC_ERR_PROTOCOL, "unexpected %s (request %u) from the server while waiting for %s",
+                        fc_message_type_name(header->type), (unsigned)header->request_id, awaited);
+}

@@ -1,0 +1,17 @@
+/* message_io.h — receiving whole protocol messages on a client socket. */
+#ifndef FC_MESSAGE_IO_H
+#define FC_MESSAGE_IO_H
+
+#include <stdint.h>
+#include "wire.h"
+
+/* Receives one message: its header into *header and its payload into `payload`
+ * (reset first, capacity reused). A header that is not FCST or announces more
+ * than max_payload bytes is FC_ERR_PROTOCOL; socket errors as fc_socket_recv_exact. */
+fc_code fc_message_receive(int fd, uint32_t max_payload, fc_msg_header *header, fc_buf *payload,
+                           fc_error *err);
+
+/* Upper-case name of a message type for error messages, e.g. "WELCOME". */
+const char *fc_message_type_name(uint16_t type);
+
+#endif
