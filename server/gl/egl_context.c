@@ -1,1 +1,278 @@
-/* placeholder: being written */
+/* egl_context.c — a headless OpenGL 4.5 core context through EGL, with no
+ * window system: a GPU through EGL_EXT_platform_device, or Mesa's surfaceless
+ * platform (llvmpipe). Function pointers come from libepoxy. */
+#include "egl_context.h"
+
+#include <epoxy/egl.h>
+#include <epoxy/gl.h>
+#include <errno.h>
+#include <limits.h>
+#include <stdbool.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "fc_error.h"
+
+/* More EGL devices than any machine has; eglQueryDevicesEXT reports the real count. */
+#define MAX_EGL_DEVICES 32
+#define REQUIRED_GL_VERSION 45   /* epoxy_gl_version() encoding of 4.5 */
+
+struct fc_gl_context {
+    EGLDisplay display;
+    EGLContext context;
+    char egl_vendor[128];
+    char renderer[256];
+    char version[256];
+};
+
+fc_code fc_gpu_choice_parse(const char *text, fc_gpu_choice *out, fc_error *err)
+{
+    if (!text || !out)
+        return fc_error_set(err, FC_ERR_USAGE, "gpu choice: missing text or output");
+    if (strcmp(text, "auto") == 0) {
+        *out = (fc_gpu_choice){FC_GPU_AUTO, 0};
+        return FC_OK;
+    }
+    if (strcmp(text, "software") == 0) {
+        *out = (fc_gpu_choice){FC_GPU_SOFTWARE, 0};
+        return FC_OK;
+    }
+    char *end = NULL;
+    errno = 0;
+    long index = strtol(text, &end, 10);
+    if (text[0] < '0' || text[0] > '9' || *end != '\0' || errno != 0 || index > INT_MAX)
+        return fc_error_set(err, FC_ERR_USAGE,
+                            "gpu choice '%s': expected \"auto\", \"software\" or a device number", text);
+    *out = (fc_gpu_choice){FC_GPU_INDEX, (int)index};
+    return FC_OK;
+}
+
+static const char *egl_error_name(EGLint code)
+{
+    switch (code) {
+    case EGL_SUCCESS: return "EGL_SUCCESS";
+    case EGL_NOT_INITIALIZED: return "EGL_NOT_INITIALIZED";
+    case EGL_BAD_ACCESS: return "EGL_BAD_ACCESS";
+    case EGL_BAD_ALLOC: return "EGL_BAD_ALLOC";
+    case EGL_BAD_ATTRIBUTE: return "EGL_BAD_ATTRIBUTE";
+    case EGL_BAD_CONTEXT: return "EGL_BAD_CONTEXT";
+    case EGL_BAD_CONFIG: return "EGL_BAD_CONFIG";
+    case EGL_BAD_CURRENT_SURFACE: return "EGL_BAD_CURRENT_SURFACE";
+    case EGL_BAD_DISPLAY: return "EGL_BAD_DISPLAY";
+    case EGL_BAD_SURFACE: return "EGL_BAD_SURFACE";
+    case EGL_BAD_MATCH: return "EGL_BAD_MATCH";
+    case EGL_BAD_PARAMETER: return "EGL_BAD_PARAMETER";
+    case EGL_BAD_NATIVE_PIXMAP: return "EGL_BAD_NATIVE_PIXMAP";
+    case EGL_BAD_NATIVE_WINDOW: return "EGL_BAD_NATIVE_WINDOW";
+    case EGL_CONTEXT_LOST: return "EGL_CONTEXT_LOST";
+    case EGL_BAD_DEVICE_EXT: return "EGL_BAD_DEVICE_EXT";
+    }
+    return "unknown EGL error";
+}
+
+/* Whether the space-separated extension list contains `name` as a whole word. */
+static bool has_extension(const char *list, const char *name)
+{
+    size_t len = strlen(name);
+    for (const char *p = list; p && (p = strstr(p, name)) != NULL; p += len) {
+        bool starts = p == list || p[-1] == ' ';
+        bool ends = p[len] == ' ' || p[len] == '\0';
+        if (starts && ends)
+            return true;
+    }
+    return false;
+}
+
+static bool has_client_extension(const char *name)
+{
+    /* EGL_NO_DISPLAY queries the client (platform) extensions. */
+    return has_extension(eglQueryString(EGL_NO_DISPLAY, EGL_EXTENSIONS), name);
+}
+
+static fc_code egl_failure(fc_error *err, const char *tried, const char *step)
+{
+    return fc_error_set(err, FC_ERR_GL, "EGL: %s: %s failed (%s)", tried, step, egl_error_name(eglGetError()));
+}
+
+/* The devices EGL enumerates; *count = 0 when enumeration is unavailable. */
+static void query_devices(EGLDeviceEXT devices[MAX_EGL_DEVICES], EGLint *count)
+{
+    *count = 0;
+    if (!has_client_extension("EGL_EXT_device_enumeration") || !has_client_extension("EGL_EXT_device_query") ||
+        !has_client_extension("EGL_EXT_platform_device"))
+        return;
+    if (!eglQueryDevicesEXT(MAX_EGL_DEVICES, devices, count))
+        *count = 0;
+}
+
+static bool is_software_device(EGLDeviceEXT device)
+{
+    return has_extension(eglQueryDeviceStringEXT(device, EGL_EXTENSIONS), "EGL_MESA_device_software");
+}
+
+/* Initialises `display`, then creates a 4.5 core context without config or
+ * surface and makes it current. `tried` names the platform for messages. */
+static fc_code create_on_display(EGLDisplay display, const char *tried, fc_gl_context *ctx, fc_error *err)
+{
+    if (display == EGL_NO_DISPLAY)
+        return egl_failure(err, tried, "eglGetPlatformDisplayEXT");
+    EGLint major = 0, minor = 0;
+    if (!eglInitialize(display, &major, &minor))
+        return egl_failure(err, tried, "eglInitialize");
+    const char *extensions = eglQueryString(display, EGL_EXTENSIONS);
+    if (!has_extension(extensions, "EGL_KHR_no_config_context") ||
+        !has_extension(extensions, "EGL_KHR_surfaceless_context"))
+        return fc_error_set(err, FC_ERR_GL,
+                            "EGL: %s: display lacks EGL_KHR_no_config_context or EGL_KHR_surfaceless_context",
+                            tried);
+    if (!eglBindAPI(EGL_OPENGL_API))
+        return egl_failure(err, tried, "eglBindAPI(EGL_OPENGL_API)");
+    const EGLint attributes[] = {
+        EGL_CONTEXT_MAJOR_VERSION, 4,
+        EGL_CONTEXT_MINOR_VERSION, 5,
+        EGL_CONTEXT_OPENGL_PROFILE_MASK, EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT,
+        EGL_NONE};
+    EGLContext context = eglCreateContext(display, EGL_NO_CONFIG_KHR, EGL_NO_CONTEXT, attributes);
+    if (context == EGL_NO_CONTEXT)
+        return egl_failure(err, tried, "eglCreateContext(OpenGL 4.5 core)");
+    if (!eglMakeCurrent(display, EGL_NO_SURFACE, EGL_NO_SURFACE, context)) {
+        fc_code code = egl_failure(err, tried, "eglMakeCurrent(no surface)");
+        eglDestroyContext(display, context);
+        return code;
+    }
+    ctx->display = display;
+    ctx->context = context;
+    return FC_OK;
+}
+
+static fc_code create_on_device(EGLDeviceEXT device, int index, fc_gl_context *ctx, fc_error *err)
+{
+    char tried[64];
+    snprintf(tried, sizeof tried, "EGL device %d", index);
+    EGLDisplay display = eglGetPlatformDisplayEXT(EGL_PLATFORM_DEVICE_EXT, device, NULL);
+    return create_on_display(display, tried, ctx, err);
+}
+
+static fc_code create_surfaceless(fc_gl_context *ctx, fc_error *err)
+{
+    const char *tried = "Mesa surfaceless platform";
+    if (!has_client_extension("EGL_MESA_platform_surfaceless"))
+        return fc_error_set(err, FC_ERR_GL, "EGL: %s: EGL_MESA_platform_surfaceless not supported", tried);
+    EGLDisplay display = eglGetPlatformDisplayEXT(EGL_PLATFORM_SURFACELESS_MESA, EGL_DEFAULT_DISPLAY, NULL);
+    return create_on_display(display, tried, ctx, err);
+}
+
+/* The first hardware device that yields a context; else the surfaceless
+ * platform. When both fail, the message names both attempts. */
+static fc_code create_auto(fc_gl_context *ctx, fc_error *err)
+{
+    EGLDeviceEXT devices[MAX_EGL_DEVICES];
+    EGLint count = 0;
+    query_devices(devices, &count);
+    fc_error device_err = {FC_OK, "no hardware EGL device"};
+    for (EGLint i = 0; i < count; i++) {
+        if (is_software_device(devices[i]))
+            continue;
+        if (create_on_device(devices[i], (int)i, ctx, &device_err) == FC_OK)
+            return FC_OK;
+        break;
+    }
+    fc_error software_err;
+    if (create_surfaceless(ctx, &software_err) == FC_OK)
+        return FC_OK;
+    return fc_error_set(err, FC_ERR_GL, "no OpenGL 4.5 context: %s; %s", device_err.message,
+                        software_err.message);
+}
+
+static fc_code create_indexed(int index, fc_gl_context *ctx, fc_error *err)
+{
+    EGLDeviceEXT devices[MAX_EGL_DEVICES];
+    EGLint count = 0;
+    query_devices(devices, &count);
+    if (index < 0 || index >= count)
+        return fc_error_set(err, FC_ERR_GL, "EGL device %d does not exist: %d EGL device(s) enumerated", index,
+                            (int)count);
+    return create_on_device(devices[index], index, ctx, err);
+}
+
+static void copy_string(char *dst, size_t size, const char *src)
+{
+    snprintf(dst, size, "%s", src ? src : "unknown");
+}
+
+/* Records the strings a caller reports, after checking the context really is 4.5:
+ * drivers may hand out a lower version than requested. */
+static fc_code describe_context(fc_gl_context *ctx, fc_error *err)
+{
+    copy_string(ctx->egl_vendor, sizeof ctx->egl_vendor, eglQueryString(ctx->display, EGL_VENDOR));
+    copy_string(ctx->renderer, sizeof ctx->renderer, (const char *)glGetString(GL_RENDERER));
+    copy_string(ctx->version, sizeof ctx->version, (const char *)glGetString(GL_VERSION));
+    if (epoxy_gl_version() < REQUIRED_GL_VERSION)
+        return fc_error_set(err, FC_ERR_GL, "OpenGL 4.5 core required, %s offers %s", ctx->renderer,
+                            ctx->version);
+    return FC_OK;
+}
+
+fc_code fc_gl_context_create(const fc_gpu_choice *choice, fc_gl_context **out, fc_error *err)
+{
+    if (!choice || !out)
+        return fc_error_set(err, FC_ERR_USAGE, "fc_gl_context_create: missing choice or output");
+    *out = NULL;
+    fc_gl_context *ctx = calloc(1, sizeof *ctx);
+    if (!ctx)
+        return fc_error_set(err, FC_ERR_NOMEM, "out of memory for the GL context");
+    fc_code code;
+    switch (choice->mode) {
+    case FC_GPU_AUTO: code = create_auto(ctx, err); break;
+    case FC_GPU_SOFTWARE: code = create_surfaceless(ctx, err); break;
+    case FC_GPU_INDEX: code = create_indexed(choice->index, ctx, err); break;
+    default: code = fc_error_set(err, FC_ERR_USAGE, "unknown gpu mode %d", (int)choice->mode); break;
+    }
+    if (code == FC_OK)
+        code = describe_context(ctx, err);
+    if (code != FC_OK) {
+        fc_gl_context_destroy(ctx);
+        return code;
+    }
+    *out = ctx;
+    return FC_OK;
+}
+
+void fc_gl_context_destroy(fc_gl_context *ctx)
+{
+    if (!ctx)
+        return;
+    if (ctx->context != EGL_NO_CONTEXT) {
+        if (eglGetCurrentContext() == ctx->context)
+            eglMakeCurrent(ctx->display, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
+        eglDestroyContext(ctx->display, ctx->context);
+    }
+    /* No eglTerminate: a platform display is one object per process, so
+     * terminating it would destroy the contexts other owners still use. */
+    free(ctx);
+}
+
+fc_code fc_gl_context_make_current(fc_gl_context *ctx, fc_error *err)
+{
+    if (!ctx)
+        return fc_error_set(err, FC_ERR_USAGE, "fc_gl_context_make_current: no context");
+    if (!eglMakeCurrent(ctx->display, EGL_NO_SURFACE, EGL_NO_SURFACE, ctx->context))
+        return fc_error_set(err, FC_ERR_GL, "eglMakeCurrent failed (%s)", egl_error_name(eglGetError()));
+    return FC_OK;
+}
+
+const char *fc_gl_context_egl_vendor(const fc_gl_context *ctx)
+{
+    return ctx->egl_vendor;
+}
+
+const char *fc_gl_context_renderer(const fc_gl_context *ctx)
+{
+    return ctx->renderer;
+}
+
+const char *fc_gl_context_version(const fc_gl_context *ctx)
+{
+    return ctx->version;
+}

@@ -1,1 +1,268 @@
-/* placeholder: being written */
+/* pipeline.c — the screen-space fluid pipeline: orchestrates the passes of
+ * pipeline.h for one request, timing each stage on the GPU. */
+#include "pipeline.h"
+
+#include <epoxy/gl.h>
+#include <stdbool.h>
+#include <stdlib.h>
+
+#include "background_pass.h"
+#include "composite_pass.h"
+#include "depth_pass.h"
+#include "environment.h"
+#include "fc_error.h"
+#include "fc_frame.h"
+#include "gl_util.h"
+#include "particle_buffer.h"
+#include "readback.h"
+#include "smoothing.h"
+#include "stage_timer.h"
+#include "thickness_pass.h"
+#include "view.h"
+
+/* Neighbouring pixels whose depths differ by more than this many particle
+ * radii belong to separate surfaces: smoothing must not bridge them. Steps
+ * between the spheres of one surface stay below about two radii. */
+#define DEPTH_JUMP_RADII 4.0f
+
+struct fc_pipeline {
+    fc_particle_buffer particles;
+    bool uploaded;
+    fc_depth_pass depth;
+    fc_thickness_pass thickness;
+    fc_smoother smoother;
+    fc_background_pass background;
+    fc_composite_pass composite;
+    fc_stage_timer timer;
+    GLint max_image_size;   /* largest width or height the GPU renders */
+};
+
+static GLint query_max_image_size(void)
+{
+    GLint texture = 0, viewport[2] = {0, 0};
+    glGetIntegerv(GL_MAX_TEXTURE_SIZE, &texture);
+    glGetIntegerv(GL_MAX_VIEWPORT_DIMS, viewport);
+    GLint size = texture < viewport[0] ? texture : viewport[0];
+    return size < viewport[1] ? size : viewport[1];
+}
+
+static fc_code create_passes(fc_pipeline *p, const char *dir, fc_error *err)
+{
+    fc_code code = fc_particle_buffer_create(&p->particles, err);
+    if (code == FC_OK)
+        code = fc_depth_pass_create(dir, &p->depth, err);
+    if (code == FC_OK)
+        code = fc_thickness_pass_create(dir, &p->thickness, err);
+    if (code == FC_OK)
+        code = fc_smoother_create(dir, &p->smoother, err);
+    if (code == FC_OK)
+        code = fc_background_pass_create(dir, &p->background, err);
+    if (code == FC_OK)
+        code = fc_composite_pass_create(dir, &p->composite, err);
+    if (code == FC_OK)
+        code = fc_stage_timer_create(&p->timer, err);
+    return code;
+}
+
+static fc_code depth_stage(fc_pipeline *p, const fc_view *view, float radius, fc_error *err)
+{
+    fc_stage_timer_begin(&p->timer, FC_STAGE_DEPTH);
+    fc_code code = fc_depth_pass_run(&p->depth, &p->particles, view, radius, err);
+    fc_stage_timer_end(&p->timer, FC_STAGE_DEPTH);
+    return code;
+}
+
+static fc_code thickness_stage(fc_pipeline *p, const fc_view *view, float radius, fc_error *err)
+{
+    fc_stage_timer_begin(&p->timer, FC_STAGE_THICKNESS);
+    fc_code code = fc_thickness_pass_run(&p->thickness, &p->particles, view, radius, err);
+    fc_stage_timer_end(&p->timer, FC_STAGE_THICKNESS);
+    return code;
+}
+
+static fc_code smoothing_stage(fc_pipeline *p, const fc_view *view, const fc_settings *s,
+                               const fc_render_target **surface, fc_error *err)
+{
+    fc_smoothing_params params = {
+        .method = s->smoothing,
+        .iterations = s->iterations,
+        .depth_jump = DEPTH_JUMP_RADII * s->radius,
+    };
+    fc_view_pixel_scale(view, &params.pixel_scale[0], &params.pixel_scale[1]);
+    bool runs = s->smoothing != FC_SMOOTHING_NONE && s->iterations > 0;
+    if (runs)
+        fc_stage_timer_begin(&p->timer, FC_STAGE_SMOOTHING);
+    fc_code code = fc_smoother_run(&p->smoother, &p->depth.target, &params, surface, err);
+    if (runs)
+        fc_stage_timer_end(&p->timer, FC_STAGE_SMOOTHING);
+    return code;
+}
+
+/* The background is rendered for the composite alone, so it is timed with it. */
+static fc_code composite_stage(fc_pipeline *p, const fc_view *view, const fc_camera *camera,
+                               const fc_settings *s, const fc_render_target *surface, bool want_u8,
+                               const fc_render_target **result, fc_error *err)
+{
+    fc_environment env;
+    fc_environment_for_view(view, camera, p->particles.lo, p->particles.hi, s->radius, &env);
+    fc_composite_inputs inputs = {surface, &p->thickness.target, &p->background.target};
+    fc_stage_timer_begin(&p->timer, FC_STAGE_COMPOSITE);
+    fc_code code = fc_background_pass_run(&p->background, view, &env, err);
+    if (code == FC_OK)
+        code = fc_composite_pass_run(&p->composite, &inputs, view, &env, s, want_u8, result, err);
+    fc_stage_timer_end(&p->timer, FC_STAGE_COMPOSITE);
+    return code;
+}
+
+/* Runs the stages the requested image needs, no more, and sets *result to the
+ * target holding it. */
+static fc_code render_stages(fc_pipeline *p, const fc_view *view, const fc_camera *camera, const fc_settings *s,
+                             fc_aov aov, bool want_u8, const fc_render_target **result, fc_error *err)
+{
+    if (aov == FC_AOV_THICKNESS) {
+        *result = &p->thickness.target;
+        return thickness_stage(p, view, s->radius, err);
+    }
+    fc_code code = depth_stage(p, view, s->radius, err);
+    *result = &p->depth.target;
+    if (code != FC_OK || aov == FC_AOV_DEPTH)
+        return code;
+    const fc_render_target *surface = NULL;
+    code = smoothing_stage(p, view, s, &surface, err);
+    *result = surface;
+    if (code != FC_OK || aov == FC_AOV_SMOOTHED_DEPTH)
+        return code;
+    code = thickness_stage(p, view, s->radius, err);
+    if (code != FC_OK)
+        return code;
+    return composite_stage(p, view, camera, s, surface, want_u8, result, err);
+}
+
+/* Renders one particle into a tiny image through every stage. Drivers compile
+ * shader variants lazily at the first draw, and some (llvmpipe) report a
+ * bogus duration for the first timer query of a context; warming up keeps
+ * both out of the first real request's timings. */
+static fc_code warm_up(fc_pipeline *p, fc_error *err)
+{
+    const float origin[3] = {0.0f, 0.0f, 0.0f};
+    fc_frame frame = {.count = 1, .positions = (float *)origin};
+    fc_camera camera = {.eye = {0.0f, 0.0f, 4.0f}, .up = {0.0f, 1.0f, 0.0f}, .fov_y_deg = 40.0f,
+                        .width = 8, .height = 8};
+    fc_settings settings = {.radius = 1.0f, .smoothing = FC_SMOOTHING_CURVATURE, .iterations = 1, .ior = 1.33f};
+    fc_code code = fc_particle_buffer_upload(&p->particles, &frame, err);
+    if (code != FC_OK)
+        return code;
+    fc_view view;
+    fc_view_from_camera(&camera, p->particles.lo, p->particles.hi, settings.radius, &view);
+    const fc_render_target *result = NULL;
+    code = render_stages(p, &view, &camera, &settings, FC_AOV_COLOR, true, &result, err);
+    for (int s = 0; s < FC_STAGE_COUNT; s++)
+        fc_stage_timer_ms(&p->timer, (fc_stage)s);   /* waits until the GPU is done */
+    p->particles.count = 0;
+    return code;
+}
+
+fc_code fc_pipeline_create(const fc_pipeline_config *config, fc_pipeline **out, fc_error *err)
+{
+    if (!out)
+        return fc_error_set(err, FC_ERR_USAGE, "fc_pipeline_create: no output");
+    *out = NULL;
+    fc_pipeline *p = calloc(1, sizeof *p);
+    if (!p)
+        return fc_error_set(err, FC_ERR_NOMEM, "out of memory for the pipeline");
+    fc_code code = create_passes(p, config ? config->shader_dir : NULL, err);
+    if (code == FC_OK)
+        code = warm_up(p, err);
+    if (code != FC_OK) {
+        fc_pipeline_destroy(p);
+        return code;
+    }
+    p->max_image_size = query_max_image_size();
+    *out = p;
+    return FC_OK;
+}
+
+void fc_pipeline_destroy(fc_pipeline *p)
+{
+    if (!p)
+        return;
+    fc_stage_timer_destroy(&p->timer);
+    fc_composite_pass_destroy(&p->composite);
+    fc_background_pass_destroy(&p->background);
+    fc_smoother_destroy(&p->smoother);
+    fc_thickness_pass_destroy(&p->thickness);
+    fc_depth_pass_destroy(&p->depth);
+    fc_particle_buffer_destroy(&p->particles);
+    free(p);
+}
+
+fc_code fc_pipeline_upload(fc_pipeline *p, const fc_frame *frame, float *stage_ms, fc_error *err)
+{
+    if (!p || !frame || (frame->count > 0 && !frame->positions))
+        return fc_error_set(err, FC_ERR_USAGE, "fc_pipeline_upload: missing pipeline or positions");
+    fc_stage_timer_reset(&p->timer);
+    fc_stage_timer_begin(&p->timer, FC_STAGE_UPLOAD);
+    fc_code code = fc_particle_buffer_upload(&p->particles, frame, err);
+    fc_stage_timer_end(&p->timer, FC_STAGE_UPLOAD);
+    p->uploaded = code == FC_OK;
+    if (stage_ms)
+        *stage_ms = code == FC_OK ? fc_stage_timer_ms(&p->timer, FC_STAGE_UPLOAD) : -1.0f;
+    return code;
+}
+
+static fc_code check_request(const fc_pipeline *p, const fc_camera *camera, const fc_settings *settings,
+                             fc_aov aov, fc_error *err)
+{
+    if (!p->uploaded)
+        return fc_error_set(err, FC_ERR_BAD_STATE, "render before any frame was uploaded");
+    fc_code code = fc_camera_validate(camera, err);
+    if (code == FC_OK)
+        code = fc_settings_validate(settings, err);
+    if (code != FC_OK)
+        return code;
+    if (!(settings->radius > 0.0f))
+        return fc_error_set(err, FC_ERR_INVALID_VALUE, "radius %g: the pipeline needs a resolved radius > 0",
+                            (double)settings->radius);
+    if (aov < FC_AOV_COLOR || aov > FC_AOV_THICKNESS)
+        return fc_error_set(err, FC_ERR_INVALID_VALUE, "unknown image kind (aov) %d", (int)aov);
+    if (camera->width > (uint32_t)p->max_image_size || camera->height > (uint32_t)p->max_image_size)
+        return fc_error_set(err, FC_ERR_RENDER, "image %ux%u exceeds this GPU's limit of %d pixels per side",
+                            camera->width, camera->height, (int)p->max_image_size);
+    return FC_OK;
+}
+
+static void report_stages(const fc_stage_timer *timer, float *stage_ms)
+{
+    if (!stage_ms)
+        return;
+    for (int s = 0; s < FC_STAGE_COUNT; s++)
+        stage_ms[s] = fc_stage_timer_ms(timer, (fc_stage)s);
+}
+
+fc_code fc_pipeline_render(fc_pipeline *p, const fc_camera *camera, const fc_settings *settings, fc_aov aov,
+                           int want_u8, fc_image *out, float *stage_ms, fc_error *err)
+{
+    if (!p || !camera || !settings || !out)
+        return fc_error_set(err, FC_ERR_USAGE, "fc_pipeline_render: missing pipeline, camera, settings or image");
+    fc_stage_timer_reset(&p->timer);
+    report_stages(&p->timer, stage_ms);
+    fc_code code = check_request(p, camera, settings, aov, err);
+    if (code != FC_OK)
+        return code;
+
+    fc_view view;
+    fc_view_from_camera(camera, p->particles.lo, p->particles.hi, settings->radius, &view);
+    const fc_render_target *result = NULL;
+    code = render_stages(p, &view, camera, settings, aov, want_u8 != 0, &result, err);
+    if (code != FC_OK)
+        return code;
+
+    bool color = aov == FC_AOV_COLOR;
+    fc_pixel_type type = color && want_u8 ? FC_PIXEL_U8 : FC_PIXEL_F32;
+    fc_stage_timer_begin(&p->timer, FC_STAGE_READBACK);
+    code = fc_readback(result, color ? 4 : 1, type, out, err);
+    fc_stage_timer_end(&p->timer, FC_STAGE_READBACK);
+    if (code == FC_OK)
+        report_stages(&p->timer, stage_ms);
+    return code;
+}

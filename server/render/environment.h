@@ -1,0 +1,30 @@
+/* environment.h — the scene around the fluid (sky, floor, light) as the
+ * full-screen shaders see it, derived from the camera and the frame bounds. */
+#ifndef FC_ENVIRONMENT_H
+#define FC_ENVIRONMENT_H
+
+#include "fluidcast_types.h"
+#include "view.h"
+
+typedef struct fc_environment {
+    float up[3];              /* unit; the camera's up vector */
+    float sun[3];             /* unit, towards the light, world space */
+    float light_view[3];      /* the same direction in view space */
+    float floor_u[3];         /* unit axes of the checker pattern in the floor plane */
+    float floor_v[3];
+    float floor_height;       /* the floor is dot(x, up) = floor_height */
+    float checker_size;       /* world units */
+    float pixel_angle;        /* radians one pixel spans at the image centre */
+} fc_environment;
+
+/* The environment of a render: a floor perpendicular to the camera's up
+ * vector touching the bottom of the particles' box [lo, hi] (grown by
+ * radius), checkers scaled to the box, a light over the camera's shoulder. */
+void fc_environment_for_view(const fc_view *view, const fc_camera *cam, const float lo[3], const float hi[3],
+                             float radius, fc_environment *env);
+
+/* Sets the uniforms of camera.frag.glsl and environment.frag.glsl on the
+ * program in use. */
+void fc_environment_apply(const fc_environment *env, const fc_view *view);
+
+#endif

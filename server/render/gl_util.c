@@ -1,0 +1,59 @@
+/* gl_util.c — GL error checks and texture creation shared by the passes. */
+#include "gl_util.h"
+
+#include "fc_error.h"
+
+static const char *gl_error_name(GLenum code)
+{
+    switch (code) {
+    case GL_INVALID_ENUM: return "GL_INVALID_ENUM";
+    case GL_INVALID_VALUE: return "GL_INVALID_VALUE";
+    case GL_INVALID_OPERATION: return "GL_INVALID_OPERATION";
+    case GL_INVALID_FRAMEBUFFER_OPERATION: return "GL_INVALID_FRAMEBUFFER_OPERATION";
+    case GL_OUT_OF_MEMORY: return "GL_OUT_OF_MEMORY";
+    case GL_STACK_OVERFLOW: return "GL_STACK_OVERFLOW";
+    case GL_STACK_UNDERFLOW: return "GL_STACK_UNDERFLOW";
+    }
+    return "unknown GL error";
+}
+
+fc_code fc_gl_check(const char *what, fc_error *err)
+{
+    GLenum first = glGetError();
+    if (first == GL_NO_ERROR)
+        return FC_OK;
+    /* Several flags may be set; clear them all so the next check starts clean,
+     * and let an out-of-memory anywhere decide the code. */
+    int out_of_memory = first == GL_OUT_OF_MEMORY;
+    for (GLenum more = glGetError(); more != GL_NO_ERROR; more = glGetError())
+        out_of_memory |= more == GL_OUT_OF_MEMORY;
+    if (out_of_memory)
+        return fc_error_set(err, FC_ERR_RENDER, "%s: the GPU ran out of memory (GL_OUT_OF_MEMORY)", what);
+    return fc_error_set(err, FC_ERR_GL, "%s: %s (0x%04x)", what, gl_error_name(first), (unsigned)first);
+}
+
+fc_code fc_gl_texture_create(GLenum internal_format, uint32_t width, uint32_t height, bool linear,
+                             GLuint *texture, fc_error *err)
+{
+    GLuint tex = 0;
+    glCreateTextures(GL_TEXTURE_2D, 1, &tex);
+    glTextureStorage2D(tex, 1, internal_format, (GLsizei)width, (GLsizei)height);
+    GLint filter = linear ? GL_LINEAR : GL_NEAREST;
+    glTextureParameteri(tex, GL_TEXTURE_MIN_FILTER, filter);
+    glTextureParameteri(tex, GL_TEXTURE_MAG_FILTER, filter);
+    glTextureParameteri(tex, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+    glTextureParameteri(tex, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+    fc_code code = fc_gl_check("creating a render texture", err);
+    if (code != FC_OK) {
+        glDeleteTextures(1, &tex);
+        return code;
+    }
+    *texture = tex;
+    return FC_OK;
+}
+
+void fc_gl_draw_fullscreen(GLuint empty_vertex_array)
+{
+    glBindVertexArray(empty_vertex_array);
+    glDrawArrays(GL_TRIANGLES, 0, 3);
+}

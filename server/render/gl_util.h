@@ -1,0 +1,26 @@
+/* gl_util.h — the GL plumbing every pass shares: error checks that become
+ * fc_code values, and float/colour textures with fixed sampling state. */
+#ifndef FC_GL_UTIL_H
+#define FC_GL_UTIL_H
+
+#include <epoxy/gl.h>
+#include <stdbool.h>
+#include <stdint.h>
+
+#include "fluidcast_types.h"
+
+/* Drains the GL error queue after `what`: FC_OK when it was empty,
+ * FC_ERR_RENDER for GL_OUT_OF_MEMORY (the request was too big for the GPU),
+ * FC_ERR_GL naming the first error otherwise. */
+fc_code fc_gl_check(const char *what, fc_error *err);
+
+/* A width x height 2D texture with immutable storage of `internal_format`,
+ * clamped at the edges; `linear` chooses bilinear over nearest sampling. */
+fc_code fc_gl_texture_create(GLenum internal_format, uint32_t width, uint32_t height, bool linear,
+                             GLuint *texture, fc_error *err);
+
+/* Draws the triangle of fullscreen.vert.glsl with the current program; core
+ * profile needs a vertex array bound even when no attribute is read. */
+void fc_gl_draw_fullscreen(GLuint empty_vertex_array);
+
+#endif

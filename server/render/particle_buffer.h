@@ -1,0 +1,30 @@
+/* particle_buffer.h — the uploaded frame's positions in a GL buffer, plus the
+ * bounds the camera and the floor are derived from. */
+#ifndef FC_PARTICLE_BUFFER_H
+#define FC_PARTICLE_BUFFER_H
+
+#include <epoxy/gl.h>
+#include <stdint.h>
+
+#include "fluidcast_types.h"
+
+typedef struct fc_particle_buffer {
+    GLuint vertex_array;    /* attribute 0 = vec3 position */
+    GLuint buffer;
+    uint64_t capacity;      /* particles the buffer holds; it only ever grows */
+    uint64_t count;         /* particles of the current frame */
+    float lo[3], hi[3];     /* bounds of the current frame; a point at the origin when empty */
+} fc_particle_buffer;
+
+fc_code fc_particle_buffer_create(fc_particle_buffer *pb, fc_error *err);
+void fc_particle_buffer_destroy(fc_particle_buffer *pb);
+
+/* Replaces the particles with the frame's positions, reallocating the GPU
+ * buffer only when the frame is larger than any before. FC_ERR_RENDER when the
+ * GPU has no room for it. */
+fc_code fc_particle_buffer_upload(fc_particle_buffer *pb, const fc_frame *frame, fc_error *err);
+
+/* Draws every particle as a point. */
+void fc_particle_buffer_draw_points(const fc_particle_buffer *pb);
+
+#endif

@@ -1,0 +1,67 @@
+/* render_target.c — framebuffers with a colour texture and optional depth. */
+#include "render_target.h"
+
+#include "fc_error.h"
+#include "gl_util.h"
+
+fc_render_target fc_render_target_init(GLenum color_format, bool with_depth, bool linear)
+{
+    return (fc_render_target){.color_format = color_format, .with_depth = with_depth, .linear = linear};
+}
+
+static void delete_attachments(fc_render_target *t)
+{
+    glDeleteFramebuffers(1, &t->framebuffer);
+    glDeleteTextures(1, &t->color);
+    glDeleteRenderbuffers(1, &t->depth);
+    t->framebuffer = t->color = t->depth = 0;
+    t->width = t->height = 0;
+}
+
+static fc_code attach_depth(fc_render_target *t, fc_error *err)
+{
+    glCreateRenderbuffers(1, &t->depth);
+    glNamedRenderbufferStorage(t->depth, GL_DEPTH_COMPONENT32F, (GLsizei)t->width, (GLsizei)t->height);
+    glNamedFramebufferRenderbuffer(t->framebuffer, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, t->depth);
+    return fc_gl_check("allocating a depth buffer", err);
+}
+
+static fc_code allocate(fc_render_target *t, fc_error *err)
+{
+    fc_code code = fc_gl_texture_create(t->color_format, t->width, t->height, t->linear, &t->color, err);
+    if (code != FC_OK)
+        return code;
+    glCreateFramebuffers(1, &t->framebuffer);
+    glNamedFramebufferTexture(t->framebuffer, GL_COLOR_ATTACHMENT0, t->color, 0);
+    if (t->with_depth && (code = attach_depth(t, err)) != FC_OK)
+        return code;
+    GLenum status = glCheckNamedFramebufferStatus(t->framebuffer, GL_FRAMEBUFFER);
+    if (status != GL_FRAMEBUFFER_COMPLETE)
+        return fc_error_set(err, FC_ERR_GL, "render target %ux%u (format 0x%04x) incomplete: status 0x%04x",
+                            t->width, t->height, (unsigned)t->color_format, (unsigned)status);
+    return fc_gl_check("allocating a render target", err);
+}
+
+fc_code fc_render_target_resize(fc_render_target *t, uint32_t width, uint32_t height, fc_error *err)
+{
+    if (t->framebuffer && t->width == width && t->height == height)
+        return FC_OK;
+    delete_attachments(t);
+    t->width = width;
+    t->height = height;
+    fc_code code = allocate(t, err);
+    if (code != FC_OK)
+        delete_attachments(t);
+    return code;
+}
+
+void fc_render_target_bind(const fc_render_target *t)
+{
+    glBindFramebuffer(GL_FRAMEBUFFER, t->framebuffer);
+    glViewport(0, 0, (GLsizei)t->width, (GLsizei)t->height);
+}
+
+void fc_render_target_release(fc_render_target *t)
+{
+    delete_attachments(t);
+}

@@ -1,0 +1,37 @@
+/* render_target.h — a framebuffer with one colour texture and an optional
+ * depth buffer, reallocated only when its size changes. */
+#ifndef FC_RENDER_TARGET_H
+#define FC_RENDER_TARGET_H
+
+#include <epoxy/gl.h>
+#include <stdbool.h>
+#include <stdint.h>
+
+#include "fluidcast_types.h"
+
+typedef struct fc_render_target {
+    GLuint framebuffer;
+    GLuint color;           /* texture, sampled by later passes */
+    GLuint depth;           /* GL_DEPTH_COMPONENT32F renderbuffer, 0 without depth */
+    GLenum color_format;    /* sized internal format, e.g. GL_R32F */
+    bool with_depth;
+    bool linear;            /* bilinear sampling of `color` */
+    uint32_t width;
+    uint32_t height;
+} fc_render_target;
+
+/* A target of `color_format` that is not allocated yet; zeroed memory is not
+ * enough because the format must be known before the first resize. */
+fc_render_target fc_render_target_init(GLenum color_format, bool with_depth, bool linear);
+
+/* Makes the attachments width x height, reallocating only when the size
+ * differs from the current one. FC_ERR_GL when the framebuffer is incomplete,
+ * FC_ERR_RENDER when the GPU runs out of memory. */
+fc_code fc_render_target_resize(fc_render_target *t, uint32_t width, uint32_t height, fc_error *err);
+
+/* Binds the framebuffer for drawing and sets the viewport to cover it. */
+void fc_render_target_bind(const fc_render_target *t);
+
+void fc_render_target_release(fc_render_target *t);
+
+#endif

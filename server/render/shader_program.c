@@ -1,0 +1,147 @@
+/* shader_program.c — loading, compiling and linking GLSL programs. */
+#include "shader_program.h"
+
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "fc_error.h"
+#include "fc_shaders.h"
+#include "gl_util.h"
+
+/* Shaders sharing a stage are linked as separate compilation units; no
+ * program of ours needs more files than this. */
+#define MAX_PROGRAM_FILES 8
+#define INFO_LOG_MAX 1024
+
+static int ends_with(const char *text, const char *suffix)
+{
+    size_t n = strlen(text), m = strlen(suffix);
+    return n >= m && strcmp(text + n - m, suffix) == 0;
+}
+
+static fc_code stage_of(const char *file, GLenum *stage, fc_error *err)
+{
+    if (ends_with(file, ".vert.glsl"))
+        *stage = GL_VERTEX_SHADER;
+    else if (ends_with(file, ".frag.glsl"))
+        *stage = GL_FRAGMENT_SHADER;
+    else if (ends_with(file, ".comp.glsl"))
+        *stage = GL_COMPUTE_SHADER;
+    else
+        return fc_error_set(err, FC_ERR_GL, "shader %s: no stage suffix (.vert.glsl, .frag.glsl, .comp.glsl)",
+                            file);
+    return FC_OK;
+}
+
+static fc_code read_file(const char *dir, const char *file, char **text, fc_error *err)
+{
+    char path[4096];
+    if (snprintf(path, sizeof path, "%s/%s", dir, file) >= (int)sizeof path)
+        return fc_error_set(err, FC_ERR_GL, "shader path too long: %s/%s", dir, file);
+    FILE *f = fopen(path, "rb");
+    if (!f)
+        return fc_error_set(err, FC_ERR_GL, "cannot open shader %s", path);
+    fc_code code = FC_OK;
+    char *buffer = NULL;
+    long size = -1;
+    if (fseek(f, 0, SEEK_END) != 0 || (size = ftell(f)) < 0 || fseek(f, 0, SEEK_SET) != 0)
+        code = fc_error_set(err, FC_ERR_GL, "cannot determine the size of shader %s", path);
+    else if (!(buffer = malloc((size_t)size + 1)))
+        code = fc_error_set(err, FC_ERR_NOMEM, "out of memory reading shader %s", path);
+    else if (fread(buffer, 1, (size_t)size, f) != (size_t)size)
+        code = fc_error_set(err, FC_ERR_GL, "cannot read shader %s", path);
+    fclose(f);
+    if (code != FC_OK) {
+        free(buffer);
+        return code;
+    }
+    buffer[size] = '\0';
+    *text = buffer;
+    return FC_OK;
+}
+
+/* The source of `file`; *owned is the buffer to free (NULL for built-ins). */
+static fc_code load_source(const char *dir, const char *file, const char **source, char **owned, fc_error *err)
+{
+    *owned = NULL;
+    if (dir) {
+        fc_code code = read_file(dir, file, owned, err);
+        *source = *owned;
+        return code;
+    }
+    *source = fc_shader_builtin(file);
+    if (!*source)
+        return fc_error_set(err, FC_ERR_GL, "shader %s is not built into this binary", file);
+    return FC_OK;
+}
+
+static fc_code compile(const char *dir, const char *file, GLuint *shader, fc_error *err)
+{
+    GLenum stage;
+    const char *source;
+    char *owned;
+    fc_code code = stage_of(file, &stage, err);
+    if (code == FC_OK)
+        code = load_source(dir, file, &source, &owned, err);
+    if (code != FC_OK)
+        return code;
+    GLuint s = glCreateShader(stage);
+    glShaderSource(s, 1, &source, NULL);
+    glCompileShader(s);
+    free(owned);
+    GLint ok = GL_FALSE;
+    glGetShaderiv(s, GL_COMPILE_STATUS, &ok);
+    if (!ok) {
+        char log[INFO_LOG_MAX] = "";
+        glGetShaderInfoLog(s, sizeof log, NULL, log);
+        glDeleteShader(s);
+        return fc_error_set(err, FC_ERR_GL, "compiling %s: %s", file, log);
+    }
+    *shader = s;
+    return FC_OK;
+}
+
+static fc_code link(GLuint program, const char *const *files, size_t count, fc_error *err)
+{
+    glLinkProgram(program);
+    GLint ok = GL_FALSE;
+    glGetProgramiv(program, GL_LINK_STATUS, &ok);
+    if (ok)
+        return FC_OK;
+    char log[INFO_LOG_MAX] = "";
+    glGetProgramInfoLog(program, sizeof log, NULL, log);
+    char names[256] = "";
+    for (size_t i = 0; i < count; i++)
+        snprintf(names + strlen(names), sizeof names - strlen(names), "%s%s", i ? " + " : "", files[i]);
+    return fc_error_set(err, FC_ERR_GL, "linking %s: %s", names, log);
+}
+
+fc_code fc_program_build(const char *shader_dir, const char *const *files, size_t count, GLuint *program,
+                         fc_error *err)
+{
+    if (count == 0 || count > MAX_PROGRAM_FILES)
+        return fc_error_set(err, FC_ERR_USAGE, "a program needs 1 to %d shader files, got %zu",
+                            MAX_PROGRAM_FILES, count);
+    GLuint shaders[MAX_PROGRAM_FILES] = {0};
+    GLuint p = glCreateProgram();
+    fc_code code = FC_OK;
+    for (size_t i = 0; i < count && code == FC_OK; i++) {
+        code = compile(shader_dir, files[i], &shaders[i], err);
+        if (code == FC_OK)
+            glAttachShader(p, shaders[i]);
+    }
+    if (code == FC_OK)
+        code = link(p, files, count, err);
+    /* The linked program keeps what it needs; the shader objects can go. */
+    for (size_t i = 0; i < count; i++)
+        glDeleteShader(shaders[i]);
+    if (code == FC_OK)
+        code = fc_gl_check("building a shader program", err);
+    if (code != FC_OK) {
+        glDeleteProgram(p);
+        return code;
+    }
+    *program = p;
+    return FC_OK;
+}

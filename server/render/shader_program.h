@@ -1,0 +1,18 @@
+/* shader_program.h — GL programs linked from shader files of shaders/, taken
+ * from the binary or, for development, from a directory on disk. */
+#ifndef FC_SHADER_PROGRAM_H
+#define FC_SHADER_PROGRAM_H
+
+#include <epoxy/gl.h>
+#include <stddef.h>
+
+#include "fluidcast_types.h"
+
+/* Compiles each of `files` (the stage comes from the name: *.vert.glsl,
+ * *.frag.glsl, *.comp.glsl; several files may share a stage, one of them with
+ * main) and links them into *program. `shader_dir` NULL uses the built-in
+ * copies. FC_ERR_GL with the file name and the driver's info log on failure. */
+fc_code fc_program_build(const char *shader_dir, const char *const *files, size_t count, GLuint *program,
+                         fc_error *err);
+
+#endif

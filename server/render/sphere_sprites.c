@@ -1,0 +1,47 @@
+/* sphere_sprites.c — drawing particles as ray-cast sphere point sprites. */
+#include "sphere_sprites.h"
+
+#include "gl_util.h"
+#include "shader_program.h"
+
+/* Uniform locations fixed by layout(location) in sphere.vert.glsl. */
+enum {
+    LOC_VIEW_MATRIX = 0,
+    LOC_PROJECTION = 1,
+    LOC_VIEWPORT = 2,
+    LOC_RADIUS = 3,
+    LOC_MAX_POINT_SIZE = 4
+};
+
+fc_code fc_sphere_sprites_create(const char *shader_dir, const char *fragment_file, fc_sphere_sprites *s,
+                                 fc_error *err)
+{
+    *s = (fc_sphere_sprites){0};
+    const char *files[] = {"sphere.vert.glsl", "sphere_ray.frag.glsl", fragment_file};
+    fc_code code = fc_program_build(shader_dir, files, sizeof files / sizeof files[0], &s->program, err);
+    if (code != FC_OK)
+        return code;
+    GLfloat range[2] = {1.0f, 1.0f};
+    glGetFloatv(GL_POINT_SIZE_RANGE, range);
+    s->max_point_size = range[1];
+    return fc_gl_check("querying the point size range", err);
+}
+
+void fc_sphere_sprites_destroy(fc_sphere_sprites *s)
+{
+    glDeleteProgram(s->program);
+    *s = (fc_sphere_sprites){0};
+}
+
+void fc_sphere_sprites_draw(const fc_sphere_sprites *s, const fc_particle_buffer *particles, const fc_view *view,
+                            float radius)
+{
+    glUseProgram(s->program);
+    glUniformMatrix4fv(LOC_VIEW_MATRIX, 1, GL_FALSE, view->view);
+    glUniform4f(LOC_PROJECTION, view->fx, view->fy, view->p22, view->p32);
+    glUniform2f(LOC_VIEWPORT, (float)view->width, (float)view->height);
+    glUniform1f(LOC_RADIUS, radius);
+    glUniform1f(LOC_MAX_POINT_SIZE, s->max_point_size);
+    glEnable(GL_PROGRAM_POINT_SIZE);
+    fc_particle_buffer_draw_points(particles);
+}

@@ -1,0 +1,26 @@
+/* sphere_sprites.h — particles drawn as ray-cast sphere sprites
+ * (sphere.vert.glsl + sphere_ray.frag.glsl + a pass's fragment shader).
+ * The depth and thickness passes differ only in that shader and GL state. */
+#ifndef FC_SPHERE_SPRITES_H
+#define FC_SPHERE_SPRITES_H
+
+#include <epoxy/gl.h>
+
+#include "fluidcast_types.h"
+#include "particle_buffer.h"
+#include "view.h"
+
+typedef struct fc_sphere_sprites {
+    GLuint program;
+    float max_point_size;   /* the driver's limit: larger spheres are cut to it */
+} fc_sphere_sprites;
+
+fc_code fc_sphere_sprites_create(const char *shader_dir, const char *fragment_file, fc_sphere_sprites *s,
+                                 fc_error *err);
+void fc_sphere_sprites_destroy(fc_sphere_sprites *s);
+
+/* Draws every particle as a sphere of `radius` into the bound framebuffer. */
+void fc_sphere_sprites_draw(const fc_sphere_sprites *s, const fc_particle_buffer *particles, const fc_view *view,
+                            float radius);
+
+#endif

@@ -1,0 +1,9 @@
+#version 450 core
+// One triangle that covers the viewport, drawn without vertex buffers;
+// full-screen passes address their inputs by gl_FragCoord.
+
+void main()
+{
+    vec2 corner = vec2((gl_VertexID << 1) & 2, gl_VertexID & 2);   // (0,0) (2,0) (0,2)
+    gl_Position = vec4(corner * 2.0 - 1.0, 0.0, 1.0);
+}

@@ -1,0 +1,21 @@
+# Script mode (cmake -P): compiles every *.glsl file of SHADER_DIR with
+# VALIDATOR (glslangValidator; the stage comes from the .vert.glsl/.frag.glsl
+# suffix) and fails when any of them has an error.
+file(GLOB SHADERS ${SHADER_DIR}/*.glsl)
+list(SORT SHADERS)
+list(LENGTH SHADERS count)
+if(count EQUAL 0)
+  message(FATAL_ERROR "no shaders in ${SHADER_DIR}")
+endif()
+set(failed "")
+foreach(path IN LISTS SHADERS)
+  execute_process(COMMAND ${VALIDATOR} ${path} RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE out)
+  if(NOT rc EQUAL 0)
+    message("${out}")
+    list(APPEND failed ${path})
+  endif()
+endforeach()
+if(failed)
+  message(FATAL_ERROR "glslangValidator rejected: ${failed}")
+endif()
+message("all ${count} shaders valid")

@@ -1,0 +1,49 @@
+/* render_fixture.h — what the render tests share: a software GL context with
+ * a pipeline, an on-axis camera, and analytic sphere projection computed
+ * independently of the pipeline's own camera code (double precision). */
+#ifndef FC_RENDER_FIXTURE_H
+#define FC_RENDER_FIXTURE_H
+
+#include <stdbool.h>
+#include <stdint.h>
+
+#include "egl_context.h"
+#include "fluidcast_types.h"
+#include "image.h"
+#include "pipeline.h"
+
+typedef struct render_fixture {
+    fc_gl_context *gl;
+    fc_pipeline *pipeline;
+} render_fixture;
+
+/* A software (llvmpipe) context and a pipeline with built-in shaders; false,
+ * after printing why, when either fails. */
+bool fixture_open(render_fixture *f);
+void fixture_close(render_fixture *f);
+
+/* Eye at (0, 0, distance) looking at the origin, up +y, 40 degree vertical fov. */
+fc_camera axis_camera(double distance, uint32_t width, uint32_t height);
+
+/* Plain settings: the given radius and smoothing, neutral material. */
+fc_settings test_settings(float radius, fc_smoothing smoothing, uint32_t iterations);
+
+/* Uploads `count` particles (xyz interleaved) and renders one image. */
+fc_code render_positions(render_fixture *f, const float *positions, uint64_t count, const fc_camera *cam,
+                         const fc_settings *settings, fc_aov aov, int want_u8, fc_image *out);
+
+/* Value of a one-channel float image at column x, row (0 = top). */
+float pixel_f32(const fc_image *img, uint32_t x, uint32_t row);
+
+/* The sphere seen through pixel (x, row) of an axis_camera image, solved
+ * analytically. Returns the linear view depth of the front hit, or 0 on a
+ * miss. *edge is how close the ray passes to the silhouette, as
+ * (r² - miss distance²) / r²: near 0 the pixel could go either way. */
+double analytic_sphere_depth(const fc_camera *cam, const double centre[3], double radius, uint32_t x,
+                             uint32_t row, double *edge);
+
+/* Pixel coordinates (x right, row down, continuous, pixel centres at +0.5)
+ * where a world-space point projects in an axis_camera image. */
+void analytic_project(const fc_camera *cam, const double point[3], double *x, double *row);
+
+#endif

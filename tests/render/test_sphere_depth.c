@@ -1,0 +1,138 @@
+/* test_sphere_depth.c — the depth pass against analytic spheres: projected
+ * disc size and centre, linear depth at and off the centre, background 0,
+ * exact silhouettes off axis, and the nearest sphere winning. */
+#include <math.h>
+#include <stdio.h>
+
+#include "render_fixture.h"
+#include "test_util.h"
+
+static const double PI = 3.14159265358979323846;
+
+/* Pixels whose ray passes this close to a silhouette (relative to r²) may
+ * round either way and are left out of the coverage comparison. */
+#define EDGE_SLACK 0.02
+#define DEPTH_TOLERANCE 2e-4
+
+typedef struct sphere {
+    double centre[3];
+} sphere;
+
+/* Compares every pixel with the nearest analytic hit among the spheres:
+ * background exactly 0 where all miss, the front depth where one hits. */
+static void check_against_spheres(const fc_image *depth, const fc_camera *cam, const sphere *spheres, int count,
+                                  double radius)
+{
+    int wrong_coverage = 0, wrong_depth = 0;
+    double worst = 0.0;
+    for (uint32_t row = 0; row < depth->height; row++) {
+        for (uint32_t x = 0; x < depth->width; x++) {
+            double expected = 0.0;
+            bool ambiguous = false;
+            for (int i = 0; i < count; i++) {
+                double edge;
+                double d = analytic_sphere_depth(cam, spheres[i].centre, radius, x, row, &edge);
+                ambiguous |= fabs(edge) < EDGE_SLACK;
+                if (d > 0.0 && (expected == 0.0 || d < expected))
+                    expected = d;
+            }
+            if (ambiguous)
+                continue;
+            double got = pixel_f32(depth, x, row);
+            if ((expected == 0.0) != (got == 0.0))
+                wrong_coverage++;
+            else if (expected > 0.0 && fabs(got - expected) > DEPTH_TOLERANCE * expected)
+                wrong_depth++;
+            if (expected > 0.0 && got > 0.0)
+                worst = fmax(worst, fabs(got - expected));
+        }
+    }
+    CHECK_MSG(wrong_coverage == 0, "%d pixels disagree with the analytic silhouette", wrong_coverage);
+    CHECK_MSG(wrong_depth == 0, "%d pixels off the analytic depth (worst %g)", wrong_depth, worst);
+}
+
+static void test_on_axis_sphere(render_fixture *f)
+{
+    /* Odd size: pixel 64 is centred on the view axis. */
+    const uint32_t size = 129;
+    const double distance = 5.0, radius = 0.5;
+    fc_camera cam = axis_camera(distance, size, size);
+    fc_settings settings = test_settings((float)radius, FC_SMOOTHING_NONE, 0);
+    const float position[3] = {0.0f, 0.0f, 0.0f};
+    fc_image depth = {0};
+    CHECK_CODE(render_positions(f, position, 1, &cam, &settings, FC_AOV_DEPTH, 0, &depth), FC_OK);
+    CHECK(depth.width == size && depth.height == size && depth.channels == 1 && depth.type == FC_PIXEL_F32);
+
+    /* Front of the sphere on the axis: centre distance minus r. */
+    CHECK_NEAR(pixel_f32(&depth, 64, 64), distance - radius, 1e-4);
+    /* Off centre, 10 pixels right and 6 up: the analytic ray-sphere hit. */
+    double edge;
+    const sphere s = {{0.0, 0.0, 0.0}};
+    double expected = analytic_sphere_depth(&cam, s.centre, radius, 74, 58, &edge);
+    CHECK(expected > distance - radius + 0.01);
+    CHECK_NEAR(pixel_f32(&depth, 74, 58), expected, 1e-4);
+    CHECK(pixel_f32(&depth, 0, 0) == 0.0f);
+
+    /* The silhouette is a circle of radius f·r/sqrt(d² - r²) in NDC. */
+    double fy = 1.0 / tan(cam.fov_y_deg * PI / 360.0);
+    double expected_radius_px = 0.5 * size * fy * radius / sqrt(distance * distance - radius * radius);
+    double covered = 0.0, sum_x = 0.0, sum_row = 0.0;
+    for (uint32_t row = 0; row < size; row++)
+        for (uint32_t x = 0; x < size; x++)
+            if (pixel_f32(&depth, x, row) > 0.0f) {
+                covered += 1.0;
+                sum_x += x + 0.5;
+                sum_row += row + 0.5;
+            }
+    CHECK_NEAR(sqrt(covered / PI), expected_radius_px, 0.5);
+    double centre_x, centre_row;
+    analytic_project(&cam, s.centre, &centre_x, &centre_row);
+    CHECK_NEAR(sum_x / covered, centre_x, 0.1);
+    CHECK_NEAR(sum_row / covered, centre_row, 0.1);
+
+    check_against_spheres(&depth, &cam, &s, 1, radius);
+    fc_image_free(&depth);
+}
+
+/* Far off axis the silhouette is an ellipse pushed outwards; a sprite sized by
+ * r/depth alone would cut it. Non-square so the aspect ratio is exercised. */
+static void test_off_axis_sphere(render_fixture *f)
+{
+    fc_camera cam = axis_camera(4.0, 128, 96);
+    fc_settings settings = test_settings(0.45f, FC_SMOOTHING_NONE, 0);
+    const sphere s = {{1.55, 0.85, 0.3}};
+    const float position[3] = {1.55f, 0.85f, 0.3f};
+    fc_image depth = {0};
+    CHECK_CODE(render_positions(f, position, 1, &cam, &settings, FC_AOV_DEPTH, 0, &depth), FC_OK);
+    check_against_spheres(&depth, &cam, &s, 1, 0.45);
+    double x, row;
+    analytic_project(&cam, s.centre, &x, &row);
+    CHECK(x > 96.0 && row < 24.0);   /* really in the upper right */
+    fc_image_free(&depth);
+}
+
+/* The hardware depth test keeps the sphere nearest the camera. Drawn far one
+ * last, so a missing depth test would show it. */
+static void test_nearest_sphere_wins(render_fixture *f)
+{
+    fc_camera cam = axis_camera(5.0, 96, 96);
+    fc_settings settings = test_settings(0.5f, FC_SMOOTHING_NONE, 0);
+    const sphere spheres[2] = {{{0.3, 0.1, 1.0}}, {{0.0, 0.0, 0.0}}};
+    const float positions[6] = {0.3f, 0.1f, 1.0f, 0.0f, 0.0f, 0.0f};
+    fc_image depth = {0};
+    CHECK_CODE(render_positions(f, positions, 2, &cam, &settings, FC_AOV_DEPTH, 0, &depth), FC_OK);
+    check_against_spheres(&depth, &cam, spheres, 2, 0.5);
+    fc_image_free(&depth);
+}
+
+int main(void)
+{
+    render_fixture f;
+    if (!fixture_open(&f))
+        return 1;
+    test_on_axis_sphere(&f);
+    test_off_axis_sphere(&f);
+    test_nearest_sphere_wins(&f);
+    fixture_close(&f);
+    return test_result();
+}
