@@ -12,6 +12,8 @@ PACKAGES=(
   libopenimageio-dev
   # shader validation in the test suite
   glslang-tools
+  # fuzzing (libFuzzer) in the test suite
+  clang-14 libclang-rt-14-dev
 )
 
 missing=()

@@ -1,0 +1,91 @@
+#!/usr/bin/env bash
+# run_fuzzers.sh — builds the libFuzzer targets (tests/fuzz/targets) with clang in
+# WORK_DIR/build, then runs each over a fresh copy of its seed corpus for a
+# bounded time. Fails on any crash, leak, timeout or sanitizer report, printing
+# the end of that target's log; the input that caused it is kept in
+# WORK_DIR/artifacts/.
+#
+# Usage: run_fuzzers.sh WORK_DIR [TARGET...]      (default: every target)
+# Environment:
+#   FC_FUZZ_SECONDS  total fuzzing time, split evenly between the targets (default 120)
+#   FC_FUZZ_CC       the clang to build with (default clang-14, else clang)
+#   CMAKE            the cmake to configure with (default cmake)
+set -euo pipefail
+
+here=$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)
+all_targets=(fuzz_reader_f32 fuzz_reader_ply fuzz_reader_vtk fuzz_reader_csv fuzz_wire_messages fuzz_wire_settings)
+missing_packages="apt-get install clang-14 libclang-rt-14-dev"
+
+if [[ $# -lt 1 ]]; then
+    echo "usage: $0 WORK_DIR [TARGET...]" >&2
+    exit 2
+fi
+work=$1
+shift
+targets=("$@")
+[[ ${#targets[@]} -gt 0 ]] || targets=("${all_targets[@]}")
+total_seconds=${FC_FUZZ_SECONDS:-120}
+cmake_command=${CMAKE:-cmake}
+
+find_clang() {
+    local candidate
+    for candidate in ${FC_FUZZ_CC:-} clang-14 clang; do
+        if command -v "$candidate" >/dev/null 2>&1; then
+            command -v "$candidate"
+            return 0
+        fi
+    done
+    return 1
+}
+
+# Configures and builds quietly; on failure shows the log, which names the missing package.
+build_targets() {
+    local cc=$1 log=$work/build.log
+    if ! "$cmake_command" -S "$here/targets" -B "$work/build" -DCMAKE_C_COMPILER="$cc" >"$log" 2>&1 ||
+        ! "$cmake_command" --build "$work/build" -j2 --target "${targets[@]}" >>"$log" 2>&1; then
+        cat "$log" >&2
+        echo "run_fuzzers.sh: building the fuzz targets failed (see above; clang and libFuzzer come from: $missing_packages)" >&2
+        return 1
+    fi
+}
+
+# Runs one target over a copy of its seeds, so that what libFuzzer adds never lands in the source tree.
+run_target() {
+    local target=$1 seconds=$2
+    local corpus=$work/corpus/$target log=$work/logs/$target.log
+    local options=(-max_total_time="$seconds" -rss_limit_mb=2048 -timeout=10 -print_final_stats=1
+                   -artifact_prefix="$work/artifacts/$target-")
+    [[ -f $here/dict/$target.dict ]] && options+=(-dict="$here/dict/$target.dict")
+    rm -rf "$corpus"
+    mkdir -p "$corpus"
+    cp "$here/corpus/$target"/* "$corpus"/
+    echo "run_fuzzers.sh: $target for ${seconds}s over $(ls "$corpus" | wc -l) seeds"
+    if ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1 \
+        "$work/build/$target" "${options[@]}" "$corpus" >"$log" 2>&1; then
+        grep -E '^stat::(number_of_executed_units|new_units_added)' "$log" | tr '\n' ' '
+        echo
+        return 0
+    fi
+    tail -n 80 "$log" >&2
+    echo "run_fuzzers.sh: $target FAILED (full log: $log, input: $work/artifacts/$target-*)" >&2
+    return 1
+}
+
+cc=$(find_clang) || {
+    echo "run_fuzzers.sh: clang not found; the fuzz targets need clang with libFuzzer: $missing_packages" >&2
+    exit 1
+}
+mkdir -p "$work/logs" "$work/artifacts"
+build_targets "$cc"
+
+seconds_each=$((total_seconds / ${#targets[@]}))
+[[ $seconds_each -ge 1 ]] || seconds_each=1
+failed=()
+for target in "${targets[@]}"; do
+    run_target "$target" "$seconds_each" || failed+=("$target")
+done
+if [[ ${#failed[@]} -gt 0 ]]; then
+    echo "run_fuzzers.sh: failing targets: ${failed[*]}" >&2
+    exit 1
+fi
+echo "run_fuzzers.sh: all ${#targets[@]} targets ran ${seconds_each}s each without a finding"
