@@ -1,1 +1,151 @@
-/* placeholder: being written */
+/* fluidcastd.c — the render daemon's top level: options, signals, the render
+ * service, the listener and the event loop, in that order; exit 0 on
+ * SIGINT/SIGTERM, 1 when it cannot start, 2 on a bad command line. */
+#include <errno.h>
+#include <signal.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/signalfd.h>
+#include <unistd.h>
+
+#include "daemon_context.h"
+#include "event_loop.h"
+#include "fc_error.h"
+#include "listener.h"
+#include "options.h"
+
+#define SERVER_VERSION "fluidcastd 0.1.0"
+
+/* EXIT_FAILURE (1): cannot start or keep serving. */
+enum { EXIT_BAD_USAGE = 2 };
+
+/* SIGINT/SIGTERM are blocked and read from a signalfd the event loop polls:
+ * no handler, no global flag. Blocked before any thread exists (llvmpipe and
+ * OpenImageIO start their own), since threads inherit the mask and a thread
+ * without it would let the signal kill the process. */
+static int open_stop_signals(fc_error *err)
+{
+    sigset_t stop;
+    sigemptyset(&stop);
+    sigaddset(&stop, SIGINT);
+    sigaddset(&stop, SIGTERM);
+    if (sigprocmask(SIG_BLOCK, &stop, NULL) != 0) {
+        fc_error_set(err, FC_ERR_IO, "sigprocmask: %s", strerror(errno));
+        return -1;
+    }
+    int fd = signalfd(-1, &stop, SFD_NONBLOCK | SFD_CLOEXEC);
+    if (fd < 0)
+        fc_error_set(err, FC_ERR_IO, "signalfd: %s", strerror(errno));
+    return fd;
+}
+
+static const char *received_signal_name(int signal_fd)
+{
+    struct signalfd_siginfo info;
+    if (read(signal_fd, &info, sizeof info) != (ssize_t)sizeof info)
+        return "a signal";
+    return info.ssi_signo == SIGINT ? "SIGINT" : "SIGTERM";
+}
+
+/* Written to a temporary name and renamed, so a reader never sees half a number. */
+static fc_code write_port_file(const char *path, unsigned port, fc_error *err)
+{
+    char tmp[4096];
+    if ((size_t)snprintf(tmp, sizeof tmp, "%s.tmp", path) >= sizeof tmp)
+        return fc_error_set(err, FC_ERR_USAGE, "--port-file path too long");
+    FILE *f = fopen(tmp, "w");
+    if (!f)
+        return fc_error_set(err, FC_ERR_IO, "cannot write %s: %s", tmp, strerror(errno));
+    int written = fprintf(f, "%u\n", port);
+    if (fclose(f) != 0 || written < 0 || rename(tmp, path) != 0) {
+        unlink(tmp);
+        return fc_error_set(err, FC_ERR_IO, "cannot write the port file %s: %s", path, strerror(errno));
+    }
+    return FC_OK;
+}
+
+static void fill_welcome(const fc_daemon_options *options, const fc_render_service *render, fc_welcome *w)
+{
+    memset(w, 0, sizeof *w);
+    w->version = FC_PROTOCOL_VERSION;
+    w->limits = options->limits;
+    snprintf(w->server_version, sizeof w->server_version, "%s", SERVER_VERSION);
+    snprintf(w->renderer, sizeof w->renderer, "%s", fc_gl_context_renderer(fc_render_service_gl(render)));
+}
+
+/* Listens, announces the port and serves until a stop signal. */
+static int serve(const fc_daemon_options *options, fc_daemon_context *ctx, int stop_fd)
+{
+    fc_error err;
+    fc_listener listener;
+    if (fc_listener_open(options->listen_host, options->listen_port, &listener, &err) != FC_OK) {
+        fc_log_write(ctx->log, FC_LOG_ERROR, "%s", err.message);
+        return EXIT_FAILURE;
+    }
+    fc_event_loop *loop = NULL;
+    fc_code code = FC_OK;
+    if (options->port_file)
+        code = write_port_file(options->port_file, listener.port, &err);
+    if (code == FC_OK)
+        code = fc_event_loop_create(listener.fd, stop_fd, ctx, &loop, &err);
+    if (code == FC_OK) {
+        fc_log_write(ctx->log, FC_LOG_INFO, "listening on %s", listener.address);
+        code = fc_event_loop_run(loop, &err);
+    }
+    if (code == FC_OK)
+        fc_log_write(ctx->log, FC_LOG_INFO, "%s received: stopping", received_signal_name(stop_fd));
+    else
+        fc_log_write(ctx->log, FC_LOG_ERROR, "%s", err.message);
+    fc_event_loop_destroy(loop);
+    fc_listener_close(&listener);
+    return code == FC_OK ? 0 : EXIT_FAILURE;
+}
+
+static int run(const fc_daemon_options *options, const fc_log *log, int stop_fd)
+{
+    fc_error err;
+    fc_render_service *render = NULL;
+    if (fc_render_service_create(&options->gpu, options->shader_dir, &render, &err) != FC_OK) {
+        fc_log_write(log, FC_LOG_ERROR, "cannot render: %s", err.message);
+        fc_log_write(log, FC_LOG_ERROR,
+                     "fluidcastd needs an OpenGL 4.5 core context through EGL: a GPU driver, or Mesa's "
+                     "llvmpipe with --gpu software");
+        return EXIT_FAILURE;
+    }
+    const fc_gl_context *gl = fc_render_service_gl(render);
+    fc_log_write(log, FC_LOG_INFO, "EGL vendor: %s", fc_gl_context_egl_vendor(gl));
+    fc_log_write(log, FC_LOG_INFO, "GL_RENDERER: %s", fc_gl_context_renderer(gl));
+    fc_log_write(log, FC_LOG_INFO, "GL_VERSION: %s", fc_gl_context_version(gl));
+    fc_daemon_context ctx = {.log = log, .render = render};
+    fill_welcome(options, render, &ctx.welcome);
+    int status = serve(options, &ctx, stop_fd);
+    fc_render_service_destroy(render);
+    return status;
+}
+
+int main(int argc, char **argv)
+{
+    fc_daemon_options options;
+    fc_error err;
+    fc_daemon_options_default(&options);
+    if (fc_daemon_options_parse(argc, argv, &options, &err) != FC_OK) {
+        fprintf(stderr, "fluidcastd: %s\n", err.message);
+        return EXIT_BAD_USAGE;
+    }
+    if (options.help) {
+        fc_daemon_options_print_help(stdout, argv[0]);
+        return 0;
+    }
+    fc_log log = {options.log_level};
+    /* A client that disconnects mid-reply must cost an EPIPE, not the process. */
+    signal(SIGPIPE, SIG_IGN);
+    int stop_fd = open_stop_signals(&err);
+    if (stop_fd < 0) {
+        fc_log_write(&log, FC_LOG_ERROR, "%s", err.message);
+        return EXIT_FAILURE;
+    }
+    int status = run(&options, &log, stop_fd);
+    close(stop_fd);
+    return status;
+}

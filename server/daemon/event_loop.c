@@ -1,0 +1,208 @@
+/* event_loop.c — poll() over the stop fd, the listener and the connections. */
+#include "event_loop.h"
+
+#include <errno.h>
+#include <fcntl.h>
+#include <netinet/in.h>
+#include <netinet/tcp.h>
+#include <poll.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/socket.h>
+#include <unistd.h>
+
+#include "connection.h"
+#include "fc_error.h"
+#include "listener.h"
+#include "monotonic.h"
+
+enum {
+    STOP_SLOT = 0,
+    LISTEN_SLOT = 1,
+    FIRST_CONNECTION_SLOT = 2,
+    ACCEPTS_PER_WAKE = 16,
+    /* After running out of descriptors, accepting is retried this much later
+     * instead of spinning on a listener that stays readable. */
+    ACCEPT_RETRY_MS = 500
+};
+
+struct fc_event_loop {
+    int listen_fd;
+    int stop_fd;
+    fc_daemon_context *ctx;
+    fc_connection **connections;
+    size_t count;
+    size_t capacity;
+    struct pollfd *fds;          /* FIRST_CONNECTION_SLOT + capacity entries */
+    double accept_resume_ms;     /* accepting is paused until then */
+};
+
+fc_code fc_event_loop_create(int listen_fd, int stop_fd, fc_daemon_context *ctx, fc_event_loop **out,
+                             fc_error *err)
+{
+    fc_event_loop *loop = calloc(1, sizeof *loop);
+    if (!loop)
+        return fc_error_set(err, FC_ERR_NOMEM, "event loop: out of memory");
+    loop->listen_fd = listen_fd;
+    loop->stop_fd = stop_fd;
+    loop->ctx = ctx;
+    loop->fds = calloc(FIRST_CONNECTION_SLOT, sizeof *loop->fds);
+    if (!loop->fds) {
+        free(loop);
+        return fc_error_set(err, FC_ERR_NOMEM, "event loop: out of memory");
+    }
+    *out = loop;
+    return FC_OK;
+}
+
+void fc_event_loop_destroy(fc_event_loop *loop)
+{
+    if (!loop)
+        return;
+    for (size_t i = 0; i < loop->count; i++)
+        fc_connection_destroy(loop->connections[i]);
+    free(loop->connections);
+    free(loop->fds);
+    free(loop);
+}
+
+static bool grow(fc_event_loop *loop)
+{
+    size_t capacity = loop->capacity ? loop->capacity * 2 : 16;
+    fc_connection **connections = realloc(loop->connections, capacity * sizeof *connections);
+    if (!connections)
+        return false;
+    loop->connections = connections;
+    struct pollfd *fds = realloc(loop->fds, (FIRST_CONNECTION_SLOT + capacity) * sizeof *fds);
+    if (!fds)
+        return false;
+    loop->fds = fds;
+    loop->capacity = capacity;
+    return true;
+}
+
+/* Non-blocking, close-on-exec, and no Nagle delay: every reply is written
+ * whole, so waiting to coalesce only adds latency. */
+static bool configure_client_socket(int fd)
+{
+    int on = 1;
+    int flags = fcntl(fd, F_GETFL);
+    return flags >= 0 && fcntl(fd, F_SETFL, flags | O_NONBLOCK) == 0 && fcntl(fd, F_SETFD, FD_CLOEXEC) == 0 &&
+           setsockopt(fd, IPPROTO_TCP, TCP_NODELAY, &on, sizeof on) == 0;
+}
+
+static void add_client(fc_event_loop *loop, int fd, const struct sockaddr_storage *addr)
+{
+    char peer[80];
+    fc_format_sockaddr(addr, peer, sizeof peer);
+    fc_error err;
+    fc_connection *c;
+    if (!configure_client_socket(fd)) {
+        fc_log_write(loop->ctx->log, FC_LOG_WARN, "%s: cannot configure the socket: %s", peer, strerror(errno));
+        close(fd);
+        return;
+    }
+    if (loop->count == loop->capacity && !grow(loop)) {
+        fc_log_write(loop->ctx->log, FC_LOG_WARN, "%s: refused: out of memory", peer);
+        close(fd);
+        return;
+    }
+    if (fc_connection_create(fd, peer, &c, &err) != FC_OK) {
+        fc_log_write(loop->ctx->log, FC_LOG_WARN, "%s", err.message);
+        return;
+    }
+    loop->connections[loop->count++] = c;
+    fc_log_write(loop->ctx->log, FC_LOG_INFO, "%s: connected", peer);
+}
+
+static void accept_clients(fc_event_loop *loop)
+{
+    for (int i = 0; i < ACCEPTS_PER_WAKE; i++) {
+        struct sockaddr_storage addr;
+        socklen_t len = sizeof addr;
+        int fd = accept(loop->listen_fd, (struct sockaddr *)&addr, &len);
+        if (fd >= 0) {
+            add_client(loop, fd, &addr);
+        } else if (errno == EAGAIN || errno == EWOULDBLOCK) {
+            return;
+        } else if (errno == EMFILE || errno == ENFILE || errno == ENOBUFS || errno == ENOMEM) {
+            fc_log_write(loop->ctx->log, FC_LOG_WARN, "accept: %s; retrying in %d ms", strerror(errno),
+                         ACCEPT_RETRY_MS);
+            loop->accept_resume_ms = fc_monotonic_ms() + ACCEPT_RETRY_MS;
+            return;
+        }
+        /* Anything else (a client that reset before we accepted it) concerns that client only. */
+    }
+}
+
+static int min_timeout(int a, int b)
+{
+    if (a < 0)
+        return b;
+    if (b < 0)
+        return a;
+    return a < b ? a : b;
+}
+
+/* Fills the pollfd set; returns poll()'s timeout in milliseconds (-1: none). */
+static int prepare_poll(fc_event_loop *loop, double now_ms)
+{
+    int timeout = -1;
+    loop->fds[STOP_SLOT] = (struct pollfd){.fd = loop->stop_fd, .events = POLLIN};
+    bool accepting = now_ms >= loop->accept_resume_ms;
+    /* A negative fd makes poll() skip the listener while accepting is paused. */
+    loop->fds[LISTEN_SLOT] = (struct pollfd){.fd = accepting ? loop->listen_fd : -1, .events = POLLIN};
+    if (!accepting)
+        timeout = (int)(loop->accept_resume_ms - now_ms) + 1;
+    for (size_t i = 0; i < loop->count; i++) {
+        const fc_connection *c = loop->connections[i];
+        loop->fds[FIRST_CONNECTION_SLOT + i] =
+            (struct pollfd){.fd = c->fd, .events = fc_connection_wanted_events(c)};
+        timeout = min_timeout(timeout, fc_connection_timeout_ms(c, now_ms));
+    }
+    return timeout;
+}
+
+static void service_connections(fc_event_loop *loop, double now_ms)
+{
+    for (size_t i = 0; i < loop->count; i++) {
+        fc_connection *c = loop->connections[i];
+        short revents = loop->fds[FIRST_CONNECTION_SLOT + i].revents;
+        if (revents || fc_connection_timeout_ms(c, now_ms) == 0)
+            fc_connection_on_events(c, revents, loop->ctx);
+    }
+}
+
+static void remove_finished(fc_event_loop *loop)
+{
+    size_t kept = 0;
+    for (size_t i = 0; i < loop->count; i++) {
+        fc_connection *c = loop->connections[i];
+        if (!fc_connection_done(c)) {
+            loop->connections[kept++] = c;
+            continue;
+        }
+        fc_log_write(loop->ctx->log, FC_LOG_INFO, "%s: closed after %lu message(s)", c->peer, c->messages);
+        fc_connection_destroy(c);
+    }
+    loop->count = kept;
+}
+
+fc_code fc_event_loop_run(fc_event_loop *loop, fc_error *err)
+{
+    for (;;) {
+        int timeout = prepare_poll(loop, fc_monotonic_ms());
+        if (poll(loop->fds, FIRST_CONNECTION_SLOT + loop->count, timeout) < 0) {
+            if (errno == EINTR)
+                continue;
+            return fc_error_set(err, FC_ERR_IO, "poll: %s", strerror(errno));
+        }
+        if (loop->fds[STOP_SLOT].revents)
+            return FC_OK;
+        /* Connections first: accepting appends to the array the pollfds mirror. */
+        service_connections(loop, fc_monotonic_ms());
+        remove_finished(loop);
+        if (loop->fds[LISTEN_SLOT].revents & POLLIN)
+            accept_clients(loop);
+    }
+}

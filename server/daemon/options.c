@@ -1,0 +1,187 @@
+/* options.c — fluidcastd's command line: defaults, parsing, --help. */
+#include "options.h"
+
+#include <errno.h>
+#include <inttypes.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "fc_error.h"
+
+void fc_daemon_options_default(fc_daemon_options *o)
+{
+    memset(o, 0, sizeof *o);
+    snprintf(o->listen_host, sizeof o->listen_host, "%s", FC_DEFAULT_LISTEN_HOST);
+    snprintf(o->listen_port, sizeof o->listen_port, "%d", FC_DEFAULT_PORT);
+    o->gpu.mode = FC_GPU_AUTO;
+    o->log_level = FC_LOG_INFO;
+    o->limits.max_particles = FC_DEFAULT_MAX_PARTICLES;
+    o->limits.max_width = FC_DEFAULT_MAX_IMAGE_SIDE;
+    o->limits.max_height = FC_DEFAULT_MAX_IMAGE_SIDE;
+    o->limits.max_message = FC_DEFAULT_MAX_MESSAGE;
+}
+
+void fc_daemon_options_print_help(FILE *out, const char *program)
+{
+    fprintf(out,
+            "usage: %s [options]\n"
+            "Headless render daemon: receives particle frames and cameras over TCP and\n"
+            "answers with screen-space fluid renderings.\n"
+            "\n"
+            "  --listen HOST:PORT      address to listen on; [ADDR]:PORT for IPv6, port 0 = any\n"
+            "                          free port (default %s:%d)\n"
+            "  --gpu auto|software|N   auto: first GPU EGL device, else Mesa llvmpipe;\n"
+            "                          software: llvmpipe; N: EGL device number N (default auto)\n"
+            "  --log-level LEVEL       error, warn, info or debug (default info)\n"
+            "  --shader-dir DIR        load the *.glsl shaders from DIR instead of the built-in\n"
+            "                          copies (development)\n"
+            "  --port-file PATH        write the bound port to PATH once listening\n"
+            "  --max-particles N       particles per frame (default %u)\n"
+            "  --max-image WxH         largest image (default %ux%u)\n"
+            "  --max-message BYTES     largest message payload (default %u)\n"
+            "  --help                  show this help\n"
+            "\n"
+            "SIGINT or SIGTERM stops the daemon cleanly (exit status 0).\n",
+            program, FC_DEFAULT_LISTEN_HOST, FC_DEFAULT_PORT, FC_DEFAULT_MAX_PARTICLES,
+            FC_DEFAULT_MAX_IMAGE_SIDE, FC_DEFAULT_MAX_IMAGE_SIDE, FC_DEFAULT_MAX_MESSAGE);
+}
+
+/* Whole-string unsigned decimal within [1, max]. */
+static fc_code parse_count(const char *option, const char *text, uint64_t max, uint64_t *out, fc_error *err)
+{
+    char *end = NULL;
+    errno = 0;
+    unsigned long long value = strtoull(text, &end, 10);
+    if (text[0] < '0' || text[0] > '9' || *end != '\0' || errno == ERANGE || value < 1 || value > max)
+        return fc_error_set(err, FC_ERR_USAGE, "%s '%s': expected a whole number from 1 to %" PRIu64, option,
+                            text, max);
+    *out = value;
+    return FC_OK;
+}
+
+static fc_code parse_image_size(const char *text, fc_limits *limits, fc_error *err)
+{
+    const char *x = strchr(text, 'x');
+    char width[32];
+    if (!x || (size_t)(x - text) >= sizeof width)
+        return fc_error_set(err, FC_ERR_USAGE, "--max-image '%s': expected WIDTHxHEIGHT, e.g. 4096x4096", text);
+    memcpy(width, text, (size_t)(x - text));
+    width[x - text] = '\0';
+    uint64_t w, h;
+    if (parse_count("--max-image width", width, UINT32_MAX, &w, err) != FC_OK ||
+        parse_count("--max-image height", x + 1, UINT32_MAX, &h, err) != FC_OK)
+        return FC_ERR_USAGE;
+    limits->max_width = (uint32_t)w;
+    limits->max_height = (uint32_t)h;
+    return FC_OK;
+}
+
+static fc_code parse_port(const char *text, fc_daemon_options *o, fc_error *err)
+{
+    char *end = NULL;
+    unsigned long port = strtoul(text, &end, 10);
+    if (text[0] < '0' || text[0] > '9' || *end != '\0' || port > 65535)
+        return fc_error_set(err, FC_ERR_USAGE, "--listen: port '%s' is not a number from 0 to 65535", text);
+    snprintf(o->listen_port, sizeof o->listen_port, "%lu", port);
+    return FC_OK;
+}
+
+fc_code fc_daemon_options_parse_listen(const char *text, fc_daemon_options *o, fc_error *err)
+{
+    const char *host = text;
+    size_t host_len;
+    const char *port;
+    if (text[0] == '[') {
+        const char *close = strchr(text, ']');
+        if (!close || close[1] != ':')
+            return fc_error_set(err, FC_ERR_USAGE, "--listen '%s': expected [IPV6]:PORT", text);
+        host = text + 1;
+        host_len = (size_t)(close - host);
+        port = close + 2;
+    } else {
+        const char *colon = strrchr(text, ':');
+        if (!colon)
+            return fc_error_set(err, FC_ERR_USAGE, "--listen '%s': expected HOST:PORT", text);
+        if (memchr(text, ':', (size_t)(colon - text)))
+            return fc_error_set(err, FC_ERR_USAGE, "--listen '%s': write IPv6 addresses as [ADDR]:PORT", text);
+        host_len = (size_t)(colon - text);
+        port = colon + 1;
+    }
+    if (host_len == 0 || host_len >= sizeof o->listen_host)
+        return fc_error_set(err, FC_ERR_USAGE, "--listen '%s': missing or overlong host", text);
+    memcpy(o->listen_host, host, host_len);
+    o->listen_host[host_len] = '\0';
+    return parse_port(port, o, err);
+}
+
+static bool is_known_option(const char *name)
+{
+    static const char *const known[] = {"--listen",        "--gpu",       "--log-level",  "--shader-dir",
+                                        "--port-file",     "--max-particles", "--max-image", "--max-message"};
+    for (size_t i = 0; i < sizeof known / sizeof known[0]; i++)
+        if (strcmp(name, known[i]) == 0)
+            return true;
+    return false;
+}
+
+/* Applies one option that takes a value. */
+static fc_code apply_option(const char *name, const char *value, fc_daemon_options *o, fc_error *err)
+{
+    uint64_t n;
+    if (strcmp(name, "--listen") == 0)
+        return fc_daemon_options_parse_listen(value, o, err);
+    if (strcmp(name, "--gpu") == 0)
+        return fc_gpu_choice_parse(value, &o->gpu, err);
+    if (strcmp(name, "--log-level") == 0)
+        return fc_log_level_parse(value, &o->log_level, err);
+    if (strcmp(name, "--shader-dir") == 0) {
+        o->shader_dir = value;
+        return FC_OK;
+    }
+    if (strcmp(name, "--port-file") == 0) {
+        o->port_file = value;
+        return FC_OK;
+    }
+    if (strcmp(name, "--max-particles") == 0) {
+        if (parse_count(name, value, UINT64_MAX, &n, err) != FC_OK)
+            return FC_ERR_USAGE;
+        o->limits.max_particles = n;
+        return FC_OK;
+    }
+    if (strcmp(name, "--max-image") == 0)
+        return parse_image_size(value, &o->limits, err);
+    if (strcmp(name, "--max-message") == 0) {
+        if (parse_count(name, value, UINT32_MAX, &n, err) != FC_OK)
+            return FC_ERR_USAGE;
+        o->limits.max_message = (uint32_t)n;
+        return FC_OK;
+    }
+    return fc_error_set(err, FC_ERR_USAGE, "unknown option '%s' (see --help)", name);
+}
+
+fc_code fc_daemon_options_parse(int argc, char **argv, fc_daemon_options *o, fc_error *err)
+{
+    for (int i = 1; i < argc; i++) {
+        const char *arg = argv[i];
+        if (strcmp(arg, "--help") == 0 || strcmp(arg, "-h") == 0) {
+            o->help = true;
+            continue;
+        }
+        char name[64];
+        const char *equals = strchr(arg, '=');
+        size_t name_len = equals ? (size_t)(equals - arg) : strlen(arg);
+        if (name_len < sizeof name) {
+            memcpy(name, arg, name_len);
+            name[name_len] = '\0';
+        }
+        if (name_len >= sizeof name || !is_known_option(name))
+            return fc_error_set(err, FC_ERR_USAGE, "unknown option '%s' (see --help)", arg);
+        const char *value = equals ? equals + 1 : i + 1 < argc ? argv[++i] : NULL;
+        if (!value)
+            return fc_error_set(err, FC_ERR_USAGE, "option '%s' needs a value (see --help)", arg);
+        fc_code code = apply_option(name, value, o, err);
+        if (code != FC_OK)
+            return code;
+    }
+    return FC_OK;
+}

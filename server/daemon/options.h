@@ -1,0 +1,39 @@
+/* options.h — fluidcastd's command line. */
+#ifndef FC_DAEMON_OPTIONS_H
+#define FC_DAEMON_OPTIONS_H
+
+#include <stdbool.h>
+#include <stdio.h>
+
+#include "gl/egl_context.h"
+#include "log.h"
+#include "wire.h"
+
+#define FC_DEFAULT_LISTEN_HOST "127.0.0.1"
+#define FC_DEFAULT_MAX_PARTICLES 16777216u   /* 2^24 */
+#define FC_DEFAULT_MAX_IMAGE_SIDE 8192u
+#define FC_DEFAULT_MAX_MESSAGE (1024u * 1024u * 1024u)   /* 1 GiB */
+
+typedef struct fc_daemon_options {
+    char listen_host[256];     /* name or address; brackets of "[v6]:port" removed */
+    char listen_port[8];       /* decimal, "0" = any free port */
+    fc_gpu_choice gpu;
+    fc_log_level log_level;
+    const char *shader_dir;    /* NULL: shaders built into the binary; points into argv */
+    const char *port_file;     /* NULL: none; points into argv */
+    fc_limits limits;
+    bool help;                 /* --help: print usage and exit */
+} fc_daemon_options;
+
+void fc_daemon_options_default(fc_daemon_options *o);
+
+/* Parses argv over the defaults already in *o. "--name value" and
+ * "--name=value" both work. FC_ERR_USAGE naming the offending argument. */
+fc_code fc_daemon_options_parse(int argc, char **argv, fc_daemon_options *o, fc_error *err);
+
+/* Parses "HOST:PORT", "[IPV6]:PORT" into the listen fields. */
+fc_code fc_daemon_options_parse_listen(const char *text, fc_daemon_options *o, fc_error *err);
+
+void fc_daemon_options_print_help(FILE *out, const char *program);
+
+#endif

@@ -1,0 +1,235 @@
+/* session.c — one client's protocol state and message dispatch. */
+#include "session.h"
+
+#include <string.h>
+
+#include "fc_error.h"
+#include "fc_frame.h"
+
+/* Without a CAMERA the frame is framed automatically at this size. */
+enum { DEFAULT_WIDTH = 1280, DEFAULT_HEIGHT = 720 };
+
+void fc_session_init(fc_session *s, const char *peer)
+{
+    memset(s, 0, sizeof *s);
+    s->state = FC_SESSION_AWAIT_HELLO;
+    s->peer = peer;
+    fc_settings_default(&s->settings);
+}
+
+void fc_session_free(fc_session *s)
+{
+    fc_frame_free(&s->scene.frame);
+    s->has_frame = false;
+}
+
+static bool is_defined_type(uint16_t type)
+{
+    return type >= FC_MSG_HELLO && type <= FC_MSG_GOODBYE;
+}
+
+static const char *message_name(uint16_t type)
+{
+    static const char *const names[] = {"HELLO", "WELCOME", "FRAME", "CAMERA", "SETTINGS",
+                                        "RENDER", "IMAGE",   "ERROR", "GOODBYE"};
+    return is_defined_type(type) ? names[type - FC_MSG_HELLO] : "unknown";
+}
+
+/* Codes >= 100 never travel: each becomes the wire code a client can act on. */
+static fc_code wire_code(fc_code code)
+{
+    if (code >= 1 && code <= 99)
+        return code;
+    return code == FC_ERR_GL ? FC_ERR_RENDER : FC_ERR_INTERNAL;
+}
+
+fc_session_verdict fc_session_reply_error(const fc_daemon_context *ctx, const char *peer, uint32_t request_id,
+                                          const fc_error *error, fc_session_verdict then, fc_buf *out)
+{
+    fc_error wire = *error;
+    wire.code = wire_code(error->code);
+    /* Client mistakes are routine; failures on the server's side deserve attention. */
+    int server_side = wire.code == FC_ERR_RENDER || wire.code == FC_ERR_ENCODE || wire.code == FC_ERR_INTERNAL;
+    fc_log_write(ctx->log, server_side ? FC_LOG_WARN : FC_LOG_INFO, "%s: request %u: %s: %s%s", peer,
+                 (unsigned)request_id, fc_code_name(wire.code), wire.message,
+                 then == FC_SESSION_CLOSE ? " (closing)" : "");
+    fc_error write_err;
+    if (fc_wire_write_error(out, request_id, &wire, &write_err) != FC_OK) {
+        fc_log_write(ctx->log, FC_LOG_ERROR, "%s: cannot queue ERROR: %s", peer, write_err.message);
+        return FC_SESSION_ABORT;
+    }
+    return then;
+}
+
+/* Shorthand for the handlers: answer the message `h` with err. */
+static fc_session_verdict reply_error(const fc_session *s, const fc_daemon_context *ctx, const fc_msg_header *h,
+                                      const fc_error *err, fc_session_verdict then, fc_buf *out)
+{
+    return fc_session_reply_error(ctx, s->peer, h->request_id, err, then, out);
+}
+
+static fc_session_verdict handle_hello(fc_session *s, fc_daemon_context *ctx, const fc_msg_header *h,
+                                       const uint8_t *payload, fc_buf *out)
+{
+    fc_hello hello;
+    fc_error err;
+    if (fc_wire_read_hello(payload, h->length, &hello, &err) != FC_OK)
+        return reply_error(s, ctx, h, &err, FC_SESSION_CLOSE, out);
+    if (hello.version_min > FC_PROTOCOL_VERSION || hello.version_max < FC_PROTOCOL_VERSION) {
+        fc_error_set(&err, FC_ERR_VERSION, "client speaks protocol versions %u..%u, this server only %u",
+                     (unsigned)hello.version_min, (unsigned)hello.version_max, FC_PROTOCOL_VERSION);
+        return reply_error(s, ctx, h, &err, FC_SESSION_CLOSE, out);
+    }
+    if (fc_wire_write_welcome(out, h->request_id, &ctx->welcome, &err) != FC_OK) {
+        fc_log_write(ctx->log, FC_LOG_ERROR, "%s: cannot queue WELCOME: %s", s->peer, err.message);
+        return FC_SESSION_ABORT;
+    }
+    s->state = FC_SESSION_READY;
+    fc_log_write(ctx->log, FC_LOG_INFO, "%s: HELLO from '%s'", s->peer, hello.client_name);
+    return FC_SESSION_CONTINUE;
+}
+
+/* A new frame replaces the old one only once it decoded completely. */
+static fc_session_verdict handle_frame(fc_session *s, fc_daemon_context *ctx, const fc_msg_header *h,
+                                       const uint8_t *payload, fc_buf *out)
+{
+    fc_frame frame = {0};
+    fc_error err;
+    if (fc_wire_read_frame(payload, h->length, ctx->welcome.limits.max_particles, &frame, &err) != FC_OK) {
+        fc_frame_free(&frame);
+        return reply_error(s, ctx, h, &err, FC_SESSION_CONTINUE, out);
+    }
+    fc_frame_free(&s->scene.frame);
+    s->scene.frame = frame;
+    s->scene.frame_id = fc_render_service_new_frame_id(ctx->render);
+    s->scene.estimated_radius = 0.0f;
+    s->has_frame = true;
+    fc_log_write(ctx->log, FC_LOG_DEBUG, "%s: FRAME of %llu particles", s->peer, (unsigned long long)frame.count);
+    return FC_SESSION_CONTINUE;
+}
+
+static fc_code check_image_limit(const fc_limits *limits, uint32_t width, uint32_t height, fc_error *err)
+{
+    if (width <= limits->max_width && height <= limits->max_height)
+        return FC_OK;
+    return fc_error_set(err, FC_ERR_LIMIT, "image %ux%u exceeds this server's limit of %ux%u", (unsigned)width,
+                        (unsigned)height, (unsigned)limits->max_width, (unsigned)limits->max_height);
+}
+
+static fc_session_verdict handle_camera(fc_session *s, fc_daemon_context *ctx, const fc_msg_header *h,
+                                        const uint8_t *payload, fc_buf *out)
+{
+    fc_camera camera;
+    fc_error err;
+    if (fc_wire_read_camera(payload, h->length, &camera, &err) != FC_OK ||
+        check_image_limit(&ctx->welcome.limits, camera.width, camera.height, &err) != FC_OK)
+        return reply_error(s, ctx, h, &err, FC_SESSION_CONTINUE, out);
+    s->camera = camera;
+    s->has_camera = true;
+    return FC_SESSION_CONTINUE;
+}
+
+/* Entries merge into the current settings; the codec leaves them untouched on any error. */
+static fc_session_verdict handle_settings(fc_session *s, fc_daemon_context *ctx, const fc_msg_header *h,
+                                          const uint8_t *payload, fc_buf *out)
+{
+    fc_error err;
+    if (fc_wire_read_settings(payload, h->length, &s->settings, &err) != FC_OK)
+        return reply_error(s, ctx, h, &err, FC_SESSION_CONTINUE, out);
+    return FC_SESSION_CONTINUE;
+}
+
+/* The camera a RENDER uses: the client's, else one framing the whole frame.
+ * There must be a frame to render. */
+static fc_code render_camera(const fc_session *s, const fc_limits *limits, fc_camera *camera, fc_error *err)
+{
+    if (!s->has_frame)
+        return fc_error_set(err, FC_ERR_BAD_STATE, "RENDER before any FRAME");
+    if (s->has_camera) {
+        *camera = s->camera;
+        return FC_OK;
+    }
+    fc_camera_frame_bounds(&s->scene.frame, DEFAULT_WIDTH, DEFAULT_HEIGHT, camera);
+    return check_image_limit(limits, DEFAULT_WIDTH, DEFAULT_HEIGHT, err);
+}
+
+static fc_session_verdict handle_render(fc_session *s, fc_daemon_context *ctx, const fc_msg_header *h,
+                                        const uint8_t *payload, double received_ms, fc_buf *out)
+{
+    fc_render_request request;
+    fc_camera camera;
+    fc_error err;
+    if (fc_wire_read_render(payload, h->length, &request, &err) != FC_OK ||
+        render_camera(s, &ctx->welcome.limits, &camera, &err) != FC_OK)
+        return reply_error(s, ctx, h, &err, FC_SESSION_CONTINUE, out);
+    fc_render_job job = {&s->scene, &camera, &s->settings, request, received_ms};
+    if (fc_render_service_render(ctx->render, &job, h->request_id, out, &err) != FC_OK)
+        return reply_error(s, ctx, h, &err, FC_SESSION_CONTINUE, out);
+    fc_log_write(ctx->log, FC_LOG_DEBUG, "%s: request %u: IMAGE %ux%u queued", s->peer, (unsigned)h->request_id,
+                 (unsigned)camera.width, (unsigned)camera.height);
+    return FC_SESSION_CONTINUE;
+}
+
+/* The connection closes after GOODBYE either way; a malformed one is still answered. */
+static fc_session_verdict handle_goodbye(fc_session *s, fc_daemon_context *ctx, const fc_msg_header *h,
+                                         const uint8_t *payload, fc_buf *out)
+{
+    fc_error err;
+    if (fc_wire_read_goodbye(payload, h->length, &err) != FC_OK)
+        return reply_error(s, ctx, h, &err, FC_SESSION_CLOSE, out);
+    fc_log_write(ctx->log, FC_LOG_DEBUG, "%s: GOODBYE", s->peer);
+    return FC_SESSION_CLOSE;
+}
+
+/* Before the handshake only HELLO (or a polite GOODBYE) is accepted; any
+ * other message ends the connection, as the client is not speaking fluidcast. */
+static fc_session_verdict handle_before_hello(fc_session *s, fc_daemon_context *ctx, const fc_msg_header *h,
+                                              const uint8_t *payload, fc_buf *out)
+{
+    if (h->type == FC_MSG_HELLO)
+        return handle_hello(s, ctx, h, payload, out);
+    if (h->type == FC_MSG_GOODBYE)
+        return handle_goodbye(s, ctx, h, payload, out);
+    fc_error err;
+    if (!is_defined_type(h->type))
+        fc_error_set(&err, FC_ERR_UNKNOWN_TYPE, "message type %u is not defined", (unsigned)h->type);
+    else
+        fc_error_set(&err, FC_ERR_BAD_STATE, "%s before HELLO", message_name(h->type));
+    return reply_error(s, ctx, h, &err, FC_SESSION_CLOSE, out);
+}
+
+/* Messages a client must not send once READY. */
+static fc_session_verdict refuse_after_hello(fc_session *s, fc_daemon_context *ctx, const fc_msg_header *h,
+                                             fc_buf *out)
+{
+    fc_error err;
+    if (h->type == FC_MSG_HELLO)
+        fc_error_set(&err, FC_ERR_BAD_STATE, "HELLO was already answered");
+    else if (h->type == FC_MSG_WELCOME || h->type == FC_MSG_IMAGE || h->type == FC_MSG_ERROR)
+        fc_error_set(&err, FC_ERR_BAD_STATE, "%s is sent by servers, not clients", message_name(h->type));
+    else
+        fc_error_set(&err, FC_ERR_UNKNOWN_TYPE, "message type %u is not defined in protocol version %u",
+                     (unsigned)h->type, FC_PROTOCOL_VERSION);
+    return reply_error(s, ctx, h, &err, FC_SESSION_CONTINUE, out);
+}
+
+fc_session_verdict fc_session_handle(fc_session *s, fc_daemon_context *ctx, const fc_msg_header *header,
+                                     const uint8_t *payload, double received_ms, fc_buf *out)
+{
+    if (s->state == FC_SESSION_AWAIT_HELLO)
+        return handle_before_hello(s, ctx, header, payload, out);
+    switch (header->type) {
+    case FC_MSG_FRAME:
+        return handle_frame(s, ctx, header, payload, out);
+    case FC_MSG_CAMERA:
+        return handle_camera(s, ctx, header, payload, out);
+    case FC_MSG_SETTINGS:
+        return handle_settings(s, ctx, header, payload, out);
+    case FC_MSG_RENDER:
+        return handle_render(s, ctx, header, payload, received_ms, out);
+    case FC_MSG_GOODBYE:
+        return handle_goodbye(s, ctx, header, payload, out);
+    default:
+        return refuse_after_hello(s, ctx, header, out);
+    }
+}

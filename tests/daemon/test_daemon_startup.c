@@ -1,0 +1,47 @@
+/* test_daemon_startup.c — fluidcastd's exit status when it cannot start:
+ * 1 without a GL context or a listening socket, 2 for a bad command line. */
+#include <string.h>
+
+#include "daemon_process.h"
+#include "fc_error.h"
+#include "test_util.h"
+
+/* Starts the daemon with extra_args and expects it to exit with `status` before listening. */
+static void expect_exit(const char *const *extra_args, int status)
+{
+    fc_test_daemon d;
+    fc_error err;
+    fc_code code = fc_test_daemon_start(&d, extra_args, FC_TEST_DAEMON_START_TIMEOUT_MS, &err);
+    CHECK_MSG(code == FC_ERR_IO, "%s %s: started (port %u) but should not have", extra_args[0], extra_args[1],
+              (unsigned)d.port);
+    CHECK_MSG(d.early_exit == status, "%s %s: exit status %d, expected %d", extra_args[0], extra_args[1],
+              d.early_exit, status);
+    if (code == FC_OK)
+        fc_test_daemon_stop(&d, FC_TEST_DAEMON_STOP_TIMEOUT_MS, &err);
+}
+
+int main(void)
+{
+    /* No such EGL device: no GL context. */
+    static const char *const no_gpu[] = {"--gpu", "999", NULL};
+    expect_exit(no_gpu, 1);
+
+    static const char *const bogus[] = {"--frobnicate", "1", NULL};
+    expect_exit(bogus, 2);
+    static const char *const bad_limit[] = {"--max-image", "0x100", NULL};
+    expect_exit(bad_limit, 2);
+
+    /* A port already taken by a running daemon. */
+    fc_test_daemon first;
+    fc_error err;
+    if (fc_test_daemon_start(&first, NULL, FC_TEST_DAEMON_START_TIMEOUT_MS, &err) != FC_OK) {
+        CHECK_MSG(0, "cannot start the daemon: %s", err.message);
+        return test_result();
+    }
+    char taken[32];
+    snprintf(taken, sizeof taken, "127.0.0.1:%u", (unsigned)first.port);
+    const char *const busy[] = {"--listen", taken, NULL};
+    expect_exit(busy, 1);
+    CHECK_MSG(fc_test_daemon_stop(&first, FC_TEST_DAEMON_STOP_TIMEOUT_MS, &err) == FC_OK, "%s", err.message);
+    return test_result();
+}
