@@ -1,1 +1,113 @@
-/* placeholder: being written */
+/* fc_frame.c — allocating, validating and measuring particle frames. */
+#include "fc_frame.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "fc_error.h"
+
+#define FC_ATTR_ALL (FC_ATTR_DENSITY | FC_ATTR_VELOCITY | FC_ATTR_IDS)
+
+/* NULL when count * values * bytes would not fit size_t: a size never wraps to a small block. */
+static void *alloc_array(uint64_t count, size_t values_per_particle, size_t bytes_per_value)
+{
+    size_t particle_bytes = values_per_particle * bytes_per_value;
+    if (count > SIZE_MAX / particle_bytes)
+        return NULL;
+    return malloc((size_t)count * particle_bytes);
+}
+
+fc_code fc_frame_alloc(fc_frame *frame, uint64_t count, uint32_t attributes, fc_error *err)
+{
+    memset(frame, 0, sizeof *frame);
+    if (count == 0)
+        return fc_error_set(err, FC_ERR_USAGE, "a frame needs at least one particle");
+    if (attributes & ~(uint32_t)FC_ATTR_ALL)
+        return fc_error_set(err, FC_ERR_USAGE, "unknown attribute bits 0x%x", attributes & ~(uint32_t)FC_ATTR_ALL);
+
+    frame->count = count;
+    frame->positions = alloc_array(count, 3, sizeof(float));
+    bool ok = frame->positions != NULL;
+    if (ok && (attributes & FC_ATTR_DENSITY))
+        ok = (frame->density = alloc_array(count, 1, sizeof(float))) != NULL;
+    if (ok && (attributes & FC_ATTR_VELOCITY))
+        ok = (frame->velocity = alloc_array(count, 3, sizeof(float))) != NULL;
+    if (ok && (attributes & FC_ATTR_IDS))
+        ok = (frame->ids = alloc_array(count, 1, sizeof(uint32_t))) != NULL;
+    if (!ok) {
+        fc_frame_free(frame);
+        return fc_error_set(err, FC_ERR_NOMEM, "cannot allocate a frame of %llu particles",
+                            (unsigned long long)count);
+    }
+    return FC_OK;
+}
+
+void fc_frame_free(fc_frame *frame)
+{
+    free(frame->positions);
+    free(frame->density);
+    free(frame->velocity);
+    free(frame->ids);
+    memset(frame, 0, sizeof *frame);
+}
+
+uint32_t fc_frame_attributes(const fc_frame *frame)
+{
+    uint32_t attributes = 0;
+    if (frame->density)
+        attributes |= FC_ATTR_DENSITY;
+    if (frame->velocity)
+        attributes |= FC_ATTR_VELOCITY;
+    if (frame->ids)
+        attributes |= FC_ATTR_IDS;
+    return attributes;
+}
+
+/* Index of the first particle with a non-finite value among `per_particle`
+ * interleaved floats, or `count` when all are finite. */
+static uint64_t first_non_finite(const float *values, uint64_t count, size_t per_particle)
+{
+    for (uint64_t i = 0; i < count; i++)
+        for (size_t k = 0; k < per_particle; k++)
+            if (!isfinite(values[i * per_particle + k]))
+                return i;
+    return count;
+}
+
+fc_code fc_frame_validate(const fc_frame *frame, fc_error *err)
+{
+    const struct {
+        const float *values;
+        size_t per_particle;
+        const char *what;
+    } arrays[] = {
+        {frame->positions, 3, "position"},
+        {frame->density, 1, "density"},
+        {frame->velocity, 3, "velocity"},
+    };
+    if (frame->count == 0 || !frame->positions)
+        return fc_error_set(err, FC_ERR_INVALID_VALUE, "the frame has no particles");
+    for (size_t a = 0; a < sizeof arrays / sizeof arrays[0]; a++) {
+        if (!arrays[a].values)
+            continue;
+        uint64_t bad = first_non_finite(arrays[a].values, frame->count, arrays[a].per_particle);
+        if (bad < frame->count)
+            return fc_error_set(err, FC_ERR_INVALID_VALUE, "particle %llu has a non-finite %s",
+                                (unsigned long long)bad, arrays[a].what);
+    }
+    return FC_OK;
+}
+
+void fc_frame_bounds(const fc_frame *frame, float lo[3], float hi[3])
+{
+    for (int k = 0; k < 3; k++)
+        lo[k] = hi[k] = frame->positions[k];
+    for (uint64_t i = 1; i < frame->count; i++) {
+        const float *p = frame->positions + 3 * i;
+        for (int k = 0; k < 3; k++) {
+            lo[k] = p[k] < lo[k] ? p[k] : lo[k];
+            hi[k] = p[k] > hi[k] ? p[k] : hi[k];
+        }
+    }
+}

@@ -32,6 +32,9 @@ typedef enum fc_code {
     FC_ERR_ENCODE = 10,          /* the image could not be encoded in the requested format */
     FC_ERR_INTERNAL = 11,        /* server-side failure not caused by the request (out of memory, ...) */
     FC_ERR_UNAUTHORIZED = 12,    /* reserved: authentication required or failed */
+    FC_ERR_DUPLICATE = 13,       /* a chunk of this frame with this index already arrived */
+    FC_ERR_INCONSISTENT = 14,    /* a chunk disagrees with its frame's other chunks (count K, attributes) */
+    FC_ERR_INCOMPLETE = 15,      /* a multi-rank frame still lacked chunks when its timeout passed */
     /* local codes */
     FC_ERR_IO = 100,             /* file or socket I/O failed (see message) */
     FC_ERR_CONNECT = 101,        /* could not reach the server */
@@ -79,16 +82,34 @@ typedef struct fc_camera {
 /* ---- Render settings -----------------------------------------------------*/
 typedef enum fc_smoothing {
     FC_SMOOTHING_NONE = 0,
-    FC_SMOOTHING_CURVATURE = 1   /* screen-space curvature flow, van der Laan et al. 2009 */
+    FC_SMOOTHING_CURVATURE = 1,  /* screen-space curvature flow, van der Laan et al. 2009 */
+    FC_SMOOTHING_BILATERAL = 2,  /* separable bilateral Gaussian (Janisz 2012, section 4.1.2.1) */
+    FC_SMOOTHING_BINOMIAL = 3,   /* binomial filter with silhouette map (Cords & Staadt, Instant Liquids) */
+    FC_SMOOTHING_NARROW = 4      /* narrow-range filter (Truong & Yuksel 2018) */
 } fc_smoothing;
 
+/* Every parameter a user may tune. fc_settings_default() gives convincing water;
+ * zero is "off" for the optional effects. */
 typedef struct fc_settings {
     float radius;              /* sphere radius in world units; 0 = estimate from particle spacing */
     fc_smoothing smoothing;
-    uint32_t iterations;       /* smoothing iterations */
+    uint32_t iterations;       /* curvature-flow steps, or filter passes for the other methods */
+    uint32_t filter_radius;    /* kernel half-width in pixels (bilateral, binomial, narrow); 0 = from the
+                                  projected particle size */
+    float smooth_scale;        /* resolution of depth smoothing: 1, 0.5 or 0.25 */
     float fluid_color[3];      /* linear RGB of the fluid seen through a thick layer */
     float absorption[3];       /* Beer-Lambert absorption per unit of thickness, per channel */
     float ior;                 /* index of refraction (Fresnel F0 = ((ior-1)/(ior+1))^2) */
+    float refraction;          /* gamma: background offset beta = gamma * thickness (pixels per world unit) */
+    float specular;            /* Phong specular intensity, >= 0 */
+    float shininess;           /* Phong exponent, >= 1 */
+    float thickness_scale;     /* resolution of the thickness pass: 1, 0.5 or 0.25 */
+    uint32_t thickness_blur;   /* Gaussian blur radius of thickness in pixels; 0 = none */
+    float noise;               /* amplitude of the per-particle surface noise; 0 = off */
+    float foam;                /* foam intensity (grey foam from noise magnitude, white spray); 0 = off */
+    float foam_tau;            /* velocity change (world units per frame) that raises a particle's noise */
+    float foam_decay;          /* per-frame factor in [0,1) by which a raised amplitude decays */
+    float density_threshold;   /* particles with density below this are spray, not surface; 0 = off */
 } fc_settings;
 
 /* ---- Image request and reply -------------------------------------------*/
@@ -104,7 +125,9 @@ typedef enum fc_aov {
     FC_AOV_COLOR = 0,          /* shaded fluid over the background, RGBA */
     FC_AOV_DEPTH = 1,          /* linear view-space depth before smoothing, 1 channel float, 0 = no fluid */
     FC_AOV_SMOOTHED_DEPTH = 2, /* linear view-space depth after smoothing, 1 channel float, 0 = no fluid */
-    FC_AOV_THICKNESS = 3       /* accumulated fluid thickness, 1 channel float */
+    FC_AOV_THICKNESS = 3,      /* accumulated fluid thickness, 1 channel float */
+    FC_AOV_NORMAL = 4,         /* view-space normal of the smoothed surface, RGB float (0 where no fluid) */
+    FC_AOV_NOISE = 5           /* per-pixel noise/foam magnitude, 1 channel float */
 } fc_aov;
 
 typedef struct fc_render_request {
@@ -123,6 +146,10 @@ typedef enum fc_stage {
     FC_STAGE_READBACK,
     FC_STAGE_ENCODE,
     FC_STAGE_TOTAL,            /* request received -> reply queued */
+    /* appended after TOTAL so the numbers above keep their wire values */
+    FC_STAGE_RECEIVE,          /* the frame's bytes on the network: first byte -> last byte (all chunks) */
+    FC_STAGE_DECODE,           /* decoding the frame: decompression, dequantisation, chunk assembly */
+    FC_STAGE_QUEUE,            /* waiting for the GL thread plus waiting for an encoder */
     FC_STAGE_COUNT
 } fc_stage;
 

@@ -20,6 +20,7 @@ extern "C" {
 #define FC_WIRE_MAGIC "FCST"           /* first four bytes of every message */
 #define FC_WIRE_HEADER_SIZE 16u
 #define FC_DEFAULT_PORT 7450
+#define FC_DEFAULT_QUALITY 90u         /* what RENDER's quality 0 means */
 
 typedef enum fc_msg_type {
     FC_MSG_HELLO = 1,      /* client -> server */
@@ -117,6 +118,8 @@ fc_code fc_wire_read_render(const uint8_t *p, size_t n, fc_render_request *m, fc
 /* m->data points into p: keep p alive while using it. */
 fc_code fc_wire_read_image(const uint8_t *p, size_t n, fc_image_reply *m, fc_error *err);
 fc_code fc_wire_read_error(const uint8_t *p, size_t n, fc_error *m, fc_error *err);
+/* GOODBYE has no payload: FC_ERR_MALFORMED unless n == 0. */
+fc_code fc_wire_read_goodbye(const uint8_t *p, size_t n, fc_error *err);
 
 #ifdef __cplusplus
 }

@@ -33,4 +33,37 @@ fc_code fc_pipeline_upload(fc_pipeline *p, const fc_frame *frame, float *stage_m
 fc_code fc_pipeline_render(fc_pipeline *p, const fc_camera *camera, const fc_settings *settings,
                            fc_aov aov, int want_u8, fc_image *out, float *stage_ms, fc_error *err);
 
+/* ---- Per-session inputs beyond the frame (owned by the caller, e.g. a daemon session) ---- */
+
+/* GPU textures a client supplied for the scene: a background image (drawn behind
+ * the fluid and refracted through it, instead of the built-in floor and sky) and
+ * a cube map of six faces (reflected in the fluid, instead of the procedural sky).
+ * Created through a pipeline, used only with that pipeline. */
+typedef struct fc_scene_textures fc_scene_textures;
+
+/* background: any size, RGBA or RGB, U8 sRGB or F32 linear; NULL = built-in scene.
+ * faces: six square images of equal size in the order +X, -X, +Y, -Y, +Z, -Z
+ * (OpenGL cube-map convention); NULL = procedural sky. */
+fc_code fc_scene_textures_create(fc_pipeline *p, const fc_image *background, const fc_image *faces,
+                                 fc_scene_textures **out, fc_error *err);
+void fc_scene_textures_destroy(fc_scene_textures *t);
+
+/* Per-particle foam state across frames, keyed by particle id (CPU side): a
+ * particle whose velocity changed by more than settings->foam_tau since its last
+ * frame gets its noise amplitude raised; the raise decays by foam_decay per frame. */
+typedef struct fc_foam_state fc_foam_state;
+fc_code fc_foam_state_create(fc_foam_state **out, fc_error *err);
+void fc_foam_state_destroy(fc_foam_state *s);
+/* Advances the state by one frame and uploads each particle's amplitude
+ * multiplier for the next renders of the uploaded frame (call after
+ * fc_pipeline_upload with the same frame). Frames without ids or velocities get
+ * the base amplitude everywhere. */
+fc_code fc_foam_state_advance(fc_foam_state *s, fc_pipeline *p, const fc_frame *frame,
+                              const fc_settings *settings, fc_error *err);
+
+/* Like fc_pipeline_render, with the session's scene textures (NULL = built-in). */
+fc_code fc_pipeline_render_scene(fc_pipeline *p, const fc_camera *camera, const fc_settings *settings,
+                                 const fc_scene_textures *scene, fc_aov aov, int want_u8, fc_image *out,
+                                 float *stage_ms, fc_error *err);
+
 #endif

@@ -1,0 +1,461 @@
+/* fc_radius.c — estimating a splat radius from the particle spacing.
+ *
+ * The radius is 0.9 x the median nearest-neighbour distance of a deterministic
+ * sample of at most 4096 particles, where neighbours are searched among *all*
+ * particles, exactly. A grid over every particle would scatter writes across
+ * memory (seconds for 16M particles); instead only the grid cells around the
+ * sampled particles are kept, in a small hash table, and a sequential pass
+ * over the positions offers each particle to the samples whose cells it falls
+ * in. Usually one pass settles every sample.
+ *
+ * A pilot search among the samples themselves gives each sample an upper
+ * bound of its neighbour's distance, and (scaled by the sampling density) the
+ * base cell size, which so follows the typical spacing rather than the
+ * bounding box: far-away splash particles do not change it.
+ *
+ * A sample settles once its neighbour is closer than the cells it searched
+ * reach. One that does not gets a second pass on a level of cells (4x wider
+ * per level) that reaches the neighbour it already knows, so a sample in a
+ * sparse region or far from everything costs no more than that pass. */
+#include "fc_frame.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#define SAMPLE_MAX 4096u
+#define RADIUS_PER_SPACING 0.9
+#define FALLBACK_RADIUS 1.0f
+/* A random sample's nearest-neighbour distance is ~0.55 x its mean spacing,
+ * so base cells end up ~1.1 mean spacings of the frame wide: most nearest
+ * neighbours then lie in the 3x3x3 block of cells around a particle. */
+#define CELL_PER_PILOT_SPACING 2.0
+/* Level L cells are 4^L base cells wide. The base cell is at least 2^-40 of
+ * the bounding box, so at the last level one cell spans the box. */
+#define LEVEL_GROWTH_LOG2 2
+#define LEVELS 21
+#define MIN_BASE_CELL_PER_EXTENT 0x1p-40
+#define FIRST_REACH 1
+/* Past this many cells of reach, a coarser level is cheaper. */
+#define MAX_REACH 3
+/* Table keys: level, then each cell coordinate modulo 2^19. Cells 2^19
+ * apart share a key: their particles are offered too, which costs time,
+ * never exactness. */
+#define KEY_AXIS_BITS 19
+#define KEY_AXIS_MASK ((UINT64_C(1) << KEY_AXIS_BITS) - 1)
+#define KEY_LEVEL_SHIFT (3 * KEY_AXIS_BITS)
+#define EMPTY_KEY UINT64_MAX
+
+typedef struct grid {
+    double lo[3];                /* bounding box minimum: cell (0,0,0) of every level starts here */
+    double cell[LEVELS];         /* cell edge per level */
+    double per_cell[LEVELS];     /* 1 / cell */
+    int64_t dims[LEVELS][3];     /* cells per axis covering the bounding box */
+} grid;
+
+/* The cells some samples need, each with the list of those samples. */
+typedef struct cell_table {
+    uint64_t mask;           /* slots - 1 (a power of two) */
+    uint64_t *filter;        /* bit per hash value: most particles miss every needed cell, */
+    uint64_t filter_mask;    /* and this small bitmap says so without touching the keys */
+    uint64_t *keys;          /* packed level and cell coordinates, EMPTY_KEY when free */
+    uint32_t *list_start;    /* slots + 1: slot s lists samples[list_start[s] .. list_start[s+1]) */
+    uint16_t *samples;       /* sample indices (< SAMPLE_MAX) */
+    int levels[LEVELS];      /* the levels some sample searches, */
+    int n_levels;            /* each once */
+} cell_table;
+
+/* The sampled particles and what is known of their nearest neighbours. */
+typedef struct search {
+    size_t n;
+    float positions[SAMPLE_MAX * 3];   /* copied together so the pass over all particles stays in cache */
+    double best_sq[SAMPLE_MAX];        /* squared distance to the nearest distinct particle so far */
+    int level[SAMPLE_MAX];             /* cell level each sample searches */
+    int reach[SAMPLE_MAX];             /* cells searched around the sample's own, per axis and side */
+    uint16_t twin_of[SAMPLE_MAX];      /* the first sample at the same position (itself if none) */
+    uint16_t pending[SAMPLE_MAX];      /* samples the next pass searches */
+    size_t n_pending;
+} search;
+
+typedef struct sample_order {
+    float position[3];
+    uint16_t sample;
+} sample_order;
+
+static uint64_t splitmix64(uint64_t x)
+{
+    x += 0x9E3779B97F4A7C15ull;
+    x = (x ^ (x >> 30)) * 0xBF58476D1CE4E5B9ull;
+    x = (x ^ (x >> 27)) * 0x94D049BB133111EBull;
+    return x ^ (x >> 31);
+}
+
+static double distance_sq(const float *a, const float *b)
+{
+    double dx = (double)a[0] - b[0], dy = (double)a[1] - b[1], dz = (double)a[2] - b[2];
+    return dx * dx + dy * dy + dz * dz;
+}
+
+/* Distinct: coincident particles (and a sample meeting itself) say nothing about spacing. */
+static void offer(double *best_sq, const float *sample, const float *particle)
+{
+    double d = distance_sq(sample, particle);
+    if (d > 0 && d < *best_sq)
+        *best_sq = d;
+}
+
+static int compare_doubles(const void *a, const void *b)
+{
+    double x = *(const double *)a, y = *(const double *)b;
+    return (x > y) - (x < y);
+}
+
+/* Median of values[0..n), n > 0; reorders values. */
+static double median(double *values, size_t n)
+{
+    qsort(values, n, sizeof *values, compare_doubles);
+    return n % 2 ? values[n / 2] : 0.5 * (values[n / 2 - 1] + values[n / 2]);
+}
+
+/* ---- Sample and pilot ---- */
+
+/* One particle from each of n equal strata of the index range, at a
+ * pseudo-random offset: spread over the whole frame, yet not aligned with
+ * the lattice rows that simulation output is often stored in. */
+static void choose_sample(const fc_frame *frame, search *s)
+{
+    s->n = frame->count < SAMPLE_MAX ? (size_t)frame->count : SAMPLE_MAX;
+    uint64_t stratum = frame->count / s->n, extra = frame->count % s->n;
+    for (size_t i = 0; i < s->n; i++) {
+        /* The first `extra` strata hold one particle more. */
+        uint64_t begin = i * stratum + (i < extra ? i : extra);
+        uint64_t size = stratum + (i < extra);
+        uint64_t index = begin + splitmix64(i) % size;
+        memcpy(s->positions + 3 * i, frame->positions + 3 * index, 3 * sizeof(float));
+        s->best_sq[i] = INFINITY;
+        s->level[i] = 0;
+        s->reach[i] = FIRST_REACH;
+    }
+}
+
+static int compare_positions(const void *a, const void *b)
+{
+    const sample_order *x = a, *y = b;
+    for (int k = 0; k < 3; k++)
+        if (x->position[k] != y->position[k])
+            return x->position[k] < y->position[k] ? -1 : 1;
+    return (x->sample > y->sample) - (x->sample < y->sample);
+}
+
+/* Coincident samples share their nearest distinct neighbour, so only the
+ * first of them is searched. Without this, particles piled on one spot (say,
+ * inactive ones parked at the origin) would be offered to every sample there. */
+static void pend_distinct_samples(search *s)
+{
+    sample_order order[SAMPLE_MAX];
+    for (size_t i = 0; i < s->n; i++) {
+        memcpy(order[i].position, s->positions + 3 * i, sizeof order[i].position);
+        order[i].sample = (uint16_t)i;
+    }
+    qsort(order, s->n, sizeof *order, compare_positions);
+    s->n_pending = 0;
+    for (size_t i = 0; i < s->n; i++) {
+        bool twin = i > 0 && memcmp(order[i].position, order[i - 1].position, sizeof order[i].position) == 0;
+        uint16_t sample = order[i].sample;
+        s->twin_of[sample] = twin ? s->twin_of[order[i - 1].sample] : sample;
+        if (!twin)
+            s->pending[s->n_pending++] = sample;
+    }
+}
+
+/* Starts every sample's search from its nearest distinct fellow sample (an
+ * upper bound of its nearest particle, so the grid passes know how far to
+ * look); returns the median of those distances, or 0 when all samples coincide. */
+static double pilot_spacing(search *s)
+{
+    for (size_t i = 0; i < s->n; i++) {
+        for (size_t j = i + 1; j < s->n; j++) {
+            offer(&s->best_sq[i], s->positions + 3 * i, s->positions + 3 * j);
+            offer(&s->best_sq[j], s->positions + 3 * j, s->positions + 3 * i);
+        }
+    }
+    double nearest[SAMPLE_MAX];
+    size_t found = 0;
+    for (size_t i = 0; i < s->n; i++)
+        if (isfinite(s->best_sq[i]))
+            nearest[found++] = sqrt(s->best_sq[i]);
+    return found ? median(nearest, found) : 0.0;
+}
+
+/* ---- Grid ---- */
+
+/* Base cell from the pilot: a sample of n among N particles is (N/n)^(1/3)
+ * times sparser per axis than the frame in 3-D. */
+static void grid_init(grid *g, const double lo[3], const double hi[3], double pilot, size_t n, uint64_t count)
+{
+    double max_extent = 0;
+    for (int k = 0; k < 3; k++)
+        max_extent = fmax(max_extent, hi[k] - lo[k]);
+    double base = pilot > 0 ? CELL_PER_PILOT_SPACING * pilot * cbrt((double)n / (double)count)
+                            : max_extent / cbrt((double)count);
+    base = fmax(base, max_extent * MIN_BASE_CELL_PER_EXTENT);
+    for (int k = 0; k < 3; k++)
+        g->lo[k] = lo[k];
+    for (int level = 0; level < LEVELS; level++) {
+        g->cell[level] = ldexp(base, LEVEL_GROWTH_LOG2 * level);
+        g->per_cell[level] = 1.0 / g->cell[level];
+        for (int k = 0; k < 3; k++)
+            g->dims[level][k] = (int64_t)floor((hi[k] - lo[k]) * g->per_cell[level]) + 1;
+    }
+}
+
+static void cell_of(const grid *g, int level, const float *p, int64_t c[3])
+{
+    for (int k = 0; k < 3; k++) {
+        /* Truncation is floor here: the offset from the box minimum is not negative. */
+        double x = ((double)p[k] - g->lo[k]) * g->per_cell[level];
+        /* Only rounding can leave the box; clamping keeps the distance bound valid
+         * (and keeps a NaN, which callers must not pass, from an undefined conversion). */
+        int64_t last = g->dims[level][k] - 1;
+        c[k] = !(x >= 0) ? 0 : x > (double)last ? last : (int64_t)x;
+    }
+}
+
+static uint64_t cell_key(int level, const int64_t c[3])
+{
+    return (uint64_t)level << KEY_LEVEL_SHIFT | ((uint64_t)c[0] & KEY_AXIS_MASK) |
+           ((uint64_t)c[1] & KEY_AXIS_MASK) << KEY_AXIS_BITS | ((uint64_t)c[2] & KEY_AXIS_MASK) << (2 * KEY_AXIS_BITS);
+}
+
+/* ---- Table of needed cells ---- */
+
+/* The slot holding key, or the free slot where it belongs. */
+static uint64_t table_slot(const cell_table *t, uint64_t hash, uint64_t key)
+{
+    uint64_t slot = hash & t->mask;
+    while (t->keys[slot] != key && t->keys[slot] != EMPTY_KEY)
+        slot = (slot + 1) & t->mask;
+    return slot;
+}
+
+/* The filter uses the hash's high bits, the slots its low bits. */
+static uint64_t filter_bit(const cell_table *t, uint64_t hash)
+{
+    return (hash >> 32) & t->filter_mask;
+}
+
+static bool filter_may_hold(const cell_table *t, uint64_t hash)
+{
+    uint64_t bit = filter_bit(t, hash);
+    return t->filter[bit / 64] >> (bit % 64) & 1;
+}
+
+static void table_free(cell_table *t)
+{
+    free(t->filter);
+    free(t->keys);
+    free(t->list_start);
+    free(t->samples);
+    memset(t, 0, sizeof *t);
+}
+
+typedef enum table_step { COUNT_SAMPLES, LIST_SAMPLES } table_step;
+
+/* Visits every cell within each pending sample's reach (clipped to the
+ * grid): counting claims the cells' slots and counts their samples, listing
+ * writes the samples down. */
+static void visit_needed_cells(cell_table *t, const grid *g, const search *s, table_step step)
+{
+    for (size_t i = 0; i < s->n_pending; i++) {
+        uint16_t sample = s->pending[i];
+        int level = s->level[sample];
+        int64_t c[3], lo[3], hi[3], at[3];
+        cell_of(g, level, s->positions + 3 * sample, c);
+        for (int k = 0; k < 3; k++) {
+            lo[k] = c[k] - s->reach[sample] < 0 ? 0 : c[k] - s->reach[sample];
+            hi[k] = c[k] + s->reach[sample] > g->dims[level][k] - 1 ? g->dims[level][k] - 1 : c[k] + s->reach[sample];
+        }
+        for (at[2] = lo[2]; at[2] <= hi[2]; at[2]++)
+            for (at[1] = lo[1]; at[1] <= hi[1]; at[1]++)
+                for (at[0] = lo[0]; at[0] <= hi[0]; at[0]++) {
+                    uint64_t key = cell_key(level, at), hash = splitmix64(key), slot = table_slot(t, hash, key);
+                    if (step == COUNT_SAMPLES) {
+                        t->keys[slot] = key;
+                        t->filter[filter_bit(t, hash) / 64] |= UINT64_C(1) << (filter_bit(t, hash) % 64);
+                        t->list_start[slot + 1]++;
+                    } else {
+                        t->samples[t->list_start[slot]++] = sample;
+                    }
+                }
+    }
+}
+
+static uint64_t cube_cells(int reach)
+{
+    uint64_t side = 2 * (uint64_t)reach + 1;
+    return side * side * side;
+}
+
+/* Builds the table of the cells the pending samples need; false when memory runs out. */
+static bool table_build(cell_table *t, const grid *g, const search *s)
+{
+    memset(t, 0, sizeof *t);
+    uint64_t visits = 0;
+    bool level_used[LEVELS] = {false};
+    for (size_t i = 0; i < s->n_pending; i++) {
+        visits += cube_cells(s->reach[s->pending[i]]);
+        level_used[s->level[s->pending[i]]] = true;
+    }
+    for (int level = 0; level < LEVELS; level++)
+        if (level_used[level])
+            t->levels[t->n_levels++] = level;
+    uint64_t slots = 64;
+    while (slots < 2 * visits)
+        slots *= 2;
+    t->mask = slots - 1;
+    /* Four filter bits per slot: at most one in eight is set. */
+    t->filter_mask = 4 * slots - 1;
+    t->filter = calloc(4 * slots / 64, sizeof *t->filter);
+    t->keys = malloc(slots * sizeof *t->keys);
+    t->list_start = calloc(slots + 1, sizeof *t->list_start);
+    t->samples = malloc(visits * sizeof *t->samples);
+    if (!t->filter || !t->keys || !t->list_start || !t->samples) {
+        table_free(t);
+        return false;
+    }
+    memset(t->keys, 0xFF, slots * sizeof *t->keys); /* EMPTY_KEY everywhere */
+    visit_needed_cells(t, g, s, COUNT_SAMPLES);
+    for (uint64_t slot = 0; slot < slots; slot++)
+        t->list_start[slot + 1] += t->list_start[slot];
+    /* Listing advances each slot's start to its end, i.e. to the next slot's start... */
+    visit_needed_cells(t, g, s, LIST_SAMPLES);
+    /* ...so shifting by one entry restores the starts. */
+    memmove(t->list_start + 1, t->list_start, slots * sizeof *t->list_start);
+    t->list_start[0] = 0;
+    return true;
+}
+
+/* ---- Passes ---- */
+
+/* One sequential pass over every particle: each is offered to the samples
+ * listed for its cell at every level in use. */
+static void scan_particles(const fc_frame *frame, const grid *g, const cell_table *t, search *s)
+{
+    for (uint64_t i = 0; i < frame->count; i++) {
+        const float *p = frame->positions + 3 * i;
+        for (int l = 0; l < t->n_levels; l++) {
+            int level = t->levels[l];
+            int64_t c[3];
+            cell_of(g, level, p, c);
+            uint64_t key = cell_key(level, c), hash = splitmix64(key);
+            if (!filter_may_hold(t, hash))
+                continue;
+            uint64_t slot = table_slot(t, hash, key);
+            for (uint32_t k = t->list_start[slot]; k < t->list_start[slot + 1]; k++)
+                offer(&s->best_sq[t->samples[k]], s->positions + 3 * t->samples[k], p);
+        }
+    }
+}
+
+/* Cells of `level` between a sample and a neighbour `best_sq` away. */
+static double cells_to(const grid *g, int level, double best_sq)
+{
+    return sqrt(best_sq) * g->per_cell[level];
+}
+
+/* Every particle outside the cells within `reach` of a sample's cell is more
+ * than reach cell edges away, so a neighbour found within that is final; so
+ * is anything found when those cells cover the whole grid. */
+static bool settled(const search *s, const grid *g, uint16_t sample)
+{
+    int level = s->level[sample], reach = s->reach[sample];
+    if (cells_to(g, level, s->best_sq[sample]) <= reach)
+        return true;
+    int64_t c[3];
+    cell_of(g, level, s->positions + 3 * sample, c);
+    for (int k = 0; k < 3; k++)
+        if (c[k] - reach > 0 || c[k] + reach < g->dims[level][k] - 1)
+            return false;
+    return true;
+}
+
+/* Sets a sample with a known neighbour to search the finest level whose
+ * cells reach that neighbour within MAX_REACH cells; then it settles. */
+static void widen_to_neighbour(search *s, const grid *g, uint16_t sample)
+{
+    int level = s->level[sample];
+    /* The last level spans the box, so the loop stops there at the latest. */
+    while (level < LEVELS - 1 && cells_to(g, level, s->best_sq[sample]) > MAX_REACH)
+        level++;
+    s->level[sample] = level;
+    s->reach[sample] = (int)ceil(cells_to(g, level, s->best_sq[sample]));
+}
+
+/* Decides what the next pass searches for the samples the last one did not settle. */
+static void plan_next_pass(search *s, const grid *g)
+{
+    size_t unsettled = 0;
+    for (size_t i = 0; i < s->n_pending; i++) {
+        uint16_t sample = s->pending[i];
+        if (settled(s, g, sample))
+            continue;
+        if (isfinite(s->best_sq[sample])) {
+            widen_to_neighbour(s, g, sample);
+        } else {
+            /* No bound yet (its fellow samples all coincide with it): one level
+             * coarser sees 4x as far. The last level spans the box and so settles. */
+            s->level[sample]++;
+            s->reach[sample] = FIRST_REACH;
+        }
+        s->pending[unsettled++] = sample;
+    }
+    s->n_pending = unsettled;
+}
+
+/* Finds every sample's exact nearest distinct neighbour; false when memory runs out. */
+static bool find_nearest(const fc_frame *frame, const grid *g, search *s)
+{
+    while (s->n_pending > 0) {
+        cell_table t;
+        if (!table_build(&t, g, s))
+            return false;
+        scan_particles(frame, g, &t, s);
+        table_free(&t);
+        plan_next_pass(s, g);
+    }
+    return true;
+}
+
+float fc_frame_estimate_radius(const fc_frame *frame)
+{
+    if (frame->count <= 1)
+        return FALLBACK_RADIUS;
+    float lo_f[3], hi_f[3];
+    fc_frame_bounds(frame, lo_f, hi_f);
+    if (lo_f[0] == hi_f[0] && lo_f[1] == hi_f[1] && lo_f[2] == hi_f[2])
+        return FALLBACK_RADIUS;
+    const double lo[3] = {lo_f[0], lo_f[1], lo_f[2]}, hi[3] = {hi_f[0], hi_f[1], hi_f[2]};
+
+    search *s = malloc(sizeof *s);
+    grid *g = malloc(sizeof *g);
+    double spacing = 0;
+    if (s && g) {
+        choose_sample(frame, s);
+        pend_distinct_samples(s);
+        double pilot = pilot_spacing(s);
+        grid_init(g, lo, hi, pilot, s->n, frame->count);
+        if (find_nearest(frame, g, s)) {
+            /* The box is not a point, so every sample has a distinct neighbour. */
+            double distances[SAMPLE_MAX];
+            for (size_t i = 0; i < s->n; i++)
+                distances[i] = sqrt(s->best_sq[s->twin_of[i]]);
+            spacing = median(distances, s->n);
+        } else {
+            /* Out of memory for the table: the pilot scaled to the full density is the best remaining guess. */
+            spacing = pilot * cbrt((double)s->n / (double)frame->count);
+        }
+    }
+    free(s);
+    free(g);
+    return spacing > 0 ? (float)(RADIUS_PER_SPACING * spacing) : FALLBACK_RADIUS;
+}

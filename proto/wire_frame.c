@@ -1,0 +1,99 @@
+/* wire_frame.c — the FRAME message: particle arrays, one after the other. */
+#include "wire.h"
+
+#include "fc_error.h"
+#include "fc_frame.h"
+#include "wire_io.h"
+
+#define FRAME_FIXED_SIZE 16u
+#define FRAME_ATTR_ALL (FC_ATTR_DENSITY | FC_ATTR_VELOCITY | FC_ATTR_IDS)
+
+/* Bytes per particle for an attribute mask. */
+static uint64_t frame_stride(uint32_t attributes)
+{
+    uint64_t stride = 3 * sizeof(float);
+    if (attributes & FC_ATTR_DENSITY)
+        stride += sizeof(float);
+    if (attributes & FC_ATTR_VELOCITY)
+        stride += 3 * sizeof(float);
+    if (attributes & FC_ATTR_IDS)
+        stride += sizeof(uint32_t);
+    return stride;
+}
+
+fc_code fc_wire_write_frame(fc_buf *out, uint32_t request_id, const fc_frame *m, fc_error *err)
+{
+    if (m->count == 0 || !m->positions)
+        return fc_error_set(err, FC_ERR_USAGE, "a FRAME needs at least one particle");
+    uint32_t attributes = fc_frame_attributes(m);
+    uint64_t stride = frame_stride(attributes);
+    fc_code code = wire_check_length(FRAME_FIXED_SIZE, m->count, stride, "FRAME", err);
+    if (code != FC_OK)
+        return code;
+    /* The check above bounds count below 2^32 / 12, so every size_t product fits. */
+    size_t count = (size_t)m->count;
+    size_t start = wire_begin_message(out, FC_MSG_FRAME, request_id, (uint32_t)(FRAME_FIXED_SIZE + count * stride));
+    wire_put_u64(out, m->count);
+    wire_put_u32(out, attributes);
+    wire_put_u32(out, 0); /* reserved */
+    wire_put_f32_array(out, m->positions, 3 * count);
+    if (m->density)
+        wire_put_f32_array(out, m->density, count);
+    if (m->velocity)
+        wire_put_f32_array(out, m->velocity, 3 * count);
+    if (m->ids)
+        wire_put_u32_array(out, m->ids, count);
+    return wire_end_message(out, start, err);
+}
+
+/* Checks the fixed part in the order PROTOCOL.md gives, before anything is allocated. */
+static fc_code check_frame_layout(wire_reader *r, uint64_t count, uint32_t attributes, uint32_t reserved,
+                                  uint64_t max_particles)
+{
+    if (attributes & ~(uint32_t)FRAME_ATTR_ALL)
+        wire_fail(r, FC_ERR_MALFORMED, "unknown attribute bits 0x%x", attributes & ~(uint32_t)FRAME_ATTR_ALL);
+    else if (reserved != 0)
+        wire_fail(r, FC_ERR_MALFORMED, "reserved field is %u, must be 0", reserved);
+    else if (count == 0)
+        wire_fail(r, FC_ERR_INVALID_VALUE, "a frame needs at least one particle");
+    else if (count > max_particles)
+        wire_fail(r, FC_ERR_LIMIT, "%llu particles exceed the limit of %llu", (unsigned long long)count,
+                  (unsigned long long)max_particles);
+    else if (count > wire_remaining(r) / frame_stride(attributes) ||
+             count * frame_stride(attributes) != wire_remaining(r))
+        wire_fail(r, FC_ERR_MALFORMED, "%llu particles of %llu bytes do not match the %zu bytes that follow",
+                  (unsigned long long)count, (unsigned long long)frame_stride(attributes), wire_remaining(r));
+    return r->code;
+}
+
+fc_code fc_wire_read_frame(const uint8_t *p, size_t n, uint64_t max_particles, fc_frame *m, fc_error *err)
+{
+    wire_reader r = wire_reader_start(p, n, "FRAME", err);
+    uint64_t count = wire_get_u64(&r, "count");
+    uint32_t attributes = wire_get_u32(&r, "attributes");
+    uint32_t reserved = wire_get_u32(&r, "reserved");
+    if (r.code != FC_OK || check_frame_layout(&r, count, attributes, reserved, max_particles) != FC_OK)
+        return r.code;
+
+    fc_frame frame;
+    fc_code code = fc_frame_alloc(&frame, count, attributes, err);
+    if (code != FC_OK)
+        return code;
+    /* The layout check proved count * stride == the bytes left, so count fits size_t. */
+    size_t particles = (size_t)count;
+    wire_get_f32_array(&r, frame.positions, 3 * particles, "positions");
+    if (frame.density)
+        wire_get_f32_array(&r, frame.density, particles, "density");
+    if (frame.velocity)
+        wire_get_f32_array(&r, frame.velocity, 3 * particles, "velocity");
+    if (frame.ids)
+        wire_get_u32_array(&r, frame.ids, particles, "ids");
+    wire_expect_end(&r);
+    code = r.code != FC_OK ? r.code : fc_frame_validate(&frame, err);
+    if (code != FC_OK) {
+        fc_frame_free(&frame);
+        return code;
+    }
+    *m = frame;
+    return FC_OK;
+}
