@@ -52,7 +52,7 @@ static void test_code_names(void)
     const fc_code codes[] = {FC_ERR_BAD_MAGIC, FC_ERR_VERSION, FC_ERR_UNKNOWN_TYPE, FC_ERR_TOO_LARGE,
                              FC_ERR_MALFORMED, FC_ERR_BAD_STATE, FC_ERR_INVALID_VALUE, FC_ERR_LIMIT,
                              FC_ERR_RENDER, FC_ERR_ENCODE, FC_ERR_INTERNAL, FC_ERR_UNAUTHORIZED,
-                             FC_ERR_IO, FC_ERR_CONNECT, FC_ERR_CLOSED, FC_ERR_PROTOCOL,
+                             FC_ERR_DUPLICATE, FC_ERR_INCONSISTENT, FC_ERR_INCOMPLETE, FC_ERR_IO, FC_ERR_CONNECT, FC_ERR_CLOSED, FC_ERR_PROTOCOL,
                              FC_ERR_PARSE, FC_ERR_GL, FC_ERR_NOMEM, FC_ERR_USAGE};
     size_t n = sizeof codes / sizeof codes[0];
     for (size_t i = 0; i < n; i++) {

@@ -104,7 +104,7 @@ static void test_settings_default_and_domains(void)
         {0, 0, 0, 3.001f, 0, 0, FC_ERR_INVALID_VALUE},
         {0, 0, 0, NAN, 0, 0, FC_ERR_INVALID_VALUE},
         {0, 0, 0, 1, 1001, 0, FC_ERR_INVALID_VALUE},
-        {0, 0, 0, 1, 0, 2, FC_ERR_INVALID_VALUE},
+        {0, 0, 0, 1, 0, FC_SMOOTHING_NARROW + 1, FC_ERR_INVALID_VALUE},
     };
     for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) {
         fc_settings s = d;

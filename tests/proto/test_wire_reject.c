@@ -42,6 +42,7 @@ static fc_code decode(fc_msg_type type, const uint8_t *p, size_t n, fc_error *er
     case FC_MSG_IMAGE: code = fc_wire_read_image(p, n, &image, err); break;
     case FC_MSG_ERROR: code = fc_wire_read_error(p, n, &error, err); break;
     case FC_MSG_GOODBYE: code = fc_wire_read_goodbye(p, n, err); break;
+    default: break; /* messages beyond the core nine have their own tests */
     }
     fc_frame_free(&frame);
     return code;
@@ -110,6 +111,7 @@ static void encode_sample(fc_msg_type type, fc_buf *b)
         break;
     }
     case FC_MSG_GOODBYE: code = fc_wire_write_goodbye(b, 1, &err); break;
+    default: break;
     }
     CHECK_CODE(code, FC_OK);
 }
@@ -325,9 +327,9 @@ static void test_settings_rules(void)
     CHECK(s.iterations == 7);
     s = before;
 
-    const uint32_t unknown_key[] = {1, 7, 1, 0};
+    const uint32_t unknown_key[] = {1, 19, 1, 0};
     CHECK_CODE(read_settings_built("whhw", unknown_key, &s, &err), FC_ERR_INVALID_VALUE);
-    CHECK_MSG(strstr(err.message, "7") != NULL, "\"%s\" does not name key 7", err.message);
+    CHECK_MSG(strstr(err.message, "19") != NULL, "\"%s\" does not name key 19", err.message);
     const uint32_t key_zero[] = {1, 0, 1, 0};
     CHECK_CODE(read_settings_built("whhw", key_zero, &s, &err), FC_ERR_INVALID_VALUE);
     const uint32_t wrong_words[] = {1, 1, 2, f32_bits(1), f32_bits(1)};
@@ -342,7 +344,7 @@ static void test_settings_rules(void)
     CHECK_CODE(read_settings_built("whhw", huge_entry_count, &s, &err), FC_ERR_MALFORMED);
     const uint32_t duplicate[] = {2, 6, 1, f32_bits(1.5f), 6, 1, f32_bits(1.4f)};
     CHECK_CODE(read_settings_built("whhwhhw", duplicate, &s, &err), FC_ERR_MALFORMED);
-    const uint32_t unknown_smoothing[] = {1, 2, 1, 2};
+    const uint32_t unknown_smoothing[] = {1, 2, 1, 5};
     CHECK_CODE(read_settings_built("whhw", unknown_smoothing, &s, &err), FC_ERR_INVALID_VALUE);
     const uint32_t huge_smoothing[] = {1, 2, 1, 0xFFFFFFFFu};
     CHECK_CODE(read_settings_built("whhw", huge_smoothing, &s, &err), FC_ERR_INVALID_VALUE);
@@ -397,7 +399,7 @@ static void test_render_rules(void)
     CHECK_CODE(read_render_values(0, 0, FC_AOV_COLOR, &err), FC_ERR_INVALID_VALUE);
     CHECK_CODE(read_render_values(5, 0, FC_AOV_COLOR, &err), FC_ERR_INVALID_VALUE);
     CHECK_CODE(read_render_values(FC_FORMAT_JPEG, 101, FC_AOV_COLOR, &err), FC_ERR_INVALID_VALUE);
-    CHECK_CODE(read_render_values(FC_FORMAT_EXR, 0, 4, &err), FC_ERR_INVALID_VALUE);
+    CHECK_CODE(read_render_values(FC_FORMAT_EXR, 0, 6, &err), FC_ERR_INVALID_VALUE);
     CHECK_CODE(read_render_values(FC_FORMAT_PNG, 0, FC_AOV_DEPTH, &err), FC_ERR_INVALID_VALUE);
     CHECK_CODE(read_render_values(FC_FORMAT_JPEG, 0, FC_AOV_THICKNESS, &err), FC_ERR_INVALID_VALUE);
     CHECK_CODE(read_render_values(FC_FORMAT_PNG, 0, FC_AOV_SMOOTHED_DEPTH, &err), FC_ERR_INVALID_VALUE);
