@@ -7,9 +7,17 @@
 
 #define MAX_RADIUS 1e6f
 #define MAX_ITERATIONS 1000u
+#define MAX_FILTER_RADIUS 64u
 #define MAX_ABSORPTION 1e6f
 #define MIN_IOR 1.0f
 #define MAX_IOR 3.0f
+#define MAX_REFRACTION 1000.0f
+#define MAX_SPECULAR 10.0f
+#define MIN_SHININESS 1.0f
+#define MAX_SHININESS 10000.0f
+#define MAX_THICKNESS_BLUR 32u
+#define MAX_NOISE 10.0f
+#define MAX_FOAM 10.0f
 
 void fc_settings_default(fc_settings *s)
 {
@@ -17,9 +25,21 @@ void fc_settings_default(fc_settings *s)
         .radius = 0.0f,
         .smoothing = FC_SMOOTHING_CURVATURE,
         .iterations = 40,
+        .filter_radius = 0,
+        .smooth_scale = 1.0f,
         .fluid_color = {0.05f, 0.30f, 0.45f},
         .absorption = {2.5f, 0.9f, 0.45f},
         .ior = 1.33f,
+        .refraction = 40.0f,
+        .specular = 0.6f,
+        .shininess = 60.0f,
+        .thickness_scale = 1.0f,
+        .thickness_blur = 2,
+        .noise = 0.0f,
+        .foam = 0.0f,
+        .foam_tau = 0.5f,
+        .foam_decay = 0.85f,
+        .density_threshold = 0.0f,
     };
 }
 
@@ -29,15 +49,48 @@ static bool in_range(float v, float lo, float hi)
     return v >= lo && v <= hi;
 }
 
-fc_code fc_settings_validate(const fc_settings *s, fc_error *err)
+/* The passes render at full, half or quarter resolution, nothing in between. */
+static bool is_resolution_scale(float v)
+{
+    return v == 1.0f || v == 0.5f || v == 0.25f;
+}
+
+static bool is_known_smoothing(fc_smoothing smoothing)
+{
+    return (unsigned)smoothing <= FC_SMOOTHING_NARROW;
+}
+
+static fc_code out_of_range(fc_error *err, const char *name, float v, float lo, float hi)
+{
+    return fc_error_set(err, FC_ERR_INVALID_VALUE, "%s %g is outside [%g, %g]", name, (double)v, (double)lo,
+                        (double)hi);
+}
+
+static fc_code validate_shape(const fc_settings *s, fc_error *err)
 {
     if (!in_range(s->radius, 0.0f, MAX_RADIUS))
-        return fc_error_set(err, FC_ERR_INVALID_VALUE, "radius %g is outside [0, %g]", (double)s->radius,
-                            (double)MAX_RADIUS);
-    if (s->smoothing != FC_SMOOTHING_NONE && s->smoothing != FC_SMOOTHING_CURVATURE)
+        return out_of_range(err, "radius", s->radius, 0.0f, MAX_RADIUS);
+    if (!is_known_smoothing(s->smoothing))
         return fc_error_set(err, FC_ERR_INVALID_VALUE, "unknown smoothing %u", (unsigned)s->smoothing);
     if (s->iterations > MAX_ITERATIONS)
         return fc_error_set(err, FC_ERR_INVALID_VALUE, "iterations %u exceed %u", s->iterations, MAX_ITERATIONS);
+    if (s->filter_radius > MAX_FILTER_RADIUS)
+        return fc_error_set(err, FC_ERR_INVALID_VALUE, "filter_radius %u exceeds %u pixels", s->filter_radius,
+                            MAX_FILTER_RADIUS);
+    if (!is_resolution_scale(s->smooth_scale))
+        return fc_error_set(err, FC_ERR_INVALID_VALUE, "smooth_scale %g is not 1, 0.5 or 0.25",
+                            (double)s->smooth_scale);
+    if (!is_resolution_scale(s->thickness_scale))
+        return fc_error_set(err, FC_ERR_INVALID_VALUE, "thickness_scale %g is not 1, 0.5 or 0.25",
+                            (double)s->thickness_scale);
+    if (s->thickness_blur > MAX_THICKNESS_BLUR)
+        return fc_error_set(err, FC_ERR_INVALID_VALUE, "thickness_blur %u exceeds %u pixels", s->thickness_blur,
+                            MAX_THICKNESS_BLUR);
+    return FC_OK;
+}
+
+static fc_code validate_shading(const fc_settings *s, fc_error *err)
+{
     for (int c = 0; c < 3; c++) {
         if (!in_range(s->fluid_color[c], 0.0f, 1.0f))
             return fc_error_set(err, FC_ERR_INVALID_VALUE, "fluid_color[%d] %g is outside [0, 1]", c,
@@ -47,7 +100,39 @@ fc_code fc_settings_validate(const fc_settings *s, fc_error *err)
                                 (double)s->absorption[c], (double)MAX_ABSORPTION);
     }
     if (!in_range(s->ior, MIN_IOR, MAX_IOR))
-        return fc_error_set(err, FC_ERR_INVALID_VALUE, "ior %g is outside [%g, %g]", (double)s->ior,
-                            (double)MIN_IOR, (double)MAX_IOR);
+        return out_of_range(err, "ior", s->ior, MIN_IOR, MAX_IOR);
+    if (!in_range(s->refraction, 0.0f, MAX_REFRACTION))
+        return out_of_range(err, "refraction", s->refraction, 0.0f, MAX_REFRACTION);
+    if (!in_range(s->specular, 0.0f, MAX_SPECULAR))
+        return out_of_range(err, "specular", s->specular, 0.0f, MAX_SPECULAR);
+    if (!in_range(s->shininess, MIN_SHININESS, MAX_SHININESS))
+        return out_of_range(err, "shininess", s->shininess, MIN_SHININESS, MAX_SHININESS);
     return FC_OK;
+}
+
+static fc_code validate_effects(const fc_settings *s, fc_error *err)
+{
+    if (!in_range(s->noise, 0.0f, MAX_NOISE))
+        return out_of_range(err, "noise", s->noise, 0.0f, MAX_NOISE);
+    if (!in_range(s->foam, 0.0f, MAX_FOAM))
+        return out_of_range(err, "foam", s->foam, 0.0f, MAX_FOAM);
+    if (!(s->foam_tau > 0.0f && isfinite(s->foam_tau)))
+        return fc_error_set(err, FC_ERR_INVALID_VALUE, "foam_tau %g must be finite and > 0", (double)s->foam_tau);
+    /* A decay of 1 would never let a raised amplitude fall back. */
+    if (!(s->foam_decay >= 0.0f && s->foam_decay < 1.0f))
+        return fc_error_set(err, FC_ERR_INVALID_VALUE, "foam_decay %g is outside [0, 1)", (double)s->foam_decay);
+    if (!(s->density_threshold >= 0.0f && isfinite(s->density_threshold)))
+        return fc_error_set(err, FC_ERR_INVALID_VALUE, "density_threshold %g must be finite and >= 0",
+                            (double)s->density_threshold);
+    return FC_OK;
+}
+
+fc_code fc_settings_validate(const fc_settings *s, fc_error *err)
+{
+    fc_code code = validate_shape(s, err);
+    if (code == FC_OK)
+        code = validate_shading(s, err);
+    if (code == FC_OK)
+        code = validate_effects(s, err);
+    return code;
 }

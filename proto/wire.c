@@ -153,7 +153,7 @@ static bool is_known_format(uint32_t format)
 
 static bool is_known_aov(uint32_t aov)
 {
-    return aov <= FC_AOV_THICKNESS;
+    return aov <= FC_AOV_NOISE;
 }
 
 fc_code fc_wire_write_render(fc_buf *out, uint32_t request_id, const fc_render_request *m, fc_error *err)

@@ -1,6 +1,9 @@
 /* wire_settings.c — the SETTINGS message: a list of key/value entries, so a
- * client can update some settings and leave the others as they are. */
+ * client can update some settings and leave the others as they are. Each key
+ * names one field of fc_settings (table in PROTOCOL.md). */
 #include "wire.h"
+
+#include <stddef.h>
 
 #include "fc_error.h"
 #include "fc_frame.h"
@@ -13,6 +16,18 @@ typedef enum setting_key {
     KEY_FLUID_COLOR = 4,
     KEY_ABSORPTION = 5,
     KEY_IOR = 6,
+    KEY_FILTER_RADIUS = 7,
+    KEY_SMOOTH_SCALE = 8,
+    KEY_REFRACTION = 9,
+    KEY_SPECULAR = 10,
+    KEY_SHININESS = 11,
+    KEY_THICKNESS_SCALE = 12,
+    KEY_THICKNESS_BLUR = 13,
+    KEY_NOISE = 14,
+    KEY_FOAM = 15,
+    KEY_FOAM_TAU = 16,
+    KEY_FOAM_DECAY = 17,
+    KEY_DENSITY_THRESHOLD = 18,
     KEY_END
 } setting_key;
 
@@ -20,22 +35,64 @@ typedef enum setting_key {
 #define ENTRY_HEADER_SIZE 4u
 #define WORD_SIZE 4u
 
-static const struct {
+/* How a key's words map onto its field. */
+typedef enum value_kind {
+    VALUE_F32 = 1,      /* `words` floats */
+    VALUE_U32,          /* one unsigned integer */
+    VALUE_SMOOTHING     /* one u32 that must name an fc_smoothing */
+} value_kind;
+
+typedef struct key_spec {
     const char *name;
-    uint16_t words; /* 4-byte words of the value */
-} settings_keys[KEY_END] = {
-    [KEY_RADIUS] = {"radius", 1},
-    [KEY_SMOOTHING] = {"smoothing", 1},
-    [KEY_ITERATIONS] = {"iterations", 1},
-    [KEY_FLUID_COLOR] = {"fluid_color", 3},
-    [KEY_ABSORPTION] = {"absorption", 3},
-    [KEY_IOR] = {"ior", 1},
+    uint16_t words;     /* 4-byte words of the value */
+    value_kind kind;
+    size_t offset;      /* of the field in fc_settings */
+} key_spec;
+
+#define FIELD(key, field, words, kind) [key] = {#field, words, kind, offsetof(fc_settings, field)}
+
+static const key_spec settings_keys[KEY_END] = {
+    FIELD(KEY_RADIUS, radius, 1, VALUE_F32),
+    FIELD(KEY_SMOOTHING, smoothing, 1, VALUE_SMOOTHING),
+    FIELD(KEY_ITERATIONS, iterations, 1, VALUE_U32),
+    FIELD(KEY_FLUID_COLOR, fluid_color, 3, VALUE_F32),
+    FIELD(KEY_ABSORPTION, absorption, 3, VALUE_F32),
+    FIELD(KEY_IOR, ior, 1, VALUE_F32),
+    FIELD(KEY_FILTER_RADIUS, filter_radius, 1, VALUE_U32),
+    FIELD(KEY_SMOOTH_SCALE, smooth_scale, 1, VALUE_F32),
+    FIELD(KEY_REFRACTION, refraction, 1, VALUE_F32),
+    FIELD(KEY_SPECULAR, specular, 1, VALUE_F32),
+    FIELD(KEY_SHININESS, shininess, 1, VALUE_F32),
+    FIELD(KEY_THICKNESS_SCALE, thickness_scale, 1, VALUE_F32),
+    FIELD(KEY_THICKNESS_BLUR, thickness_blur, 1, VALUE_U32),
+    FIELD(KEY_NOISE, noise, 1, VALUE_F32),
+    FIELD(KEY_FOAM, foam, 1, VALUE_F32),
+    FIELD(KEY_FOAM_TAU, foam_tau, 1, VALUE_F32),
+    FIELD(KEY_FOAM_DECAY, foam_decay, 1, VALUE_F32),
+    FIELD(KEY_DENSITY_THRESHOLD, density_threshold, 1, VALUE_F32),
 };
 
-static void put_entry_header(fc_buf *out, setting_key key)
+/* The field a key names, for reading (writer) and for filling in (reader). */
+static const void *field_in(const fc_settings *s, const key_spec *spec)
 {
+    return (const char *)s + spec->offset;
+}
+
+static void *field_at(fc_settings *s, const key_spec *spec)
+{
+    return (char *)s + spec->offset;
+}
+
+static void put_entry(fc_buf *out, setting_key key, const fc_settings *m)
+{
+    const key_spec *spec = &settings_keys[key];
     wire_put_u16(out, (uint16_t)key);
-    wire_put_u16(out, settings_keys[key].words);
+    wire_put_u16(out, spec->words);
+    switch (spec->kind) {
+    case VALUE_F32: wire_put_f32_array(out, field_in(m, spec), spec->words); break;
+    case VALUE_U32: wire_put_u32(out, *(const uint32_t *)field_in(m, spec)); break;
+    case VALUE_SMOOTHING: wire_put_u32(out, (uint32_t)m->smoothing); break;
+    }
 }
 
 fc_code fc_wire_write_settings(fc_buf *out, uint32_t request_id, const fc_settings *m, fc_error *err)
@@ -45,41 +102,27 @@ fc_code fc_wire_write_settings(fc_buf *out, uint32_t request_id, const fc_settin
         length += ENTRY_HEADER_SIZE + WORD_SIZE * settings_keys[key].words;
     size_t start = wire_begin_message(out, FC_MSG_SETTINGS, request_id, length);
     wire_put_u32(out, SETTINGS_ENTRY_COUNT);
-    put_entry_header(out, KEY_RADIUS);
-    wire_put_f32(out, m->radius);
-    put_entry_header(out, KEY_SMOOTHING);
-    wire_put_u32(out, (uint32_t)m->smoothing);
-    put_entry_header(out, KEY_ITERATIONS);
-    wire_put_u32(out, m->iterations);
-    put_entry_header(out, KEY_FLUID_COLOR);
-    wire_put_f32_array(out, m->fluid_color, 3);
-    put_entry_header(out, KEY_ABSORPTION);
-    wire_put_f32_array(out, m->absorption, 3);
-    put_entry_header(out, KEY_IOR);
-    wire_put_f32(out, m->ior);
+    for (int key = KEY_RADIUS; key < KEY_END; key++)
+        put_entry(out, (setting_key)key, m);
     return wire_end_message(out, start, err);
 }
 
 /* Reads one entry's value into *s; the entry header is already read and checked. */
 static void read_value(wire_reader *r, setting_key key, fc_settings *s)
 {
-    const char *name = settings_keys[key].name;
-    switch (key) {
-    case KEY_RADIUS: s->radius = wire_get_f32(r, name); break;
-    case KEY_SMOOTHING: {
-        uint32_t smoothing = wire_get_u32(r, name);
+    const key_spec *spec = &settings_keys[key];
+    switch (spec->kind) {
+    case VALUE_F32: wire_get_f32_array(r, field_at(s, spec), spec->words, spec->name); break;
+    case VALUE_U32: *(uint32_t *)field_at(s, spec) = wire_get_u32(r, spec->name); break;
+    case VALUE_SMOOTHING: {
+        uint32_t smoothing = wire_get_u32(r, spec->name);
         /* Checked here, before the value becomes an enum it may not fit. */
-        if (smoothing > FC_SMOOTHING_CURVATURE)
+        if (smoothing > FC_SMOOTHING_NARROW)
             wire_fail(r, FC_ERR_INVALID_VALUE, "unknown smoothing %u", smoothing);
         else
             s->smoothing = (fc_smoothing)smoothing;
         break;
     }
-    case KEY_ITERATIONS: s->iterations = wire_get_u32(r, name); break;
-    case KEY_FLUID_COLOR: wire_get_f32_array(r, s->fluid_color, 3, name); break;
-    case KEY_ABSORPTION: wire_get_f32_array(r, s->absorption, 3, name); break;
-    case KEY_IOR: s->ior = wire_get_f32(r, name); break;
-    case KEY_END: break;
     }
 }
 

@@ -14,7 +14,7 @@ typedef enum fc_pixel_type {
 typedef struct fc_image {
     uint32_t width;
     uint32_t height;
-    uint32_t channels;   /* 1 (AOVs) or 4 (RGBA colour) */
+    uint32_t channels;   /* 1 (AOVs), 3 (the normal AOV, xyz) or 4 (RGBA colour) */
     fc_pixel_type type;
     void *pixels;        /* owned; fc_image_free releases it */
     size_t capacity;     /* bytes allocated, so a reused image does not reallocate */

@@ -1,8 +1,9 @@
 #version 450 core
 // The scene around the fluid as a function of world-space rays: a procedural
-// sky over a checkered floor. The background (what refraction sees) and the
-// reflections both come from scene_radiance, so a cube map or real geometry
-// replaces the scene here alone. Radiance is linear RGB.
+// sky over a checkered floor (sky alone when a client background replaces the
+// floor). The background (what refraction sees) and the reflections both come
+// from scene_radiance, so a cube map or real geometry replaces the scene here
+// alone. Radiance is linear RGB.
 
 layout(location = 20) uniform vec3 world_up;         // unit
 layout(location = 21) uniform vec3 sun_direction;    // unit, towards the sun
@@ -11,6 +12,7 @@ layout(location = 23) uniform vec3 floor_axis_v;     // unit, in the floor plane
 layout(location = 24) uniform float floor_height;    // the floor is dot(x, world_up) = floor_height
 layout(location = 25) uniform float checker_size;    // world units
 layout(location = 26) uniform float pixel_angle;     // radians one pixel spans at the image centre
+layout(location = 27) uniform bool has_floor;        // false: sky all around (a client background replaces the floor)
 
 const vec3 horizon_color = vec3(0.80, 0.85, 0.90);
 const vec3 zenith_color = vec3(0.15, 0.33, 0.70);
@@ -56,7 +58,7 @@ vec3 scene_radiance(vec3 origin, vec3 dir)
 {
     float height = dot(origin, world_up) - floor_height;
     float descent = -dot(dir, world_up);
-    if (height > 0.0 && descent > 0.0) {
+    if (has_floor && height > 0.0 && descent > 0.0) {
         float distance = height / descent;
         return floor_radiance(origin + distance * dir, distance, descent);
     }

@@ -38,15 +38,15 @@ fc_code check_image(const fc_image *img, fc_error *err)
 {
     if (!img || !img->pixels || img->width == 0 || img->height == 0)
         return fc_error_set(err, FC_ERR_USAGE, "encode: empty image");
-    if (img->channels != 1 && img->channels != 4)
-        return fc_error_set(err, FC_ERR_USAGE, "encode: %u channels (expected 1 or 4)", img->channels);
+    if (img->channels != 1 && img->channels != 3 && img->channels != 4)
+        return fc_error_set(err, FC_ERR_USAGE, "encode: %u channels (expected 1, 3 or 4)", img->channels);
     if (img->type != FC_PIXEL_U8 && img->type != FC_PIXEL_F32)
         return fc_error_set(err, FC_ERR_USAGE, "encode: unknown pixel type %d", (int)img->type);
     return FC_OK;
 }
 
 /* The sRGB transfer applies to the R,G,B of an RGBA image only: alpha and the
- * single channel of an AOV are data, scaled linearly. */
+ * channels of an AOV (1: depth-like, 3: normal) are data, scaled linearly. */
 bool carries_srgb(uint32_t channel, uint32_t channels)
 {
     return channels == 4 && channel < 3;

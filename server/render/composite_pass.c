@@ -2,6 +2,7 @@
 #include "composite_pass.h"
 
 #include "gl_util.h"
+#include "normal_pass.h"
 #include "shader_program.h"
 
 /* Uniform locations fixed by layout(location) in composite.frag.glsl. */
@@ -10,21 +11,33 @@ enum {
     LOC_FLUID_COLOR = 7,
     LOC_ABSORPTION = 8,
     LOC_FRESNEL_F0 = 9,
-    LOC_REFRACTION_STRENGTH = 10,
-    LOC_EDGE_THICKNESS = 11
+    LOC_REFRACTION = 10,
+    LOC_SPECULAR = 11,
+    LOC_SHININESS = 13,
+    LOC_FOAM = 14,
+    LOC_USE_ENVIRONMENT_MAP = 15,
+    LOC_FLOOR_PLANE = 16,
+    LOC_DEPTH_PROJECTION = 17,
+    LOC_FOAM_NOISE_RANGE = 18
 };
-/* Texture units fixed by layout(binding) in composite.frag.glsl. */
-enum { UNIT_SURFACE_DEPTH = 0, UNIT_THICKNESS = 1, UNIT_BACKGROUND = 2 };
+/* Texture units fixed by layout(binding) in composite.frag.glsl (surface_normal.frag.glsl has 0 and 3). */
+enum { UNIT_THICKNESS = 1, UNIT_BACKGROUND = 2, UNIT_ENVIRONMENT_MAP = 4 };
+/* Foam starts where the local mean of |N| (composite.frag.glsl) exceeds this
+ * many times settings.noise, which only 1% of a calm surface reaches (its
+ * median is 0.10), and is complete at the second, about the median where the
+ * foam state raised the amplitude: foam marks turbulence, not ripples. */
+#define FOAM_START 0.22f
+#define FOAM_FULL 0.45f
 
 fc_code fc_composite_pass_create(const char *shader_dir, fc_composite_pass *pass, fc_error *err)
 {
     *pass = (fc_composite_pass){
-        .srgb_target = fc_render_target_init(GL_SRGB8_ALPHA8, false, false),
-        .float_target = fc_render_target_init(GL_RGBA32F, false, false),
+        .srgb_target = fc_render_target_init(GL_SRGB8_ALPHA8, true, false),
+        .float_target = fc_render_target_init(GL_RGBA32F, true, false),
     };
     glCreateVertexArrays(1, &pass->empty_vertex_array);
     const char *files[] = {"fullscreen.vert.glsl", "camera.frag.glsl", "environment.frag.glsl",
-                           "composite.frag.glsl"};
+                           "surface_normal.frag.glsl", "composite.frag.glsl"};
     return fc_program_build(shader_dir, files, sizeof files / sizeof files[0], &pass->program, err);
 }
 
@@ -49,11 +62,34 @@ static void apply_material(const fc_settings *settings)
     glUniform3fv(LOC_FLUID_COLOR, 1, settings->fluid_color);
     glUniform3fv(LOC_ABSORPTION, 1, settings->absorption);
     glUniform1f(LOC_FRESNEL_F0, fresnel_f0(settings->ior));
-    /* γ of eq. 15 from the index of refraction: for small angles a ray bends by
-     * about (1 - 1/ior) times the surface tilt, so the background seen through
-     * a layer of thickness T shifts by about that much per unit of T. */
-    glUniform1f(LOC_REFRACTION_STRENGTH, 1.0f - 1.0f / settings->ior);
-    glUniform1f(LOC_EDGE_THICKNESS, settings->radius);
+    glUniform1f(LOC_REFRACTION, settings->refraction);
+    glUniform1f(LOC_SPECULAR, settings->specular);
+    glUniform1f(LOC_SHININESS, settings->shininess);
+    /* No noise, no foam; the range must stay non-empty even then (smoothstep). */
+    bool foam = settings->foam > 0.0f && settings->noise > 0.0f;
+    float noise = foam ? settings->noise : 1.0f;
+    glUniform1f(LOC_FOAM, foam ? settings->foam : 0.0f);
+    glUniform2f(LOC_FOAM_NOISE_RANGE, FOAM_START * noise, FOAM_FULL * noise);
+}
+
+static void bind_inputs(const fc_composite_inputs *in, float radius)
+{
+    fc_surface_normal_bind(in->surface_depth, in->noise, radius);
+    glBindTextureUnit(UNIT_THICKNESS, in->thickness->color);
+    glBindTextureUnit(UNIT_BACKGROUND, in->background->color);
+    glUniform1i(LOC_USE_ENVIRONMENT_MAP, in->environment_map != 0);
+    if (in->environment_map) {
+        glBindTextureUnit(UNIT_ENVIRONMENT_MAP, in->environment_map);
+        glEnable(GL_TEXTURE_CUBE_MAP_SEAMLESS);
+    }
+}
+
+/* Every pixel writes its depth (fluid, floor or far) unconditionally. */
+static void write_depth_always(void)
+{
+    glEnable(GL_DEPTH_TEST);
+    glDepthFunc(GL_ALWAYS);
+    glDepthMask(GL_TRUE);
 }
 
 fc_code fc_composite_pass_run(fc_composite_pass *pass, const fc_composite_inputs *in, const fc_view *view,
@@ -65,7 +101,7 @@ fc_code fc_composite_pass_run(fc_composite_pass *pass, const fc_composite_inputs
     if (code != FC_OK)
         return code;
     fc_render_target_bind(target);
-    glDisable(GL_DEPTH_TEST);
+    write_depth_always();
     glDisable(GL_BLEND);
     /* The shader works in linear RGB; the sRGB target encodes on write. */
     if (want_u8)
@@ -75,12 +111,13 @@ fc_code fc_composite_pass_run(fc_composite_pass *pass, const fc_composite_inputs
     glUseProgram(pass->program);
     fc_environment_apply(env, view);
     glUniform3fv(LOC_LIGHT_VIEW, 1, env->light_view);
+    glUniform4fv(LOC_FLOOR_PLANE, 1, env->floor_plane);
+    glUniform2f(LOC_DEPTH_PROJECTION, view->p22, view->p32);
     apply_material(settings);
-    glBindTextureUnit(UNIT_SURFACE_DEPTH, in->surface_depth->color);
-    glBindTextureUnit(UNIT_THICKNESS, in->thickness->color);
-    glBindTextureUnit(UNIT_BACKGROUND, in->background->color);
+    bind_inputs(in, settings->radius);
     fc_gl_draw_fullscreen(pass->empty_vertex_array);
     glDisable(GL_FRAMEBUFFER_SRGB);
+    glDisable(GL_DEPTH_TEST);
     *result = target;
     return fc_gl_check("composite pass", err);
 }

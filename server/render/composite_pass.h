@@ -1,5 +1,6 @@
 /* composite_pass.h — shading (van der Laan et al. 2009, §3.5, eqs. 13-15):
- * smoothed depth, thickness and background become the final colour. */
+ * smoothed depth, thickness, noise and background become the final colour,
+ * and the fluid's depth the depth buffer's content. */
 #ifndef FC_COMPOSITE_PASS_H
 #define FC_COMPOSITE_PASS_H
 
@@ -12,22 +13,25 @@
 typedef struct fc_composite_pass {
     GLuint program;
     GLuint empty_vertex_array;
-    fc_render_target srgb_target;    /* GL_SRGB8_ALPHA8: display-ready 8-bit output */
-    fc_render_target float_target;   /* GL_RGBA32F: linear output */
+    fc_render_target srgb_target;    /* GL_SRGB8_ALPHA8: display-ready 8-bit output, with depth */
+    fc_render_target float_target;   /* GL_RGBA32F: linear output, with depth */
 } fc_composite_pass;
 
 /* The textures the composite reads, each from an earlier pass. */
 typedef struct fc_composite_inputs {
     const fc_render_target *surface_depth;   /* smoothed linear depth */
-    const fc_render_target *thickness;
+    const fc_render_target *thickness;       /* any resolution: sampled bilinearly */
     const fc_render_target *background;
+    const fc_render_target *noise;           /* N(x, y) of the noise pass */
+    GLuint environment_map;                  /* cube map reflected in the fluid; 0 = the built-in scene */
 } fc_composite_inputs;
 
 fc_code fc_composite_pass_create(const char *shader_dir, fc_composite_pass *pass, fc_error *err);
 void fc_composite_pass_destroy(fc_composite_pass *pass);
 
 /* Shades the fluid over the background into the sRGB target (want_u8) or the
- * float target, and sets *result to it. */
+ * float target, writing the depth of the fluid, else of the floor, else the
+ * far plane, into its depth buffer; sets *result to it. */
 fc_code fc_composite_pass_run(fc_composite_pass *pass, const fc_composite_inputs *in, const fc_view *view,
                               const fc_environment *env, const fc_settings *settings, bool want_u8,
                               const fc_render_target **result, fc_error *err);

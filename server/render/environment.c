@@ -18,7 +18,8 @@ enum {
     LOC_FLOOR_AXIS_V = 23,
     LOC_FLOOR_HEIGHT = 24,
     LOC_CHECKER_SIZE = 25,
-    LOC_PIXEL_ANGLE = 26
+    LOC_PIXEL_ANGLE = 26,
+    LOC_HAS_FLOOR = 27
 };
 
 /* Towards the light in view space: above, left of and behind the camera, so
@@ -53,8 +54,24 @@ static float lowest_height(const float up[3], const float lo[3], const float hi[
     return lowest;
 }
 
+/* The floor as a view-space plane: with x_world = eye + R x_view, the height
+ * dot(up, x_world) - floor_height is dot(R^T up, x_view) + dot(up, eye) - floor_height. */
+static void floor_plane_in_view(const fc_view *view, fc_environment *env)
+{
+    if (!env->has_floor) {
+        const float none[4] = {0.0f, 0.0f, 0.0f, 1.0f};   /* every point is above it */
+        for (int i = 0; i < 4; i++)
+            env->floor_plane[i] = none[i];
+        return;
+    }
+    for (int r = 0; r < 3; r++)
+        env->floor_plane[r] = view->view[0 * 4 + r] * env->up[0] + view->view[1 * 4 + r] * env->up[1] +
+                              view->view[2 * 4 + r] * env->up[2];
+    env->floor_plane[3] = fc_dot3(env->up, view->eye) - env->floor_height;
+}
+
 void fc_environment_for_view(const fc_view *view, const fc_camera *cam, const float lo[3], const float hi[3],
-                             float radius, fc_environment *env)
+                             float radius, bool has_floor, fc_environment *env)
 {
     for (int i = 0; i < 3; i++) {
         env->up[i] = cam->up[i];
@@ -65,6 +82,8 @@ void fc_environment_for_view(const fc_view *view, const fc_camera *cam, const fl
     fc_view_direction_to_world(view, env->light_view, env->sun);
     floor_axes(env->up, env->floor_u, env->floor_v);
     env->floor_height = lowest_height(env->up, lo, hi) - radius;
+    env->has_floor = has_floor;
+    floor_plane_in_view(view, env);
 
     float diagonal[3] = {hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]};
     float size = sqrtf(fc_dot3(diagonal, diagonal)) + 2.0f * radius;
@@ -87,4 +106,5 @@ void fc_environment_apply(const fc_environment *env, const fc_view *view)
     glUniform1f(LOC_FLOOR_HEIGHT, env->floor_height);
     glUniform1f(LOC_CHECKER_SIZE, env->checker_size);
     glUniform1f(LOC_PIXEL_ANGLE, env->pixel_angle);
+    glUniform1i(LOC_HAS_FLOOR, env->has_floor);
 }

@@ -3,6 +3,8 @@
 #ifndef FC_ENVIRONMENT_H
 #define FC_ENVIRONMENT_H
 
+#include <stdbool.h>
+
 #include "fluidcast_types.h"
 #include "view.h"
 
@@ -12,16 +14,19 @@ typedef struct fc_environment {
     float light_view[3];      /* the same direction in view space */
     float floor_u[3];         /* unit axes of the checker pattern in the floor plane */
     float floor_v[3];
+    bool has_floor;           /* false: sky all around (a client background replaces floor and sky) */
     float floor_height;       /* the floor is dot(x, up) = floor_height */
+    float floor_plane[4];     /* the floor in view space: dot(xyz, x) + w > 0 above it; (0,0,0,1) without */
     float checker_size;       /* world units */
     float pixel_angle;        /* radians one pixel spans at the image centre */
 } fc_environment;
 
-/* The environment of a render: a floor perpendicular to the camera's up
- * vector touching the bottom of the particles' box [lo, hi] (grown by
- * radius), checkers scaled to the box, a light over the camera's shoulder. */
+/* The environment of a render: a floor (when has_floor) perpendicular to the
+ * camera's up vector touching the bottom of the particles' box [lo, hi]
+ * (grown by radius), checkers scaled to the box, a light over the camera's
+ * shoulder. */
 void fc_environment_for_view(const fc_view *view, const fc_camera *cam, const float lo[3], const float hi[3],
-                             float radius, fc_environment *env);
+                             float radius, bool has_floor, fc_environment *env);
 
 /* Sets the uniforms of camera.frag.glsl and environment.frag.glsl on the
  * program in use. */

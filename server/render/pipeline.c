@@ -13,9 +13,15 @@
 #include "fc_error.h"
 #include "fc_frame.h"
 #include "gl_util.h"
+#include "noise_pass.h"
+#include "normal_pass.h"
+#include "particle_attributes.h"
 #include "particle_buffer.h"
+#include "pipeline_internal.h"
 #include "readback.h"
+#include "scene_textures.h"
 #include "smoothing.h"
+#include "spray_pass.h"
 #include "stage_timer.h"
 #include "thickness_pass.h"
 #include "view.h"
@@ -26,16 +32,30 @@
 #define DEPTH_JUMP_RADII 4.0f
 
 struct fc_pipeline {
-    fc_particle_buffer particles;
+    fc_particle_buffer particles;         /* in draw order: surface particles first, then spray */
+    fc_particle_attributes attributes;
     bool uploaded;
     fc_depth_pass depth;
     fc_thickness_pass thickness;
     fc_smoother smoother;
+    fc_noise_pass noise;
+    fc_normal_pass normal;
     fc_background_pass background;
     fc_composite_pass composite;
+    fc_spray_pass spray;
     fc_stage_timer timer;
     GLint max_image_size;   /* largest width or height the GPU renders */
 };
+
+/* One request as the stages see it. */
+typedef struct render_job {
+    const fc_view *view;
+    const fc_settings *settings;
+    const fc_scene_textures *scene;   /* NULL: the built-in scene */
+    fc_environment env;
+    fc_particle_buffer surface;       /* the pipeline's particles without the spray (a prefix of them) */
+    bool want_u8;
+} render_job;
 
 static GLint query_max_image_size(void)
 {
@@ -50,34 +70,56 @@ static fc_code create_passes(fc_pipeline *p, const char *dir, fc_error *err)
 {
     fc_code code = fc_particle_buffer_create(&p->particles, err);
     if (code == FC_OK)
+        code = fc_particle_attributes_create(&p->attributes, err);
+    if (code == FC_OK)
         code = fc_depth_pass_create(dir, &p->depth, err);
     if (code == FC_OK)
         code = fc_thickness_pass_create(dir, &p->thickness, err);
     if (code == FC_OK)
         code = fc_smoother_create(dir, &p->smoother, err);
     if (code == FC_OK)
+        code = fc_noise_pass_create(dir, &p->noise, err);
+    if (code == FC_OK)
+        code = fc_normal_pass_create(dir, &p->normal, err);
+    if (code == FC_OK)
         code = fc_background_pass_create(dir, &p->background, err);
     if (code == FC_OK)
         code = fc_composite_pass_create(dir, &p->composite, err);
+    if (code == FC_OK)
+        code = fc_spray_pass_create(dir, &p->spray, err);
     if (code == FC_OK)
         code = fc_stage_timer_create(&p->timer, err);
     return code;
 }
 
-static fc_code depth_stage(fc_pipeline *p, const fc_view *view, float radius, fc_error *err)
+static fc_code depth_stage(fc_pipeline *p, const render_job *job, fc_error *err)
 {
     fc_stage_timer_begin(&p->timer, FC_STAGE_DEPTH);
-    fc_code code = fc_depth_pass_run(&p->depth, &p->particles, view, radius, err);
+    fc_code code = fc_depth_pass_run(&p->depth, &job->surface, job->view, job->settings->radius, err);
     fc_stage_timer_end(&p->timer, FC_STAGE_DEPTH);
     return code;
 }
 
-static fc_code thickness_stage(fc_pipeline *p, const fc_view *view, float radius, fc_error *err)
+static fc_code thickness_stage(fc_pipeline *p, const render_job *job, const fc_render_target **result,
+                               fc_error *err)
 {
+    const fc_settings *s = job->settings;
+    fc_thickness_params params = {
+        .radius = s->radius,
+        .scale = s->thickness_scale,
+        .blur = s->thickness_blur,
+        .floor_plane = job->env.floor_plane,
+    };
     fc_stage_timer_begin(&p->timer, FC_STAGE_THICKNESS);
-    fc_code code = fc_thickness_pass_run(&p->thickness, &p->particles, view, radius, err);
+    fc_code code = fc_thickness_pass_run(&p->thickness, &job->surface, job->view, &params, result, err);
     fc_stage_timer_end(&p->timer, FC_STAGE_THICKNESS);
     return code;
+}
+
+static fc_code run_noise(fc_pipeline *p, const render_job *job, const fc_render_target *surface, fc_error *err)
+{
+    return fc_noise_pass_run(&p->noise, &job->surface, &p->attributes, surface, job->view, job->settings->radius,
+                             job->settings->noise, err);
 }
 
 static fc_code smoothing_stage(fc_pipeline *p, const fc_view *view, const fc_settings *s,
@@ -87,6 +129,11 @@ static fc_code smoothing_stage(fc_pipeline *p, const fc_view *view, const fc_set
         .method = s->smoothing,
         .iterations = s->iterations,
         .depth_jump = DEPTH_JUMP_RADII * s->radius,
+        .particle_radius = s->radius,
+        .filter_radius = s->filter_radius,
+        /* Near and far hug the particles: their middle is a typical fluid depth. */
+        .reference_depth = 0.5f * (view->near_plane + view->far_plane),
+        .smooth_scale = s->smooth_scale,
     };
     fc_view_pixel_scale(view, &params.pixel_scale[0], &params.pixel_scale[1]);
     bool runs = s->smoothing != FC_SMOOTHING_NONE && s->iterations > 0;
@@ -98,67 +145,122 @@ static fc_code smoothing_stage(fc_pipeline *p, const fc_view *view, const fc_set
     return code;
 }
 
-/* The background is rendered for the composite alone, so it is timed with it. */
-static fc_code composite_stage(fc_pipeline *p, const fc_view *view, const fc_camera *camera,
-                               const fc_settings *s, const fc_render_target *surface, bool want_u8,
-                               const fc_render_target **result, fc_error *err)
+/* Noise, background and spray are rendered for the composite alone, so they
+ * are timed with it. */
+static fc_code composite_stage(fc_pipeline *p, const render_job *job, const fc_render_target *surface,
+                               const fc_render_target *thickness, const fc_render_target **result, fc_error *err)
 {
-    fc_environment env;
-    fc_environment_for_view(view, camera, p->particles.lo, p->particles.hi, s->radius, &env);
-    fc_composite_inputs inputs = {surface, &p->thickness.target, &p->background.target};
+    fc_composite_inputs inputs = {surface, thickness, &p->background.target, &p->noise.target,
+                                  job->scene ? job->scene->environment_map : 0};
+    bool want_u8 = job->want_u8;
     fc_stage_timer_begin(&p->timer, FC_STAGE_COMPOSITE);
-    fc_code code = fc_background_pass_run(&p->background, view, &env, err);
+    fc_code code = run_noise(p, job, surface, err);
     if (code == FC_OK)
-        code = fc_composite_pass_run(&p->composite, &inputs, view, &env, s, want_u8, result, err);
+        code = fc_background_pass_run(&p->background, job->view, &job->env, job->scene, err);
+    if (code == FC_OK)
+        code = fc_composite_pass_run(&p->composite, &inputs, job->view, &job->env, job->settings, want_u8, result,
+                                     err);
+    if (code == FC_OK)
+        code = fc_spray_pass_run(&p->spray, &p->particles, job->surface.count, &p->attributes, job->view, &job->env,
+                                 job->settings, *result, err);
+    if (code == FC_OK)
+        code = fc_smoother_blend_silhouettes(&p->smoother, *result, want_u8, result, err);
+    fc_stage_timer_end(&p->timer, FC_STAGE_COMPOSITE);
+    return code;
+}
+
+/* The noise or normal image: the composite's inputs on their own, timed as its stage. */
+static fc_code shading_aov_stage(fc_pipeline *p, const render_job *job, const fc_render_target *surface, fc_aov aov,
+                                 const fc_render_target **result, fc_error *err)
+{
+    fc_stage_timer_begin(&p->timer, FC_STAGE_COMPOSITE);
+    fc_code code = run_noise(p, job, surface, err);
+    *result = &p->noise.target;
+    if (code == FC_OK && aov == FC_AOV_NORMAL)
+        code = fc_normal_pass_run(&p->normal, surface, &p->noise.target, job->view, job->settings->radius, result,
+                                  err);
     fc_stage_timer_end(&p->timer, FC_STAGE_COMPOSITE);
     return code;
 }
 
 /* Runs the stages the requested image needs, no more, and sets *result to the
  * target holding it. */
-static fc_code render_stages(fc_pipeline *p, const fc_view *view, const fc_camera *camera, const fc_settings *s,
-                             fc_aov aov, bool want_u8, const fc_render_target **result, fc_error *err)
+static fc_code render_stages(fc_pipeline *p, const render_job *job, fc_aov aov, const fc_render_target **result,
+                             fc_error *err)
 {
-    if (aov == FC_AOV_THICKNESS) {
-        *result = &p->thickness.target;
-        return thickness_stage(p, view, s->radius, err);
-    }
-    fc_code code = depth_stage(p, view, s->radius, err);
+    if (aov == FC_AOV_THICKNESS)
+        return thickness_stage(p, job, result, err);
+    fc_code code = depth_stage(p, job, err);
     *result = &p->depth.target;
     if (code != FC_OK || aov == FC_AOV_DEPTH)
         return code;
     const fc_render_target *surface = NULL;
-    code = smoothing_stage(p, view, s, &surface, err);
+    code = smoothing_stage(p, job->view, job->settings, &surface, err);
     *result = surface;
     if (code != FC_OK || aov == FC_AOV_SMOOTHED_DEPTH)
         return code;
-    code = thickness_stage(p, view, s->radius, err);
+    if (aov == FC_AOV_NOISE || aov == FC_AOV_NORMAL)
+        return shading_aov_stage(p, job, surface, aov, result, err);
+    const fc_render_target *thickness = NULL;
+    code = thickness_stage(p, job, &thickness, err);
     if (code != FC_OK)
         return code;
-    return composite_stage(p, view, camera, s, surface, want_u8, result, err);
+    return composite_stage(p, job, surface, thickness, result, err);
 }
 
-/* Renders one particle into a tiny image through every stage. Drivers compile
- * shader variants lazily at the first draw, and some (llvmpipe) report a
- * bogus duration for the first timer query of a context; warming up keeps
- * both out of the first real request's timings. */
-static fc_code warm_up(fc_pipeline *p, fc_error *err)
+/* The job of a validated request: the view, the surface particles (all but
+ * the spray) and the scene around them. */
+static void plan_job(const fc_pipeline *p, const fc_view *view, const fc_camera *camera, const fc_settings *settings,
+                     const fc_scene_textures *scene, bool want_u8, render_job *job)
 {
-    const float origin[3] = {0.0f, 0.0f, 0.0f};
-    fc_frame frame = {.count = 1, .positions = (float *)origin};
-    fc_camera camera = {.eye = {0.0f, 0.0f, 4.0f}, .up = {0.0f, 1.0f, 0.0f}, .fov_y_deg = 40.0f,
-                        .width = 8, .height = 8};
-    fc_settings settings = {.radius = 1.0f, .smoothing = FC_SMOOTHING_CURVATURE, .iterations = 1, .ior = 1.33f};
-    fc_code code = fc_particle_buffer_upload(&p->particles, &frame, err);
+    *job = (render_job){.view = view, .settings = settings, .scene = scene, .surface = p->particles,
+                        .want_u8 = want_u8};
+    job->surface.count = fc_particle_attributes_surface_count(&p->attributes, settings->density_threshold);
+    bool has_floor = !(scene && scene->background);
+    fc_environment_for_view(view, camera, p->particles.lo, p->particles.hi, settings->radius, has_floor, &job->env);
+}
+
+/* Positions go to the GPU in draw order (densest first), with their records. */
+static fc_code upload_frame(fc_pipeline *p, const fc_frame *frame, fc_error *err)
+{
+    const float *positions = NULL;
+    fc_code code = fc_particle_attributes_upload(&p->attributes, frame, &positions, err);
     if (code != FC_OK)
         return code;
+    fc_frame ordered = {.count = frame->count, .positions = (float *)positions};
+    return fc_particle_buffer_upload(&p->particles, &ordered, err);
+}
+
+/* Renders a particle and a spray droplet into tiny images through every
+ * stage and shading option. Drivers compile shader variants lazily at the
+ * first draw, and some (llvmpipe) report a bogus duration for the first
+ * timer query of a context; warming up keeps both out of the first real
+ * request's timings. */
+static fc_code warm_up(fc_pipeline *p, fc_error *err)
+{
+    float positions[6] = {0.0f, 0.0f, 0.0f, 1.5f, 0.0f, 0.0f};
+    float density[2] = {1.0f, 0.0f};
+    fc_frame frame = {.count = 2, .positions = positions, .density = density};
+    fc_camera camera = {.eye = {0.0f, 0.0f, 4.0f}, .up = {0.0f, 1.0f, 0.0f}, .fov_y_deg = 40.0f,
+                        .width = 8, .height = 8};
+    fc_settings settings = {.radius = 1.0f, .smoothing = FC_SMOOTHING_CURVATURE, .iterations = 1,
+                            .smooth_scale = 1.0f, .ior = 1.33f, .shininess = 1.0f, .thickness_scale = 0.5f,
+                            .thickness_blur = 1, .noise = 1.0f, .foam = 1.0f, .foam_tau = 1.0f,
+                            .density_threshold = 0.5f};
+    fc_code code = upload_frame(p, &frame, err);
     fc_view view;
     fc_view_from_camera(&camera, p->particles.lo, p->particles.hi, settings.radius, &view);
-    const fc_render_target *result = NULL;
-    code = render_stages(p, &view, &camera, &settings, FC_AOV_COLOR, true, &result, err);
+    const fc_aov images[] = {FC_AOV_COLOR, FC_AOV_NORMAL};
+    for (size_t i = 0; i < sizeof images / sizeof images[0] && code == FC_OK; i++) {
+        render_job job;
+        plan_job(p, &view, &camera, &settings, NULL, true, &job);
+        const fc_render_target *result = NULL;
+        code = render_stages(p, &job, images[i], &result, err);
+    }
     for (int s = 0; s < FC_STAGE_COUNT; s++)
         fc_stage_timer_ms(&p->timer, (fc_stage)s);   /* waits until the GPU is done */
     p->particles.count = 0;
+    p->attributes.count = 0;
     return code;
 }
 
@@ -187,11 +289,15 @@ void fc_pipeline_destroy(fc_pipeline *p)
     if (!p)
         return;
     fc_stage_timer_destroy(&p->timer);
+    fc_spray_pass_destroy(&p->spray);
     fc_composite_pass_destroy(&p->composite);
     fc_background_pass_destroy(&p->background);
+    fc_normal_pass_destroy(&p->normal);
+    fc_noise_pass_destroy(&p->noise);
     fc_smoother_destroy(&p->smoother);
     fc_thickness_pass_destroy(&p->thickness);
     fc_depth_pass_destroy(&p->depth);
+    fc_particle_attributes_destroy(&p->attributes);
     fc_particle_buffer_destroy(&p->particles);
     free(p);
 }
@@ -202,7 +308,7 @@ fc_code fc_pipeline_upload(fc_pipeline *p, const fc_frame *frame, float *stage_m
         return fc_error_set(err, FC_ERR_USAGE, "fc_pipeline_upload: missing pipeline or positions");
     fc_stage_timer_reset(&p->timer);
     fc_stage_timer_begin(&p->timer, FC_STAGE_UPLOAD);
-    fc_code code = fc_particle_buffer_upload(&p->particles, frame, err);
+    fc_code code = upload_frame(p, frame, err);
     fc_stage_timer_end(&p->timer, FC_STAGE_UPLOAD);
     p->uploaded = code == FC_OK;
     if (stage_ms)
@@ -223,7 +329,7 @@ static fc_code check_request(const fc_pipeline *p, const fc_camera *camera, cons
     if (!(settings->radius > 0.0f))
         return fc_error_set(err, FC_ERR_INVALID_VALUE, "radius %g: the pipeline needs a resolved radius > 0",
                             (double)settings->radius);
-    if (aov < FC_AOV_COLOR || aov > FC_AOV_THICKNESS)
+    if (aov < FC_AOV_COLOR || aov > FC_AOV_NOISE)
         return fc_error_set(err, FC_ERR_INVALID_VALUE, "unknown image kind (aov) %d", (int)aov);
     if (camera->width > (uint32_t)p->max_image_size || camera->height > (uint32_t)p->max_image_size)
         return fc_error_set(err, FC_ERR_RENDER, "image %ux%u exceeds this GPU's limit of %d pixels per side",
@@ -239,8 +345,15 @@ static void report_stages(const fc_stage_timer *timer, float *stage_ms)
         stage_ms[s] = fc_stage_timer_ms(timer, (fc_stage)s);
 }
 
-fc_code fc_pipeline_render(fc_pipeline *p, const fc_camera *camera, const fc_settings *settings, fc_aov aov,
-                           int want_u8, fc_image *out, float *stage_ms, fc_error *err)
+/* Channels of each image kind as read back. */
+static uint32_t channels_of(fc_aov aov)
+{
+    return aov == FC_AOV_COLOR ? 4 : aov == FC_AOV_NORMAL ? 3 : 1;
+}
+
+fc_code fc_pipeline_render_scene(fc_pipeline *p, const fc_camera *camera, const fc_settings *settings,
+                                 const fc_scene_textures *scene, fc_aov aov, int want_u8, fc_image *out,
+                                 float *stage_ms, fc_error *err)
 {
     if (!p || !camera || !settings || !out)
         return fc_error_set(err, FC_ERR_USAGE, "fc_pipeline_render: missing pipeline, camera, settings or image");
@@ -252,17 +365,29 @@ fc_code fc_pipeline_render(fc_pipeline *p, const fc_camera *camera, const fc_set
 
     fc_view view;
     fc_view_from_camera(camera, p->particles.lo, p->particles.hi, settings->radius, &view);
+    render_job job;
+    plan_job(p, &view, camera, settings, scene, want_u8 != 0, &job);
     const fc_render_target *result = NULL;
-    code = render_stages(p, &view, camera, settings, aov, want_u8 != 0, &result, err);
+    code = render_stages(p, &job, aov, &result, err);
     if (code != FC_OK)
         return code;
 
-    bool color = aov == FC_AOV_COLOR;
-    fc_pixel_type type = color && want_u8 ? FC_PIXEL_U8 : FC_PIXEL_F32;
+    fc_pixel_type type = aov == FC_AOV_COLOR && want_u8 ? FC_PIXEL_U8 : FC_PIXEL_F32;
     fc_stage_timer_begin(&p->timer, FC_STAGE_READBACK);
-    code = fc_readback(result, color ? 4 : 1, type, out, err);
+    code = fc_readback(result, channels_of(aov), type, out, err);
     fc_stage_timer_end(&p->timer, FC_STAGE_READBACK);
     if (code == FC_OK)
         report_stages(&p->timer, stage_ms);
     return code;
+}
+
+fc_code fc_pipeline_render(fc_pipeline *p, const fc_camera *camera, const fc_settings *settings, fc_aov aov,
+                           int want_u8, fc_image *out, float *stage_ms, fc_error *err)
+{
+    return fc_pipeline_render_scene(p, camera, settings, NULL, aov, want_u8, out, stage_ms, err);
+}
+
+fc_particle_attributes *fc_pipeline_particle_attributes(fc_pipeline *p)
+{
+    return &p->attributes;
 }

@@ -26,7 +26,8 @@ fc_code fc_pipeline_upload(fc_pipeline *p, const fc_frame *frame, float *stage_m
 
 /* Renders the uploaded frame and reads back the image the request asks for:
  * FC_AOV_COLOR as RGBA (FC_PIXEL_U8 sRGB when `want_u8`, else FC_PIXEL_F32
- * linear), the other AOVs as one float channel. `out` is reused across calls.
+ * linear), FC_AOV_NORMAL as three float channels (xyz), the other AOVs as one
+ * float channel. `out` is reused across calls.
  * stage_ms (array of FC_STAGE_COUNT, may be NULL) receives GPU times of each
  * stage from timer queries (negative for stages that did not run).
  * settings->radius must be > 0 (the caller resolves "auto"). */

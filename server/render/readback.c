@@ -56,7 +56,7 @@ fc_code fc_readback(const fc_render_target *target, uint32_t channels, fc_pixel_
     glBindFramebuffer(GL_READ_FRAMEBUFFER, target->framebuffer);
     glNamedFramebufferReadBuffer(target->framebuffer, GL_COLOR_ATTACHMENT0);
     glPixelStorei(GL_PACK_ALIGNMENT, 1);
-    GLenum format = channels == 1 ? GL_RED : GL_RGBA;
+    GLenum format = channels == 1 ? GL_RED : channels == 3 ? GL_RGB : GL_RGBA;
     GLenum gl_type = type == FC_PIXEL_F32 ? GL_FLOAT : GL_UNSIGNED_BYTE;
     glReadPixels(0, 0, (GLsizei)out->width, (GLsizei)out->height, format, gl_type, out->pixels);
     code = fc_gl_check("reading back the image", err);

@@ -7,7 +7,7 @@
 #include "../image.h"
 #include "render_target.h"
 
-/* Reads the target as `channels` (1 = red only, 4 = RGBA) of `type` into out,
+/* Reads the target as `channels` (1 = red only, 3 = RGB, 4 = RGBA) of `type` into out,
  * rows top to bottom (GL's are bottom to top). out's buffer is reused and only
  * grows. FC_ERR_NOMEM when it cannot grow. */
 fc_code fc_readback(const fc_render_target *target, uint32_t channels, fc_pixel_type type, fc_image *out,

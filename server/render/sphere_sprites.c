@@ -13,12 +13,11 @@ enum {
     LOC_MAX_POINT_SIZE = 4
 };
 
-fc_code fc_sphere_sprites_create(const char *shader_dir, const char *fragment_file, fc_sphere_sprites *s,
-                                 fc_error *err)
+static fc_code build(const char *shader_dir, const char *const *files, size_t count, fc_sphere_sprites *s,
+                     fc_error *err)
 {
     *s = (fc_sphere_sprites){0};
-    const char *files[] = {"sphere.vert.glsl", "sphere_ray.frag.glsl", fragment_file};
-    fc_code code = fc_program_build(shader_dir, files, sizeof files / sizeof files[0], &s->program, err);
+    fc_code code = fc_program_build(shader_dir, files, count, &s->program, err);
     if (code != FC_OK)
         return code;
     GLfloat range[2] = {1.0f, 1.0f};
@@ -27,14 +26,28 @@ fc_code fc_sphere_sprites_create(const char *shader_dir, const char *fragment_fi
     return fc_gl_check("querying the point size range", err);
 }
 
+fc_code fc_sphere_sprites_create(const char *shader_dir, const char *fragment_file, fc_sphere_sprites *s,
+                                 fc_error *err)
+{
+    const char *files[] = {"sphere.vert.glsl", "sphere_ray.frag.glsl", fragment_file};
+    return build(shader_dir, files, sizeof files / sizeof files[0], s, err);
+}
+
+fc_code fc_sphere_sprites_create_with_records(const char *shader_dir, const char *fragment_file,
+                                              fc_sphere_sprites *s, fc_error *err)
+{
+    const char *files[] = {"sphere.vert.glsl", "sphere_ray.frag.glsl", "particle_attributes.frag.glsl",
+                           fragment_file};
+    return build(shader_dir, files, sizeof files / sizeof files[0], s, err);
+}
+
 void fc_sphere_sprites_destroy(fc_sphere_sprites *s)
 {
     glDeleteProgram(s->program);
     *s = (fc_sphere_sprites){0};
 }
 
-void fc_sphere_sprites_draw(const fc_sphere_sprites *s, const fc_particle_buffer *particles, const fc_view *view,
-                            float radius)
+static void use_program(const fc_sphere_sprites *s, const fc_view *view, float radius)
 {
     glUseProgram(s->program);
     glUniformMatrix4fv(LOC_VIEW_MATRIX, 1, GL_FALSE, view->view);
@@ -43,5 +56,21 @@ void fc_sphere_sprites_draw(const fc_sphere_sprites *s, const fc_particle_buffer
     glUniform1f(LOC_RADIUS, radius);
     glUniform1f(LOC_MAX_POINT_SIZE, s->max_point_size);
     glEnable(GL_PROGRAM_POINT_SIZE);
+}
+
+void fc_sphere_sprites_draw(const fc_sphere_sprites *s, const fc_particle_buffer *particles, const fc_view *view,
+                            float radius)
+{
+    use_program(s, view, radius);
     fc_particle_buffer_draw_points(particles);
+}
+
+void fc_sphere_sprites_draw_range(const fc_sphere_sprites *s, const fc_particle_buffer *particles, uint64_t first,
+                                  uint64_t count, const fc_view *view, float radius)
+{
+    if (count == 0 || first + count > particles->count)
+        return;
+    use_program(s, view, radius);
+    glBindVertexArray(particles->vertex_array);
+    glDrawArrays(GL_POINTS, (GLint)first, (GLsizei)count);
 }

@@ -1,35 +1,70 @@
-/* thickness_pass.c — additive per-particle thickness. */
+/* thickness_pass.c — additive per-particle thickness, resampled and blurred. */
 #include "thickness_pass.h"
+
+#include <math.h>
 
 #include "gl_util.h"
 
+/* Uniform location fixed by layout(location) in thickness.frag.glsl. */
+enum { LOC_FLOOR_PLANE = 10 };
+
 fc_code fc_thickness_pass_create(const char *shader_dir, fc_thickness_pass *pass, fc_error *err)
 {
-    pass->target = fc_render_target_init(GL_R32F, false, false);
-    return fc_sphere_sprites_create(shader_dir, "thickness.frag.glsl", &pass->sprites, err);
+    pass->splat = fc_render_target_init(GL_R32F, false, true);
+    fc_code code = fc_sphere_sprites_create(shader_dir, "thickness.frag.glsl", &pass->sprites, err);
+    if (code == FC_OK)
+        code = fc_thickness_filter_create(shader_dir, &pass->filter, err);
+    return code;
 }
 
 void fc_thickness_pass_destroy(fc_thickness_pass *pass)
 {
+    fc_thickness_filter_destroy(&pass->filter);
     fc_sphere_sprites_destroy(&pass->sprites);
-    fc_render_target_release(&pass->target);
+    fc_render_target_release(&pass->splat);
 }
 
-fc_code fc_thickness_pass_run(fc_thickness_pass *pass, const fc_particle_buffer *particles, const fc_view *view,
-                              float radius, fc_error *err)
+static uint32_t scaled(uint32_t size, float scale)
 {
-    fc_code code = fc_render_target_resize(&pass->target, view->width, view->height, err);
+    uint32_t n = (uint32_t)lroundf((float)size * scale);
+    return n > 0 ? n : 1;
+}
+
+static fc_code splat(fc_thickness_pass *pass, const fc_particle_buffer *particles, const fc_view *view,
+                     const fc_thickness_params *params, fc_error *err)
+{
+    fc_code code = fc_render_target_resize(&pass->splat, view->width, view->height, err);
     if (code != FC_OK)
         return code;
-    fc_render_target_bind(&pass->target);
+    fc_render_target_bind(&pass->splat);
     const GLfloat empty = 0.0f;
-    glClearNamedFramebufferfv(pass->target.framebuffer, GL_COLOR, 0, &empty);
+    glClearNamedFramebufferfv(pass->splat.framebuffer, GL_COLOR, 0, &empty);
     glDisable(GL_DEPTH_TEST);
     glDisable(GL_FRAMEBUFFER_SRGB);
     glEnable(GL_BLEND);
     glBlendEquation(GL_FUNC_ADD);
     glBlendFunc(GL_ONE, GL_ONE);
-    fc_sphere_sprites_draw(&pass->sprites, particles, view, radius);
+    glProgramUniform4fv(pass->sprites.program, LOC_FLOOR_PLANE, 1, params->floor_plane);
+    fc_sphere_sprites_draw(&pass->sprites, particles, view, params->radius);
     glDisable(GL_BLEND);
     return fc_gl_check("thickness pass", err);
+}
+
+fc_code fc_thickness_pass_run(fc_thickness_pass *pass, const fc_particle_buffer *particles, const fc_view *view,
+                              const fc_thickness_params *params, const fc_render_target **result, fc_error *err)
+{
+    float scale = params->scale;
+    /* The sprites take their size from the viewport, so a smaller copy of the
+     * view renders the same image at the lower resolution. */
+    fc_view reduced = *view;
+    reduced.width = scaled(view->width, scale);
+    reduced.height = scaled(view->height, scale);
+    fc_code code = splat(pass, particles, &reduced, params, err);
+    *result = &pass->splat;
+    if (code != FC_OK || (scale == 1.0f && params->blur == 0))
+        return code;
+    /* The blur radius is where the filter cuts the Gaussian off, three
+     * standard deviations out; the filter works in splat texels. */
+    float sigma = (float)params->blur * scale / 3.0f;
+    return fc_thickness_filter_run(&pass->filter, &pass->splat, sigma, view->width, view->height, result, err);
 }

@@ -1,22 +1,35 @@
 /* thickness_pass.h — fluid thickness (van der Laan et al. 2009, §3.3): the
- * summed length of the view ray inside every sphere, in world units. */
+ * summed length of the view ray inside every sphere above the floor, in world
+ * units, optionally at reduced resolution and blurred (Janisz 2012, §4.1.3). */
 #ifndef FC_THICKNESS_PASS_H
 #define FC_THICKNESS_PASS_H
 
+#include <stdint.h>
+
 #include "render_target.h"
 #include "sphere_sprites.h"
+#include "thickness_filter.h"
 
 typedef struct fc_thickness_pass {
     fc_sphere_sprites sprites;
-    fc_render_target target;   /* R32F thickness */
+    fc_render_target splat;   /* R32F thickness at the pass's resolution */
+    fc_thickness_filter filter;
 } fc_thickness_pass;
+
+typedef struct fc_thickness_params {
+    float radius;                 /* sphere radius, world units */
+    float scale;                  /* resolution relative to the view, in (0, 1] */
+    uint32_t blur;                /* Gaussian blur radius in image pixels; 0 = none */
+    const float *floor_plane;     /* view space, see fc_environment.floor_plane */
+} fc_thickness_params;
 
 fc_code fc_thickness_pass_create(const char *shader_dir, fc_thickness_pass *pass, fc_error *err);
 void fc_thickness_pass_destroy(fc_thickness_pass *pass);
 
-/* Accumulates the particles' thickness into pass->target, sized to the view.
- * No depth test: there is no scene geometry that could hide fluid yet. */
+/* Accumulates the particles' thickness and sets *result to a target of the
+ * view's size holding it (sampled bilinearly). Fluid below the floor is cut
+ * off; the fluid does not hide itself (every sphere adds). */
 fc_code fc_thickness_pass_run(fc_thickness_pass *pass, const fc_particle_buffer *particles, const fc_view *view,
-                              float radius, fc_error *err);
+                              const fc_thickness_params *params, const fc_render_target **result, fc_error *err);
 
 #endif

@@ -52,6 +52,11 @@ fc_settings test_settings(float radius, fc_smoothing smoothing, uint32_t iterati
         .fluid_color = {0.1f, 0.4f, 0.6f},
         .absorption = {1.0f, 0.5f, 0.25f},
         .ior = 1.33f,
+        /* Full resolution and no optional effect, in values validation accepts. */
+        .smooth_scale = 1.0f,
+        .thickness_scale = 1.0f,
+        .shininess = 1.0f,
+        .foam_tau = 1.0f,
     };
 }
 

@@ -1,0 +1,214 @@
+/* bench_options.c — parses the fluidcast-bench command line. */
+#include "bench_options.h"
+
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "fc_error.h"
+
+static const struct {
+    const char *name;
+    fc_smoothing value;
+} smoothing_names[] = {
+    {"none", FC_SMOOTHING_NONE},
+    {"curvature", FC_SMOOTHING_CURVATURE},
+    {"bilateral", FC_SMOOTHING_BILATERAL},
+    {"binomial", FC_SMOOTHING_BINOMIAL},
+    {"narrow", FC_SMOOTHING_NARROW},
+};
+#define N_SMOOTHING_NAMES (sizeof smoothing_names / sizeof smoothing_names[0])
+
+const char *bench_smoothing_name(fc_smoothing s)
+{
+    for (size_t i = 0; i < N_SMOOTHING_NAMES; i++)
+        if (smoothing_names[i].value == s)
+            return smoothing_names[i].name;
+    return "?";
+}
+
+void bench_options_print_smoothings(void)
+{
+    for (size_t i = 0; i < N_SMOOTHING_NAMES; i++)
+        printf("%s\n", smoothing_names[i].name);
+}
+
+void bench_options_print_usage(void)
+{
+    printf("usage: fluidcast-bench [--gpu auto|software|N] [--particles 16k,64k,...]\n"
+           "         [--size 1280x720,...] [--smoothing curvature,none,...] [--iterations 15,40,...]\n"
+           "         [--scale 1|0.5|0.25] [--frames N] [--encode png|jpeg|exr|none] [--image PATH.png]\n"
+           "       fluidcast-bench --particles N --write-scene PATH.f32\n"
+           "       fluidcast-bench --list-smoothings\n"
+           "Prints a markdown table: median GPU ms per stage (timer queries), encode ms, wall ms.\n"
+           "--scale smooths depth at that fraction of the image's resolution, in every configuration.\n"
+           "--image writes each configuration's last frame there, so it ends up with the last one's.\n"
+           "--write-scene writes the drop scene as raw little-endian float32 xyz and prints\n"
+           "'particles N spacing S radius R' (R: the sphere radius the benchmark renders with).\n");
+}
+
+void bench_options_default(bench_options *o)
+{
+    const bench_options defaults = {
+        .action = BENCH_RUN,
+        .gpu = {FC_GPU_AUTO, 0},
+        .particles = {65536}, .n_particles = 1,
+        .sizes = {{1280, 720}}, .n_sizes = 1,
+        .smoothings = {FC_SMOOTHING_CURVATURE}, .n_smoothings = 1,
+        .iterations = {40}, .n_iterations = 1,
+        .smooth_scale = 1.0f,
+        .frames = 10,
+        .format = FC_FORMAT_PNG,
+    };
+    *o = defaults;
+}
+
+/* "16k" -> 16384, "1m" -> 1048576, "5000" -> 5000. */
+static int parse_count(const char *s, uint64_t *out)
+{
+    char *end;
+    const double v = strtod(s, &end);
+    uint64_t scale = 1;
+    if (*end == 'k' || *end == 'K')
+        scale = 1024, end++;
+    else if (*end == 'm' || *end == 'M')
+        scale = 1024 * 1024, end++;
+    if (end == s || *end != '\0' || !(v * (double)scale >= 1.0 && v * (double)scale < 1e15))
+        return -1;
+    *out = (uint64_t)(v * (double)scale);
+    return 0;
+}
+
+static int parse_particles(const char *item, bench_options *o)
+{
+    return parse_count(item, &o->particles[o->n_particles++]);
+}
+
+static int parse_size(const char *item, bench_options *o)
+{
+    uint32_t *wh = o->sizes[o->n_sizes++];
+    char tail;
+    return sscanf(item, "%ux%u%c", &wh[0], &wh[1], &tail) == 2 && wh[0] && wh[1] ? 0 : -1;
+}
+
+static int parse_smoothing(const char *item, bench_options *o)
+{
+    for (size_t k = 0; k < N_SMOOTHING_NAMES; k++)
+        if (!strcmp(smoothing_names[k].name, item)) {
+            o->smoothings[o->n_smoothings++] = smoothing_names[k].value;
+            return 0;
+        }
+    return -1;
+}
+
+static int parse_iterations(const char *item, bench_options *o)
+{
+    char *end;
+    const unsigned long n = strtoul(item, &end, 10);
+    o->iterations[o->n_iterations++] = (uint32_t)n;
+    return end != item && *end == '\0' && n <= 1000 ? 0 : -1;
+}
+
+/* Splits a comma-separated value and hands each item to parse_item, which
+ * appends to the list whose length is *count (reset first). */
+static fc_code parse_list(const char *option, const char *value, int *count,
+                          int (*parse_item)(const char *, bench_options *), bench_options *o, fc_error *err)
+{
+    char buf[512];
+    if (snprintf(buf, sizeof buf, "%s", value) >= (int)sizeof buf)
+        return fc_error_set(err, FC_ERR_USAGE, "%s: value too long", option);
+    *count = 0;
+    for (char *t = strtok(buf, ","); t; t = strtok(NULL, ",")) {
+        if (*count == BENCH_MAX_LIST)
+            return fc_error_set(err, FC_ERR_USAGE, "%s: at most %d values", option, BENCH_MAX_LIST);
+        if (parse_item(t, o) != 0)
+            return fc_error_set(err, FC_ERR_USAGE, "%s: bad value '%s'", option, t);
+    }
+    return *count ? FC_OK : fc_error_set(err, FC_ERR_USAGE, "%s: empty list", option);
+}
+
+static fc_code parse_frames(const char *value, bench_options *o, fc_error *err)
+{
+    char *end;
+    const long n = strtol(value, &end, 10);
+    if (end == value || *end != '\0' || n < 1 || n > 10000)
+        return fc_error_set(err, FC_ERR_USAGE, "--frames must be 1..10000, not '%s'", value);
+    o->frames = (int)n;
+    return FC_OK;
+}
+
+static fc_code parse_scale(const char *value, bench_options *o, fc_error *err)
+{
+    char *end;
+    const float scale = strtof(value, &end);
+    if (end == value || *end != '\0' || !(scale == 1.0f || scale == 0.5f || scale == 0.25f))
+        return fc_error_set(err, FC_ERR_USAGE, "--scale must be 1, 0.5 or 0.25, not '%s'", value);
+    o->smooth_scale = scale;
+    return FC_OK;
+}
+
+static fc_code parse_encoding(const char *value, bench_options *o, fc_error *err)
+{
+    static const struct { const char *name; fc_image_format format; } formats[] = {
+        {"png", FC_FORMAT_PNG}, {"jpeg", FC_FORMAT_JPEG}, {"exr", FC_FORMAT_EXR}, {"none", 0},
+    };
+    for (size_t k = 0; k < sizeof formats / sizeof formats[0]; k++)
+        if (!strcmp(formats[k].name, value)) {
+            o->format = formats[k].format;
+            return FC_OK;
+        }
+    return fc_error_set(err, FC_ERR_USAGE, "--encode: unknown encoding '%s'", value);
+}
+
+static fc_code parse_valued(const char *option, const char *value, bench_options *o, fc_error *err)
+{
+    if (!strcmp(option, "--gpu"))
+        return fc_gpu_choice_parse(value, &o->gpu, err);
+    if (!strcmp(option, "--particles"))
+        return parse_list(option, value, &o->n_particles, parse_particles, o, err);
+    if (!strcmp(option, "--size"))
+        return parse_list(option, value, &o->n_sizes, parse_size, o, err);
+    if (!strcmp(option, "--smoothing"))
+        return parse_list(option, value, &o->n_smoothings, parse_smoothing, o, err);
+    if (!strcmp(option, "--iterations"))
+        return parse_list(option, value, &o->n_iterations, parse_iterations, o, err);
+    if (!strcmp(option, "--scale"))
+        return parse_scale(value, o, err);
+    if (!strcmp(option, "--frames"))
+        return parse_frames(value, o, err);
+    if (!strcmp(option, "--encode"))
+        return parse_encoding(value, o, err);
+    if (!strcmp(option, "--image")) {
+        o->image_path = value;
+        return FC_OK;
+    }
+    if (!strcmp(option, "--write-scene")) {
+        o->action = BENCH_WRITE_SCENE;
+        o->scene_path = value;
+        return FC_OK;
+    }
+    return fc_error_set(err, FC_ERR_USAGE, "unknown option %s (see --help)", option);
+}
+
+fc_code bench_options_parse(int argc, char **argv, bench_options *o, fc_error *err)
+{
+    for (int i = 1; i < argc; i++) {
+        if (!strcmp(argv[i], "--help")) {
+            o->action = BENCH_HELP;
+            return FC_OK;
+        }
+        if (!strcmp(argv[i], "--list-smoothings")) {
+            o->action = BENCH_LIST_SMOOTHINGS;
+            return FC_OK;
+        }
+        if (i + 1 == argc)
+            return fc_error_set(err, FC_ERR_USAGE, "%s needs a value", argv[i]);
+        fc_code rc = parse_valued(argv[i], argv[i + 1], o, err);
+        if (rc != FC_OK)
+            return rc;
+        i++;
+    }
+    if (o->action == BENCH_WRITE_SCENE && o->n_particles != 1)
+        return fc_error_set(err, FC_ERR_USAGE, "--write-scene takes exactly one --particles count");
+    return FC_OK;
+}

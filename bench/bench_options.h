@@ -1,0 +1,49 @@
+/* bench_options.h — the command line of fluidcast-bench. */
+#ifndef FC_BENCH_OPTIONS_H
+#define FC_BENCH_OPTIONS_H
+
+#include "egl_context.h"
+#include "fluidcast_types.h"
+
+#define BENCH_MAX_LIST 16
+
+typedef enum bench_action {
+    BENCH_RUN = 0,           /* render every configuration and print the table */
+    BENCH_WRITE_SCENE,       /* write the scene of the (single) particle count as .f32 and exit */
+    BENCH_LIST_SMOOTHINGS,   /* print the accepted --smoothing names and exit */
+    BENCH_HELP
+} bench_action;
+
+typedef struct bench_options {
+    bench_action action;
+    const char *scene_path;  /* BENCH_WRITE_SCENE */
+    const char *image_path;  /* PNG of every configuration's last frame, in turn; NULL: none */
+    fc_gpu_choice gpu;
+    uint64_t particles[BENCH_MAX_LIST];
+    int n_particles;
+    uint32_t sizes[BENCH_MAX_LIST][2];
+    int n_sizes;
+    fc_smoothing smoothings[BENCH_MAX_LIST];
+    int n_smoothings;
+    uint32_t iterations[BENCH_MAX_LIST];
+    int n_iterations;
+    float smooth_scale;      /* resolution of depth smoothing, for every configuration */
+    int frames;
+    fc_image_format format;  /* 0 = no encoding */
+} bench_options;
+
+/* Defaults: 64k particles, 1280x720, curvature flow 40 iterations, 10 frames, PNG. */
+void bench_options_default(bench_options *o);
+
+/* Parses argv over the defaults; FC_ERR_USAGE with the offending argument. */
+fc_code bench_options_parse(int argc, char **argv, bench_options *o, fc_error *err);
+
+void bench_options_print_usage(void);
+
+/* Every name --smoothing accepts, one per line. */
+void bench_options_print_smoothings(void);
+
+/* The --smoothing name of a method, "?" for one without a name. */
+const char *bench_smoothing_name(fc_smoothing s);
+
+#endif

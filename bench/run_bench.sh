@@ -1,0 +1,207 @@
+#!/usr/bin/env bash
+# run_bench.sh — fluidcast against its peer, VTK's vtkOpenGLFluidMapper (narrow-range
+# filter), on the same particles, camera, image sizes and machine, in one run.
+#
+#   bench/run_bench.sh > bench-report.md
+#
+# Builds fluidcast-bench (in $BUILD_DIR, default build-bench), exports each particle
+# count's drop scene as .f32 so both renderers read identical data, times both, and
+# prints a markdown report: machine, GL renderers, load, the raw tables and the ratio
+# fluidcast fps / VTK fps per configuration; then the paper's configurations (van der
+# Laan et al. 2009, Table 1: 64K particles, 1024x768, curvature flow 15/40/100 iterations).
+# It also leaves one picture of each renderer in bench/peer/ (fluidcast.png, vtk.png).
+#
+# Without $DISPLAY, VTK (Debian's python3-vtk9, an X build) runs under `xvfb-run -a` with
+# Mesa llvmpipe, and fluidcast is told --gpu software so both rasterize on the same CPU
+# cores. With $DISPLAY set, VTK uses that display and fluidcast --gpu auto: check that the
+# two GL renderer lines of the report name the same device.
+#
+# Environment: FRAMES (timed frames per configuration, default 3), PARTICLES (default
+# 16k,64k), SIZES (default 640x360,1280x720), PAPER=0 skips the paper's configurations,
+# STEP_TIMEOUT (seconds any one step may take, default 600). With the defaults it takes
+# about three minutes on 2 cores with llvmpipe when the machine is otherwise idle.
+# Needs: python3-vtk9 xvfb (Debian packages), and what deploy/setup.sh installs.
+set -euo pipefail
+
+ROOT=$(cd "$(dirname "$0")/.." && pwd)
+BUILD_DIR=${BUILD_DIR:-$ROOT/build-bench}
+FRAMES=${FRAMES:-3}
+PARTICLES=${PARTICLES:-16k,64k}
+SIZES=${SIZES:-640x360,1280x720}
+PAPER=${PAPER:-1}
+STEP_TIMEOUT=${STEP_TIMEOUT:-600}
+PEER_DIR=$ROOT/bench/peer
+VTK_PYTHON=/usr/bin/python3   # Debian's: python3-vtk9 is not in other interpreters
+VTK_ITERATIONS=3              # VTK 9.1's narrow-range default; Python cannot change it
+PEER_ITERATIONS=40            # fluidcast's default curvature flow
+PAPER_PARTICLES=64k
+PAPER_SIZE=1024x768
+PAPER_ITERATIONS=15,40,100
+
+BENCH=$BUILD_DIR/bin/fluidcast-bench
+WORK=$(mktemp -d)
+trap 'rm -rf "$WORK"' EXIT
+
+log() { echo "run_bench: $*" >&2; }
+
+build() {
+    log "building fluidcast-bench in $BUILD_DIR"
+    cmake -S "$ROOT" -B "$BUILD_DIR" -DCMAKE_BUILD_TYPE=Release >"$WORK/cmake.log" 2>&1 ||
+        { cat "$WORK/cmake.log" >&2; exit 1; }
+    cmake --build "$BUILD_DIR" --target fluidcast-bench -j2 >>"$WORK/cmake.log" 2>&1 ||
+        { cat "$WORK/cmake.log" >&2; exit 1; }
+}
+
+check_peer() {
+    "$VTK_PYTHON" -c 'import vtkmodules.vtkRenderingOpenGL2' 2>/dev/null ||
+        { log "VTK missing: apt-get install python3-vtk9"; exit 1; }
+    if [ -z "${DISPLAY:-}" ] && ! command -v xvfb-run >/dev/null; then
+        log "no \$DISPLAY and no xvfb-run: apt-get install xvfb"; exit 1
+    fi
+}
+
+# fluidcast and VTK on the same GL implementation (see the header).
+if [ -n "${DISPLAY:-}" ]; then
+    GPU=auto
+    run_vtk() { timeout "$STEP_TIMEOUT" "$VTK_PYTHON" "$PEER_DIR/vtk_fluid_bench.py" "$@"; }
+else
+    GPU=software
+    run_vtk() {
+        timeout "$STEP_TIMEOUT" xvfb-run -a env LIBGL_ALWAYS_SOFTWARE=1 \
+            "$VTK_PYTHON" "$PEER_DIR/vtk_fluid_bench.py" "$@"
+    }
+fi
+
+run_fluidcast() { timeout "$STEP_TIMEOUT" "$BENCH" --gpu "$GPU" --encode none --frames "$FRAMES" "$@"; }
+
+# Smoothing names fluidcast-bench accepts beyond the two it always had (the
+# narrow-range filter, reduced-resolution variants), as they are added.
+accepts_smoothing() { "$BENCH" --list-smoothings | grep -x "$1" >/dev/null; }
+extra_smoothings() { "$BENCH" --list-smoothings | { grep -vx -e none -e curvature -e narrow || true; } | paste -sd, -; }
+
+table_rows() { grep '^| [0-9]' || true; }
+
+# Exports the scene of one particle count once; prints the radius fluidcast renders it with.
+export_scene() {
+    local path=$WORK/scene_$1.f32
+    [ -f "$path.radius" ] || "$BENCH" --particles "$1" --write-scene "$path" | awk '{ print $6 }' >"$path.radius"
+    cat "$path.radius"
+}
+
+# Every fluidcast configuration of one particle count: rows appended to $out/fluidcast.md.
+# The optional image gets the last configuration, curvature flow at the last size.
+bench_fluidcast() {
+    local out=$1 particles=$2 sizes=$3 iterations=$4 image=${5:-}
+    local args=(--particles "$particles" --size "$sizes")
+    [ -n "$image" ] && args+=(--image "$image")
+    run_fluidcast "${args[@]}" --smoothing none,curvature --iterations "$iterations" |
+        tee -a "$out/fluidcast.log" | table_rows >>"$out/fluidcast.md"
+    if accepts_smoothing narrow; then
+        run_fluidcast --particles "$particles" --size "$sizes" --smoothing narrow --iterations "$VTK_ITERATIONS" |
+            table_rows >>"$out/fluidcast.md"
+    fi
+    local extra
+    extra=$(extra_smoothings)
+    if [ -n "$extra" ]; then
+        run_fluidcast --particles "$particles" --size "$sizes" --smoothing "$extra" --iterations "$iterations" |
+            table_rows >>"$out/fluidcast.md"
+    fi
+}
+
+# VTK at every size for one particle count: rows appended to $out/vtk.md; the
+# optional image gets the frame at size $image_size.
+bench_vtk() {
+    local out=$1 particles=$2 sizes=$3 image_size=${4:-} radius size
+    radius=$(export_scene "$particles")
+    for size in ${sizes//,/ }; do
+        local args=(--scene "$WORK/scene_$particles.f32" --radius "$radius" --size "$size" --frames "$FRAMES")
+        [ "$size" = "$image_size" ] && args+=(--image "$PEER_DIR/vtk.png")
+        run_vtk "${args[@]}" | tee -a "$out/vtk.log" | table_rows >>"$out/vtk.md"
+    done
+}
+
+# Joins fluidcast rows with the VTK row of the same particles and size.
+ratio_table() {
+    echo "| particles | size | fluidcast smoothing | iter | fluidcast ms | fluidcast fps | VTK ms (narrow-range, $VTK_ITERATIONS iter) | VTK fps | fluidcast fps / VTK fps |"
+    echo "|---|---|---|---|---|---|---|---|---|"
+    awk -F'|' '
+        function trim(s) { gsub(/^ +| +$/, "", s); return s }
+        FNR == NR { key = trim($2) " " trim($3); vtk_ms[key] = trim($7); vtk_fps[key] = trim($8); next }
+        {
+            key = trim($2) " " trim($3)
+            if (!(key in vtk_fps)) next
+            ms = trim($(NF - 2)); fps = trim($(NF - 1))
+            printf "| %s | %s | %s | %s | %s | %s | %s | %s | %.2f |\n", trim($2), trim($3), trim($4), trim($5),
+                   ms, fps, vtk_ms[key], vtk_fps[key], fps / vtk_fps[key]
+        }' "$1" "$2"
+}
+
+print_tables() {
+    local title=$1 dir=$2
+    echo "### $title: fluidcast-bench (median per frame; stage columns are GPU timer queries)"
+    echo
+    echo "| particles | size | smoothing | iter | upload | depth | thickness | smoothing | composite | readback | encode | GPU sum | wall/frame | fps |"
+    echo "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"
+    cat "$dir/fluidcast.md"
+    echo
+    echo "### $title: VTK vtkOpenGLFluidMapper (median wall ms per Render() + RGBA8 readback)"
+    echo
+    echo "| particles | size | filter | iter | first frame ms | wall/frame | fps |"
+    echo "|---|---|---|---|---|---|---|"
+    cat "$dir/vtk.md"
+    echo
+    echo "### $title: ratio"
+    echo
+    ratio_table "$dir/vtk.md" "$dir/fluidcast.md"
+    echo
+}
+
+machine() {
+    local logs=$1 cpu
+    cpu=$(awk -F': ' '/^model name/ { print $2; exit }' /proc/cpuinfo)
+    echo "- machine: $cpu, $(nproc) cores, $(awk '/MemTotal/ { printf "%.0f GiB", $2 / 1048576 }' /proc/meminfo)," \
+         "$(. /etc/os-release && echo "$PRETTY_NAME")"
+    echo "- fluidcast: $(head -n1 "$logs/fluidcast.log")"
+    echo "- VTK $("$VTK_PYTHON" -c 'import vtkmodules; print(vtkmodules.__version__)'): $(head -n1 "$logs/vtk.log")"
+    echo "- date: $(date -u '+%Y-%m-%d %H:%M UTC'); git: $(git -C "$ROOT" rev-parse --short HEAD 2>/dev/null || echo '?')"
+    echo "- load average (1/5/15 min): start $LOAD_START; end $(cut -d' ' -f1-3 /proc/loadavg)"
+    echo "- command: FRAMES=$FRAMES PARTICLES=$PARTICLES SIZES=$SIZES PAPER=$PAPER bench/run_bench.sh" \
+         "(fluidcast --gpu $GPU; VTK on ${DISPLAY:-xvfb-run + LIBGL_ALWAYS_SOFTWARE=1})"
+}
+
+main() {
+    check_peer
+    build
+    LOAD_START=$(cut -d' ' -f1-3 /proc/loadavg)
+    log "load average $LOAD_START"
+    local peer=$WORK/peer paper=$WORK/paper last_particles=${PARTICLES##*,} last_size=${SIZES##*,}
+    mkdir -p "$peer" "$paper"
+    for particles in ${PARTICLES//,/ }; do
+        log "peer configurations, $particles particles"
+        if [ "$particles" = "$last_particles" ]; then
+            bench_fluidcast "$peer" "$particles" "$SIZES" "$PEER_ITERATIONS" "$PEER_DIR/fluidcast.png"
+            bench_vtk "$peer" "$particles" "$SIZES" "$last_size"
+        else
+            bench_fluidcast "$peer" "$particles" "$SIZES" "$PEER_ITERATIONS"
+            bench_vtk "$peer" "$particles" "$SIZES"
+        fi
+    done
+    if [ "$PAPER" = 1 ]; then
+        log "paper configurations"
+        bench_fluidcast "$paper" "$PAPER_PARTICLES" "$PAPER_SIZE" "$PAPER_ITERATIONS"
+        bench_vtk "$paper" "$PAPER_PARTICLES" "$PAPER_SIZE"
+    fi
+    echo "## fluidcast vs VTK vtkOpenGLFluidMapper"
+    echo
+    machine "$peer"
+    echo
+    print_tables "Peer configurations" "$peer"
+    if [ "$PAPER" = 1 ]; then
+        print_tables "Paper configurations (Table 1: 64K particles, 1024x768)" "$paper"
+        echo "Paper, GeForce 8800 GTS: curvature flow 1/4 res 15 iterations 17.5 ms, 1/2 res 40 iterations" \
+             "19.6 ms, full res 100 iterations 50 ms; bilateral Gaussian 18.1 ms."
+    fi
+    log "done; pictures of the last peer configuration in $PEER_DIR (fluidcast.png, vtk.png)"
+}
+
+main

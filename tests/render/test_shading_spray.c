@@ -1,0 +1,186 @@
+/* test_shading_spray.c — spray: the densest-first order that splits surface
+ * from spray for any threshold; particles below density_threshold are absent
+ * from the depth and thickness images, appear in the colour image as
+ * light droplets, whiter the faster they move, and are hidden behind fluid. */
+#include <math.h>
+#include <stdbool.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "density_order.h"
+#include "shading_fixture.h"
+#include "test_util.h"
+
+#define WIDTH 64
+#define HEIGHT 48
+#define RADIUS 0.15f
+#define SURFACE_DENSITY 1000.0f
+#define SPRAY_DENSITY 100.0f
+#define THRESHOLD 500.0f
+/* Slots: a 3x3 sheet of fluid, then the test's spray droplet, then two
+ * outriggers far outside the view that fix the bounds (floor, depth range). */
+#define SHEET 3
+#define DROPLET (SHEET * SHEET)
+#define COUNT (DROPLET + 3)
+
+typedef struct spray_frame {
+    float positions[3 * COUNT];
+    float density[COUNT];
+    float velocity[3 * COUNT];
+    fc_frame frame;
+} spray_frame;
+
+/* The droplet sits at `droplet` (world). */
+static void make_frame(spray_frame *s, const float droplet[3], float droplet_speed)
+{
+    memset(s, 0, sizeof *s);
+    make_sheet(s->positions, SHEET, 0.2f);
+    memcpy(s->positions + 3 * DROPLET, droplet, 3 * sizeof(float));
+    const float outriggers[6] = {-100.0f, -1.0f, -2.0f, 100.0f, 1.0f, 1.0f};
+    memcpy(s->positions + 3 * (DROPLET + 1), outriggers, sizeof outriggers);
+    for (int i = 0; i < COUNT; i++)
+        s->density[i] = i == DROPLET ? SPRAY_DENSITY : SURFACE_DENSITY;
+    s->velocity[3 * DROPLET + 1] = droplet_speed;
+    s->frame = (fc_frame){.count = COUNT, .positions = s->positions, .density = s->density,
+                          .velocity = s->velocity};
+}
+
+static fc_settings spray_settings(float threshold)
+{
+    fc_settings settings = test_settings(RADIUS, FC_SMOOTHING_NONE, 0);
+    settings.density_threshold = threshold;
+    settings.foam = 1.0f;
+    settings.foam_tau = 0.1f;
+    return settings;
+}
+
+static void test_density_order(void)
+{
+    const float density[] = {3.0f, -1.0f, 7.5f, 3.0f, 0.0f, -0.0f, 1e30f, -2.5f, 3.0f};
+    const uint32_t expected[] = {6, 2, 0, 3, 8, 4, 5, 1, 7};   /* descending; ties keep frame order */
+    fc_density_order order = {0};
+    CHECK_CODE(fc_density_order_sort(&order, density, 9, NULL), FC_OK);
+    for (int i = 0; i < 9; i++)
+        CHECK_MSG(order.order[i] == expected[i], "slot %d: particle %u, expected %u", i, order.order[i],
+                  expected[i]);
+    fc_density_order_free(&order);
+}
+
+static void pixel_of(const fc_camera *cam, const float p[3], uint32_t *x, uint32_t *row)
+{
+    double point[3] = {p[0], p[1], p[2]}, fx, fr;
+    analytic_project(cam, point, &fx, &fr);
+    *x = (uint32_t)fx;
+    *row = (uint32_t)fr;
+}
+
+/* Beside the sheet, nearer the camera. */
+static const float BESIDE[3] = {0.7f, 0.3f, 0.5f};
+
+static void test_spray_leaves_surface(render_fixture *f)
+{
+    static spray_frame s;
+    make_frame(&s, BESIDE, 0.0f);
+    fc_camera cam = axis_camera(4.0, WIDTH, HEIGHT);
+    uint32_t x, row;
+    pixel_of(&cam, BESIDE, &x, &row);
+    fc_image img = {0};
+    const fc_aov aovs[] = {FC_AOV_DEPTH, FC_AOV_THICKNESS};
+    for (int i = 0; i < 2; i++) {
+        fc_settings settings = spray_settings(0.0f);   /* off: the droplet is fluid */
+        CHECK_CODE(render_frame(f, &s.frame, &cam, &settings, NULL, aovs[i], 0, &img), FC_OK);
+        CHECK(pixel_f32(&img, x, row) > 0.0f);
+        CHECK(pixel_f32(&img, WIDTH / 2, HEIGHT / 2) > 0.0f);
+        settings = spray_settings(THRESHOLD);
+        CHECK_CODE(render_frame(f, &s.frame, &cam, &settings, NULL, aovs[i], 0, &img), FC_OK);
+        CHECK_MSG(pixel_f32(&img, x, row) == 0.0f, "aov %d: %g where the spray is", (int)aovs[i],
+                  pixel_f32(&img, x, row));
+        CHECK(pixel_f32(&img, WIDTH / 2, HEIGHT / 2) > 0.0f);   /* the sheet stays */
+    }
+    /* A frame without densities has no spray, whatever the threshold. */
+    s.frame.density = NULL;
+    fc_settings settings = spray_settings(THRESHOLD);
+    CHECK_CODE(render_frame(f, &s.frame, &cam, &settings, NULL, FC_AOV_DEPTH, 0, &img), FC_OK);
+    CHECK(pixel_f32(&img, x, row) > 0.0f);
+    fc_image_free(&img);
+}
+
+static float luminance(const fc_image *img, uint32_t x, uint32_t row)
+{
+    return (channel_f32(img, x, row, 0) + channel_f32(img, x, row, 1) + channel_f32(img, x, row, 2)) / 3.0f;
+}
+
+/* Spread between the channels: 0 for grey or white. */
+static float tint(const fc_image *img, uint32_t x, uint32_t row)
+{
+    float lo = channel_f32(img, x, row, 0), hi = lo;
+    for (uint32_t c = 1; c < 3; c++) {
+        lo = fminf(lo, channel_f32(img, x, row, c));
+        hi = fmaxf(hi, channel_f32(img, x, row, c));
+    }
+    return hi - lo;
+}
+
+static void test_spray_drawn_and_whitened(render_fixture *f)
+{
+    static spray_frame slow, fast, away;
+    const float out_of_view[3] = {50.0f, 0.0f, 0.0f};
+    make_frame(&slow, BESIDE, 0.0f);
+    make_frame(&fast, BESIDE, 10.0f);
+    make_frame(&away, out_of_view, 0.0f);
+    fc_camera cam = axis_camera(4.0, WIDTH, HEIGHT);
+    uint32_t x, row;
+    pixel_of(&cam, BESIDE, &x, &row);
+    fc_settings settings = spray_settings(THRESHOLD);
+    fc_image without = {0}, with_slow = {0}, with_fast = {0};
+    CHECK_CODE(render_frame(f, &away.frame, &cam, &settings, NULL, FC_AOV_COLOR, 0, &without), FC_OK);
+    CHECK_CODE(render_frame(f, &slow.frame, &cam, &settings, NULL, FC_AOV_COLOR, 0, &with_slow), FC_OK);
+    CHECK_CODE(render_frame(f, &fast.frame, &cam, &settings, NULL, FC_AOV_COLOR, 0, &with_fast), FC_OK);
+    CHECK_MSG(fabsf(luminance(&with_slow, x, row) - luminance(&without, x, row)) > 0.05f,
+              "the droplet does not show: %g vs %g", luminance(&with_slow, x, row), luminance(&without, x, row));
+    CHECK_MSG(luminance(&with_slow, x, row) > 0.4f, "a dark droplet: %g", luminance(&with_slow, x, row));
+    CHECK_MSG(tint(&with_fast, x, row) < tint(&with_slow, x, row) - 0.02f, "speed does not whiten: tint %g vs %g",
+              tint(&with_fast, x, row), tint(&with_slow, x, row));
+    /* Spray only adds droplets: away from this one the image is unchanged. */
+    int changed_elsewhere = 0;
+    for (uint32_t r = 0; r < HEIGHT; r++)
+        for (uint32_t c = 0; c < WIDTH; c++) {
+            bool near = abs((int)c - (int)x) <= 4 && abs((int)r - (int)row) <= 4;
+            changed_elsewhere += !near && luminance(&with_slow, c, r) != luminance(&without, c, r);
+        }
+    CHECK_MSG(changed_elsewhere == 0, "%d pixels away from the droplet changed", changed_elsewhere);
+    fc_image_free(&without);
+    fc_image_free(&with_slow);
+    fc_image_free(&with_fast);
+}
+
+/* Straight behind the sheet's centre, the droplet is hidden by the fluid:
+ * the image equals the one with the droplet out of view. */
+static void test_spray_hidden_behind_fluid(render_fixture *f)
+{
+    static spray_frame behind, away;
+    const float behind_sheet[3] = {0.0f, 0.0f, -0.6f}, out_of_view[3] = {50.0f, 0.0f, 0.0f};
+    make_frame(&behind, behind_sheet, 0.0f);
+    make_frame(&away, out_of_view, 0.0f);
+    fc_camera cam = axis_camera(4.0, WIDTH, HEIGHT);
+    fc_settings settings = spray_settings(THRESHOLD);
+    fc_image hidden = {0}, without = {0};
+    CHECK_CODE(render_frame(f, &behind.frame, &cam, &settings, NULL, FC_AOV_COLOR, 1, &hidden), FC_OK);
+    CHECK_CODE(render_frame(f, &away.frame, &cam, &settings, NULL, FC_AOV_COLOR, 1, &without), FC_OK);
+    CHECK(memcmp(hidden.pixels, without.pixels, fc_image_size(&hidden)) == 0);
+    fc_image_free(&hidden);
+    fc_image_free(&without);
+}
+
+int main(void)
+{
+    test_density_order();
+    render_fixture f;
+    if (!fixture_open(&f))
+        return 1;
+    test_spray_leaves_surface(&f);
+    test_spray_drawn_and_whitened(&f);
+    test_spray_hidden_behind_fluid(&f);
+    fixture_close(&f);
+    return test_result();
+}

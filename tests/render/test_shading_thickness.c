@@ -1,0 +1,179 @@
+/* test_shading_thickness.c — thickness at reduced resolution and blurred:
+ * stacked spheres add up to k diameters at full and half resolution, and to
+ * the analytic value at the sampled texels at ¼; the Gaussian blur conserves the total and
+ * lowers the peak; the floor cuts the chords off exactly where the analytic
+ * ray leaves the half-space above it. */
+#include <math.h>
+
+#include "particle_buffer.h"
+#include "readback.h"
+#include "shading_fixture.h"
+#include "test_util.h"
+#include "thickness_pass.h"
+
+#define SIZE 65        /* odd: pixel 32 sits on the view axis */
+#define RADIUS 0.5
+#define DISTANCE 4.0
+#define SPACING 1.2    /* between stacked centres: the spheres do not touch */
+
+static fc_code render_stack(render_fixture *f, int count, float scale, uint32_t blur, fc_image *out)
+{
+    float positions[3 * 4] = {0};
+    for (int i = 0; i < count; i++)
+        positions[3 * i + 2] = (float)(-SPACING * i);
+    fc_camera cam = axis_camera(DISTANCE, SIZE, SIZE);
+    fc_settings settings = test_settings((float)RADIUS, FC_SMOOTHING_NONE, 0);
+    settings.thickness_scale = scale;
+    settings.thickness_blur = blur;
+    return render_positions(f, positions, (uint64_t)count, &cam, &settings, FC_AOV_THICKNESS, 0, out);
+}
+
+static double image_sum(const fc_image *img)
+{
+    double sum = 0.0;
+    for (uint32_t row = 0; row < img->height; row++)
+        for (uint32_t x = 0; x < img->width; x++)
+            sum += pixel_f32(img, x, row);
+    return sum;
+}
+
+/* What the image centre should hold at `scale`: the pass renders a
+ * lround(SIZE·scale)-pixel image and samples it bilinearly, so the centre is
+ * the mean of the analytic thickness (each sphere's chord) at the one or four
+ * texels around the view axis. */
+static double expected_centre(int count, float scale)
+{
+    uint32_t size = (uint32_t)lround(SIZE * scale);
+    fc_camera reduced = axis_camera(DISTANCE, size, size);
+    /* The texels around the axis: one for odd sizes, two per axis for even. */
+    const uint32_t texels[2] = {(size - 1) / 2, size / 2};
+    int taps = texels[0] == texels[1] ? 1 : 2;
+    double sum = 0.0;
+    for (int r = 0; r < taps; r++)
+        for (int c = 0; c < taps; c++)
+            for (int i = 0; i < count; i++) {
+                const double centre[3] = {0.0, 0.0, -SPACING * i};
+                double edge;
+                analytic_sphere_depth(&reduced, centre, RADIUS, texels[c], texels[r], &edge);
+                sum += 2.0 * RADIUS * sqrt(fmax(edge, 0.0));
+            }
+    return sum / (taps * taps);
+}
+
+static void test_stacks_at_each_scale(render_fixture *f)
+{
+    const float scales[] = {1.0f, 0.5f, 0.25f};
+    fc_image img = {0};
+    for (int s = 0; s < 3; s++)
+        for (int k = 1; k <= 3; k++) {
+            CHECK_CODE(render_stack(f, k, scales[s], 0, &img), FC_OK);
+            CHECK(img.width == SIZE && img.height == SIZE && img.channels == 1);
+            double expected = expected_centre(k, scales[s]);
+            CHECK_MSG(fabs(pixel_f32(&img, 32, 32) - expected) <= 1e-4 * expected,
+                      "scale %g, %d spheres: %g at the centre, expected %g", scales[s], k, pixel_f32(&img, 32, 32),
+                      expected);
+            CHECK(pixel_f32(&img, 0, 0) == 0.0f);
+        }
+    /* Full and half resolution sample the axis itself: k diameters. */
+    CHECK_NEAR(expected_centre(3, 1.0f), 3 * 2.0 * RADIUS, 1e-9);
+    CHECK_NEAR(expected_centre(3, 0.5f), 3 * 2.0 * RADIUS, 1e-9);
+    fc_image_free(&img);
+}
+
+static void test_blur_conserves_thickness(render_fixture *f)
+{
+    fc_image sharp = {0}, blurred = {0}, coarse = {0};
+    CHECK_CODE(render_stack(f, 2, 1.0f, 0, &sharp), FC_OK);
+    CHECK_CODE(render_stack(f, 2, 1.0f, 6, &blurred), FC_OK);
+    CHECK_CODE(render_stack(f, 2, 0.5f, 6, &coarse), FC_OK);
+    double total = image_sum(&sharp);
+    CHECK_NEAR(image_sum(&blurred), total, 1e-4 * total);
+    CHECK_NEAR(image_sum(&coarse), total, 0.01 * total);
+    /* The peak spreads out: lower at the centre, non-zero past the silhouette. */
+    CHECK(pixel_f32(&blurred, 32, 32) < pixel_f32(&sharp, 32, 32) - 1e-3);
+    int widened = 0;
+    for (uint32_t x = 0; x < SIZE; x++)
+        widened += pixel_f32(&sharp, x, 32) == 0.0f && pixel_f32(&blurred, x, 32) > 0.0f;
+    CHECK_MSG(widened >= 4, "%d pixels of row 32 gained thickness", widened);
+    fc_image_free(&sharp);
+    fc_image_free(&blurred);
+    fc_image_free(&coarse);
+}
+
+/* The length of the ray through pixel (x, row) inside the sphere and above
+ * the view-space plane dot(n, p) + w > 0, in double precision. */
+static double analytic_clipped_chord(const fc_camera *cam, const double centre[3], double radius,
+                                     const double plane[4], uint32_t x, uint32_t row)
+{
+    double fy = 1.0 / tan(cam->fov_y_deg * 3.14159265358979323846 / 360.0);
+    double fx = fy * cam->height / cam->width;
+    /* View space of an axis camera is world space shifted by the eye; the
+     * image's row 0 is its top. */
+    double d[3] = {((x + 0.5) / cam->width * 2.0 - 1.0) / fx, (1.0 - (row + 0.5) / cam->height * 2.0) / fy, -1.0};
+    double c[3] = {centre[0], centre[1], centre[2] - cam->eye[2]};
+    double dd = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
+    double dc = d[0] * c[0] + d[1] * c[1] + d[2] * c[2];
+    double cc = c[0] * c[0] + c[1] * c[1] + c[2] * c[2];
+    double disc = dc * dc - dd * (cc - radius * radius);
+    if (disc <= 0.0)
+        return 0.0;
+    double t0 = (dc - sqrt(disc)) / dd, t1 = (dc + sqrt(disc)) / dd;
+    double rate = plane[0] * d[0] + plane[1] * d[1] + plane[2] * d[2];
+    if (rate < 0.0)
+        t1 = fmin(t1, -plane[3] / rate);
+    else if (rate > 0.0)
+        t0 = fmax(t0, -plane[3] / rate);
+    return t1 > t0 ? (t1 - t0) * sqrt(dd) : 0.0;
+}
+
+/* The pass itself, with a floor through the lower part of the sphere (the
+ * built-in floor always lies below the particles). */
+static void test_floor_cuts_chords(void)
+{
+    fc_particle_buffer particles;
+    fc_thickness_pass pass;
+    fc_error err = {0};
+    CHECK_CODE(fc_particle_buffer_create(&particles, &err), FC_OK);
+    CHECK_CODE(fc_thickness_pass_create(NULL, &pass, &err), FC_OK);
+    const float origin[3] = {0.0f, 0.0f, 0.0f};
+    fc_frame frame = {.count = 1, .positions = (float *)origin};
+    CHECK_CODE(fc_particle_buffer_upload(&particles, &frame, &err), FC_OK);
+    fc_camera cam = axis_camera(DISTANCE, SIZE, SIZE);
+    fc_view view;
+    fc_view_from_camera(&cam, particles.lo, particles.hi, (float)RADIUS, &view);
+    /* Tilted towards the camera, 0.2 below the centre: y + 0.3 z + 0.2 > 0 in world terms. */
+    const double world_normal[3] = {0.0, 1.0, 0.3}, offset = 0.2;
+    const float plane[4] = {0.0f, 1.0f, 0.3f, (float)(offset + 0.3 * DISTANCE)};
+    const double view_plane[4] = {world_normal[0], world_normal[1], world_normal[2], offset + 0.3 * DISTANCE};
+    fc_thickness_params params = {.radius = (float)RADIUS, .scale = 1.0f, .floor_plane = plane};
+    const fc_render_target *result = NULL;
+    fc_image img = {0};
+    CHECK_CODE(fc_thickness_pass_run(&pass, &particles, &view, &params, &result, &err), FC_OK);
+    CHECK_CODE(fc_readback(result, 1, FC_PIXEL_F32, &img, &err), FC_OK);
+    const double centre[3] = {0.0, 0.0, 0.0};
+    int wrong = 0, clipped = 0;
+    for (uint32_t row = 0; row < SIZE; row++)
+        for (uint32_t x = 0; x < SIZE; x++) {
+            double full = analytic_clipped_chord(&cam, centre, RADIUS, (const double[4]){0, 0, 0, 1}, x, row);
+            double expected = analytic_clipped_chord(&cam, centre, RADIUS, view_plane, x, row);
+            clipped += expected < full - 0.05;
+            wrong += fabs(pixel_f32(&img, x, row) - expected) > 2e-3;
+        }
+    CHECK_MSG(clipped > 100, "only %d pixels lose thickness to the floor", clipped);
+    CHECK_MSG(wrong == 0, "%d pixels off the analytic clipped chord", wrong);
+    fc_image_free(&img);
+    fc_thickness_pass_destroy(&pass);
+    fc_particle_buffer_destroy(&particles);
+}
+
+int main(void)
+{
+    render_fixture f;
+    if (!fixture_open(&f))
+        return 1;
+    test_stacks_at_each_scale(&f);
+    test_blur_conserves_thickness(&f);
+    test_floor_cuts_chords();
+    fixture_close(&f);
+    return test_result();
+}
