@@ -10,6 +10,8 @@ PACKAGES=(
   libepoxy-dev libegl-dev libgl-dev libegl-mesa0 libgl1-mesa-dri
   # image encoding
   libopenimageio-dev
+  # compressed frame uploads
+  libzstd-dev
   # shader validation in the test suite
   glslang-tools
   # fuzzing (libFuzzer) in the test suite

@@ -18,7 +18,9 @@ enum {
 
 /* Allocates the arrays of a frame of `count` particles: positions always, the
  * others when their bit is in `attributes`. Contents are uninitialised.
- * Guards count*stride against overflow. On failure the frame is left empty. */
+ * Guards count*stride against overflow. FC_ERR_USAGE for count 0 or unknown
+ * attribute bits, FC_ERR_NOMEM when memory runs out; on failure the frame is
+ * left empty. */
 fc_code fc_frame_alloc(fc_frame *frame, uint64_t count, uint32_t attributes, fc_error *err);
 
 /* Frees every array and zeroes the frame. Safe on a zeroed frame. */
@@ -36,8 +38,10 @@ void fc_frame_bounds(const fc_frame *frame, float lo[3], float hi[3]);
 
 /* Estimates a sphere radius that closes the surface: 0.9 x the median
  * nearest-neighbour distance of (a deterministic sample of at most 4096)
- * particles, found with a uniform grid. Always positive: a frame whose
- * particles all coincide (or count <= 1) gets 1.0. */
+ * particles, the neighbour being the nearest particle at a different position
+ * among all particles, found exactly with a grid in O(count). Positions must be
+ * finite (fc_frame_validate). Always positive: a frame whose particles all
+ * coincide (or count <= 1) gets 1.0. */
 float fc_frame_estimate_radius(const fc_frame *frame);
 
 /* A camera that frames the frame's bounding box: it looks at the box centre

@@ -30,8 +30,10 @@
  * so base cells end up ~1.1 mean spacings of the frame wide: most nearest
  * neighbours then lie in the 3x3x3 block of cells around a particle. */
 #define CELL_PER_PILOT_SPACING 2.0
-/* Level L cells are 4^L base cells wide. The base cell is at least 2^-40 of
- * the bounding box, so at the last level one cell spans the box. */
+/* Level L cells are 4^L base cells wide, aligned with them: a particle's
+ * level L cell is its base cell shifted right by 2L bits, so one base cell
+ * computation serves every level. The base cell is at least 2^-40 of the
+ * bounding box, so at the last level one cell spans the box. */
 #define LEVEL_GROWTH_LOG2 2
 #define LEVELS 21
 #define MIN_BASE_CELL_PER_EXTENT 0x1p-40
@@ -45,19 +47,25 @@
 #define KEY_AXIS_MASK ((UINT64_C(1) << KEY_AXIS_BITS) - 1)
 #define KEY_LEVEL_SHIFT (3 * KEY_AXIS_BITS)
 #define EMPTY_KEY UINT64_MAX
+/* The gate: a 32 KiB bitmap indexed by a hash of (level, block of 4x4x4
+ * cells), set where some sample searches. It stays in L1, so most particles
+ * far from every sample are turned away without a cache miss (the stream of
+ * positions evicts anything larger); the others go on to the table. */
+#define GATE_BITS (UINT64_C(1) << 18)
+#define GATE_WORDS (GATE_BITS / 64)
+#define GATE_BLOCK_LOG2 2
 
 typedef struct grid {
     double lo[3];                /* bounding box minimum: cell (0,0,0) of every level starts here */
-    double cell[LEVELS];         /* cell edge per level */
-    double per_cell[LEVELS];     /* 1 / cell */
+    double per_base_cell;        /* 1 / base cell edge */
+    double per_cell[LEVELS];     /* 1 / cell edge, per level */
     int64_t dims[LEVELS][3];     /* cells per axis covering the bounding box */
 } grid;
 
 /* The cells some samples need, each with the list of those samples. */
 typedef struct cell_table {
     uint64_t mask;           /* slots - 1 (a power of two) */
-    uint64_t *filter;        /* bit per hash value: most particles miss every needed cell, */
-    uint64_t filter_mask;    /* and this small bitmap says so without touching the keys */
+    uint64_t *gate;          /* GATE_WORDS: (level, block) holding some needed cell, hashed */
     uint64_t *keys;          /* packed level and cell coordinates, EMPTY_KEY when free */
     uint32_t *list_start;    /* slots + 1: slot s lists samples[list_start[s] .. list_start[s+1]) */
     uint16_t *samples;       /* sample indices (< SAMPLE_MAX) */
@@ -199,26 +207,41 @@ static void grid_init(grid *g, const double lo[3], const double hi[3], double pi
     double base = pilot > 0 ? CELL_PER_PILOT_SPACING * pilot * cbrt((double)n / (double)count)
                             : max_extent / cbrt((double)count);
     base = fmax(base, max_extent * MIN_BASE_CELL_PER_EXTENT);
-    for (int k = 0; k < 3; k++)
+    g->per_base_cell = 1.0 / base;
+    for (int k = 0; k < 3; k++) {
         g->lo[k] = lo[k];
-    for (int level = 0; level < LEVELS; level++) {
-        g->cell[level] = ldexp(base, LEVEL_GROWTH_LOG2 * level);
-        g->per_cell[level] = 1.0 / g->cell[level];
-        for (int k = 0; k < 3; k++)
-            g->dims[level][k] = (int64_t)floor((hi[k] - lo[k]) * g->per_cell[level]) + 1;
+        g->dims[0][k] = (int64_t)floor((hi[k] - lo[k]) * g->per_base_cell) + 1;
     }
+    for (int level = 0; level < LEVELS; level++) {
+        g->per_cell[level] = ldexp(g->per_base_cell, -LEVEL_GROWTH_LOG2 * level);
+        for (int k = 0; k < 3; k++)
+            g->dims[level][k] = ((g->dims[0][k] - 1) >> (LEVEL_GROWTH_LOG2 * level)) + 1;
+    }
+}
+
+static inline void base_cell_of(const grid *g, const float *p, int64_t c[3])
+{
+    for (int k = 0; k < 3; k++) {
+        /* Truncation is floor here: the offset from the box minimum is not negative. */
+        double x = ((double)p[k] - g->lo[k]) * g->per_base_cell;
+        /* Only rounding can leave the box; clamping keeps the distance bound valid
+         * (and keeps a NaN, which callers must not pass, from an undefined conversion). */
+        int64_t last = g->dims[0][k] - 1;
+        c[k] = !(x >= 0) ? 0 : x > (double)last ? last : (int64_t)x;
+    }
+}
+
+static void level_cell(const int64_t base[3], int level, int64_t c[3])
+{
+    for (int k = 0; k < 3; k++)
+        c[k] = base[k] >> (LEVEL_GROWTH_LOG2 * level);
 }
 
 static void cell_of(const grid *g, int level, const float *p, int64_t c[3])
 {
-    for (int k = 0; k < 3; k++) {
-        /* Truncation is floor here: the offset from the box minimum is not negative. */
-        double x = ((double)p[k] - g->lo[k]) * g->per_cell[level];
-        /* Only rounding can leave the box; clamping keeps the distance bound valid
-         * (and keeps a NaN, which callers must not pass, from an undefined conversion). */
-        int64_t last = g->dims[level][k] - 1;
-        c[k] = !(x >= 0) ? 0 : x > (double)last ? last : (int64_t)x;
-    }
+    int64_t base[3];
+    base_cell_of(g, p, base);
+    level_cell(base, level, c);
 }
 
 static uint64_t cell_key(int level, const int64_t c[3])
@@ -238,21 +261,35 @@ static uint64_t table_slot(const cell_table *t, uint64_t hash, uint64_t key)
     return slot;
 }
 
-/* The filter uses the hash's high bits, the slots its low bits. */
-static uint64_t filter_bit(const cell_table *t, uint64_t hash)
+static uint64_t gate_bit(int level, const int64_t block[3])
 {
-    return (hash >> 32) & t->filter_mask;
+    return splitmix64(cell_key(level, block)) & (GATE_BITS - 1);
 }
 
-static bool filter_may_hold(const cell_table *t, uint64_t hash)
+static bool gate_open(const cell_table *t, int level, const int64_t c[3])
 {
-    uint64_t bit = filter_bit(t, hash);
-    return t->filter[bit / 64] >> (bit % 64) & 1;
+    int64_t block[3];
+    for (int k = 0; k < 3; k++)
+        block[k] = c[k] >> GATE_BLOCK_LOG2;
+    uint64_t bit = gate_bit(level, block);
+    return t->gate[bit / 64] >> (bit % 64) & 1;
+}
+
+/* Opens the blocks over cells [lo, hi] of `level`. */
+static void gate_open_cells(cell_table *t, int level, const int64_t lo[3], const int64_t hi[3])
+{
+    int64_t block[3];
+    for (block[2] = lo[2] >> GATE_BLOCK_LOG2; block[2] <= hi[2] >> GATE_BLOCK_LOG2; block[2]++)
+        for (block[1] = lo[1] >> GATE_BLOCK_LOG2; block[1] <= hi[1] >> GATE_BLOCK_LOG2; block[1]++)
+            for (block[0] = lo[0] >> GATE_BLOCK_LOG2; block[0] <= hi[0] >> GATE_BLOCK_LOG2; block[0]++) {
+                uint64_t bit = gate_bit(level, block);
+                t->gate[bit / 64] |= UINT64_C(1) << (bit % 64);
+            }
 }
 
 static void table_free(cell_table *t)
 {
-    free(t->filter);
+    free(t->gate);
     free(t->keys);
     free(t->list_start);
     free(t->samples);
@@ -262,8 +299,8 @@ static void table_free(cell_table *t)
 typedef enum table_step { COUNT_SAMPLES, LIST_SAMPLES } table_step;
 
 /* Visits every cell within each pending sample's reach (clipped to the
- * grid): counting claims the cells' slots and counts their samples, listing
- * writes the samples down. */
+ * grid): counting opens the gate, claims the cells' slots and counts their
+ * samples; listing writes the samples down. */
 static void visit_needed_cells(cell_table *t, const grid *g, const search *s, table_step step)
 {
     for (size_t i = 0; i < s->n_pending; i++) {
@@ -275,13 +312,14 @@ static void visit_needed_cells(cell_table *t, const grid *g, const search *s, ta
             lo[k] = c[k] - s->reach[sample] < 0 ? 0 : c[k] - s->reach[sample];
             hi[k] = c[k] + s->reach[sample] > g->dims[level][k] - 1 ? g->dims[level][k] - 1 : c[k] + s->reach[sample];
         }
+        if (step == COUNT_SAMPLES)
+            gate_open_cells(t, level, lo, hi);
         for (at[2] = lo[2]; at[2] <= hi[2]; at[2]++)
             for (at[1] = lo[1]; at[1] <= hi[1]; at[1]++)
                 for (at[0] = lo[0]; at[0] <= hi[0]; at[0]++) {
                     uint64_t key = cell_key(level, at), hash = splitmix64(key), slot = table_slot(t, hash, key);
                     if (step == COUNT_SAMPLES) {
                         t->keys[slot] = key;
-                        t->filter[filter_bit(t, hash) / 64] |= UINT64_C(1) << (filter_bit(t, hash) % 64);
                         t->list_start[slot + 1]++;
                     } else {
                         t->samples[t->list_start[slot]++] = sample;
@@ -313,13 +351,11 @@ static bool table_build(cell_table *t, const grid *g, const search *s)
     while (slots < 2 * visits)
         slots *= 2;
     t->mask = slots - 1;
-    /* Four filter bits per slot: at most one in eight is set. */
-    t->filter_mask = 4 * slots - 1;
-    t->filter = calloc(4 * slots / 64, sizeof *t->filter);
+    t->gate = calloc(GATE_WORDS, sizeof *t->gate);
     t->keys = malloc(slots * sizeof *t->keys);
     t->list_start = calloc(slots + 1, sizeof *t->list_start);
     t->samples = malloc(visits * sizeof *t->samples);
-    if (!t->filter || !t->keys || !t->list_start || !t->samples) {
+    if (!t->gate || !t->keys || !t->list_start || !t->samples) {
         table_free(t);
         return false;
     }
@@ -343,14 +379,15 @@ static void scan_particles(const fc_frame *frame, const grid *g, const cell_tabl
 {
     for (uint64_t i = 0; i < frame->count; i++) {
         const float *p = frame->positions + 3 * i;
+        int64_t base[3];
+        base_cell_of(g, p, base);
         for (int l = 0; l < t->n_levels; l++) {
             int level = t->levels[l];
             int64_t c[3];
-            cell_of(g, level, p, c);
-            uint64_t key = cell_key(level, c), hash = splitmix64(key);
-            if (!filter_may_hold(t, hash))
+            level_cell(base, level, c);
+            if (!gate_open(t, level, c))
                 continue;
-            uint64_t slot = table_slot(t, hash, key);
+            uint64_t key = cell_key(level, c), slot = table_slot(t, splitmix64(key), key);
             for (uint32_t k = t->list_start[slot]; k < t->list_start[slot + 1]; k++)
                 offer(&s->best_sq[t->samples[k]], s->positions + 3 * t->samples[k], p);
         }

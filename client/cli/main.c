@@ -3,7 +3,10 @@
 #include <string.h>
 
 #include "cli_report.h"
+#include "info.h"
 #include "snapshot.h"
+#include "stream.h"
+#include "watch.h"
 #include "wire.h"
 
 static void print_help(FILE *to)
@@ -16,6 +19,11 @@ static void print_help(FILE *to)
           "commands:\n"
           "  snapshot INPUT -o OUT   render one particle file to an image\n"
           "                          (fluidcast snapshot --help for its options)\n"
+          "  stream FILES...         push a sequence of particle files as frames, into a\n"
+          "                          session (--session) and/or rendered back (--out-dir)\n"
+          "  watch --session NAME    follow a session's frames as a viewer\n"
+          "  info                    the server's version, renderer, limits and sessions\n"
+          "                          (fluidcast COMMAND --help for the options of each)\n"
           "\n",
           to);
     fc_cli_print_exit_codes(to);
@@ -38,5 +46,11 @@ int main(int argc, char **argv)
     }
     if (strcmp(command, "snapshot") == 0)
         return fc_snapshot_main(argc - 2, argv + 2);
+    if (strcmp(command, "stream") == 0)
+        return fc_stream_main(argc - 2, argv + 2);
+    if (strcmp(command, "watch") == 0)
+        return fc_watch_main(argc - 2, argv + 2);
+    if (strcmp(command, "info") == 0)
+        return fc_info_main(argc - 2, argv + 2);
     return fc_cli_fail(FC_EXIT_USAGE, "unknown command \"%s\" (see fluidcast --help)", command);
 }

@@ -12,6 +12,7 @@
 #include "particle_reader.h"
 #include "snapshot_camera.h"
 #include "snapshot_options.h"
+#include "snapshot_scene.h"
 
 static int load_particles(const char *path, fc_frame *frame)
 {
@@ -25,18 +26,36 @@ static int load_particles(const char *path, fc_frame *frame)
     return FC_EXIT_OK;
 }
 
-static int choose_settings(const fc_snapshot_options *o, const fc_frame *frame, fc_settings *s)
+/* The options' settings (checked while parsing), with the radius resolved so it can be reported. */
+static void choose_settings(const fc_snapshot_options *o, const fc_frame *frame, fc_settings *s)
 {
-    fc_settings_default(s);
-    s->radius = o->radius > 0.0f ? o->radius : fc_frame_estimate_radius(frame);
-    if (o->has_smoothing)
-        s->smoothing = o->smoothing;
-    if (o->has_iterations)
-        s->iterations = o->iterations;
+    *s = o->settings;
+    if (!(s->radius > 0.0f))
+        s->radius = fc_frame_estimate_radius(frame);
+}
+
+static int resolve_scene(const fc_snapshot_options *o, fc_snapshot_scene *scene)
+{
     fc_error err;
-    if (fc_settings_validate(s, &err) != FC_OK)
-        return fc_cli_fail(FC_EXIT_USAGE, "bad render settings: %s", err.message);
+    if (fc_snapshot_scene_resolve(o, scene, &err) != FC_OK)
+        return fc_cli_fail(err.code == FC_ERR_USAGE ? FC_EXIT_USAGE : FC_EXIT_INPUT, "%s", err.message);
     return FC_EXIT_OK;
+}
+
+/* The scene images go before the frame: a rejection then names the image
+ * before a large upload, and they apply to the render either way. */
+static fc_code send_scene(fc_client *client, const fc_snapshot_scene *scene, fc_error *err)
+{
+    fc_code code = FC_OK;
+    if (scene->background)
+        code = fc_client_set_background_file(client, scene->background, err);
+    if (code == FC_OK && scene->has_cubemap) {
+        const char *faces[6];
+        for (int i = 0; i < 6; i++)
+            faces[i] = scene->faces[i];
+        code = fc_client_set_environment_files(client, faces, err);
+    }
+    return code;
 }
 
 static int client_failure(const char *server, const fc_error *err)
@@ -45,8 +64,8 @@ static int client_failure(const char *server, const fc_error *err)
 }
 
 /* Connects, sends frame/camera/settings and waits for the image. */
-static int render_remotely(const fc_snapshot_options *o, const fc_frame *frame, const fc_camera *cam,
-                           const fc_settings *settings, fc_image_result *image)
+static int render_remotely(const fc_snapshot_options *o, const fc_snapshot_scene *scene, const fc_frame *frame,
+                           const fc_camera *cam, const fc_settings *settings, fc_image_result *image)
 {
     fc_connect_options connect_options = { .client_name = "fluidcast snapshot" };
     fc_client *client;
@@ -56,8 +75,8 @@ static int render_remotely(const fc_snapshot_options *o, const fc_frame *frame, 
         return fc_cli_fail(fc_cli_exit_for_client_error(err.code), "%s", err.message);
     fc_render_request request = { .format = o->format, .quality = o->quality, .aov = o->aov };
     int status = FC_EXIT_OK;
-    /* Rejections of FRAME/CAMERA/SETTINGS arrive as the render's error. */
-    if (fc_client_send_frame(client, frame, &err) != FC_OK ||
+    /* Rejections of the scene images, FRAME, CAMERA and SETTINGS arrive as the render's error. */
+    if (send_scene(client, scene, &err) != FC_OK || fc_client_send_frame(client, frame, &err) != FC_OK ||
         fc_client_set_camera(client, cam, &err) != FC_OK ||
         fc_client_set_settings(client, settings, &err) != FC_OK ||
         fc_client_render(client, &request, image, &err) != FC_OK)
@@ -74,13 +93,16 @@ static int write_image(const fc_snapshot_options *o, const fc_image_result *imag
     printf("wrote %s: %ux%u %s, %zu bytes, server %.1f ms, radius %g%s\n", o->output, (unsigned)image->width,
            (unsigned)image->height, fc_output_format_name(image->format), image->size,
            (double)image->stage_ms[FC_STAGE_TOTAL], (double)settings->radius,
-           o->radius > 0.0f ? "" : " (estimated from particle spacing)");
+           o->settings.radius > 0.0f ? "" : " (estimated from particle spacing)");
     return FC_EXIT_OK;
 }
 
 static int snapshot(const fc_snapshot_options *o, fc_frame *frame)
 {
-    int status = load_particles(o->input, frame);
+    fc_snapshot_scene scene;
+    int status = resolve_scene(o, &scene);
+    if (status == FC_EXIT_OK)
+        status = load_particles(o->input, frame);
     if (status != FC_EXIT_OK)
         return status;
     fc_camera cam;
@@ -88,11 +110,9 @@ static int snapshot(const fc_snapshot_options *o, fc_frame *frame)
     if (fc_snapshot_camera(o, frame, &cam, &err) != FC_OK)
         return fc_cli_fail(FC_EXIT_USAGE, "%s", err.message);
     fc_settings settings;
-    status = choose_settings(o, frame, &settings);
-    if (status != FC_EXIT_OK)
-        return status;
+    choose_settings(o, frame, &settings);
     fc_image_result image = { 0 };
-    status = render_remotely(o, frame, &cam, &settings, &image);
+    status = render_remotely(o, &scene, frame, &cam, &settings, &image);
     if (status == FC_EXIT_OK)
         status = write_image(o, &image, &settings);
     fc_image_result_free(&image);

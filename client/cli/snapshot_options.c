@@ -1,6 +1,7 @@
 /* snapshot_options.c — see snapshot_options.h. */
 #include "snapshot_options.h"
 
+#include <stddef.h>
 #include <string.h>
 
 #include "cli_report.h"
@@ -9,112 +10,188 @@
 #include "fc_frame.h"
 #include "output_file.h"
 
-typedef fc_code (*option_handler)(fc_snapshot_options *o, const char *name, const char *value,
+typedef struct option_spec option_spec;
+typedef fc_code (*option_handler)(fc_snapshot_options *o, const option_spec *spec, const char *value,
                                   fc_error *err);
 
-static fc_code set_output(fc_snapshot_options *o, const char *name, const char *value, fc_error *err)
+struct option_spec {
+    const char *name;
+    option_handler handle;
+    size_t setting;   /* offset of the fc_settings field the generic setting handlers fill */
+};
+
+static fc_code set_output(fc_snapshot_options *o, const option_spec *spec, const char *value, fc_error *err)
 {
-    (void)name;
+    (void)spec;
     (void)err;
     o->output = value;
     return FC_OK;
 }
 
-static fc_code set_server(fc_snapshot_options *o, const char *name, const char *value, fc_error *err)
+static fc_code set_server(fc_snapshot_options *o, const option_spec *spec, const char *value, fc_error *err)
 {
-    (void)name;
+    (void)spec;
     (void)err;
     o->server = value;
     return FC_OK;
 }
 
-static fc_code set_size(fc_snapshot_options *o, const char *name, const char *value, fc_error *err)
+static fc_code set_size(fc_snapshot_options *o, const option_spec *spec, const char *value, fc_error *err)
 {
-    return fc_cli_parse_size(name, value, &o->width, &o->height, err);
+    return fc_cli_parse_size(spec->name, value, &o->width, &o->height, err);
 }
 
-static fc_code set_eye(fc_snapshot_options *o, const char *name, const char *value, fc_error *err)
+static fc_code set_eye(fc_snapshot_options *o, const option_spec *spec, const char *value, fc_error *err)
 {
     o->has_eye = true;
-    return fc_cli_parse_vec3(name, value, o->eye, err);
+    return fc_cli_parse_vec3(spec->name, value, o->eye, err);
 }
 
-static fc_code set_target(fc_snapshot_options *o, const char *name, const char *value, fc_error *err)
+static fc_code set_target(fc_snapshot_options *o, const option_spec *spec, const char *value, fc_error *err)
 {
     o->has_target = true;
-    return fc_cli_parse_vec3(name, value, o->target, err);
+    return fc_cli_parse_vec3(spec->name, value, o->target, err);
 }
 
-static fc_code set_up(fc_snapshot_options *o, const char *name, const char *value, fc_error *err)
+static fc_code set_up(fc_snapshot_options *o, const option_spec *spec, const char *value, fc_error *err)
 {
     o->has_up = true;
-    return fc_cli_parse_vec3(name, value, o->up, err);
+    return fc_cli_parse_vec3(spec->name, value, o->up, err);
 }
 
-static fc_code set_fov(fc_snapshot_options *o, const char *name, const char *value, fc_error *err)
+static fc_code set_fov(fc_snapshot_options *o, const option_spec *spec, const char *value, fc_error *err)
 {
     o->has_fov = true;
-    fc_code code = fc_cli_parse_float(name, value, &o->fov_deg, err);
+    fc_code code = fc_cli_parse_float(spec->name, value, &o->fov_deg, err);
     if (code == FC_OK && !(o->fov_deg > 0.0f && o->fov_deg < 180.0f))
-        return fc_error_set(err, FC_ERR_USAGE, "%s needs degrees between 0 and 180, not %s", name, value);
+        return fc_error_set(err, FC_ERR_USAGE, "%s needs degrees between 0 and 180, not %s", spec->name, value);
     return code;
 }
 
-static fc_code set_radius(fc_snapshot_options *o, const char *name, const char *value, fc_error *err)
+/* ---- render settings: the domains are fc_settings_validate's, so the
+ * command line accepts exactly what the server does ---- */
+
+static fc_code check_settings(const fc_snapshot_options *o, const char *option, fc_error *err)
 {
-    fc_code code = fc_cli_parse_float(name, value, &o->radius, err);
-    if (code == FC_OK && !(o->radius > 0.0f))
-        return fc_error_set(err, FC_ERR_USAGE, "%s needs a positive radius, not %s", name, value);
-    return code;
+    fc_error why;
+    if (fc_settings_validate(&o->settings, &why) != FC_OK)
+        return fc_error_set(err, FC_ERR_USAGE, "%s: %s", option, why.message);
+    return FC_OK;
 }
 
-static fc_code set_smoothing(fc_snapshot_options *o, const char *name, const char *value, fc_error *err)
+static void *setting_field(fc_snapshot_options *o, const option_spec *spec)
 {
-    static const char *const names[] = { "none", "curvature", NULL };
-    static const fc_smoothing values[] = { FC_SMOOTHING_NONE, FC_SMOOTHING_CURVATURE };
+    return (char *)&o->settings + spec->setting;
+}
+
+static fc_code set_float_setting(fc_snapshot_options *o, const option_spec *spec, const char *value, fc_error *err)
+{
+    fc_code code = fc_cli_parse_float(spec->name, value, setting_field(o, spec), err);
+    return code != FC_OK ? code : check_settings(o, spec->name, err);
+}
+
+static fc_code set_uint_setting(fc_snapshot_options *o, const option_spec *spec, const char *value, fc_error *err)
+{
+    fc_code code = fc_cli_parse_uint(spec->name, value, 0, UINT32_MAX, setting_field(o, spec), err);
+    return code != FC_OK ? code : check_settings(o, spec->name, err);
+}
+
+static fc_code set_rgb_setting(fc_snapshot_options *o, const option_spec *spec, const char *value, fc_error *err)
+{
+    fc_code code = fc_cli_parse_vec3(spec->name, value, setting_field(o, spec), err);
+    return code != FC_OK ? code : check_settings(o, spec->name, err);
+}
+
+/* 0 would mean "estimate" on the wire; on the command line that is leaving the option out. */
+static fc_code set_radius(fc_snapshot_options *o, const option_spec *spec, const char *value, fc_error *err)
+{
+    fc_code code = fc_cli_parse_float(spec->name, value, &o->settings.radius, err);
+    if (code == FC_OK && !(o->settings.radius > 0.0f))
+        return fc_error_set(err, FC_ERR_USAGE, "%s needs a positive radius, not %s", spec->name, value);
+    return code != FC_OK ? code : check_settings(o, spec->name, err);
+}
+
+static fc_code set_smoothing(fc_snapshot_options *o, const option_spec *spec, const char *value, fc_error *err)
+{
+    static const char *const names[] = {"none", "curvature", "bilateral", "binomial", "narrow", NULL};
+    static const fc_smoothing values[] = {FC_SMOOTHING_NONE, FC_SMOOTHING_CURVATURE, FC_SMOOTHING_BILATERAL,
+                                          FC_SMOOTHING_BINOMIAL, FC_SMOOTHING_NARROW};
     int index;
-    fc_code code = fc_cli_parse_choice(name, value, names, &index, err);
-    if (code == FC_OK) {
-        o->has_smoothing = true;
-        o->smoothing = values[index];
-    }
+    fc_code code = fc_cli_parse_choice(spec->name, value, names, &index, err);
+    if (code == FC_OK)
+        o->settings.smoothing = values[index];
     return code;
 }
 
-static fc_code set_iterations(fc_snapshot_options *o, const char *name, const char *value, fc_error *err)
+static fc_code set_aov(fc_snapshot_options *o, const option_spec *spec, const char *value, fc_error *err)
 {
-    o->has_iterations = true;
-    return fc_cli_parse_uint(name, value, 0, 1000, &o->iterations, err);
-}
-
-static fc_code set_aov(fc_snapshot_options *o, const char *name, const char *value, fc_error *err)
-{
-    static const char *const names[] = { "depth", "smoothed-depth", "thickness", NULL };
-    static const fc_aov values[] = { FC_AOV_DEPTH, FC_AOV_SMOOTHED_DEPTH, FC_AOV_THICKNESS };
+    static const char *const names[] = {"depth", "smoothed-depth", "thickness", "normal", "noise", NULL};
+    static const fc_aov values[] = {FC_AOV_DEPTH, FC_AOV_SMOOTHED_DEPTH, FC_AOV_THICKNESS, FC_AOV_NORMAL,
+                                    FC_AOV_NOISE};
     int index;
-    fc_code code = fc_cli_parse_choice(name, value, names, &index, err);
+    fc_code code = fc_cli_parse_choice(spec->name, value, names, &index, err);
     if (code == FC_OK)
         o->aov = values[index];
     return code;
 }
 
-static fc_code set_quality(fc_snapshot_options *o, const char *name, const char *value, fc_error *err)
+static fc_code set_quality(fc_snapshot_options *o, const option_spec *spec, const char *value, fc_error *err)
 {
     o->has_quality = true;
-    return fc_cli_parse_uint(name, value, 1, 100, &o->quality, err);
+    return fc_cli_parse_uint(spec->name, value, 1, 100, &o->quality, err);
 }
 
-typedef struct option_spec {
-    const char *name;
-    option_handler handle;
-} option_spec;
+/* ---- scene images: the files are checked once the command line is complete ---- */
+
+static fc_code set_background(fc_snapshot_options *o, const option_spec *spec, const char *value, fc_error *err)
+{
+    if (value[0] == '\0')
+        return fc_error_set(err, FC_ERR_USAGE, "%s needs an image file", spec->name);
+    o->background = value;
+    return FC_OK;
+}
+
+static fc_code set_cubemap(fc_snapshot_options *o, const option_spec *spec, const char *value, fc_error *err)
+{
+    if (value[0] == '\0')
+        return fc_error_set(err, FC_ERR_USAGE, "%s needs six image files or a directory", spec->name);
+    o->cubemap = value;
+    return FC_OK;
+}
+
+#define SETTING(name, handler, field) {name, handler, offsetof(fc_settings, field)}
 
 static const option_spec options[] = {
-    { "-o", set_output },          { "--output", set_output },   { "--server", set_server },
-    { "--size", set_size },        { "--eye", set_eye },         { "--target", set_target },
-    { "--up", set_up },            { "--fov", set_fov },         { "--radius", set_radius },
-    { "--smoothing", set_smoothing }, { "--iterations", set_iterations }, { "--aov", set_aov },
-    { "--quality", set_quality },
+    {"-o", set_output, 0},
+    {"--output", set_output, 0},
+    {"--server", set_server, 0},
+    {"--size", set_size, 0},
+    {"--eye", set_eye, 0},
+    {"--target", set_target, 0},
+    {"--up", set_up, 0},
+    {"--fov", set_fov, 0},
+    {"--radius", set_radius, 0},
+    {"--smoothing", set_smoothing, 0},
+    SETTING("--iterations", set_uint_setting, iterations),
+    SETTING("--filter-radius", set_uint_setting, filter_radius),
+    SETTING("--smooth-scale", set_float_setting, smooth_scale),
+    SETTING("--color", set_rgb_setting, fluid_color),
+    SETTING("--absorption", set_rgb_setting, absorption),
+    SETTING("--ior", set_float_setting, ior),
+    SETTING("--refraction", set_float_setting, refraction),
+    SETTING("--specular", set_float_setting, specular),
+    SETTING("--shininess", set_float_setting, shininess),
+    SETTING("--thickness-scale", set_float_setting, thickness_scale),
+    SETTING("--thickness-blur", set_uint_setting, thickness_blur),
+    SETTING("--noise", set_float_setting, noise),
+    SETTING("--foam", set_float_setting, foam),
+    SETTING("--foam-tau", set_float_setting, foam_tau),
+    SETTING("--foam-decay", set_float_setting, foam_decay),
+    SETTING("--density-threshold", set_float_setting, density_threshold),
+    {"--background", set_background, 0},
+    {"--cubemap", set_cubemap, 0},
+    {"--aov", set_aov, 0},
+    {"--quality", set_quality, 0},
 };
 
 /* Finds the option `arg` names, as "--name" or "--name=value" (then *inline_value
@@ -141,6 +218,7 @@ static void set_defaults(fc_snapshot_options *o)
     o->height = 720;
     o->up[2] = 1.0f;
     o->fov_deg = FC_SNAPSHOT_DEFAULT_FOV;
+    fc_settings_default(&o->settings);
     o->aov = FC_AOV_COLOR;
     o->quality = FC_SNAPSHOT_DEFAULT_QUALITY;
 }
@@ -176,7 +254,7 @@ static fc_code check_combinations(fc_snapshot_options *o, fc_error *err)
     if (code != FC_OK)
         return code;
     if (o->aov != FC_AOV_COLOR && o->format != FC_FORMAT_EXR)
-        return fc_error_set(err, FC_ERR_USAGE, "--aov writes one float channel: the output must be .exr");
+        return fc_error_set(err, FC_ERR_USAGE, "--aov writes float channels: the output must be .exr");
     if (o->has_quality && o->format != FC_FORMAT_JPEG)
         return fc_error_set(err, FC_ERR_USAGE, "--quality applies to .jpg/.jpeg output only");
     return check_explicit_camera(o, err);
@@ -206,22 +284,16 @@ fc_code fc_snapshot_parse(int argc, char **argv, fc_snapshot_options *out, fc_er
                 return fc_error_set(err, FC_ERR_USAGE, "%s needs a value", spec->name);
             value = argv[++i];
         }
-        fc_code code = spec->handle(out, spec->name, value, err);
+        fc_code code = spec->handle(out, spec, value, err);
         if (code != FC_OK)
             return code;
     }
     return check_combinations(out, err);
 }
 
-void fc_snapshot_print_help(FILE *to)
+static void print_camera_help(FILE *to)
 {
-    fputs("usage: fluidcast snapshot INPUT -o OUT [options]\n"
-          "\n"
-          "Sends the particles in INPUT (.f32, .ply, .vtk, .csv) to a fluidcastd server,\n"
-          "renders them as fluid and writes the image the server encoded to OUT. The\n"
-          "format follows OUT's extension: .png, .jpg/.jpeg or .exr.\n"
-          "\n"
-          "options:\n"
+    fputs("camera and image:\n"
           "  -o, --output OUT        image file to write (required)\n"
           "  --server HOST:PORT      server address (default " FC_SNAPSHOT_DEFAULT_SERVER ";\n"
           "                          port 7450 when omitted; IPv6 as [::1]:7450)\n"
@@ -232,19 +304,93 @@ void fc_snapshot_print_help(FILE *to)
           "                          bounding box)\n"
           "  --up X,Y,Z              camera up direction (default 0,0,1)\n"
           "  --fov DEG               vertical field of view in degrees (default 40)\n"
-          "  --radius R              particle sphere radius in world units; without it\n"
-          "                          the radius is estimated from the particle spacing\n"
-          "                          (0.9 x the median nearest-neighbour distance) and\n"
-          "                          the radius used is printed\n"
-          "  --smoothing MODE        curvature (default) or none\n"
-          "  --iterations N          smoothing iterations, 0..1000 (default 40)\n"
           "  --aov NAME              write an arbitrary output variable instead of the\n"
-          "                          colour: depth, smoothed-depth (linear distance along\n"
-          "                          the view axis, 0 where there is no fluid) or\n"
-          "                          thickness; one float32 channel, needs .exr\n"
+          "                          colour, as float channels; needs .exr:\n"
+          "                          depth, smoothed-depth (linear distance along the\n"
+          "                          view axis, 0 where there is no fluid), thickness,\n"
+          "                          normal (view-space surface normal, RGB) or noise\n"
           "  --quality Q             JPEG quality 1..100 (default 90; .jpg/.jpeg only)\n"
-          "  -h, --help              show this help\n"
           "\n",
           to);
+}
+
+static void print_surface_help(FILE *to, const fc_settings *d)
+{
+    fprintf(to,
+            "fluid surface:\n"
+            "  --radius R              particle sphere radius in world units; without it\n"
+            "                          the radius is estimated from the particle spacing\n"
+            "                          (0.9 x the median nearest-neighbour distance) and\n"
+            "                          the radius used is printed\n"
+            "  --smoothing MODE        depth smoothing: curvature (curvature flow,\n"
+            "                          default), bilateral, binomial, narrow (narrow-range\n"
+            "                          filter) or none\n"
+            "  --iterations N          curvature-flow steps or filter passes, 0..1000\n"
+            "                          (default %u)\n"
+            "  --filter-radius PX      kernel half-width of bilateral/binomial/narrow,\n"
+            "                          0..64 pixels; 0 = from the particle size (default)\n"
+            "  --smooth-scale S        resolution of the smoothing: 1, 0.5 or 0.25\n"
+            "                          (default %g)\n"
+            "  --noise AMPLITUDE       surface noise, 0..10; 0 = off (default %g)\n"
+            "  --foam INTENSITY        foam and spray, 0..10; 0 = off (default %g)\n"
+            "  --foam-tau V            velocity change per frame that raises foam, > 0\n"
+            "                          (default %g)\n"
+            "  --foam-decay F          per-frame decay of raised foam, 0 <= F < 1\n"
+            "                          (default %g)\n"
+            "  --density-threshold D   particles with density below D are spray; 0 = off\n"
+            "                          (default %g)\n"
+            "\n",
+            (unsigned)d->iterations, (double)d->smooth_scale, (double)d->noise, (double)d->foam,
+            (double)d->foam_tau, (double)d->foam_decay, (double)d->density_threshold);
+}
+
+static void print_shading_help(FILE *to, const fc_settings *d)
+{
+    fprintf(to,
+            "shading:\n"
+            "  --color R,G,B           linear colour of a thick layer, each 0..1\n"
+            "                          (default %g,%g,%g)\n"
+            "  --absorption R,G,B      Beer-Lambert absorption per unit thickness, >= 0\n"
+            "                          (default %g,%g,%g)\n"
+            "  --ior N                 index of refraction, 1..3 (default %g)\n"
+            "  --refraction G          background offset in pixels per unit thickness,\n"
+            "                          0..1000 (default %g)\n"
+            "  --specular S            specular intensity, 0..10 (default %g)\n"
+            "  --shininess E           specular exponent, 1..10000 (default %g)\n"
+            "  --thickness-scale S     resolution of the thickness pass: 1, 0.5 or 0.25\n"
+            "                          (default %g)\n"
+            "  --thickness-blur PX     blur radius of the thickness, 0..32 pixels\n"
+            "                          (default %u)\n"
+            "  --background IMAGE      PNG, JPEG or EXR image behind the fluid (and seen\n"
+            "                          through it) instead of the built-in floor and sky\n"
+            "  --cubemap PX,NX,PY,NY,PZ,NZ\n"
+            "                          six square images of one size (+X -X +Y -Y +Z -Z)\n"
+            "                          reflected in the fluid instead of the built-in sky;\n"
+            "  --cubemap DIR           or a directory holding px, nx, py, ny, pz and nz\n"
+            "                          .png/.jpg/.jpeg/.exr\n"
+            "                          (scene images: at most 8192 pixels per side)\n"
+            "\n",
+            (double)d->fluid_color[0], (double)d->fluid_color[1], (double)d->fluid_color[2],
+            (double)d->absorption[0], (double)d->absorption[1], (double)d->absorption[2], (double)d->ior,
+            (double)d->refraction, (double)d->specular, (double)d->shininess, (double)d->thickness_scale,
+            (unsigned)d->thickness_blur);
+}
+
+void fc_snapshot_print_help(FILE *to)
+{
+    fputs("usage: fluidcast snapshot INPUT -o OUT [options]\n"
+          "\n"
+          "Sends the particles in INPUT (.f32, .ply, .vtk, .csv) to a fluidcastd server,\n"
+          "renders them as fluid and writes the image the server encoded to OUT. The\n"
+          "format follows OUT's extension: .png, .jpg/.jpeg or .exr. Options take their\n"
+          "value as the next argument or after '=' (--ior=1.5).\n"
+          "\n",
+          to);
+    fc_settings defaults;
+    fc_settings_default(&defaults);
+    print_camera_help(to);
+    print_surface_help(to, &defaults);
+    print_shading_help(to, &defaults);
+    fputs("  -h, --help              show this help\n\n", to);
     fc_cli_print_exit_codes(to);
 }

@@ -24,18 +24,18 @@ typedef struct fc_snapshot_options {
     float eye[3], target[3], up[3];   /* up is 0,0,1 unless given */
     bool has_fov;
     float fov_deg;
-    float radius;                  /* 0: estimate from the particle spacing */
-    bool has_smoothing, has_iterations;
-    fc_smoothing smoothing;
-    uint32_t iterations;
+    fc_settings settings;          /* fc_settings_default plus the flags; radius 0: estimate from the spacing */
+    const char *background;        /* --background IMAGE, or NULL */
+    const char *cubemap;           /* --cubemap value (six files or a directory), or NULL */
     fc_aov aov;
     bool has_quality;
     uint32_t quality;
 } fc_snapshot_options;
 
-/* Parses the arguments after "snapshot". FC_ERR_USAGE with the reason for an
- * unknown option, a bad value, a missing input/output, an unsupported output
- * extension, --aov without .exr, --quality without .jpg, or half a camera. */
+/* Parses the arguments after "snapshot". FC_ERR_USAGE with the reason (naming
+ * the option) for an unknown option, a bad value, a render setting outside its
+ * domain, a missing input/output, an unsupported output extension, --aov
+ * without .exr, --quality without .jpg, or half a camera. */
 fc_code fc_snapshot_parse(int argc, char **argv, fc_snapshot_options *out, fc_error *err);
 
 void fc_snapshot_print_help(FILE *to);

@@ -22,6 +22,15 @@ uint32_t fc_client_next_request_id(fc_client *c)
     return c->last_request_id;
 }
 
+fc_code fc_client_check_message_size(const fc_client *c, const char *what, fc_error *err)
+{
+    size_t payload = c->tx.len - FC_WIRE_HEADER_SIZE;
+    if (payload > c->info.max_message)
+        return fc_error_set(err, FC_ERR_TOO_LARGE, "%s of %zu bytes exceeds the server's message limit of %u bytes",
+                            what, payload, (unsigned)c->info.max_message);
+    return FC_OK;
+}
+
 fc_code fc_client_send_tx(fc_client *c, fc_error *err)
 {
     fc_code code = fc_socket_send_all(c->fd, c->tx.data, c->tx.len, err);

@@ -18,6 +18,11 @@ struct fc_client {
     fc_server_info info;
     fc_buf tx;                 /* encoded outgoing message, reused so frames do not reallocate */
     fc_buf rx;                 /* payload of the last incoming message, reused likewise */
+    /* a viewer's stream (client_stream.c) */
+    bool subscribed;
+    uint32_t subscribe_id;     /* request id of the SUBSCRIBE: its images and end echo it */
+    uint32_t stream_skipped;   /* images dropped while waiting for other replies, not yet reported */
+    bool stream_ended;         /* the session's end arrived while waiting for something else */
 };
 
 /* FC_ERR_CLOSED once the connection is broken, FC_ERR_USAGE for a NULL client. */
@@ -25,6 +30,11 @@ fc_code fc_client_check_usable(const fc_client *c, fc_error *err);
 
 /* The id for the next request; ids start at 1 and never repeat within 2^32 requests. */
 uint32_t fc_client_next_request_id(fc_client *c);
+
+/* FC_ERR_TOO_LARGE naming `what` when the message just encoded into c->tx
+ * exceeds the server's limit: the server would drop the connection, so such a
+ * message is refused unsent. */
+fc_code fc_client_check_message_size(const fc_client *c, const char *what, fc_error *err);
 
 /* Sends c->tx. A failure marks the client broken. */
 fc_code fc_client_send_tx(fc_client *c, fc_error *err);

@@ -6,6 +6,7 @@
 #include <string.h>
 
 #include "client_core.h"
+#include "client_stream.h"
 #include "fc_error.h"
 
 static fc_code send_render(fc_client *c, const fc_render_request *request, uint32_t *id, fc_error *err)
@@ -50,6 +51,8 @@ static fc_code await_reply(fc_client *c, uint32_t id, fc_image_result *out, fc_e
         fc_code code = fc_client_receive(c, &header, err);
         if (code != FC_OK)
             return code;
+        if (fc_client_absorb_stream(c, &header))
+            continue;
         if (header.type == FC_MSG_ERROR) {
             fc_error server;
             fc_client_decode_server_error(c, &server);

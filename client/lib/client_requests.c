@@ -5,17 +5,6 @@
 #include "client_core.h"
 #include "fc_error.h"
 
-/* Checks the message just encoded into c->tx fits the server's limit: a larger
- * one would make the server drop the connection, so it is refused unsent. */
-static fc_code check_message_size(const fc_client *c, const char *what, fc_error *err)
-{
-    size_t payload = c->tx.len - FC_WIRE_HEADER_SIZE;
-    if (payload > c->info.max_message)
-        return fc_error_set(err, FC_ERR_TOO_LARGE, "%s of %zu bytes exceeds the server's message limit of %u bytes",
-                            what, payload, (unsigned)c->info.max_message);
-    return FC_OK;
-}
-
 fc_code fc_client_send_frame(fc_client *client, const fc_frame *frame, fc_error *err)
 {
     fc_code code = fc_client_check_usable(client, err);
@@ -26,7 +15,7 @@ fc_code fc_client_send_frame(fc_client *client, const fc_frame *frame, fc_error 
     fc_buf_reset(&client->tx);
     code = fc_wire_write_frame(&client->tx, fc_client_next_request_id(client), frame, err);
     if (code == FC_OK)
-        code = check_message_size(client, "the frame", err);
+        code = fc_client_check_message_size(client, "the frame", err);
     return code != FC_OK ? code : fc_client_send_tx(client, err);
 }
 

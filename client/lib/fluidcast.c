@@ -10,6 +10,7 @@
 #include "fc_error.h"
 #include "host_port.h"
 #include "socket_io.h"
+#include "wire_session.h"
 
 #define DEFAULT_CLIENT_NAME "libfluidcast"
 #define DEFAULT_CONNECT_TIMEOUT_MS 10000u
@@ -40,6 +41,7 @@ static void copy_server_info(const fc_welcome *w, fc_server_info *info)
     info->max_width = w->limits.max_width;
     info->max_height = w->limits.max_height;
     info->max_message = w->limits.max_message;
+    info->capabilities = w->capabilities;
 }
 
 static fc_code send_hello(fc_client *c, const char *client_name, fc_error *err)
@@ -48,6 +50,7 @@ static fc_code send_hello(fc_client *c, const char *client_name, fc_error *err)
     memset(&hello, 0, sizeof hello);
     hello.version_min = FC_PROTOCOL_VERSION;
     hello.version_max = FC_PROTOCOL_VERSION;
+    hello.capabilities = FC_CAPS_ALL;
     snprintf(hello.client_name, sizeof hello.client_name, "%s", client_name);
     fc_buf_reset(&c->tx);
     fc_code code = fc_wire_write_hello(&c->tx, fc_client_next_request_id(c), &hello, err);
@@ -114,6 +117,17 @@ static void client_free(fc_client *c)
     free(c);
 }
 
+/* "unix:PATH" is a Unix-domain socket; anything else a TCP "HOST:PORT". */
+static fc_code open_socket(const char *address, uint32_t timeout_ms, int *fd, fc_error *err)
+{
+    if (address && strncmp(address, FC_UNIX_PREFIX, strlen(FC_UNIX_PREFIX)) == 0)
+        return fc_socket_connect_unix(address + strlen(FC_UNIX_PREFIX), fd, err);
+    char host[FC_HOST_MAX];
+    char port[FC_PORT_MAX];
+    fc_code code = fc_host_port_parse(address, host, port, err);
+    return code != FC_OK ? code : fc_socket_connect(host, port, timeout_ms, fd, err);
+}
+
 fc_code fc_client_connect(const char *host_port, const fc_connect_options *options,
                           fc_client **out, fc_error *err)
 {
@@ -124,16 +138,11 @@ fc_code fc_client_connect(const char *host_port, const fc_connect_options *optio
     memset(&defaults, 0, sizeof defaults);
     const fc_connect_options *opt = options ? options : &defaults;
 
-    char host[FC_HOST_MAX];
-    char port[FC_PORT_MAX];
-    fc_code code = fc_host_port_parse(host_port, host, port, err);
-    if (code != FC_OK)
-        return code;
     fc_client *c = client_new();
     if (!c)
         return fc_error_set(err, FC_ERR_NOMEM, "no memory for a client");
     uint32_t connect_timeout = opt->connect_timeout_ms ? opt->connect_timeout_ms : DEFAULT_CONNECT_TIMEOUT_MS;
-    code = fc_socket_connect(host, port, connect_timeout, &c->fd, err);
+    fc_code code = open_socket(host_port, connect_timeout, &c->fd, err);
     if (code == FC_OK)
         code = handshake(c, opt, connect_timeout, err);
     if (code != FC_OK) {

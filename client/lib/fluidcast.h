@@ -62,6 +62,7 @@ typedef struct fc_server_info {
     uint32_t max_width;           /* largest image the server renders */
     uint32_t max_height;
     uint32_t max_message;         /* largest message payload, in bytes, the server reads */
+    uint32_t capabilities;        /* FC_SERVER_CAN_* bits the server granted this connection */
 } fc_server_info;
 
 /* A rendered image as the server encoded it. `data` is owned by the result:
@@ -76,8 +77,9 @@ typedef struct fc_image_result {
     size_t size;                  /* bytes in data */
 } fc_image_result;
 
-/* Connects to `host_port` — "HOST:PORT", "HOST" (port 7450), "[IPV6]:PORT" or
- * "[IPV6]" — sends HELLO and checks the WELCOME (protocol version 1). On success
+/* Connects to `host_port` — "HOST:PORT", "HOST" (port 7450), "[IPV6]:PORT",
+ * "[IPV6]", or "unix:PATH" for a Unix-domain socket — sends HELLO (asking for
+ * every capability this library has) and checks the WELCOME (protocol version 1). On success
  * *out is a new client the caller owns (fc_client_close releases it); on failure
  * *out is NULL. Errors: FC_ERR_USAGE for a malformed address, FC_ERR_CONNECT when
  * no address of the host accepts the connection in time, a server code (e.g.
@@ -107,10 +109,44 @@ fc_code fc_client_set_camera(fc_client *client, const fc_camera *camera, fc_erro
  * fc_client_render. */
 fc_code fc_client_set_settings(fc_client *client, const fc_settings *settings, fc_error *err);
 
+/* ---- Scene images ----------------------------------------------------------
+ * By default the server draws a floor and a sky behind the fluid and reflects a
+ * procedural sky in it. A client may send its own images instead: PNG, JPEG or
+ * EXR files, at most 8192 pixels per side. The server decodes them and keeps
+ * them for this connection's later renders. Like settings, a rejection is
+ * reported by the next fc_client_render: FC_ERR_INVALID_VALUE for bytes that do
+ * not decode as such an image (or cube faces that are not square, or differ in
+ * size or pixel format — all 8-bit or all float), FC_ERR_LIMIT for an image
+ * larger than 8192 pixels per side or the GPU's texture size. Errors returned
+ * directly: FC_ERR_TOO_LARGE (without sending) when the message exceeds the
+ * server's message limit, FC_ERR_USAGE, plus the connection errors. */
+
+/* Sends a background image, drawn behind the fluid and refracted through it
+ * instead of the built-in floor and sky, stretched over the whole image: `size`
+ * bytes of an image file. data NULL with size 0 goes back to the built-in scene. */
+fc_code fc_client_set_background_bytes(fc_client *client, const void *data, size_t size, fc_error *err);
+
+/* fc_client_set_background_bytes with the contents of the file at `path`
+ * (NULL: back to the built-in scene). FC_ERR_IO naming the file when it cannot
+ * be read, FC_ERR_USAGE when it is empty. */
+fc_code fc_client_set_background_file(fc_client *client, const char *path, fc_error *err);
+
+/* Sends an environment cube map, reflected in the fluid instead of the
+ * procedural sky: six image files data[i] of sizes[i] bytes, in the order
+ * +X, -X, +Y, -Y, +Z, -Z (OpenGL cube-map convention), square and of one size.
+ * data and sizes NULL go back to the procedural sky. */
+fc_code fc_client_set_environment_bytes(fc_client *client, const void *const data[6], const size_t sizes[6],
+                                        fc_error *err);
+
+/* fc_client_set_environment_bytes with the contents of six files, in the same
+ * order (paths NULL: back to the procedural sky). FC_ERR_IO naming a file that
+ * cannot be read, FC_ERR_USAGE for a NULL path or an empty file. */
+fc_code fc_client_set_environment_files(fc_client *client, const char *const paths[6], fc_error *err);
+
 /* Asks for an image of the current frame, camera and settings and waits for it.
  * On success *out holds the image (the caller frees it with fc_image_result_free).
  * On failure *out is empty (data NULL, size 0) and safe to free. When the server
- * rejected an earlier message of this client (a FRAME, CAMERA or SETTINGS) that
+ * rejected an earlier message of this client (a FRAME, CAMERA, SETTINGS or scene image) that
  * error is returned, since it is the cause, even if an image followed; the reply
  * to this request is consumed either way so the connection stays in step. */
 fc_code fc_client_render(fc_client *client, const fc_render_request *request,
@@ -122,6 +158,142 @@ void fc_image_result_free(fc_image_result *result);
 /* Says GOODBYE to the server (best effort), closes the connection and frees the
  * client. NULL is ignored. */
 void fc_client_close(fc_client *client);
+
+/* ---- Sessions, streaming, multi-rank frames, packed uploads ----------------
+ * A producer (a simulation) publishes frames to a named session; any number of
+ * viewers subscribe to it and receive every frame the server renders for them,
+ * each with its own camera, settings and image format. A viewer that reads too
+ * slowly is sent the newest frame when it is ready again, with the number of
+ * frames it missed: it never slows the producer or other viewers.
+ *
+ *     producer                                  viewer
+ *     fc_client_publish(c, "dam", NULL, &e);    fc_client_subscribe(v, "dam", &req, 640, 360, NULL, &e);
+ *     for each step:                            for (;;) {
+ *         fc_client_upload_frame(c, &f, ...);       fc_client_next_image(v, &img, &e);
+ *     fc_client_leave_session(c, &e);               if (img.ended) break;  ... fc_stream_image_free(&img);
+ *                                               }
+ *
+ * A simulation split over K MPI ranks sends each frame as K chunks, one per
+ * rank and connection (each rank publishes to the same session); the server
+ * renders once all K chunks of a frame are in, concatenated in index order.
+ *
+ * These need a server that granted FC_SERVER_CAN_STREAM (see
+ * fc_server_info.capabilities; fluidcastd 0.1 grants everything it has); a
+ * call that needs a capability the server lacks returns FC_ERR_USAGE unsent. */
+
+/* Capability bits of fc_server_info.capabilities. */
+#define FC_SERVER_CAN_STREAM 0x1u       /* named sessions, streaming, multi-rank frames */
+#define FC_SERVER_CAN_ZSTD 0x2u         /* zstd-compressed uploads */
+#define FC_SERVER_CAN_QUANTIZE16 0x4u   /* 16-bit quantised positions */
+
+/* What the server says about a session. */
+typedef struct fc_session_status {
+    char name[65];               /* 1..64 bytes, NUL-terminated */
+    uint32_t producers;          /* connections publishing to it */
+    uint32_t viewers;            /* connections subscribed to it */
+    uint64_t frames;             /* complete frames published so far */
+    uint64_t last_frame;         /* frame number of the newest, 0 = none yet */
+} fc_session_status;
+
+/* Makes this connection a producer of session `name` (created when it does not
+ * exist; several connections may publish to one session, e.g. the ranks of one
+ * simulation). From then on fc_client_send_frame / fc_client_upload_frame
+ * publish whole frames (numbered 1, 2, ...: the newest number + 1), and
+ * fc_client_send_chunk parts of frames; fc_client_render renders the session's
+ * newest complete frame. Waits for the server's answer; *status (may be NULL)
+ * receives the session's state. Errors: FC_ERR_BAD_STATE when the connection
+ * is in a session already, FC_ERR_INVALID_VALUE / FC_ERR_USAGE for a name not
+ * of 1..64 bytes, FC_ERR_LIMIT when the server holds its maximum of sessions. */
+fc_code fc_client_publish(fc_client *client, const char *name, fc_session_status *status, fc_error *err);
+
+/* Makes this connection a viewer of session `name` (which need not have a
+ * producer yet). Every frame published from now on is rendered for it with its
+ * camera (fc_client_set_camera; until one is sent, each frame is framed
+ * automatically at width x height, 0 x 0 for the server's default 1280x720) and
+ * settings, in `format` (format, quality and aov as for fc_client_render), and
+ * read with fc_client_next_image. When it uses JPEG, a lossless PNG of the last
+ * frame follows once nothing has changed for a while (server option
+ * --refresh-ms). Changing camera or settings re-renders the current frame.
+ * fc_client_render still works: it renders the session's newest frame and its
+ * image is never dropped. Errors as for fc_client_publish, plus those of a
+ * RENDER for the format and FC_ERR_LIMIT for a size beyond the server's. */
+fc_code fc_client_subscribe(fc_client *client, const char *name, const fc_render_request *format,
+                            uint32_t width, uint32_t height, fc_session_status *status, fc_error *err);
+
+/* One image of a subscribed session. */
+typedef struct fc_stream_image {
+    fc_image_result image;       /* the encoded image, as fc_client_render returns it; empty when ended */
+    uint64_t frame_number;       /* the producer's number of the frame shown */
+    uint64_t sequence;           /* 1-based count of frames the session published up to this one */
+    uint32_t missed;             /* frames published since this viewer's previous image that it never got */
+    int refresh;                 /* nonzero: a lossless copy of a frame already shown lossy */
+    int view_change;             /* nonzero: the same frame again, after this viewer's camera/settings changed */
+    int ended;                   /* nonzero: the session is over (its producers left); no image, no more follow */
+} fc_stream_image;
+
+/* Waits for the next image of the subscribed session (or its end). Stream
+ * images that arrive while this client waits for another reply (a render, a
+ * session list) are dropped, and counted in the next image's `missed`. The
+ * reply timeout of fc_connect_options bounds the wait. Errors: FC_ERR_USAGE
+ * when not subscribed; a server code when the server rejected an earlier
+ * request of this client (e.g. a CAMERA) or could not render an image for this
+ * viewer (the subscription stays either way); the connection errors. */
+fc_code fc_client_next_image(fc_client *client, fc_stream_image *out, fc_error *err);
+void fc_stream_image_free(fc_stream_image *image);
+
+/* Leaves the session: a producer stops publishing (the session ends for its
+ * viewers once its last producer has left or disconnected), a viewer stops
+ * receiving images. Waits until the server confirms, so no image of the session
+ * arrives after it. FC_ERR_BAD_STATE when the connection is in no session; an
+ * error the server reported for an earlier request of this client (e.g. a
+ * chunk) is returned like fc_client_render does, after the confirmation. */
+fc_code fc_client_leave_session(fc_client *client, fc_error *err);
+
+/* The server's live sessions, oldest first: *sessions (free it with
+ * fc_session_list_free) gets *count entries. */
+fc_code fc_client_list_sessions(fc_client *client, fc_session_status **sessions, uint32_t *count, fc_error *err);
+void fc_session_list_free(fc_session_status *sessions);
+
+/* How a frame travels (fc_client_upload_frame, fc_client_send_chunk). */
+#define FC_UPLOAD_ZSTD 0x1u          /* zstd-compress the particle data (lossless) */
+#define FC_UPLOAD_QUANTIZE16 0x2u    /* positions as 16-bit offsets in the frame's bounding box: each
+                                        coordinate is off by at most (box extent / 65535 / 2) */
+
+typedef struct fc_upload_options {
+    uint32_t encoding;           /* FC_UPLOAD_* bits; 0 = plain floats, uncompressed */
+    int zstd_level;              /* zstd compression level; 0 = 3 */
+} fc_upload_options;
+
+/* What one upload cost. */
+typedef struct fc_upload_stats {
+    uint64_t raw_bytes;          /* bytes the frame takes as a plain, uncompressed message */
+    uint64_t wire_bytes;         /* bytes actually sent */
+} fc_upload_stats;
+
+/* Sends a frame like fc_client_send_frame, encoded as `options` says (NULL:
+ * plain). *stats (may be NULL) receives the bytes it took. Errors as for
+ * fc_client_send_frame, plus FC_ERR_USAGE for an encoding the server did not
+ * grant or, with FC_UPLOAD_QUANTIZE16, non-finite positions. */
+fc_code fc_client_upload_frame(fc_client *client, const fc_frame *frame, const fc_upload_options *options,
+                               fc_upload_stats *stats, fc_error *err);
+
+/* Sends chunk `index` of `count` (K) of frame `frame_number` of the session
+ * this connection publishes to: `part` holds this rank's particles. Every
+ * chunk of a frame must carry the same K and attributes. The server answers
+ * only a rejection, reported by the next waiting call (or fc_client_poll_errors),
+ * with these codes: FC_ERR_INVALID_VALUE for K = 0, K > 4096 or index >= K;
+ * FC_ERR_DUPLICATE for an index of the frame sent before; FC_ERR_INCONSISTENT
+ * when K or the attributes differ from the frame's first chunk; FC_ERR_INCOMPLETE
+ * (to every rank that sent a chunk) when the frame still lacks chunks after the
+ * server's chunk timeout; FC_ERR_BAD_STATE without fc_client_publish. */
+fc_code fc_client_send_chunk(fc_client *client, uint64_t frame_number, uint32_t index, uint32_t count,
+                             const fc_frame *part, const fc_upload_options *options, fc_upload_stats *stats,
+                             fc_error *err);
+
+/* Reads whatever the server has sent without waiting: returns the first server
+ * ERROR (its code; the connection stays usable), FC_OK when there is none.
+ * For producers that only send and want to hear about rejected chunks. */
+fc_code fc_client_poll_errors(fc_client *client, fc_error *err);
 
 #ifdef __cplusplus
 }

@@ -3,6 +3,7 @@
 
 #include "fc_error.h"
 #include "socket_io.h"
+#include "wire_session.h"
 
 fc_code fc_message_receive(int fd, uint32_t max_payload, fc_msg_header *header, fc_buf *payload,
                            fc_error *err)
@@ -38,5 +39,6 @@ const char *fc_message_type_name(uint16_t type)
     case FC_MSG_ERROR: return "ERROR";
     case FC_MSG_GOODBYE: return "GOODBYE";
     }
-    return "unknown message";
+    const char *session_message = fc_wire_session_type_name(type);
+    return session_message ? session_message : "unknown message";
 }

@@ -10,6 +10,7 @@
 #include <string.h>
 #include <sys/socket.h>
 #include <sys/time.h>
+#include <sys/un.h>
 #include <time.h>
 #include <unistd.h>
 
@@ -107,6 +108,28 @@ fc_code fc_socket_connect(const char *host, const char *port, uint32_t timeout_m
     freeaddrinfo(list);
     return fc_error_set(err, FC_ERR_CONNECT, "cannot connect to %s port %s: %s", host, port,
                         strerror(last_error));
+}
+
+fc_code fc_socket_connect_unix(const char *path, int *fd_out, fc_error *err)
+{
+    *fd_out = -1;
+    struct sockaddr_un addr;
+    memset(&addr, 0, sizeof addr);
+    addr.sun_family = AF_UNIX;
+    if (path[0] == '\0' || strlen(path) >= sizeof addr.sun_path)
+        return fc_error_set(err, FC_ERR_USAGE, "unix socket path must have 1 to %zu bytes",
+                            sizeof addr.sun_path - 1);
+    memcpy(addr.sun_path, path, strlen(path));
+    int fd = socket(AF_UNIX, SOCK_STREAM | SOCK_CLOEXEC, 0);
+    if (fd < 0)
+        return fc_error_set(err, FC_ERR_CONNECT, "socket: %s", strerror(errno));
+    if (connect(fd, (struct sockaddr *)&addr, sizeof addr) != 0) {
+        int saved = errno;
+        close(fd);
+        return fc_error_set(err, FC_ERR_CONNECT, "cannot connect to unix:%s: %s", path, strerror(saved));
+    }
+    *fd_out = fd;
+    return FC_OK;
 }
 
 fc_code fc_socket_set_timeout(int fd, uint32_t timeout_ms, fc_error *err)

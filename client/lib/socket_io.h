@@ -14,6 +14,13 @@
 fc_code fc_socket_connect(const char *host, const char *port, uint32_t timeout_ms, int *fd_out,
                           fc_error *err);
 
+#define FC_UNIX_PREFIX "unix:"
+
+/* Connects to the Unix-domain socket at path (blocking). FC_ERR_CONNECT
+ * naming the path and the failure otherwise; FC_ERR_USAGE for a path too long
+ * for a socket address. */
+fc_code fc_socket_connect_unix(const char *path, int *fd_out, fc_error *err);
+
 /* Bounds every later send/receive on fd to timeout_ms of silence (0: no bound). */
 fc_code fc_socket_set_timeout(int fd, uint32_t timeout_ms, fc_error *err);
 

@@ -6,6 +6,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/ioctl.h>
 #include <sys/socket.h>
 #include <unistd.h>
 
@@ -22,20 +23,24 @@ enum {
     KEEP_BUFFER_BYTES = 4 << 20,
     /* How long a closing connection waits for the peer to read our last ERROR. */
     LINGER_MS = 2000,
-    DRAIN_READS_PER_WAKE = 64
+    DRAIN_READS_PER_WAKE = 64,
+    /* How often a viewer held back by the kernel's send queue is looked at again. */
+    BACKLOG_POLL_MS = 10
 };
 
-fc_code fc_connection_create(int fd, const char *peer, fc_connection **out, fc_error *err)
+fc_code fc_connection_create(int fd, const char *peer, uint64_t id, fc_daemon_context *ctx, fc_connection **out,
+                             fc_error *err)
 {
     fc_connection *c = calloc(1, sizeof *c);
     if (!c) {
         close(fd);
         return fc_error_set(err, FC_ERR_NOMEM, "connection from %s: out of memory", peer);
     }
+    c->id = id;
     c->fd = fd;
     snprintf(c->peer, sizeof c->peer, "%s", peer);
     fc_buf_init(&c->out);
-    fc_session_init(&c->session, c->peer);
+    fc_session_init(&c->session, c->peer, ctx, id, &c->out);
     *out = c;
     return FC_OK;
 }
@@ -61,8 +66,12 @@ short fc_connection_wanted_events(const fc_connection *c)
     switch (c->phase) {
     case FC_CONN_OPEN:
         /* While replies wait, the client is not read: that is the back-pressure
-         * that keeps a client who never reads from growing our queue. */
-        return has_pending_output(c) ? POLLOUT : POLLIN;
+         * that keeps a client who never reads from growing our queue. While a
+         * RENDER is being rendered it is not read either, so replies keep the
+         * order of the requests. */
+        if (has_pending_output(c))
+            return POLLOUT;
+        return c->session.reply_pending ? 0 : POLLIN;
     case FC_CONN_FLUSHING:
         return POLLOUT;
     case FC_CONN_LINGERING:
@@ -75,9 +84,16 @@ short fc_connection_wanted_events(const fc_connection *c)
 
 int fc_connection_timeout_ms(const fc_connection *c, double now_ms)
 {
-    if (c->phase != FC_CONN_LINGERING)
+    double deadline = -1.0;
+    if (c->phase == FC_CONN_LINGERING)
+        deadline = c->linger_deadline_ms;
+    else if (c->phase == FC_CONN_OPEN && c->backlog_check_ms > 0.0)
+        deadline = c->backlog_check_ms;
+    else if (c->phase == FC_CONN_OPEN)
+        deadline = fc_session_deadline_ms(&c->session);
+    if (deadline < 0.0)
         return -1;
-    double left = c->linger_deadline_ms - now_ms;
+    double left = deadline - now_ms;
     return left > 0 ? (int)left + 1 : 0;
 }
 
@@ -92,6 +108,27 @@ static void finish_flushing(fc_connection *c)
     }
     c->phase = FC_CONN_LINGERING;
     c->linger_deadline_ms = fc_monotonic_ms() + LINGER_MS;
+}
+
+/* Bytes the kernel still holds for the peer (unsent or unacknowledged); 0 when it cannot tell. */
+static size_t kernel_backlog(int fd)
+{
+    int bytes = 0;
+    return ioctl(fd, TIOCOUTQ, &bytes) == 0 && bytes > 0 ? (size_t)bytes : 0;
+}
+
+/* Our queue is empty. A viewer is told so only once the kernel's queue is low
+ * as well: the kernel buffers megabytes on a fast link, and images waiting
+ * there would be exactly the stale frames latest-wins is meant to drop. */
+static void report_drained(fc_connection *c)
+{
+    size_t allowance = fc_session_backlog_allowance(&c->session);
+    if (allowance != SIZE_MAX && kernel_backlog(c->fd) > allowance) {
+        c->backlog_check_ms = fc_monotonic_ms() + BACKLOG_POLL_MS;
+        return;
+    }
+    c->backlog_check_ms = 0.0;
+    fc_session_output_drained(&c->session);
 }
 
 static void flush(fc_connection *c)
@@ -117,6 +154,8 @@ static void flush(fc_connection *c)
     c->out_sent = 0;
     if (c->phase == FC_CONN_FLUSHING)
         finish_flushing(c);
+    else if (c->phase == FC_CONN_OPEN)
+        report_drained(c);
 }
 
 static void start_closing(fc_connection *c)
@@ -153,6 +192,7 @@ static void deliver(fc_connection *c, fc_daemon_context *ctx)
             c->session.state == FC_SESSION_READY ? FC_SESSION_CONTINUE : FC_SESSION_CLOSE;
         verdict = fc_session_reply_error(ctx, c->peer, c->header.request_id, &c->header_error, then, &c->out);
     } else {
+        c->session.message_started_ms = c->started_ms;
         verdict = fc_session_handle(&c->session, ctx, &c->header, c->payload, fc_monotonic_ms(), &c->out);
     }
     reset_message(c);
@@ -222,6 +262,8 @@ static read_result classify_recv(ssize_t n)
 static read_result receive_header(fc_connection *c, fc_daemon_context *ctx)
 {
     ssize_t n = recv(c->fd, c->header_bytes + c->header_got, FC_WIRE_HEADER_SIZE - c->header_got, 0);
+    if (n > 0 && c->header_got == 0)
+        c->started_ms = fc_monotonic_ms();
     if (n > 0 && (c->header_got += (size_t)n) == FC_WIRE_HEADER_SIZE)
         on_header(c, ctx);
     return classify_recv(n);
@@ -247,7 +289,8 @@ static read_result receive_payload(fc_connection *c, fc_daemon_context *ctx)
 static void read_messages(fc_connection *c, fc_daemon_context *ctx)
 {
     unsigned long first = c->messages;
-    while (c->phase == FC_CONN_OPEN && !has_pending_output(c) && c->messages - first < MESSAGES_PER_WAKE) {
+    while (c->phase == FC_CONN_OPEN && !has_pending_output(c) && !c->session.reply_pending &&
+           c->messages - first < MESSAGES_PER_WAKE) {
         read_result result = c->have_header ? receive_payload(c, ctx) : receive_header(c, ctx);
         if (result == READ_WOULD_BLOCK)
             return;
@@ -277,8 +320,22 @@ void fc_connection_on_events(fc_connection *c, short revents, fc_daemon_context 
     /* A socket error surfaces from send() or recv(), whichever comes first. */
     if (revents & (POLLOUT | POLLHUP | POLLERR))
         flush(c);
-    if (c->phase == FC_CONN_OPEN && (revents & (POLLIN | POLLHUP | POLLERR)))
+    if (c->phase == FC_CONN_OPEN && c->session.reply_pending && (revents & (POLLHUP | POLLERR)))
+        c->phase = FC_CONN_DONE;   /* reset while its RENDER renders: nobody is left to answer */
+    else if (c->phase == FC_CONN_OPEN && (revents & (POLLIN | POLLHUP | POLLERR)))
         read_messages(c, ctx);
     else if (c->phase == FC_CONN_LINGERING)
         drain_input(c);
+    if (c->phase == FC_CONN_OPEN && revents == 0 && c->backlog_check_ms > 0.0)
+        report_drained(c);
+    else if (c->phase == FC_CONN_OPEN && revents == 0)
+        fc_session_tick(&c->session, fc_monotonic_ms());
+}
+
+void fc_connection_on_job_done(fc_connection *c, const fc_render_job *job)
+{
+    if (c->phase != FC_CONN_OPEN)
+        return;
+    fc_session_job_done(&c->session, job);
+    flush(c);
 }

@@ -1,16 +1,24 @@
-/* daemon_context.h — what every connection of the daemon shares: read-only
- * configuration plus the single render service. */
+/* daemon_context.h — what every connection of the daemon shares: the
+ * configuration, the render service and the named sessions. Used from the
+ * event-loop thread only (the render service does its own locking). */
 #ifndef FC_DAEMON_CONTEXT_H
 #define FC_DAEMON_CONTEXT_H
 
+#include <stdint.h>
+
 #include "log.h"
 #include "render_service.h"
+#include "session_registry.h"
 #include "wire.h"
 
 typedef struct fc_daemon_context {
     const fc_log *log;
-    fc_welcome welcome;            /* sent to every client; its limits are the ones enforced */
+    fc_welcome welcome;            /* sent to every client (capabilities: as granted to it); its limits are enforced */
     fc_render_service *render;
+    fc_session_registry *sessions;
+    double chunk_timeout_ms;       /* how long a multi-rank frame may wait for its last chunk */
+    double refresh_ms;             /* quiet time after a lossy stream image before a lossless refresh; 0 = never */
+    uint64_t last_frame_id;        /* frame ids handed out so far (see fc_shared_frame.id) */
 } fc_daemon_context;
 
 #endif

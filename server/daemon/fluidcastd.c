@@ -1,6 +1,7 @@
 /* fluidcastd.c — the render daemon's top level: options, signals, the render
- * service, the listener and the event loop, in that order; exit 0 on
- * SIGINT/SIGTERM, 1 when it cannot start, 2 on a bad command line. */
+ * service (GL thread and encoders), the named sessions, the listeners and the
+ * event loop, in that order; exit 0 on SIGINT/SIGTERM, 1 when it cannot start,
+ * 2 on a bad command line. */
 #include <errno.h>
 #include <signal.h>
 #include <stdio.h>
@@ -10,6 +11,7 @@
 #include <unistd.h>
 
 #include "daemon_context.h"
+#include "encoder_pool.h"
 #include "event_loop.h"
 #include "fc_error.h"
 #include "listener.h"
@@ -18,7 +20,7 @@
 #define SERVER_VERSION "fluidcastd 0.1.0"
 
 /* EXIT_FAILURE (1): cannot start or keep serving. */
-enum { EXIT_BAD_USAGE = 2 };
+enum { EXIT_BAD_USAGE = 2, MAX_LISTENERS = 2 };
 
 /* SIGINT/SIGTERM are blocked and read from a signalfd the event loop polls:
  * no handler, no global flag. Blocked before any thread exists (llvmpipe and
@@ -71,26 +73,43 @@ static void fill_welcome(const fc_daemon_options *options, const fc_render_servi
     w->version = FC_PROTOCOL_VERSION;
     w->limits = options->limits;
     snprintf(w->server_version, sizeof w->server_version, "%s", SERVER_VERSION);
-    snprintf(w->renderer, sizeof w->renderer, "%s", fc_gl_context_renderer(fc_render_service_gl(render)));
+    snprintf(w->renderer, sizeof w->renderer, "%s", fc_render_service_renderer(render));
+}
+
+/* Opens the TCP and/or Unix listeners the options ask for; *count of them. */
+static fc_code open_listeners(const fc_daemon_options *options, fc_listener *listeners, size_t *count,
+                              fc_error *err)
+{
+    *count = 0;
+    fc_code code = FC_OK;
+    if (fc_daemon_options_serve_tcp(options)) {
+        code = fc_listener_open(options->listen_host, options->listen_port, &listeners[0], err);
+        if (code == FC_OK)
+            (*count)++;
+    }
+    if (code == FC_OK && options->unix_path) {
+        code = fc_listener_open_unix(options->unix_path, &listeners[*count], err);
+        if (code == FC_OK)
+            (*count)++;
+    }
+    if (code == FC_OK && options->port_file)
+        code = write_port_file(options->port_file, listeners[0].is_unix ? 0 : listeners[0].port, err);
+    return code;
 }
 
 /* Listens, announces the port and serves until a stop signal. */
 static int serve(const fc_daemon_options *options, fc_daemon_context *ctx, int stop_fd)
 {
     fc_error err;
-    fc_listener listener;
-    if (fc_listener_open(options->listen_host, options->listen_port, &listener, &err) != FC_OK) {
-        fc_log_write(ctx->log, FC_LOG_ERROR, "%s", err.message);
-        return EXIT_FAILURE;
-    }
+    fc_listener listeners[MAX_LISTENERS];
+    size_t count = 0;
     fc_event_loop *loop = NULL;
-    fc_code code = FC_OK;
-    if (options->port_file)
-        code = write_port_file(options->port_file, listener.port, &err);
+    fc_code code = open_listeners(options, listeners, &count, &err);
     if (code == FC_OK)
-        code = fc_event_loop_create(listener.fd, stop_fd, ctx, &loop, &err);
+        code = fc_event_loop_create(listeners, count, stop_fd, ctx, &loop, &err);
     if (code == FC_OK) {
-        fc_log_write(ctx->log, FC_LOG_INFO, "listening on %s", listener.address);
+        for (size_t i = 0; i < count; i++)
+            fc_log_write(ctx->log, FC_LOG_INFO, "listening on %s", listeners[i].address);
         code = fc_event_loop_run(loop, &err);
     }
     if (code == FC_OK)
@@ -98,7 +117,8 @@ static int serve(const fc_daemon_options *options, fc_daemon_context *ctx, int s
     else
         fc_log_write(ctx->log, FC_LOG_ERROR, "%s", err.message);
     fc_event_loop_destroy(loop);
-    fc_listener_close(&listener);
+    for (size_t i = 0; i < count; i++)
+        fc_listener_close(&listeners[i]);
     return code == FC_OK ? 0 : EXIT_FAILURE;
 }
 
@@ -106,20 +126,35 @@ static int run(const fc_daemon_options *options, const fc_log *log, int stop_fd)
 {
     fc_error err;
     fc_render_service *render = NULL;
-    if (fc_render_service_create(&options->gpu, options->shader_dir, &render, &err) != FC_OK) {
+    fc_render_service_config config = {
+        .gpu = options->gpu,
+        .shader_dir = options->shader_dir,
+        .encoders = options->encoders ? options->encoders : fc_encoder_pool_default_threads(),
+    };
+    if (fc_render_service_create(&config, &render, &err) != FC_OK) {
         fc_log_write(log, FC_LOG_ERROR, "cannot render: %s", err.message);
         fc_log_write(log, FC_LOG_ERROR,
                      "fluidcastd needs an OpenGL 4.5 core context through EGL: a GPU driver, or Mesa's "
                      "llvmpipe with --gpu software");
         return EXIT_FAILURE;
     }
-    const fc_gl_context *gl = fc_render_service_gl(render);
-    fc_log_write(log, FC_LOG_INFO, "EGL vendor: %s", fc_gl_context_egl_vendor(gl));
-    fc_log_write(log, FC_LOG_INFO, "GL_RENDERER: %s", fc_gl_context_renderer(gl));
-    fc_log_write(log, FC_LOG_INFO, "GL_VERSION: %s", fc_gl_context_version(gl));
-    fc_daemon_context ctx = {.log = log, .render = render};
+    fc_log_write(log, FC_LOG_INFO, "EGL vendor: %s", fc_render_service_egl_vendor(render));
+    fc_log_write(log, FC_LOG_INFO, "GL_RENDERER: %s", fc_render_service_renderer(render));
+    fc_log_write(log, FC_LOG_INFO, "GL_VERSION: %s", fc_render_service_gl_version(render));
+    fc_log_write(log, FC_LOG_INFO, "%u encoder thread(s)", config.encoders);
+    fc_daemon_context ctx = {
+        .log = log,
+        .render = render,
+        .chunk_timeout_ms = options->chunk_timeout_ms,
+        .refresh_ms = options->refresh_ms,
+    };
     fill_welcome(options, render, &ctx.welcome);
-    int status = serve(options, &ctx, stop_fd);
+    int status = EXIT_FAILURE;
+    if (fc_registry_create(options->max_sessions, &ctx.sessions, &err) == FC_OK)
+        status = serve(options, &ctx, stop_fd);
+    else
+        fc_log_write(log, FC_LOG_ERROR, "%s", err.message);
+    fc_registry_destroy(ctx.sessions);
     fc_render_service_destroy(render);
     return status;
 }

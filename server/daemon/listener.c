@@ -9,6 +9,8 @@
 #include <stdio.h>
 #include <string.h>
 #include <sys/socket.h>
+#include <sys/stat.h>
+#include <sys/un.h>
 #include <unistd.h>
 
 #include "fc_error.h"
@@ -64,6 +66,7 @@ static fc_code describe_bound(fc_listener *l, fc_error *err)
 
 fc_code fc_listener_open(const char *host, const char *port, fc_listener *out, fc_error *err)
 {
+    memset(out, 0, sizeof *out);
     out->fd = -1;
     struct addrinfo hints = {0};
     hints.ai_family = AF_UNSPEC;
@@ -93,9 +96,59 @@ fc_code fc_listener_open(const char *host, const char *port, fc_listener *out, f
     return code;
 }
 
+/* True when something accepts connections on the socket file at addr. */
+static bool socket_file_in_use(const struct sockaddr_un *addr)
+{
+    int fd = socket(AF_UNIX, SOCK_STREAM | SOCK_CLOEXEC, 0);
+    if (fd < 0)
+        return false;
+    bool answered = connect(fd, (const struct sockaddr *)addr, sizeof *addr) == 0;
+    close(fd);
+    return answered;
+}
+
+/* Removes a socket file nobody answers on (a daemon that died without cleaning
+ * up); anything else at the path is left alone and bind() will say why. */
+static fc_code remove_stale_socket(const struct sockaddr_un *addr, fc_error *err)
+{
+    struct stat st;
+    if (lstat(addr->sun_path, &st) != 0 || !S_ISSOCK(st.st_mode))
+        return FC_OK;
+    if (socket_file_in_use(addr))
+        return fc_error_set(err, FC_ERR_IO, "cannot listen on unix:%s: another server answers there",
+                            addr->sun_path);
+    unlink(addr->sun_path);
+    return FC_OK;
+}
+
+fc_code fc_listener_open_unix(const char *path, fc_listener *out, fc_error *err)
+{
+    memset(out, 0, sizeof *out);
+    out->fd = -1;
+    struct sockaddr_un addr = {0};
+    addr.sun_family = AF_UNIX;
+    if (path[0] == '\0' || strlen(path) >= sizeof addr.sun_path)
+        return fc_error_set(err, FC_ERR_USAGE, "--unix path must have 1 to %zu bytes", sizeof addr.sun_path - 1);
+    snprintf(addr.sun_path, sizeof addr.sun_path, "%s", path);
+    fc_code code = remove_stale_socket(&addr, err);
+    if (code != FC_OK)
+        return code;
+    struct addrinfo ai = {.ai_family = AF_UNIX, .ai_socktype = SOCK_STREAM,
+                          .ai_addr = (struct sockaddr *)&addr, .ai_addrlen = sizeof addr};
+    out->fd = listen_on(&ai);
+    if (out->fd < 0)
+        return fc_error_set(err, FC_ERR_IO, "cannot listen on unix:%s: %s", path, strerror(errno));
+    out->is_unix = true;
+    snprintf(out->unix_path, sizeof out->unix_path, "%s", path);
+    snprintf(out->address, sizeof out->address, "unix:%s", path);
+    return FC_OK;
+}
+
 void fc_listener_close(fc_listener *l)
 {
     if (l->fd >= 0)
         close(l->fd);
+    if (l->fd >= 0 && l->is_unix)
+        unlink(l->unix_path);
     l->fd = -1;
 }

@@ -8,6 +8,8 @@
 
 #include "fc_error.h"
 
+enum { MAX_ENCODERS = 64 };
+
 void fc_daemon_options_default(fc_daemon_options *o)
 {
     memset(o, 0, sizeof *o);
@@ -19,14 +21,23 @@ void fc_daemon_options_default(fc_daemon_options *o)
     o->limits.max_width = FC_DEFAULT_MAX_IMAGE_SIDE;
     o->limits.max_height = FC_DEFAULT_MAX_IMAGE_SIDE;
     o->limits.max_message = FC_DEFAULT_MAX_MESSAGE;
+    o->chunk_timeout_ms = FC_DEFAULT_CHUNK_TIMEOUT_MS;
+    o->refresh_ms = FC_DEFAULT_REFRESH_MS;
+    o->max_sessions = FC_DEFAULT_MAX_SESSIONS;
+}
+
+bool fc_daemon_options_serve_tcp(const fc_daemon_options *o)
+{
+    return o->listen_given || !o->unix_path;
 }
 
 void fc_daemon_options_print_help(FILE *out, const char *program)
 {
     fprintf(out,
             "usage: %s [options]\n"
-            "Headless render daemon: receives particle frames and cameras over TCP and\n"
-            "answers with screen-space fluid renderings.\n"
+            "Headless render daemon: receives particle frames and cameras over TCP or a\n"
+            "Unix-domain socket and answers with screen-space fluid renderings; streams\n"
+            "the frames of named sessions to any number of viewers.\n"
             "\n"
             "  --listen HOST:PORT      address to listen on; [ADDR]:PORT for IPv6, port 0 = any\n"
             "                          free port (default %s:%d)\n"
@@ -39,11 +50,21 @@ void fc_daemon_options_print_help(FILE *out, const char *program)
             "  --max-particles N       particles per frame (default %u)\n"
             "  --max-image WxH         largest image (default %ux%u)\n"
             "  --max-message BYTES     largest message payload (default %u)\n"
+            "  --unix PATH             also listen on the Unix-domain socket PATH; alone\n"
+            "                          (without --listen) only there\n"
+            "  --chunk-timeout-ms MS   how long a multi-rank frame may wait for its missing\n"
+            "                          chunks before they are reported incomplete (default %u)\n"
+            "  --refresh-ms MS         quiet time after a JPEG stream image before a lossless\n"
+            "                          PNG refresh of the same frame follows; 0 = never\n"
+            "                          (default %u)\n"
+            "  --encoders N            image encoder threads (default min(4, cores))\n"
+            "  --max-sessions N        named sessions at once (default %u)\n"
             "  --help                  show this help\n"
             "\n"
             "SIGINT or SIGTERM stops the daemon cleanly (exit status 0).\n",
             program, FC_DEFAULT_LISTEN_HOST, FC_DEFAULT_PORT, FC_DEFAULT_MAX_PARTICLES,
-            FC_DEFAULT_MAX_IMAGE_SIDE, FC_DEFAULT_MAX_IMAGE_SIDE, FC_DEFAULT_MAX_MESSAGE);
+            FC_DEFAULT_MAX_IMAGE_SIDE, FC_DEFAULT_MAX_IMAGE_SIDE, FC_DEFAULT_MAX_MESSAGE,
+            FC_DEFAULT_CHUNK_TIMEOUT_MS, FC_DEFAULT_REFRESH_MS, FC_DEFAULT_MAX_SESSIONS);
 }
 
 /* Whole-string unsigned decimal within [1, max]. */
@@ -117,19 +138,68 @@ fc_code fc_daemon_options_parse_listen(const char *text, fc_daemon_options *o, f
 static bool is_known_option(const char *name)
 {
     static const char *const known[] = {"--listen",        "--gpu",       "--log-level",  "--shader-dir",
-                                        "--port-file",     "--max-particles", "--max-image", "--max-message"};
+                                        "--port-file",     "--max-particles", "--max-image", "--max-message",
+                                        "--unix",          "--chunk-timeout-ms", "--refresh-ms", "--encoders",
+                                        "--max-sessions"};
     for (size_t i = 0; i < sizeof known / sizeof known[0]; i++)
         if (strcmp(name, known[i]) == 0)
             return true;
     return false;
 }
 
+/* Whole-string unsigned decimal within [0, max]. */
+static fc_code parse_ms(const char *option, const char *text, uint32_t *out, fc_error *err)
+{
+    uint64_t n;
+    if (strcmp(text, "0") == 0) {
+        *out = 0;
+        return FC_OK;
+    }
+    if (parse_count(option, text, UINT32_MAX, &n, err) != FC_OK)
+        return FC_ERR_USAGE;
+    *out = (uint32_t)n;
+    return FC_OK;
+}
+
+/* Applies one of the options of sessions and streaming. */
+static fc_code apply_stream_option(const char *name, const char *value, fc_daemon_options *o, fc_error *err)
+{
+    uint64_t n;
+    if (strcmp(name, "--unix") == 0) {
+        o->unix_path = value;
+        return FC_OK;
+    }
+    if (strcmp(name, "--chunk-timeout-ms") == 0) {
+        if (parse_count(name, value, UINT32_MAX, &n, err) != FC_OK)
+            return FC_ERR_USAGE;
+        o->chunk_timeout_ms = (uint32_t)n;
+        return FC_OK;
+    }
+    if (strcmp(name, "--refresh-ms") == 0)
+        return parse_ms(name, value, &o->refresh_ms, err);
+    if (strcmp(name, "--encoders") == 0) {
+        if (parse_count(name, value, MAX_ENCODERS, &n, err) != FC_OK)
+            return FC_ERR_USAGE;
+        o->encoders = (uint32_t)n;
+        return FC_OK;
+    }
+    if (strcmp(name, "--max-sessions") == 0) {
+        if (parse_count(name, value, UINT32_MAX, &n, err) != FC_OK)
+            return FC_ERR_USAGE;
+        o->max_sessions = (uint32_t)n;
+        return FC_OK;
+    }
+    return fc_error_set(err, FC_ERR_USAGE, "unknown option '%s' (see --help)", name);
+}
+
 /* Applies one option that takes a value. */
 static fc_code apply_option(const char *name, const char *value, fc_daemon_options *o, fc_error *err)
 {
     uint64_t n;
-    if (strcmp(name, "--listen") == 0)
+    if (strcmp(name, "--listen") == 0) {
+        o->listen_given = true;
         return fc_daemon_options_parse_listen(value, o, err);
+    }
     if (strcmp(name, "--gpu") == 0)
         return fc_gpu_choice_parse(value, &o->gpu, err);
     if (strcmp(name, "--log-level") == 0)
@@ -156,7 +226,7 @@ static fc_code apply_option(const char *name, const char *value, fc_daemon_optio
         o->limits.max_message = (uint32_t)n;
         return FC_OK;
     }
-    return fc_error_set(err, FC_ERR_USAGE, "unknown option '%s' (see --help)", name);
+    return apply_stream_option(name, value, o, err);
 }
 
 fc_code fc_daemon_options_parse(int argc, char **argv, fc_daemon_options *o, fc_error *err)

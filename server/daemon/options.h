@@ -13,15 +13,24 @@
 #define FC_DEFAULT_MAX_PARTICLES 16777216u   /* 2^24 */
 #define FC_DEFAULT_MAX_IMAGE_SIDE 8192u
 #define FC_DEFAULT_MAX_MESSAGE (1024u * 1024u * 1024u)   /* 1 GiB */
+#define FC_DEFAULT_CHUNK_TIMEOUT_MS 10000u
+#define FC_DEFAULT_REFRESH_MS 1000u
+#define FC_DEFAULT_MAX_SESSIONS 256u
 
 typedef struct fc_daemon_options {
     char listen_host[256];     /* name or address; brackets of "[v6]:port" removed */
     char listen_port[8];       /* decimal, "0" = any free port */
+    bool listen_given;         /* --listen was given: with --unix, TCP is served only then */
+    const char *unix_path;     /* --unix: NULL for none; points into argv */
     fc_gpu_choice gpu;
     fc_log_level log_level;
     const char *shader_dir;    /* NULL: shaders built into the binary; points into argv */
     const char *port_file;     /* NULL: none; points into argv */
     fc_limits limits;
+    uint32_t chunk_timeout_ms; /* how long a multi-rank frame may wait for its chunks */
+    uint32_t refresh_ms;       /* quiet time before a lossless refresh of a lossy stream image; 0 = never */
+    uint32_t encoders;         /* encoder threads; 0 = min(4, cores) */
+    uint32_t max_sessions;     /* named sessions at once */
     bool help;                 /* --help: print usage and exit */
 } fc_daemon_options;
 
@@ -30,6 +39,9 @@ void fc_daemon_options_default(fc_daemon_options *o);
 /* Parses argv over the defaults already in *o. "--name value" and
  * "--name=value" both work. FC_ERR_USAGE naming the offending argument. */
 fc_code fc_daemon_options_parse(int argc, char **argv, fc_daemon_options *o, fc_error *err);
+
+/* TCP is served unless only --unix was given. */
+bool fc_daemon_options_serve_tcp(const fc_daemon_options *o);
 
 /* Parses "HOST:PORT", "[IPV6]:PORT" into the listen fields. */
 fc_code fc_daemon_options_parse_listen(const char *text, fc_daemon_options *o, fc_error *err);

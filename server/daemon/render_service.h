@@ -1,48 +1,42 @@
-/* render_service.h — everything GPU-side the daemon does for a RENDER: owns the
- * GL context and the pipeline, resolves the radius, uploads, renders, encodes
- * and builds the IMAGE reply. Today it runs on the event-loop thread (where the
- * context is current); callers only see jobs and replies, so it can move to a
- * GL thread with an encoder pool without changing them. */
+/* render_service.h — the daemon's rendering machinery: a dedicated GL thread
+ * (the only thread that creates or uses the EGL context and the pipeline) fed
+ * by a job queue, and an encoder pool that turns each rendered image into its
+ * reply message while the GL thread renders the next. Finished jobs come back
+ * to the event loop through a queue whose eventfd the loop polls. */
 #ifndef FC_DAEMON_RENDER_SERVICE_H
 #define FC_DAEMON_RENDER_SERVICE_H
 
-#include <stdint.h>
-
 #include "gl/egl_context.h"
-#include "wire.h"
+#include "render_job.h"
 
 typedef struct fc_render_service fc_render_service;
 
-/* A client's current frame, with what the service derives from it once. */
-typedef struct fc_scene {
-    fc_frame frame;
-    uint64_t frame_id;        /* from fc_render_service_new_frame_id: tells whether it is on the GPU */
-    float estimated_radius;   /* 0 until a render with radius "auto" estimated it */
-} fc_scene;
+typedef struct fc_render_service_config {
+    fc_gpu_choice gpu;
+    const char *shader_dir;   /* NULL: shaders built into the binary */
+    unsigned encoders;        /* encoder threads, >= 1 */
+} fc_render_service_config;
 
-typedef struct fc_render_job {
-    fc_scene *scene;               /* estimated_radius is filled in when needed */
-    const fc_camera *camera;
-    const fc_settings *settings;
-    fc_render_request request;
-    double received_ms;            /* fc_monotonic_ms() when the RENDER arrived, for FC_STAGE_TOTAL */
-} fc_render_job;
-
-/* Creates the GL context (current on the calling thread) and compiles the
- * pipeline. shader_dir NULL: built-in shaders. */
-fc_code fc_render_service_create(const fc_gpu_choice *gpu, const char *shader_dir, fc_render_service **out,
+/* Starts the GL thread, waits until it has created the context and compiled
+ * the pipeline (FC_ERR_GL with the reason when it cannot), then starts the
+ * encoders. */
+fc_code fc_render_service_create(const fc_render_service_config *config, fc_render_service **out,
                                  fc_error *err);
+/* Stops the threads (jobs not yet rendered are dropped) and frees everything. */
 void fc_render_service_destroy(fc_render_service *rs);
 
-const fc_gl_context *fc_render_service_gl(const fc_render_service *rs);
+/* What the GL thread's context reported at startup. */
+const char *fc_render_service_renderer(const fc_render_service *rs);
+const char *fc_render_service_egl_vendor(const fc_render_service *rs);
+const char *fc_render_service_gl_version(const fc_render_service *rs);
 
-/* A process-unique id for a newly received frame (never 0). */
-uint64_t fc_render_service_new_frame_id(fc_render_service *rs);
+/* Queues a job for the GL thread; the service owns it until it comes back
+ * from fc_render_service_collect, rendered and encoded or with its error set. */
+void fc_render_service_submit(fc_render_service *rs, fc_render_job *job);
 
-/* Renders the job and appends an IMAGE message answering request_id to out.
- * On failure appends nothing: FC_ERR_GL/FC_ERR_RENDER, FC_ERR_ENCODE or
- * FC_ERR_NOMEM with the reason. */
-fc_code fc_render_service_render(fc_render_service *rs, const fc_render_job *job, uint32_t request_id,
-                                 fc_buf *out, fc_error *err);
+/* Readable while finished jobs wait to be collected. */
+int fc_render_service_wake_fd(const fc_render_service *rs);
+/* The finished jobs as a list (oldest first), NULL when none; the caller frees them. */
+fc_render_job *fc_render_service_collect(fc_render_service *rs);
 
 #endif

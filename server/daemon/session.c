@@ -5,33 +5,38 @@
 
 #include "fc_error.h"
 #include "fc_frame.h"
+#include "monotonic.h"
+#include "session_internal.h"
+#include "wire_session.h"
 
-/* Without a CAMERA the frame is framed automatically at this size. */
-enum { DEFAULT_WIDTH = 1280, DEFAULT_HEIGHT = 720 };
-
-void fc_session_init(fc_session *s, const char *peer)
+void fc_session_init(fc_session *s, const char *peer, fc_daemon_context *ctx, uint64_t connection_id, fc_buf *out)
 {
     memset(s, 0, sizeof *s);
     s->state = FC_SESSION_AWAIT_HELLO;
     s->peer = peer;
+    s->ctx = ctx;
+    s->connection_id = connection_id;
+    s->out = out;
     fc_settings_default(&s->settings);
 }
 
 void fc_session_free(fc_session *s)
 {
-    fc_frame_free(&s->scene.frame);
-    s->has_frame = false;
+    fc_session_leave_stream(s);
+    fc_shared_frame_unref(s->frame);
+    s->frame = NULL;
+    fc_scene_uploads_free(&s->scene);
 }
 
 static bool is_defined_type(uint16_t type)
 {
-    return type >= FC_MSG_HELLO && type <= FC_MSG_GOODBYE;
+    return type >= FC_MSG_HELLO && type <= FC_MSG_ENVIRONMENT;
 }
 
 static const char *message_name(uint16_t type)
 {
-    static const char *const names[] = {"HELLO", "WELCOME", "FRAME", "CAMERA", "SETTINGS",
-                                        "RENDER", "IMAGE",   "ERROR", "GOODBYE"};
+    static const char *const names[] = {"HELLO", "WELCOME", "FRAME",   "CAMERA",     "SETTINGS",   "RENDER",
+                                        "IMAGE", "ERROR",   "GOODBYE", "BACKGROUND", "ENVIRONMENT"};
     return is_defined_type(type) ? names[type - FC_MSG_HELLO] : "unknown";
 }
 
@@ -80,35 +85,41 @@ static fc_session_verdict handle_hello(fc_session *s, fc_daemon_context *ctx, co
                      (unsigned)hello.version_min, (unsigned)hello.version_max, FC_PROTOCOL_VERSION);
         return reply_error(s, ctx, h, &err, FC_SESSION_CLOSE, out);
     }
-    if (fc_wire_write_welcome(out, h->request_id, &ctx->welcome, &err) != FC_OK) {
+    /* Capabilities are granted as requested, as far as this server has them. */
+    fc_welcome welcome = ctx->welcome;
+    welcome.capabilities = hello.capabilities & FC_CAPS_ALL;
+    if (fc_wire_write_welcome(out, h->request_id, &welcome, &err) != FC_OK) {
         fc_log_write(ctx->log, FC_LOG_ERROR, "%s: cannot queue WELCOME: %s", s->peer, err.message);
         return FC_SESSION_ABORT;
     }
     s->state = FC_SESSION_READY;
-    fc_log_write(ctx->log, FC_LOG_INFO, "%s: HELLO from '%s'", s->peer, hello.client_name);
+    s->capabilities = welcome.capabilities;
+    fc_log_write(ctx->log, FC_LOG_INFO, "%s: HELLO from '%s' (capabilities 0x%x)", s->peer, hello.client_name,
+                 (unsigned)welcome.capabilities);
     return FC_SESSION_CONTINUE;
 }
 
-/* A new frame replaces the old one only once it decoded completely. */
+/* A new frame replaces the old one only once it decoded completely; on a
+ * producer it is published to the named session. */
 static fc_session_verdict handle_frame(fc_session *s, fc_daemon_context *ctx, const fc_msg_header *h,
-                                       const uint8_t *payload, fc_buf *out)
+                                       const uint8_t *payload, double received_ms, fc_buf *out)
 {
     fc_frame frame = {0};
     fc_error err;
-    if (fc_wire_read_frame(payload, h->length, ctx->welcome.limits.max_particles, &frame, &err) != FC_OK) {
-        fc_frame_free(&frame);
-        return reply_error(s, ctx, h, &err, FC_SESSION_CONTINUE, out);
+    double start = fc_monotonic_ms();
+    fc_code code = fc_wire_read_frame(payload, h->length, ctx->welcome.limits.max_particles, &frame, &err);
+    if (code == FC_OK) {
+        fc_log_write(ctx->log, FC_LOG_DEBUG, "%s: FRAME of %llu particles", s->peer,
+                     (unsigned long long)frame.count);
+        code = fc_session_take_frame(s, &frame, received_ms, fc_monotonic_ms() - start, &err);
     }
-    fc_frame_free(&s->scene.frame);
-    s->scene.frame = frame;
-    s->scene.frame_id = fc_render_service_new_frame_id(ctx->render);
-    s->scene.estimated_radius = 0.0f;
-    s->has_frame = true;
-    fc_log_write(ctx->log, FC_LOG_DEBUG, "%s: FRAME of %llu particles", s->peer, (unsigned long long)frame.count);
+    fc_frame_free(&frame);
+    if (code != FC_OK)
+        return reply_error(s, ctx, h, &err, FC_SESSION_CONTINUE, out);
     return FC_SESSION_CONTINUE;
 }
 
-static fc_code check_image_limit(const fc_limits *limits, uint32_t width, uint32_t height, fc_error *err)
+fc_code fc_session_check_image_limit(const fc_limits *limits, uint32_t width, uint32_t height, fc_error *err)
 {
     if (width <= limits->max_width && height <= limits->max_height)
         return FC_OK;
@@ -122,10 +133,11 @@ static fc_session_verdict handle_camera(fc_session *s, fc_daemon_context *ctx, c
     fc_camera camera;
     fc_error err;
     if (fc_wire_read_camera(payload, h->length, &camera, &err) != FC_OK ||
-        check_image_limit(&ctx->welcome.limits, camera.width, camera.height, &err) != FC_OK)
+        fc_session_check_image_limit(&ctx->welcome.limits, camera.width, camera.height, &err) != FC_OK)
         return reply_error(s, ctx, h, &err, FC_SESSION_CONTINUE, out);
     s->camera = camera;
     s->has_camera = true;
+    fc_viewer_view_changed(s, fc_monotonic_ms());
     return FC_SESSION_CONTINUE;
 }
 
@@ -136,37 +148,48 @@ static fc_session_verdict handle_settings(fc_session *s, fc_daemon_context *ctx,
     fc_error err;
     if (fc_wire_read_settings(payload, h->length, &s->settings, &err) != FC_OK)
         return reply_error(s, ctx, h, &err, FC_SESSION_CONTINUE, out);
+    fc_viewer_view_changed(s, fc_monotonic_ms());
     return FC_SESSION_CONTINUE;
 }
 
-/* The camera a RENDER uses: the client's, else one framing the whole frame.
- * There must be a frame to render. */
-static fc_code render_camera(const fc_session *s, const fc_limits *limits, fc_camera *camera, fc_error *err)
+/* BACKGROUND / ENVIRONMENT: decoded now, so a bad image is answered at once;
+ * renders queued before keep the images they were submitted with. */
+static fc_session_verdict handle_scene_image(fc_session *s, fc_daemon_context *ctx, const fc_msg_header *h,
+                                             const uint8_t *payload, fc_buf *out)
 {
-    if (!s->has_frame)
-        return fc_error_set(err, FC_ERR_BAD_STATE, "RENDER before any FRAME");
-    if (s->has_camera) {
-        *camera = s->camera;
-        return FC_OK;
-    }
-    fc_camera_frame_bounds(&s->scene.frame, DEFAULT_WIDTH, DEFAULT_HEIGHT, camera);
-    return check_image_limit(limits, DEFAULT_WIDTH, DEFAULT_HEIGHT, err);
+    fc_error err;
+    fc_code code = h->type == FC_MSG_BACKGROUND
+                       ? fc_scene_uploads_set_background(&s->scene, payload, h->length, &err)
+                       : fc_scene_uploads_set_environment(&s->scene, payload, h->length, &err);
+    if (code != FC_OK)
+        return reply_error(s, ctx, h, &err, FC_SESSION_CONTINUE, out);
+    fc_viewer_view_changed(s, fc_monotonic_ms());
+    return FC_SESSION_CONTINUE;
 }
 
+/* A RENDER goes to the GL thread; its IMAGE (or ERROR) is queued by
+ * fc_session_job_done, and until then the connection reads nothing more, so
+ * replies stay in request order. Without a CAMERA the frame is framed at the
+ * viewer's size, or the default size, which must fit the limits. */
 static fc_session_verdict handle_render(fc_session *s, fc_daemon_context *ctx, const fc_msg_header *h,
                                         const uint8_t *payload, double received_ms, fc_buf *out)
 {
-    fc_render_request request;
-    fc_camera camera;
+    fc_render_order order = {.kind = FC_JOB_REPLY, .request_id = h->request_id, .received_ms = received_ms};
+    bool viewer = s->role == FC_ROLE_VIEWER;
+    order.auto_width = viewer ? s->viewer.auto_width : FC_DEFAULT_VIEW_WIDTH;
+    order.auto_height = viewer ? s->viewer.auto_height : FC_DEFAULT_VIEW_HEIGHT;
+    fc_shared_frame *frame = fc_session_current_frame(s);
     fc_error err;
-    if (fc_wire_read_render(payload, h->length, &request, &err) != FC_OK ||
-        render_camera(s, &ctx->welcome.limits, &camera, &err) != FC_OK)
+    fc_code code = fc_wire_read_render(payload, h->length, &order.request, &err);
+    if (code == FC_OK && !frame)
+        code = fc_error_set(&err, FC_ERR_BAD_STATE, "RENDER before any FRAME");
+    if (code == FC_OK && !s->has_camera)
+        code = fc_session_check_image_limit(&ctx->welcome.limits, order.auto_width, order.auto_height, &err);
+    if (code == FC_OK)
+        code = fc_session_submit_render(s, frame, &order, &err);
+    if (code != FC_OK)
         return reply_error(s, ctx, h, &err, FC_SESSION_CONTINUE, out);
-    fc_render_job job = {&s->scene, &camera, &s->settings, request, received_ms};
-    if (fc_render_service_render(ctx->render, &job, h->request_id, out, &err) != FC_OK)
-        return reply_error(s, ctx, h, &err, FC_SESSION_CONTINUE, out);
-    fc_log_write(ctx->log, FC_LOG_DEBUG, "%s: request %u: IMAGE %ux%u queued", s->peer, (unsigned)h->request_id,
-                 (unsigned)camera.width, (unsigned)camera.height);
+    s->reply_pending = true;
     return FC_SESSION_CONTINUE;
 }
 
@@ -220,7 +243,7 @@ fc_session_verdict fc_session_handle(fc_session *s, fc_daemon_context *ctx, cons
         return handle_before_hello(s, ctx, header, payload, out);
     switch (header->type) {
     case FC_MSG_FRAME:
-        return handle_frame(s, ctx, header, payload, out);
+        return handle_frame(s, ctx, header, payload, received_ms, out);
     case FC_MSG_CAMERA:
         return handle_camera(s, ctx, header, payload, out);
     case FC_MSG_SETTINGS:
@@ -229,7 +252,12 @@ fc_session_verdict fc_session_handle(fc_session *s, fc_daemon_context *ctx, cons
         return handle_render(s, ctx, header, payload, received_ms, out);
     case FC_MSG_GOODBYE:
         return handle_goodbye(s, ctx, header, payload, out);
+    case FC_MSG_BACKGROUND:
+    case FC_MSG_ENVIRONMENT:
+        return handle_scene_image(s, ctx, header, payload, out);
     default:
+        if (fc_session_is_stream_message(header->type))
+            return fc_session_handle_stream(s, ctx, header, payload, received_ms, out);
         return refuse_after_hello(s, ctx, header, out);
     }
 }

@@ -6,6 +6,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/prctl.h>
 #include <sys/wait.h>
 #include <time.h>
 #include <unistd.h>
@@ -49,8 +50,13 @@ static void describe_status(int status, char *out, size_t size)
         snprintf(out, size, "stopped (status 0x%x)", status);
 }
 
-static void spawn(const fc_test_daemon *d, const char *const *extra_args)
+static void spawn(const fc_test_daemon *d, const char *const *extra_args, pid_t test_pid)
 {
+    /* A test that crashes (or is aborted by a sanitizer) takes its daemon
+     * along, instead of leaving it holding ctest's output pipe open until the
+     * test's timeout. */
+    if (prctl(PR_SET_PDEATHSIG, SIGKILL) != 0 || getppid() != test_pid)
+        _exit(127);
     const char *argv[8 + MAX_EXTRA_ARGS] = {fc_test_daemon_path(), "--listen", "127.0.0.1:0", "--port-file",
                                             d->port_file, "--gpu", "software"};
     int argc = 7;
@@ -110,6 +116,7 @@ fc_code fc_test_daemon_start(fc_test_daemon *d, const char *const *extra_args, i
         return fc_error_set(err, FC_ERR_IO, "mkdtemp: %s", strerror(errno));
     }
     snprintf(d->port_file, sizeof d->port_file, "%s/port", d->dir);
+    pid_t test_pid = getpid();
     d->pid = fork();
     if (d->pid < 0) {
         d->pid = 0;
@@ -117,7 +124,7 @@ fc_code fc_test_daemon_start(fc_test_daemon *d, const char *const *extra_args, i
         return fc_error_set(err, FC_ERR_IO, "fork: %s", strerror(errno));
     }
     if (d->pid == 0)
-        spawn(d, extra_args);
+        spawn(d, extra_args, test_pid);
     fc_code code = wait_for_port(d, timeout_ms, err);
     if (code != FC_OK)
         remove_temp_files(d);

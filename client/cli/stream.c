@@ -1,0 +1,123 @@
+/* stream.c — `fluidcast stream`: connect, optionally publish to a session,
+ * then for each file: upload the frame, optionally render it back and write
+ * the image; report progress; end the session. */
+#include "stream.h"
+
+#include <stdio.h>
+#include <unistd.h>
+
+#include "cli_frames.h"
+#include "cli_particles.h"
+#include "cli_report.h"
+#include "fc_error.h"
+#include "fc_frame.h"
+#include "fluidcast.h"
+#include "output_file.h"
+#include "progress.h"
+#include "stream_options.h"
+
+static int client_failure(const fc_stream_options *o, const fc_error *err)
+{
+    return fc_cli_fail(fc_cli_exit_for_client_error(err->code), "%s: %s", o->server, err->message);
+}
+
+/* Camera and settings for the whole sequence, from its first frame. */
+static int set_up_view(fc_client *c, const fc_stream_options *o, const fc_frame *first)
+{
+    fc_camera cam;
+    fc_camera_frame_bounds(first, o->width, o->height, &cam);
+    fc_settings settings;
+    fc_settings_default(&settings);
+    settings.radius = o->radius > 0.0f ? o->radius : fc_frame_estimate_radius(first);
+    fc_error err;
+    if (fc_client_set_camera(c, &cam, &err) != FC_OK || fc_client_set_settings(c, &settings, &err) != FC_OK)
+        return client_failure(o, &err);
+    return FC_EXIT_OK;
+}
+
+static int render_and_write(fc_client *c, const fc_stream_options *o, uint32_t number)
+{
+    fc_render_request request = {.format = o->format, .quality = o->quality, .aov = FC_AOV_COLOR};
+    fc_image_result image = {0};
+    fc_error err;
+    char path[4096];
+    int status = FC_EXIT_OK;
+    if (fc_client_render(c, &request, &image, &err) != FC_OK)
+        status = client_failure(o, &err);
+    else if (fc_cli_frame_path(path, sizeof path, o->out_dir, "frame", number, o->format, &err) != FC_OK ||
+             fc_output_write(path, image.data, image.size, &err) != FC_OK)
+        status = fc_cli_fail(FC_EXIT_OUTPUT, "%s", err.message);
+    fc_image_result_free(&image);
+    return status;
+}
+
+/* Uploads file i and does what follows for it. */
+static int push_file(fc_client *c, const fc_stream_options *o, uint32_t i, fc_progress *progress)
+{
+    fc_frame frame = {0};
+    int status = fc_cli_load_particles(o->files[i], &frame);
+    if (status == FC_EXIT_OK && i == 0)
+        status = set_up_view(c, o, &frame);
+    fc_upload_stats stats = {0};
+    fc_error err;
+    if (status == FC_EXIT_OK && fc_client_upload_frame(c, &frame, &o->upload, &stats, &err) != FC_OK)
+        status = client_failure(o, &err);
+    if (status == FC_EXIT_OK && o->out_dir)
+        status = render_and_write(c, o, i + 1);
+    /* Without renders nothing else would surface a rejected frame before the end. */
+    if (status == FC_EXIT_OK && !o->out_dir && fc_client_poll_errors(c, &err) != FC_OK)
+        status = client_failure(o, &err);
+    if (status == FC_EXIT_OK)
+        fc_progress_frame(progress, o->files[i], frame.count, &stats);
+    fc_frame_free(&frame);
+    return status;
+}
+
+static int push_all(fc_client *c, const fc_stream_options *o)
+{
+    fc_progress progress;
+    fc_progress_start(&progress, stdout, isatty(STDOUT_FILENO), o->file_count);
+    int status = FC_EXIT_OK;
+    for (uint32_t i = 0; i < o->file_count && status == FC_EXIT_OK; i++)
+        status = push_file(c, o, i, &progress);
+    if (status == FC_EXIT_OK)
+        fc_progress_finish(&progress);
+    return status;
+}
+
+static int stream(const fc_stream_options *o)
+{
+    fc_error err;
+    if (o->out_dir && fc_cli_ensure_dir(o->out_dir, &err) != FC_OK)
+        return fc_cli_fail(FC_EXIT_OUTPUT, "%s", err.message);
+    fc_connect_options connect_options = {.client_name = "fluidcast stream"};
+    fc_client *c;
+    if (fc_client_connect(o->server, &connect_options, &c, &err) != FC_OK)
+        return fc_cli_fail(fc_cli_exit_for_client_error(err.code), "%s", err.message);
+    int status = FC_EXIT_OK;
+    if (o->session && fc_client_publish(c, o->session, NULL, &err) != FC_OK)
+        status = client_failure(o, &err);
+    if (status == FC_EXIT_OK)
+        status = push_all(c, o);
+    /* Leaving waits for the server, so a late rejection is still reported. */
+    if (status == FC_EXIT_OK && o->session && fc_client_leave_session(c, &err) != FC_OK)
+        status = client_failure(o, &err);
+    fc_client_close(c);
+    return status;
+}
+
+int fc_stream_main(int argc, char **argv)
+{
+    fc_stream_options options;
+    fc_error err;
+    int status;
+    if (fc_stream_parse(argc, argv, &options, &err) != FC_OK)
+        status = fc_cli_fail(FC_EXIT_USAGE, "%s", err.message);
+    else if (options.help) {
+        fc_stream_print_help(stdout);
+        status = FC_EXIT_OK;
+    } else
+        status = stream(&options);
+    fc_stream_options_free(&options);
+    return status;
+}

@@ -1,0 +1,34 @@
+/* stream_options.h — the command line of `fluidcast stream`. */
+#ifndef FC_STREAM_OPTIONS_H
+#define FC_STREAM_OPTIONS_H
+
+#include <stdbool.h>
+#include <stdint.h>
+#include <stdio.h>
+
+#include "fluidcast.h"
+
+#define FC_STREAM_MAX_FILES 100000
+
+typedef struct fc_stream_options {
+    bool help;
+    const char **files;            /* the particle files, in order (malloc'd array of argv pointers) */
+    uint32_t file_count;
+    const char *server;
+    const char *session;           /* NULL: no named session */
+    const char *out_dir;           /* NULL: no images requested */
+    fc_image_format format;
+    bool has_quality;
+    uint32_t quality;
+    uint32_t width, height;
+    float radius;                  /* 0: estimated from the first frame */
+    fc_upload_options upload;
+} fc_stream_options;
+
+/* Parses the arguments after "stream". FC_ERR_USAGE for a bad option, no
+ * files, or --quality without JPEG. Free with fc_stream_options_free. */
+fc_code fc_stream_parse(int argc, char **argv, fc_stream_options *out, fc_error *err);
+void fc_stream_options_free(fc_stream_options *o);
+void fc_stream_print_help(FILE *to);
+
+#endif

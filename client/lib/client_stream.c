@@ -1,0 +1,171 @@
+/* client_stream.c — a viewer's images, and the stream messages that arrive
+ * while the client waits for other replies. */
+#include "client_stream.h"
+
+#include <poll.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "fc_error.h"
+#include "message_io.h"
+#include "wire_session.h"
+
+bool fc_client_absorb_stream(fc_client *c, const fc_msg_header *header)
+{
+    if (!c->subscribed || header->request_id != c->subscribe_id)
+        return false;
+    if (header->type == FC_MSG_STREAM_IMAGE) {
+        fc_stream_tag tag;
+        fc_image_reply image;
+        fc_error why;
+        /* The dropped image and the ones it had missed are all missed now. */
+        if (fc_wire_read_stream_image(c->rx.data, c->rx.len, &tag, &image, &why) == FC_OK)
+            c->stream_skipped += tag.missed + 1;
+        return true;
+    }
+    if (header->type == FC_MSG_SESSION_END) {
+        c->stream_ended = true;
+        return true;
+    }
+    return false;
+}
+
+fc_code fc_client_await_reply(fc_client *c, uint32_t id, uint16_t type, fc_error *cause, fc_error *err)
+{
+    for (;;) {
+        fc_msg_header header;
+        fc_code code = fc_client_receive(c, &header, err);
+        if (code != FC_OK)
+            return code;
+        if (fc_client_absorb_stream(c, &header))
+            continue;
+        if (header.type == FC_MSG_ERROR) {
+            fc_error server;
+            fc_client_decode_server_error(c, &server);
+            if (server.code == FC_ERR_PROTOCOL || header.request_id == id) {
+                if (err)
+                    *err = server;
+                return server.code;
+            }
+            if (cause->code == FC_OK)
+                *cause = server;
+            continue;
+        }
+        if (header.type == type && header.request_id == id)
+            return FC_OK;
+        if (header.type == FC_MSG_GOODBYE) {
+            c->broken = true;
+            return fc_error_set(err, FC_ERR_CLOSED, "the server ended the connection (GOODBYE)");
+        }
+        return fc_client_unexpected(c, &header, fc_message_type_name(type), err);
+    }
+}
+
+/* Copies the STREAM_IMAGE in c->rx into *out, which then owns its bytes. */
+static fc_code take_stream_image(fc_client *c, fc_stream_image *out, fc_error *err)
+{
+    fc_stream_tag tag;
+    fc_image_reply reply;
+    fc_error why;
+    if (fc_wire_read_stream_image(c->rx.data, c->rx.len, &tag, &reply, &why) != FC_OK) {
+        c->broken = true;
+        return fc_error_set(err, FC_ERR_PROTOCOL, "malformed STREAM_IMAGE from the server: %s", why.message);
+    }
+    uint8_t *data = malloc(reply.size ? (size_t)reply.size : 1);
+    if (!data)
+        return fc_error_set(err, FC_ERR_NOMEM, "no memory for a %llu-byte image", (unsigned long long)reply.size);
+    memcpy(data, reply.data, (size_t)reply.size);
+    out->image.width = reply.width;
+    out->image.height = reply.height;
+    out->image.format = reply.format;
+    out->image.aov = reply.aov;
+    memcpy(out->image.stage_ms, reply.stage_ms, sizeof out->image.stage_ms);
+    out->image.data = data;
+    out->image.size = (size_t)reply.size;
+    out->frame_number = tag.frame_number;
+    out->sequence = tag.sequence;
+    out->missed = tag.missed + c->stream_skipped;
+    out->refresh = (tag.flags & FC_STREAM_REFRESH) != 0;
+    out->view_change = (tag.flags & FC_STREAM_VIEW) != 0;
+    c->stream_skipped = 0;
+    return FC_OK;
+}
+
+static void end_of_stream(fc_client *c, fc_stream_image *out)
+{
+    out->ended = 1;
+    out->missed = c->stream_skipped;
+    c->subscribed = false;
+    c->stream_ended = false;
+    c->stream_skipped = 0;
+}
+
+fc_code fc_client_next_image(fc_client *client, fc_stream_image *out, fc_error *err)
+{
+    if (out)
+        memset(out, 0, sizeof *out);
+    fc_code code = fc_client_check_usable(client, err);
+    if (code != FC_OK)
+        return code;
+    if (!out)
+        return fc_error_set(err, FC_ERR_USAGE, "fc_client_next_image needs somewhere to put the image");
+    if (!client->subscribed)
+        return fc_error_set(err, FC_ERR_USAGE, "this client is not subscribed to a session");
+    if (client->stream_ended) {
+        end_of_stream(client, out);
+        return FC_OK;
+    }
+    for (;;) {
+        fc_msg_header header;
+        code = fc_client_receive(client, &header, err);
+        if (code != FC_OK)
+            return code;
+        bool ours = header.request_id == client->subscribe_id;
+        if (header.type == FC_MSG_STREAM_IMAGE && ours)
+            return take_stream_image(client, out, err);
+        if (header.type == FC_MSG_SESSION_END && ours) {
+            end_of_stream(client, out);
+            return FC_OK;
+        }
+        if (header.type == FC_MSG_ERROR)
+            return fc_client_decode_server_error(client, err);
+        if (header.type == FC_MSG_GOODBYE) {
+            client->broken = true;
+            return fc_error_set(err, FC_ERR_CLOSED, "the server ended the connection (GOODBYE)");
+        }
+        return fc_client_unexpected(client, &header, "STREAM_IMAGE", err);
+    }
+}
+
+void fc_stream_image_free(fc_stream_image *image)
+{
+    if (!image)
+        return;
+    fc_image_result_free(&image->image);
+    memset(image, 0, sizeof *image);
+}
+
+static bool input_waiting(int fd)
+{
+    struct pollfd pfd = {.fd = fd, .events = POLLIN};
+    return poll(&pfd, 1, 0) > 0;
+}
+
+fc_code fc_client_poll_errors(fc_client *client, fc_error *err)
+{
+    fc_code code = fc_client_check_usable(client, err);
+    while (code == FC_OK && input_waiting(client->fd)) {
+        fc_msg_header header;
+        code = fc_client_receive(client, &header, err);
+        if (code != FC_OK || fc_client_absorb_stream(client, &header))
+            continue;
+        if (header.type == FC_MSG_ERROR)
+            return fc_client_decode_server_error(client, err);
+        if (header.type == FC_MSG_GOODBYE) {
+            client->broken = true;
+            return fc_error_set(err, FC_ERR_CLOSED, "the server ended the connection (GOODBYE)");
+        }
+        return fc_client_unexpected(client, &header, "nothing", err);
+    }
+    return code;
+}

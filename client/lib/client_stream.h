@@ -1,0 +1,21 @@
+/* client_stream.h — a viewer's stream messages arriving between the replies a
+ * client waits for. Internal to the library. */
+#ifndef FC_CLIENT_STREAM_H
+#define FC_CLIENT_STREAM_H
+
+#include <stdbool.h>
+
+#include "client_core.h"
+
+/* Takes a STREAM_IMAGE (dropped, counted as missed) or the session's
+ * unsolicited SESSION_END (remembered for fc_client_next_image) that arrived
+ * while the client waits for something else. False for any other message. */
+bool fc_client_absorb_stream(fc_client *c, const fc_msg_header *header);
+
+/* Waits for the reply of `type` to request `id`, leaving its payload in c->rx.
+ * A server ERROR answering `id` is returned; the first ERROR answering an
+ * earlier request is kept in *cause (the caller decides what it explains);
+ * stream messages are absorbed. */
+fc_code fc_client_await_reply(fc_client *c, uint32_t id, uint16_t type, fc_error *cause, fc_error *err);
+
+#endif

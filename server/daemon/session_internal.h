@@ -1,0 +1,52 @@
+/* session_internal.h — what the session sources share (session.c,
+ * session_render.c, session_stream.c, viewer.c). Not used outside them. */
+#ifndef FC_DAEMON_SESSION_INTERNAL_H
+#define FC_DAEMON_SESSION_INTERNAL_H
+
+#include "session.h"
+
+/* Without a CAMERA the frame is framed automatically at this size. */
+enum { FC_DEFAULT_VIEW_WIDTH = 1280, FC_DEFAULT_VIEW_HEIGHT = 720 };
+
+/* FC_ERR_LIMIT when width x height exceeds the server's image limit. */
+fc_code fc_session_check_image_limit(const fc_limits *limits, uint32_t width, uint32_t height, fc_error *err);
+
+/* Appends an ERROR answering request_id to the session's output queue; the connection stays open. */
+void fc_session_send_error(fc_session *s, uint32_t request_id, const fc_error *err);
+
+/* Appends a whole message to the output queue; false (queue unchanged) when out of memory. */
+bool fc_session_queue_message(fc_session *s, const fc_buf *message);
+
+/* What a render shows: the named session's newest frame, else the connection's own FRAME (NULL: none yet). */
+fc_shared_frame *fc_session_current_frame(const fc_session *s);
+
+/* One image to render for this session. */
+typedef struct fc_render_order {
+    fc_job_kind kind;
+    uint32_t request_id;
+    fc_render_request request;
+    fc_stream_tag tag;             /* FC_JOB_STREAM only */
+    double received_ms;            /* what FC_STAGE_TOTAL counts from */
+    uint32_t auto_width;           /* camera size when the session has no CAMERA */
+    uint32_t auto_height;
+} fc_render_order;
+
+/* Queues the render of `frame` with the session's camera and settings. */
+fc_code fc_session_submit_render(fc_session *s, fc_shared_frame *frame, const fc_render_order *order,
+                                 fc_error *err);
+
+/* A decoded frame (its arrays are taken) becomes the connection's current
+ * frame or, on a producer, the session's newest frame. received_ms: when its
+ * last byte arrived; decode_ms: how long decoding took. */
+fc_code fc_session_take_frame(fc_session *s, fc_frame *frame, double received_ms, double decode_ms,
+                              fc_error *err);
+
+/* Session and packed-upload messages (types 16..24, wire_session.h). */
+bool fc_session_is_stream_message(uint16_t type);
+fc_session_verdict fc_session_handle_stream(fc_session *s, fc_daemon_context *ctx, const fc_msg_header *h,
+                                            const uint8_t *payload, double received_ms, fc_buf *out);
+
+/* Leaves the named session without a word to this client (it has gone, or the caller answers). */
+void fc_session_leave_stream(fc_session *s);
+
+#endif

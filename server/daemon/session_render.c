@@ -1,0 +1,131 @@
+/* session_render.c — turning a session's state into render jobs, and their
+ * results back into replies; frames becoming current; the session's timers. */
+#include "session_internal.h"
+
+#include <string.h>
+
+#include "fc_error.h"
+#include "monotonic.h"
+#include "stream_session.h"
+
+void fc_session_send_error(fc_session *s, uint32_t request_id, const fc_error *err)
+{
+    fc_session_reply_error(s->ctx, s->peer, request_id, err, FC_SESSION_CONTINUE, s->out);
+}
+
+bool fc_session_queue_message(fc_session *s, const fc_buf *message)
+{
+    if (!fc_buf_reserve(s->out, message->len)) {
+        s->out->failed = false;
+        return false;
+    }
+    memcpy(s->out->data + s->out->len, message->data, message->len);
+    s->out->len += message->len;
+    return true;
+}
+
+fc_shared_frame *fc_session_current_frame(const fc_session *s)
+{
+    return s->stream ? s->stream->latest : s->frame;
+}
+
+fc_code fc_session_submit_render(fc_session *s, fc_shared_frame *frame, const fc_render_order *order,
+                                 fc_error *err)
+{
+    fc_render_job *job = fc_render_job_create(frame);
+    if (!job)
+        return fc_error_set(err, FC_ERR_INTERNAL, "no memory for a render job");
+    job->connection_id = s->connection_id;
+    job->request_id = order->request_id;
+    job->kind = order->kind;
+    job->tag = order->tag;
+    job->settings = s->settings;
+    job->request = order->request;
+    job->background = s->scene.background ? fc_scene_part_ref(s->scene.background) : NULL;
+    job->environment = s->scene.environment ? fc_scene_part_ref(s->scene.environment) : NULL;
+    job->received_ms = order->received_ms;
+    if (s->has_camera) {
+        job->camera = s->camera;
+    } else {
+        /* Framed on the GL thread, which has time to measure the particles. */
+        job->auto_camera = true;
+        job->camera.width = order->auto_width;
+        job->camera.height = order->auto_height;
+    }
+    fc_render_service_submit(s->ctx->render, job);
+    return FC_OK;
+}
+
+static fc_code share_frame(fc_session *s, fc_frame *frame, uint64_t number, double received_ms, double decode_ms,
+                           fc_shared_frame **out, fc_error *err)
+{
+    fc_code code = fc_shared_frame_create(frame, ++s->ctx->last_frame_id, out, err);
+    if (code != FC_OK)
+        return code;
+    (*out)->number = number;
+    (*out)->ready_ms = fc_monotonic_ms();
+    (*out)->receive_ms = (float)(received_ms - s->message_started_ms);
+    (*out)->decode_ms = (float)decode_ms;
+    return FC_OK;
+}
+
+fc_code fc_session_take_frame(fc_session *s, fc_frame *frame, double received_ms, double decode_ms,
+                              fc_error *err)
+{
+    if (s->role == FC_ROLE_VIEWER)
+        return fc_error_set(err, FC_ERR_BAD_STATE, "a viewer of session '%s' does not send frames", s->stream->name);
+    bool publishes = s->role == FC_ROLE_PRODUCER;
+    uint64_t number = publishes && s->stream->latest ? s->stream->latest->number + 1 : 1;
+    fc_shared_frame *shared;
+    fc_code code = share_frame(s, frame, publishes ? number : 0, received_ms, decode_ms, &shared, err);
+    if (code != FC_OK)
+        return code;
+    if (publishes) {
+        fc_stream_session_publish(s->stream, shared);
+    } else {
+        fc_shared_frame_unref(s->frame);
+        s->frame = shared;
+    }
+    return FC_OK;
+}
+
+void fc_session_job_done(fc_session *s, const fc_render_job *job)
+{
+    if (job->kind == FC_JOB_STREAM) {
+        fc_viewer_job_done(s, job);
+        return;
+    }
+    s->reply_pending = false;
+    if (job->error.code != FC_OK) {
+        fc_session_send_error(s, job->request_id, &job->error);
+        return;
+    }
+    fc_log_write(s->ctx->log, FC_LOG_DEBUG, "%s: request %u: IMAGE of %zu bytes queued", s->peer,
+                 (unsigned)job->request_id, job->message.len);
+    if (!fc_session_queue_message(s, &job->message)) {
+        /* The reply did not fit: the queue stays as it was, so an ERROR can still follow. */
+        fc_error err;
+        fc_error_set(&err, FC_ERR_INTERNAL, "no memory to queue a %zu-byte IMAGE", job->message.len);
+        fc_session_send_error(s, job->request_id, &err);
+    }
+}
+
+void fc_session_output_drained(fc_session *s)
+{
+    fc_viewer_drained(s);
+}
+
+size_t fc_session_backlog_allowance(const fc_session *s)
+{
+    return fc_viewer_backlog_allowance(s);
+}
+
+double fc_session_deadline_ms(const fc_session *s)
+{
+    return fc_viewer_deadline_ms(s);
+}
+
+void fc_session_tick(fc_session *s, double now_ms)
+{
+    fc_viewer_tick(s, now_ms);
+}

@@ -1,0 +1,38 @@
+/* shared_frame.c — see shared_frame.h. */
+#include "shared_frame.h"
+
+#include <stdlib.h>
+#include <string.h>
+
+#include "fc_error.h"
+#include "fc_frame.h"
+
+fc_code fc_shared_frame_create(fc_frame *frame, uint64_t id, fc_shared_frame **out, fc_error *err)
+{
+    fc_shared_frame *f = calloc(1, sizeof *f);
+    if (!f)
+        return fc_error_set(err, FC_ERR_NOMEM, "no memory for a shared frame");
+    atomic_init(&f->refs, 1);
+    f->frame = *frame;
+    memset(frame, 0, sizeof *frame);
+    f->id = id;
+    f->receive_ms = -1.0f;
+    f->decode_ms = -1.0f;
+    *out = f;
+    return FC_OK;
+}
+
+fc_shared_frame *fc_shared_frame_ref(fc_shared_frame *f)
+{
+    atomic_fetch_add_explicit(&f->refs, 1, memory_order_relaxed);
+    return f;
+}
+
+void fc_shared_frame_unref(fc_shared_frame *f)
+{
+    /* acq_rel: the thread that frees must see every other thread's last use. */
+    if (f && atomic_fetch_sub_explicit(&f->refs, 1, memory_order_acq_rel) == 1) {
+        fc_frame_free(&f->frame);
+        free(f);
+    }
+}

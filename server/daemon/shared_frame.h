@@ -1,0 +1,30 @@
+/* shared_frame.h — a particle frame shared by reference between the event loop
+ * (sessions, viewers) and the GL thread, so publishing one frame to many
+ * viewers never copies the particles. Immutable once created, except
+ * estimated_radius, which only the GL thread touches. */
+#ifndef FC_DAEMON_SHARED_FRAME_H
+#define FC_DAEMON_SHARED_FRAME_H
+
+#include <stdatomic.h>
+#include <stdint.h>
+
+#include "fluidcast_types.h"
+
+typedef struct fc_shared_frame {
+    atomic_uint refs;
+    fc_frame frame;
+    uint64_t id;              /* process-unique: tells the GL thread whether it holds this frame already */
+    uint64_t number;          /* the producer's frame number (sessions); 0 for a connection's own FRAME */
+    double ready_ms;          /* fc_monotonic_ms() when it was complete: stream images count TOTAL from here */
+    float receive_ms;         /* FC_STAGE_RECEIVE: first byte -> last byte of its message(s) */
+    float decode_ms;          /* FC_STAGE_DECODE */
+    float estimated_radius;   /* GL thread only: 0 until a render with radius "auto" estimated it */
+} fc_shared_frame;
+
+/* Takes over frame's arrays (the struct is zeroed) with one reference. */
+fc_code fc_shared_frame_create(fc_frame *frame, uint64_t id, fc_shared_frame **out, fc_error *err);
+fc_shared_frame *fc_shared_frame_ref(fc_shared_frame *f);
+/* Drops a reference; the last one frees the frame. NULL is ignored. Any thread. */
+void fc_shared_frame_unref(fc_shared_frame *f);
+
+#endif
