@@ -19,12 +19,26 @@
 #define MAX_NOISE 10.0f
 #define MAX_FOAM 10.0f
 
+uint32_t fc_smoothing_default_iterations(fc_smoothing method)
+{
+    /* Chosen by eye on the sample scenes at 640x480 (docs/gallery): enough to
+     * hide the individual spheres without melting detail. */
+    switch (method) {
+    case FC_SMOOTHING_CURVATURE: return 60;
+    case FC_SMOOTHING_BILATERAL: return 2;
+    case FC_SMOOTHING_BINOMIAL: return 8;
+    case FC_SMOOTHING_NARROW: return 4;
+    case FC_SMOOTHING_NONE: break;
+    }
+    return 0;
+}
+
 void fc_settings_default(fc_settings *s)
 {
     *s = (fc_settings){
         .radius = 0.0f,
-        .smoothing = FC_SMOOTHING_CURVATURE,
-        .iterations = 40,
+        .smoothing = FC_SMOOTHING_NARROW,
+        .iterations = fc_smoothing_default_iterations(FC_SMOOTHING_NARROW),
         .filter_radius = 0,
         .smooth_scale = 1.0f,
         .fluid_color = {0.05f, 0.30f, 0.45f},

@@ -118,9 +118,18 @@ static fc_code set_smoothing(fc_snapshot_options *o, const option_spec *spec, co
                                           FC_SMOOTHING_BINOMIAL, FC_SMOOTHING_NARROW};
     int index;
     fc_code code = fc_cli_parse_choice(spec->name, value, names, &index, err);
-    if (code == FC_OK)
+    if (code == FC_OK) {
         o->settings.smoothing = values[index];
+        if (!o->has_iterations)
+            o->settings.iterations = fc_smoothing_default_iterations(values[index]);
+    }
     return code;
+}
+
+static fc_code set_iterations(fc_snapshot_options *o, const option_spec *spec, const char *value, fc_error *err)
+{
+    o->has_iterations = true;
+    return fc_cli_parse_uint(spec->name, value, 0, 1000, &o->settings.iterations, err);
 }
 
 static fc_code set_aov(fc_snapshot_options *o, const option_spec *spec, const char *value, fc_error *err)
@@ -172,7 +181,7 @@ static const option_spec options[] = {
     {"--fov", set_fov, 0},
     {"--radius", set_radius, 0},
     {"--smoothing", set_smoothing, 0},
-    SETTING("--iterations", set_uint_setting, iterations),
+    {"--iterations", set_iterations, 0},
     SETTING("--filter-radius", set_uint_setting, filter_radius),
     SETTING("--smooth-scale", set_float_setting, smooth_scale),
     SETTING("--color", set_rgb_setting, fluid_color),
@@ -322,11 +331,12 @@ static void print_surface_help(FILE *to, const fc_settings *d)
             "                          the radius is estimated from the particle spacing\n"
             "                          (0.9 x the median nearest-neighbour distance) and\n"
             "                          the radius used is printed\n"
-            "  --smoothing MODE        depth smoothing: curvature (curvature flow,\n"
-            "                          default), bilateral, binomial, narrow (narrow-range\n"
-            "                          filter) or none\n"
+            "  --smoothing MODE        depth smoothing: narrow (narrow-range filter,\n"
+            "                          default), curvature (curvature flow), bilateral,\n"
+            "                          binomial or none\n"
             "  --iterations N          curvature-flow steps or filter passes, 0..1000\n"
-            "                          (default %u)\n"
+            "                          (default: narrow %u, curvature %u, bilateral %u,\n"
+            "                          binomial %u)\n"
             "  --filter-radius PX      kernel half-width of bilateral/binomial/narrow,\n"
             "                          0..64 pixels; 0 = from the particle size (default)\n"
             "  --smooth-scale S        resolution of the smoothing: 1, 0.5 or 0.25\n"
@@ -340,7 +350,10 @@ static void print_surface_help(FILE *to, const fc_settings *d)
             "  --density-threshold D   particles with density below D are spray; 0 = off\n"
             "                          (default %g)\n"
             "\n",
-            (unsigned)d->iterations, (double)d->smooth_scale, (double)d->noise, (double)d->foam,
+            fc_smoothing_default_iterations(FC_SMOOTHING_NARROW),
+            fc_smoothing_default_iterations(FC_SMOOTHING_CURVATURE),
+            fc_smoothing_default_iterations(FC_SMOOTHING_BILATERAL),
+            fc_smoothing_default_iterations(FC_SMOOTHING_BINOMIAL), (double)d->smooth_scale, (double)d->noise, (double)d->foam,
             (double)d->foam_tau, (double)d->foam_decay, (double)d->density_threshold);
 }
 

@@ -29,6 +29,7 @@ typedef struct fc_snapshot_options {
     const char *cubemap;           /* --cubemap value (six files or a directory), or NULL */
     fc_aov aov;
     bool has_quality;
+    bool has_iterations;      /* --iterations given: --smoothing keeps it */
     uint32_t quality;
 } fc_snapshot_options;
 

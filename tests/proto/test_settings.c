@@ -60,7 +60,7 @@ static void test_defaults(void)
     fc_settings_default(&s);
     fc_error err;
     CHECK_CODE(fc_settings_validate(&s, &err), FC_OK);
-    CHECK(s.radius == 0.0f && s.smoothing == FC_SMOOTHING_CURVATURE && s.iterations == 40);
+    CHECK(s.radius == 0.0f && s.smoothing == FC_SMOOTHING_NARROW && s.iterations == fc_smoothing_default_iterations(FC_SMOOTHING_NARROW));
     CHECK(s.filter_radius == 0 && s.smooth_scale == 1.0f);
     CHECK(s.ior == 1.33f && s.refraction == 40.0f && s.specular == 0.6f && s.shininess == 60.0f);
     CHECK(s.thickness_scale == 1.0f && s.thickness_blur == 2);
@@ -78,7 +78,7 @@ typedef struct key_case {
 } key_case;
 
 static void expect_radius(fc_settings *s) { s->radius = 0.125f; }
-static void expect_smoothing(fc_settings *s) { s->smoothing = FC_SMOOTHING_NARROW; }
+static void expect_smoothing(fc_settings *s) { s->smoothing = FC_SMOOTHING_BINOMIAL; }
 static void expect_iterations(fc_settings *s) { s->iterations = 7; }
 static void expect_fluid_color(fc_settings *s) { memcpy(s->fluid_color, (float[3]){1.0f, 0.5f, 0.25f}, 12); }
 static void expect_absorption(fc_settings *s) { memcpy(s->absorption, (float[3]){3.0f, 0.0f, 100.0f}, 12); }
@@ -98,7 +98,7 @@ static void expect_density_threshold(fc_settings *s) { s->density_threshold = 60
 
 static const key_case key_cases[] = {
     {1, 1, {0x3E000000u}, expect_radius},                             /* 0.125f */
-    {2, 1, {4}, expect_smoothing},
+    {2, 1, {3}, expect_smoothing},
     {3, 1, {7}, expect_iterations},
     {4, 3, {0x3F800000u, 0x3F000000u, 0x3E800000u}, expect_fluid_color}, /* 1, 0.5, 0.25 */
     {5, 3, {0x40400000u, 0x00000000u, 0x42C80000u}, expect_absorption},  /* 3, 0, 100 */
@@ -259,7 +259,7 @@ static void test_validate_rejects_unknown_smoothing(void)
     payload p = one_entry(2, &five, 1);
     fc_settings_default(&s);
     CHECK_CODE(read_payload(&p, &s, &err), FC_ERR_INVALID_VALUE);
-    CHECK(s.smoothing == FC_SMOOTHING_CURVATURE);
+    CHECK(s.smoothing == FC_SMOOTHING_NARROW);
 }
 
 /* Each smoothing method is accepted. */

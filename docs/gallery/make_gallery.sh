@@ -1,0 +1,38 @@
+#!/usr/bin/env bash
+# Regenerates the README gallery through the real product path: fluidcastd on
+# this machine's GL (llvmpipe without a GPU) and the fluidcast CLI, on the demo
+# scene deploy/demo/drop_64k.f32 (65,536 particles) at 640x480.
+# Usage: docs/gallery/make_gallery.sh   (after deploy/build.sh)
+set -euo pipefail
+cd "$(dirname "$0")/../.."
+out=docs/gallery
+bin=build/bin
+portfile=$(mktemp)
+$bin/fluidcastd --listen 127.0.0.1:0 --port-file "$portfile" 2> "$out/.daemon.log" &
+daemon=$!
+trap 'kill -TERM $daemon; wait $daemon 2>/dev/null; rm -f "$portfile"' EXIT
+for _ in $(seq 100); do [ -s "$portfile" ] && break; sleep 0.1; done
+
+snap() { # NAME ARGS...: one image through the CLI
+  local name=$1; shift
+  $bin/fluidcast snapshot deploy/demo/drop_64k.f32 --server "127.0.0.1:$(cat "$portfile")" --size 640x480 \
+    --eye 2.0,-2.9,1.9 --target 0,0,0.25 --up 0,0,1 --fov 40 --radius 0.018 "$@" -o "$out/$name"
+}
+# An AOV as a viewable PNG: scaled into [0,1] (oiiotool's rangecompress-free linear map).
+aov_png() { # NAME AOV SCALE
+  snap "$1.exr" --aov "$2"
+  oiiotool "$out/$1.exr" --mulc "$3" --clamp:min=0:max=1 -d uint8 -o "$out/$1.png"
+  rm -f "$out/$1.exr"
+}
+
+for m in narrow curvature bilateral binomial none; do snap "smoothing_$m.png" --smoothing "$m"; done
+snap smoothing_curvature_quarter.png --smoothing curvature --iterations 15 --smooth-scale 0.25
+snap smoothing_curvature_half.png --smoothing curvature --iterations 40 --smooth-scale 0.5
+snap shading_noise.png --noise 0.3
+aov_png aov_depth depth 0.2
+aov_png aov_smoothed_depth smoothed-depth 0.2
+aov_png aov_thickness thickness 0.5
+snap aov_normal.exr --aov normal
+oiiotool "$out/aov_normal.exr" --mulc 0.5 --addc 0.5 --clamp:min=0:max=1 -d uint8 -o "$out/aov_normal.png"
+rm -f "$out/aov_normal.exr"
+echo "gallery: $(ls "$out"/*.png | wc -l) images in $out"
