@@ -13,6 +13,7 @@
 #include "encoder_pool.h"
 #include "fc_error.h"
 #include "fc_frame.h"
+#include "foam_track.h"
 #include "job_queue.h"
 #include "monotonic.h"
 #include "render/pipeline.h"
@@ -57,13 +58,17 @@ static float resolve_radius(fc_render_job *job)
     return job->frame->estimated_radius;
 }
 
-static fc_code ensure_uploaded(fc_render_service *rs, const fc_shared_frame *frame, float *upload_ms,
-                               fc_error *err)
+/* The pipeline holds the noise amplitudes of the uploaded frame only: every
+ * upload gives the frame its own, from its stream's foam history. */
+static fc_code ensure_uploaded(fc_render_service *rs, fc_shared_frame *frame, const fc_settings *settings,
+                               float *upload_ms, fc_error *err)
 {
     if (rs->uploaded_frame_id == frame->id)
         return FC_OK;
     rs->uploaded_frame_id = 0;
     fc_code code = fc_pipeline_upload(rs->pipeline, &frame->frame, upload_ms, err);
+    if (code == FC_OK)
+        code = fc_foam_track_apply(frame, rs->pipeline, settings, err);
     if (code == FC_OK)
         rs->uploaded_frame_id = frame->id;
     return code;
@@ -73,7 +78,7 @@ static fc_code ensure_uploaded(fc_render_service *rs, const fc_shared_frame *fra
 static fc_code draw(fc_render_service *rs, fc_render_job *job, fc_error *err)
 {
     float render_ms[FC_STAGE_COUNT];
-    fc_code code = ensure_uploaded(rs, job->frame, &job->stage_ms[FC_STAGE_UPLOAD], err);
+    fc_code code = ensure_uploaded(rs, job->frame, &job->settings, &job->stage_ms[FC_STAGE_UPLOAD], err);
     if (code != FC_OK)
         return code;
     if (job->auto_camera)

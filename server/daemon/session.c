@@ -25,6 +25,8 @@ void fc_session_free(fc_session *s)
     fc_session_leave_stream(s);
     fc_shared_frame_unref(s->frame);
     s->frame = NULL;
+    fc_foam_track_unref(s->foam);
+    s->foam = NULL;
     fc_scene_uploads_free(&s->scene);
 }
 

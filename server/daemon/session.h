@@ -7,6 +7,7 @@
 #include <stdbool.h>
 
 #include "daemon_context.h"
+#include "foam_track.h"
 #include "render_job.h"
 #include "scene_uploads.h"
 #include "viewer.h"
@@ -32,6 +33,7 @@ typedef struct fc_session {
     double message_started_ms;     /* set by the connection: when the message being handled began to arrive */
     bool reply_pending;            /* a RENDER is being rendered: the connection reads nothing until it is answered */
     fc_shared_frame *frame;        /* the last FRAME, for renders outside named sessions */
+    fc_foam_track *foam;           /* foam history of this connection's own FRAMEs; NULL before the first */
     bool has_camera;
     fc_camera camera;
     fc_settings settings;

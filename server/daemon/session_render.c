@@ -56,10 +56,10 @@ fc_code fc_session_submit_render(fc_session *s, fc_shared_frame *frame, const fc
     return FC_OK;
 }
 
-static fc_code share_frame(fc_session *s, fc_frame *frame, uint64_t number, double received_ms, double decode_ms,
-                           fc_shared_frame **out, fc_error *err)
+static fc_code share_frame(fc_session *s, fc_frame *frame, fc_foam_track *foam, uint64_t number, double received_ms,
+                           double decode_ms, fc_shared_frame **out, fc_error *err)
 {
-    fc_code code = fc_shared_frame_create(frame, ++s->ctx->last_frame_id, out, err);
+    fc_code code = fc_shared_frame_create(frame, ++s->ctx->last_frame_id, foam, out, err);
     if (code != FC_OK)
         return code;
     (*out)->number = number;
@@ -69,6 +69,19 @@ static fc_code share_frame(fc_session *s, fc_frame *frame, uint64_t number, doub
     return FC_OK;
 }
 
+/* The foam history a new frame continues: the named session's, or this
+ * connection's own, begun with its first FRAME. */
+static fc_code foam_history(fc_session *s, bool publishes, fc_foam_track **out, fc_error *err)
+{
+    if (publishes) {
+        *out = s->stream->foam;
+        return FC_OK;
+    }
+    fc_code code = s->foam ? FC_OK : fc_foam_track_create(&s->foam, err);
+    *out = s->foam;
+    return code;
+}
+
 fc_code fc_session_take_frame(fc_session *s, fc_frame *frame, double received_ms, double decode_ms,
                               fc_error *err)
 {
@@ -76,8 +89,11 @@ fc_code fc_session_take_frame(fc_session *s, fc_frame *frame, double received_ms
         return fc_error_set(err, FC_ERR_BAD_STATE, "a viewer of session '%s' does not send frames", s->stream->name);
     bool publishes = s->role == FC_ROLE_PRODUCER;
     uint64_t number = publishes && s->stream->latest ? s->stream->latest->number + 1 : 1;
+    fc_foam_track *foam;
     fc_shared_frame *shared;
-    fc_code code = share_frame(s, frame, publishes ? number : 0, received_ms, decode_ms, &shared, err);
+    fc_code code = foam_history(s, publishes, &foam, err);
+    if (code == FC_OK)
+        code = share_frame(s, frame, foam, publishes ? number : 0, received_ms, decode_ms, &shared, err);
     if (code != FC_OK)
         return code;
     if (publishes) {

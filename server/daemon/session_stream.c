@@ -154,7 +154,7 @@ static fc_code publish_assembled(fc_session *s, fc_assembled_frame *done, fc_err
         return FC_OK;
     }
     fc_shared_frame *shared;
-    fc_code code = fc_shared_frame_create(&done->frame, ++s->ctx->last_frame_id, &shared, err);
+    fc_code code = fc_shared_frame_create(&done->frame, ++s->ctx->last_frame_id, stream->foam, &shared, err);
     if (code != FC_OK)
         return code;
     shared->number = done->frame_number;

@@ -6,8 +6,10 @@
 
 #include "fc_error.h"
 #include "fc_frame.h"
+#include "foam_track.h"
 
-fc_code fc_shared_frame_create(fc_frame *frame, uint64_t id, fc_shared_frame **out, fc_error *err)
+fc_code fc_shared_frame_create(fc_frame *frame, uint64_t id, fc_foam_track *foam, fc_shared_frame **out,
+                               fc_error *err)
 {
     fc_shared_frame *f = calloc(1, sizeof *f);
     if (!f)
@@ -16,6 +18,7 @@ fc_code fc_shared_frame_create(fc_frame *frame, uint64_t id, fc_shared_frame **o
     f->frame = *frame;
     memset(frame, 0, sizeof *frame);
     f->id = id;
+    f->foam = fc_foam_track_ref(foam);
     f->receive_ms = -1.0f;
     f->decode_ms = -1.0f;
     *out = f;
@@ -33,6 +36,8 @@ void fc_shared_frame_unref(fc_shared_frame *f)
     /* acq_rel: the thread that frees must see every other thread's last use. */
     if (f && atomic_fetch_sub_explicit(&f->refs, 1, memory_order_acq_rel) == 1) {
         fc_frame_free(&f->frame);
+        fc_foam_track_unref(f->foam);
+        free(f->foam_amplitude);
         free(f);
     }
 }

@@ -1,7 +1,7 @@
 /* shared_frame.h — a particle frame shared by reference between the event loop
  * (sessions, viewers) and the GL thread, so publishing one frame to many
  * viewers never copies the particles. Immutable once created, except
- * estimated_radius, which only the GL thread touches. */
+ * estimated_radius and foam_amplitude, which only the GL thread touches. */
 #ifndef FC_DAEMON_SHARED_FRAME_H
 #define FC_DAEMON_SHARED_FRAME_H
 
@@ -9,6 +9,8 @@
 #include <stdint.h>
 
 #include "fluidcast_types.h"
+
+struct fc_foam_track;
 
 typedef struct fc_shared_frame {
     atomic_uint refs;
@@ -19,10 +21,15 @@ typedef struct fc_shared_frame {
     float receive_ms;         /* FC_STAGE_RECEIVE: first byte -> last byte of its message(s) */
     float decode_ms;          /* FC_STAGE_DECODE */
     float estimated_radius;   /* GL thread only: 0 until a render with radius "auto" estimated it */
+    struct fc_foam_track *foam;   /* the foam history of the stream it belongs to (a reference) */
+    float *foam_amplitude;    /* GL thread only: what that history gave each particle (frame order);
+                                 NULL until first uploaded */
 } fc_shared_frame;
 
-/* Takes over frame's arrays (the struct is zeroed) with one reference. */
-fc_code fc_shared_frame_create(fc_frame *frame, uint64_t id, fc_shared_frame **out, fc_error *err);
+/* Takes over frame's arrays (the struct is zeroed) with one reference, and a
+ * reference to `foam`, the history of the stream the frame continues. */
+fc_code fc_shared_frame_create(fc_frame *frame, uint64_t id, struct fc_foam_track *foam, fc_shared_frame **out,
+                               fc_error *err);
 fc_shared_frame *fc_shared_frame_ref(fc_shared_frame *f);
 /* Drops a reference; the last one frees the frame. NULL is ignored. Any thread. */
 void fc_shared_frame_unref(fc_shared_frame *f);

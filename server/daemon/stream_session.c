@@ -13,6 +13,11 @@ fc_code fc_stream_session_create(const char *name, fc_stream_session **out, fc_e
     fc_stream_session *s = calloc(1, sizeof *s);
     if (!s)
         return fc_error_set(err, FC_ERR_INTERNAL, "no memory for session '%s'", name);
+    fc_code code = fc_foam_track_create(&s->foam, err);
+    if (code != FC_OK) {
+        free(s);
+        return code;
+    }
     snprintf(s->name, sizeof s->name, "%s", name);
     fc_chunk_assembly_init(&s->chunks);
     *out = s;
@@ -25,6 +30,7 @@ void fc_stream_session_destroy(fc_stream_session *s)
         return;
     fc_chunk_assembly_free(&s->chunks);
     fc_shared_frame_unref(s->latest);
+    fc_foam_track_unref(s->foam);
     free(s->viewers);
     free(s);
 }

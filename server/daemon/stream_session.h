@@ -10,6 +10,7 @@
 #include <stdint.h>
 
 #include "chunk_assembly.h"
+#include "foam_track.h"
 #include "shared_frame.h"
 #include "wire_session.h"
 
@@ -25,6 +26,7 @@ typedef struct fc_stream_session {
     size_t viewer_capacity;
     fc_shared_frame *latest;      /* newest complete frame; NULL before the first */
     uint64_t sequence;            /* complete frames published so far */
+    fc_foam_track *foam;          /* foam history of its frames, shared by every viewer */
     fc_chunk_assembly chunks;
 } fc_stream_session;
 

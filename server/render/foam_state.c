@@ -208,6 +208,22 @@ fc_code fc_foam_state_advance(fc_foam_state *s, fc_pipeline *p, const fc_frame *
     return fc_particle_attributes_set_amplitudes(attributes, s->amplitude, err);
 }
 
+const float *fc_foam_state_amplitudes(const fc_foam_state *s)
+{
+    return s ? s->amplitude : NULL;
+}
+
+fc_code fc_pipeline_set_amplitudes(fc_pipeline *p, const float *amplitude, uint64_t count, fc_error *err)
+{
+    if (!p || (!amplitude && count > 0))
+        return fc_error_set(err, FC_ERR_USAGE, "fc_pipeline_set_amplitudes: missing pipeline or amplitudes");
+    fc_particle_attributes *attributes = fc_pipeline_particle_attributes(p);
+    if (count != attributes->count)
+        return fc_error_set(err, FC_ERR_USAGE, "fc_pipeline_set_amplitudes: %llu amplitudes, %llu particles uploaded",
+                            (unsigned long long)count, (unsigned long long)attributes->count);
+    return fc_particle_attributes_set_amplitudes(attributes, amplitude, err);
+}
+
 float fc_foam_state_amplitude(const fc_foam_state *s, uint32_t id)
 {
     const foam_entry *e = find(s->tables[s->current], s->capacity, id);

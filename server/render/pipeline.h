@@ -61,6 +61,13 @@ void fc_foam_state_destroy(fc_foam_state *s);
  * the base amplitude everywhere. */
 fc_code fc_foam_state_advance(fc_foam_state *s, fc_pipeline *p, const fc_frame *frame,
                               const fc_settings *settings, fc_error *err);
+/* The multipliers the last advance gave the particles of its frame, in frame
+ * order (one per particle); valid until the next advance. NULL before any. */
+const float *fc_foam_state_amplitudes(const fc_foam_state *s);
+/* Gives the uploaded frame's particles these multipliers (frame order, one per
+ * particle): a frame uploaded again after others gets back what its advance
+ * gave it, since one pipeline holds the amplitudes of one frame only. */
+fc_code fc_pipeline_set_amplitudes(fc_pipeline *p, const float *amplitude, uint64_t count, fc_error *err);
 
 /* Like fc_pipeline_render, with the session's scene textures (NULL = built-in). */
 fc_code fc_pipeline_render_scene(fc_pipeline *p, const fc_camera *camera, const fc_settings *settings,
