@@ -31,7 +31,7 @@ typedef enum fc_code {
     FC_ERR_RENDER = 9,           /* the GPU could not render this request */
     FC_ERR_ENCODE = 10,          /* the image could not be encoded in the requested format */
     FC_ERR_INTERNAL = 11,        /* server-side failure not caused by the request (out of memory, ...) */
-    FC_ERR_UNAUTHORIZED = 12,    /* reserved: authentication required or failed */
+    FC_ERR_UNAUTHORIZED = 12,    /* authentication required or failed (PROTOCOL.md 4.3); connection closed */
     FC_ERR_DUPLICATE = 13,       /* a chunk of this frame with this index already arrived */
     FC_ERR_INCONSISTENT = 14,    /* a chunk disagrees with its frame's other chunks (count K, attributes) */
     FC_ERR_INCOMPLETE = 15,      /* a multi-rank frame still lacked chunks when its timeout passed */

@@ -50,13 +50,32 @@ fc_code fc_wire_decode_header(const uint8_t in[FC_WIRE_HEADER_SIZE], uint32_t ma
 
 fc_code fc_wire_write_hello(fc_buf *out, uint32_t request_id, const fc_hello *m, fc_error *err)
 {
-    size_t length = HELLO_FIXED_SIZE + wire_str_size(m->client_name, sizeof m->client_name);
+    /* The token is appended only when there is one, so a HELLO without it is byte for byte the old one. */
+    bool has_token = m->token[0] != '\0';
+    size_t length = HELLO_FIXED_SIZE + wire_str_size(m->client_name, sizeof m->client_name) +
+                    (has_token ? wire_str_size(m->token, sizeof m->token) : 0);
     size_t start = wire_begin_message(out, FC_MSG_HELLO, request_id, (uint32_t)length);
     wire_put_u32(out, m->version_min);
     wire_put_u32(out, m->version_max);
     wire_put_u32(out, m->capabilities);
     wire_put_str(out, m->client_name, sizeof m->client_name);
+    if (has_token)
+        wire_put_str(out, m->token, sizeof m->token);
     return wire_end_message(out, start, err);
+}
+
+/* Bytes after client_name stay ignorable (4.1): ones that do not form a
+ * token of at most FC_HELLO_TOKEN_MAX bytes count as no token. Never cut a
+ * long one to a prefix, which could match a shorter secret. */
+static void read_hello_token(const wire_reader *r, fc_hello *hello)
+{
+    size_t left = wire_remaining(r);
+    const uint8_t *field = r->p + r->pos;
+    size_t len = left >= 2 ? (size_t)(field[0] | field[1] << 8) : SIZE_MAX;
+    if (len > FC_HELLO_TOKEN_MAX || len > left - 2 || memchr(field + 2, '\0', len))
+        return;
+    memcpy(hello->token, field + 2, len);
+    hello->token[len] = '\0';
 }
 
 fc_code fc_wire_read_hello(const uint8_t *p, size_t n, fc_hello *m, fc_error *err)
@@ -67,6 +86,8 @@ fc_code fc_wire_read_hello(const uint8_t *p, size_t n, fc_hello *m, fc_error *er
     hello.version_max = wire_get_u32(&r, "version_max");
     hello.capabilities = wire_get_u32(&r, "capabilities");
     wire_get_str(&r, hello.client_name, sizeof hello.client_name, "client_name");
+    if (r.code == FC_OK && wire_remaining(&r) > 0)
+        read_hello_token(&r, &hello);
     /* No wire_expect_end: HELLO must be readable by every version, so later
      * versions may append fields that this one ignores (PROTOCOL.md). */
     if (r.code != FC_OK)

@@ -62,11 +62,15 @@ fc_code fc_wire_decode_header(const uint8_t in[FC_WIRE_HEADER_SIZE], uint32_t ma
                               fc_msg_header *h, fc_error *err);
 
 /* ---- Messages ---- */
+/* Longest authentication token HELLO may carry; a longer one is read as none. */
+#define FC_HELLO_TOKEN_MAX 256
+
 typedef struct fc_hello {
     uint32_t version_min;      /* lowest protocol version the client speaks */
     uint32_t version_max;      /* highest */
     uint32_t capabilities;     /* requested capability bits; none defined in v1 */
     char client_name[64];      /* NUL-terminated, informational */
+    char token[FC_HELLO_TOKEN_MAX + 1]; /* shared secret after client_name; "" = none sent (PROTOCOL.md 7.1) */
 } fc_hello;
 
 typedef struct fc_limits {

@@ -257,6 +257,10 @@ static fc_code decompress(const uint8_t *src, size_t n, uint64_t raw_size, uint8
     unsigned long long declared = ZSTD_getFrameContentSize(src, n);
     if (declared == ZSTD_CONTENTSIZE_ERROR)
         return fc_error_set(err, FC_ERR_MALFORMED, "packed body: not a zstd frame");
+    /* Exactly one frame: ZSTD_decompress would go on through frames after it. */
+    size_t frame_size = ZSTD_findFrameCompressedSize(src, n);
+    if (ZSTD_isError(frame_size) || frame_size != n)
+        return fc_error_set(err, FC_ERR_MALFORMED, "packed body: not exactly one zstd frame");
     if (declared != ZSTD_CONTENTSIZE_UNKNOWN && declared != raw_size)
         return fc_error_set(err, FC_ERR_MALFORMED, "packed body: zstd frame holds %llu bytes, raw_size says %llu",
                             declared, (unsigned long long)raw_size);

@@ -7,6 +7,7 @@
 
 #include "cli_args.h"
 #include "cli_report.h"
+#include "cli_token.h"
 #include "fc_error.h"
 #include "fluidcast.h"
 
@@ -64,7 +65,7 @@ static void print_sessions(const fc_session_status *list, uint32_t count)
 
 static int info(const info_options *o)
 {
-    fc_connect_options connect_options = {.client_name = "fluidcast info"};
+    fc_connect_options connect_options = {.client_name = "fluidcast info", .token = fc_cli_token()};
     fc_client *c;
     fc_error err;
     if (fc_client_connect(o->server, &connect_options, &c, &err) != FC_OK)

@@ -3,6 +3,7 @@
 #include <string.h>
 
 #include "cli_report.h"
+#include "cli_token.h"
 #include "info.h"
 #include "snapshot.h"
 #include "stream.h"
@@ -24,6 +25,10 @@ static void print_help(FILE *to)
           "  watch --session NAME    follow a session's frames as a viewer\n"
           "  info                    the server's version, renderer, limits and sessions\n"
           "                          (fluidcast COMMAND --help for the options of each)\n"
+          "\n"
+          "every command:\n"
+          "  --token-file PATH       send the token in PATH (its first line) to a daemon\n"
+          "                          that requires one; without it FLUIDCAST_TOKEN, if set\n"
           "\n",
           to);
     fc_cli_print_exit_codes(to);
@@ -31,6 +36,9 @@ static void print_help(FILE *to)
 
 int main(int argc, char **argv)
 {
+    fc_error err;
+    if (fc_cli_token_take(&argc, argv, &err) != FC_OK)
+        return fc_cli_fail(err.code == FC_ERR_USAGE ? FC_EXIT_USAGE : FC_EXIT_INPUT, "%s", err.message);
     if (argc < 2) {
         print_help(stderr);
         return FC_EXIT_USAGE;

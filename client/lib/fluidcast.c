@@ -44,7 +44,7 @@ static void copy_server_info(const fc_welcome *w, fc_server_info *info)
     info->capabilities = w->capabilities;
 }
 
-static fc_code send_hello(fc_client *c, const char *client_name, fc_error *err)
+static fc_code send_hello(fc_client *c, const char *client_name, const char *token, fc_error *err)
 {
     fc_hello hello;
     memset(&hello, 0, sizeof hello);
@@ -52,6 +52,10 @@ static fc_code send_hello(fc_client *c, const char *client_name, fc_error *err)
     hello.version_max = FC_PROTOCOL_VERSION;
     hello.capabilities = FC_CAPS_ALL;
     snprintf(hello.client_name, sizeof hello.client_name, "%s", client_name);
+    /* A cut token would only fail later with a misleading UNAUTHORIZED. */
+    if (token && strlen(token) > FC_HELLO_TOKEN_MAX)
+        return fc_error_set(err, FC_ERR_USAGE, "the token is longer than %d bytes", FC_HELLO_TOKEN_MAX);
+    snprintf(hello.token, sizeof hello.token, "%s", token ? token : "");
     fc_buf_reset(&c->tx);
     fc_code code = fc_wire_write_hello(&c->tx, fc_client_next_request_id(c), &hello, err);
     return code != FC_OK ? code : fc_client_send_tx(c, err);
@@ -88,7 +92,7 @@ static fc_code handshake(fc_client *c, const fc_connect_options *opt, uint32_t c
     const char *name = opt->client_name ? opt->client_name : DEFAULT_CLIENT_NAME;
     fc_code code = fc_socket_set_timeout(c->fd, connect_timeout, err);
     if (code == FC_OK)
-        code = send_hello(c, name, err);
+        code = send_hello(c, name, opt->token, err);
     if (code == FC_OK)
         code = receive_welcome(c, err);
     if (code == FC_OK)

@@ -51,6 +51,10 @@ typedef struct fc_connect_options {
     uint32_t connect_timeout_ms;  /* bound on reaching the server and its WELCOME; 0: 10000 */
     uint32_t reply_timeout_ms;    /* longest silence tolerated while sending or waiting for a
                                      reply (a render can take seconds); 0: wait indefinitely */
+    const char *token;            /* the daemon's shared secret (fluidcastd --token-file / FLUIDCAST_TOKEN),
+                                     sent in HELLO; NULL or "": none. At most 256 bytes, else FC_ERR_USAGE.
+                                     A daemon that wants a token refuses a missing or wrong one with
+                                     FC_ERR_UNAUTHORIZED from fc_client_connect. */
 } fc_connect_options;
 
 /* What the server announced in its WELCOME. Plain data, copied out of the client. */
@@ -83,7 +87,7 @@ typedef struct fc_image_result {
  * *out is a new client the caller owns (fc_client_close releases it); on failure
  * *out is NULL. Errors: FC_ERR_USAGE for a malformed address, FC_ERR_CONNECT when
  * no address of the host accepts the connection in time, a server code (e.g.
- * FC_ERR_VERSION) when the server refuses the HELLO, FC_ERR_CLOSED /
+ * FC_ERR_VERSION, FC_ERR_UNAUTHORIZED) when the server refuses the HELLO, FC_ERR_CLOSED /
  * FC_ERR_PROTOCOL / FC_ERR_IO when the handshake breaks. */
 fc_code fc_client_connect(const char *host_port, const fc_connect_options *options,
                           fc_client **out, fc_error *err);

@@ -41,6 +41,7 @@ fc_code fc_connection_create(int fd, const char *peer, uint64_t id, fc_daemon_co
     snprintf(c->peer, sizeof c->peer, "%s", peer);
     fc_buf_init(&c->out);
     fc_session_init(&c->session, c->peer, ctx, id, &c->out);
+    c->last_message_ms = fc_monotonic_ms();
     *out = c;
     return FC_OK;
 }
@@ -82,6 +83,33 @@ short fc_connection_wanted_events(const fc_connection *c)
     return 0;
 }
 
+static bool message_in_progress(const fc_connection *c)
+{
+    return c->header_got > 0 || c->have_header;
+}
+
+/* When the client's silence or slowness ends the connection; negative for
+ * never. Only while we wait on the client: not while its RENDER renders or
+ * our replies wait to be read, and never for a viewer, which only listens. */
+static double client_deadline_ms(const fc_connection *c)
+{
+    const fc_daemon_context *ctx = c->session.ctx;
+    if (c->phase != FC_CONN_OPEN || has_pending_output(c) || c->session.reply_pending)
+        return -1.0;
+    if (message_in_progress(c))
+        return ctx->read_timeout_ms > 0.0 ? c->started_ms + ctx->read_timeout_ms : -1.0;
+    if (c->session.role == FC_ROLE_VIEWER || ctx->idle_timeout_ms <= 0.0)
+        return -1.0;
+    return c->last_message_ms + ctx->idle_timeout_ms;
+}
+
+static double earliest(double a, double b)
+{
+    if (a < 0.0)
+        return b;
+    return b < 0.0 || a < b ? a : b;
+}
+
 int fc_connection_timeout_ms(const fc_connection *c, double now_ms)
 {
     double deadline = -1.0;
@@ -91,6 +119,7 @@ int fc_connection_timeout_ms(const fc_connection *c, double now_ms)
         deadline = c->backlog_check_ms;
     else if (c->phase == FC_CONN_OPEN)
         deadline = fc_session_deadline_ms(&c->session);
+    deadline = earliest(deadline, client_deadline_ms(c));
     if (deadline < 0.0)
         return -1;
     double left = deadline - now_ms;
@@ -173,6 +202,45 @@ static void apply_verdict(fc_connection *c, fc_session_verdict verdict)
         start_closing(c);
 }
 
+/* The error the client gets for err: one that has not authenticated learns
+ * nothing but that it must. */
+static fc_error error_for_client(const fc_connection *c, const fc_error *err)
+{
+    fc_error reply = *err;
+    if (fc_session_unauthenticated(&c->session))
+        fc_error_set(&reply, FC_ERR_UNAUTHORIZED, "authentication required");
+    return reply;
+}
+
+static void close_with_error(fc_connection *c, fc_daemon_context *ctx, uint32_t request_id, const fc_error *err)
+{
+    fc_error reply = error_for_client(c, err);
+    apply_verdict(c, fc_session_reply_error(ctx, c->peer, request_id, &reply, FC_SESSION_CLOSE, &c->out));
+}
+
+void fc_connection_refuse(fc_connection *c, fc_daemon_context *ctx)
+{
+    fc_error err;
+    fc_error_set(&err, FC_ERR_LIMIT, "the server has its maximum of %u connections", (unsigned)ctx->max_connections);
+    apply_verdict(c, fc_session_reply_error(ctx, c->peer, 0, &err, FC_SESSION_CLOSE, &c->out));
+}
+
+/* A client that stopped mid-message or sent nothing for too long gives up its
+ * connection, so slow or silent clients cannot hold descriptors and buffers. */
+static void enforce_client_deadline(fc_connection *c, fc_daemon_context *ctx, double now_ms)
+{
+    double deadline = client_deadline_ms(c);
+    if (deadline < 0.0 || now_ms < deadline)
+        return;
+    fc_error err;
+    if (message_in_progress(c))
+        fc_error_set(&err, FC_ERR_LIMIT, "message not complete within the read timeout of %.0f ms",
+                     ctx->read_timeout_ms);
+    else
+        fc_error_set(&err, FC_ERR_LIMIT, "no message for the idle timeout of %.0f ms", ctx->idle_timeout_ms);
+    close_with_error(c, ctx, 0, &err);
+}
+
 static void reset_message(fc_connection *c)
 {
     c->header_got = 0;
@@ -188,14 +256,16 @@ static void deliver(fc_connection *c, fc_daemon_context *ctx)
     fc_session_verdict verdict;
     if (c->header_error.code != FC_OK) {
         /* Before the handshake any error ends the connection. */
+        fc_error reply = error_for_client(c, &c->header_error);
         fc_session_verdict then =
             c->session.state == FC_SESSION_READY ? FC_SESSION_CONTINUE : FC_SESSION_CLOSE;
-        verdict = fc_session_reply_error(ctx, c->peer, c->header.request_id, &c->header_error, then, &c->out);
+        verdict = fc_session_reply_error(ctx, c->peer, c->header.request_id, &reply, then, &c->out);
     } else {
         c->session.message_started_ms = c->started_ms;
         verdict = fc_session_handle(&c->session, ctx, &c->header, c->payload, fc_monotonic_ms(), &c->out);
     }
     reset_message(c);
+    c->last_message_ms = fc_monotonic_ms();
     if (c->payload_cap > KEEP_BUFFER_BYTES) {
         free(c->payload);
         c->payload = NULL;
@@ -215,8 +285,7 @@ static void on_header(fc_connection *c, fc_daemon_context *ctx)
     fc_error err;
     fc_code code = fc_wire_decode_header(c->header_bytes, ctx->welcome.limits.max_message, &c->header, &err);
     if (code == FC_ERR_BAD_MAGIC || code == FC_ERR_TOO_LARGE) {
-        uint32_t request_id = code == FC_ERR_TOO_LARGE ? c->header.request_id : 0;
-        apply_verdict(c, fc_session_reply_error(ctx, c->peer, request_id, &err, FC_SESSION_CLOSE, &c->out));
+        close_with_error(c, ctx, code == FC_ERR_TOO_LARGE ? c->header.request_id : 0, &err);
         return;
     }
     if (code != FC_OK)
@@ -274,8 +343,7 @@ static read_result receive_payload(fc_connection *c, fc_daemon_context *ctx)
     if (!reserve_payload(c)) {
         fc_error err;
         fc_error_set(&err, FC_ERR_INTERNAL, "no memory for a %u-byte payload", (unsigned)c->header.length);
-        apply_verdict(c, fc_session_reply_error(ctx, c->peer, c->header.request_id, &err, FC_SESSION_CLOSE,
-                                                &c->out));
+        close_with_error(c, ctx, c->header.request_id, &err);
         return READ_PROGRESS;
     }
     size_t room = c->payload_cap - c->payload_got;
@@ -326,6 +394,7 @@ void fc_connection_on_events(fc_connection *c, short revents, fc_daemon_context 
         read_messages(c, ctx);
     else if (c->phase == FC_CONN_LINGERING)
         drain_input(c);
+    enforce_client_deadline(c, ctx, fc_monotonic_ms());
     if (c->phase == FC_CONN_OPEN && revents == 0 && c->backlog_check_ms > 0.0)
         report_drained(c);
     else if (c->phase == FC_CONN_OPEN && revents == 0)

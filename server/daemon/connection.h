@@ -27,6 +27,7 @@ typedef struct fc_connection {
     double linger_deadline_ms;
     double backlog_check_ms;                /* when to look at the kernel's send queue again; <= 0: not waiting */
     unsigned long messages;                 /* messages handled so far */
+    double last_message_ms;                 /* when the connection opened or its last message completed */
     /* the message being read */
     uint8_t header_bytes[FC_WIRE_HEADER_SIZE];
     size_t header_got;
@@ -48,6 +49,9 @@ fc_code fc_connection_create(int fd, const char *peer, uint64_t id, fc_daemon_co
                              fc_error *err);
 /* Closes the socket, leaves any named session and frees everything. */
 void fc_connection_destroy(fc_connection *c);
+
+/* Answers a connection beyond --max-connections with ERROR LIMIT (request id 0) and closes it. */
+void fc_connection_refuse(fc_connection *c, fc_daemon_context *ctx);
 
 /* The poll() events the connection waits for now (0 when done). */
 short fc_connection_wanted_events(const fc_connection *c);

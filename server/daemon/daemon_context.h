@@ -6,6 +6,7 @@
 
 #include <stdint.h>
 
+#include "auth_token.h"
 #include "log.h"
 #include "render_service.h"
 #include "session_registry.h"
@@ -19,6 +20,10 @@ typedef struct fc_daemon_context {
     double chunk_timeout_ms;       /* how long a multi-rank frame may wait for its last chunk */
     double refresh_ms;             /* quiet time after a lossy stream image before a lossless refresh; 0 = never */
     uint64_t last_frame_id;        /* frame ids handed out so far (see fc_shared_frame.id) */
+    const fc_auth_token *token;    /* the secret HELLO must carry; text "" = none */
+    uint32_t max_connections;      /* connections at once; more are refused with LIMIT */
+    double idle_timeout_ms;        /* no complete message for this long closes a connection; 0 = never */
+    double read_timeout_ms;        /* a started message must complete within this; 0 = never */
 } fc_daemon_context;
 
 #endif

@@ -24,7 +24,10 @@ enum {
     ACCEPTS_PER_WAKE = 16,
     /* After running out of descriptors, accepting is retried this much later
      * instead of spinning on a listener that stays readable. */
-    ACCEPT_RETRY_MS = 500
+    ACCEPT_RETRY_MS = 500,
+    /* On a stop signal, renders already in flight get this long to be answered;
+     * bounded so a client that never reads cannot hold the shutdown. */
+    SHUTDOWN_DRAIN_MS = 5000
 };
 
 struct fc_event_loop {
@@ -122,8 +125,13 @@ static void add_client(fc_event_loop *loop, const fc_listener *listener, int fd,
         fc_log_write(loop->ctx->log, FC_LOG_WARN, "%s", err.message);
         return;
     }
+    /* Refused connections still take a slot until their ERROR is out, so a
+     * flood of them is bounded by the accept rate and the linger time. */
+    bool over_limit = loop->count >= loop->ctx->max_connections;
     loop->connections[loop->count++] = c;
     fc_log_write(loop->ctx->log, FC_LOG_INFO, "%s: connected", peer);
+    if (over_limit)
+        fc_connection_refuse(c, loop->ctx);
 }
 
 static void accept_clients(fc_event_loop *loop, const fc_listener *listener)
@@ -239,6 +247,53 @@ static void accept_ready(fc_event_loop *loop)
             accept_clients(loop, &loop->listeners[i]);
 }
 
+/* A connection whose RENDER is being rendered, or whose replies are not all sent. */
+static bool connection_busy(const fc_connection *c)
+{
+    return c->phase == FC_CONN_OPEN && (c->session.reply_pending || fc_connection_wanted_events(c) == POLLOUT);
+}
+
+/* Prepares a drain round: only busy connections are polled, so no new request
+ * is read; the stop fd and the listeners are left out (the signal stays
+ * readable for the log). Returns how many connections are busy. */
+static size_t prepare_drain_poll(fc_event_loop *loop)
+{
+    size_t busy = 0;
+    loop->fds[STOP_SLOT] = (struct pollfd){.fd = -1};
+    loop->fds[RESULTS_SLOT] = (struct pollfd){.fd = fc_render_service_wake_fd(loop->ctx->render), .events = POLLIN};
+    for (size_t i = 0; i < loop->listener_count; i++)
+        loop->fds[FIRST_LISTENER_SLOT + i] = (struct pollfd){.fd = -1};
+    for (size_t i = 0; i < loop->count; i++) {
+        const fc_connection *c = loop->connections[i];
+        bool waiting = connection_busy(c);
+        busy += waiting;
+        loop->fds[loop->first_connection_slot + i] =
+            (struct pollfd){.fd = waiting ? c->fd : -1, .events = fc_connection_wanted_events(c)};
+    }
+    return busy;
+}
+
+/* After a stop signal: answers every request already being rendered and sends
+ * every queued reply, so no client loses a render it asked for, then returns. */
+static fc_code drain_in_flight(fc_event_loop *loop, fc_error *err)
+{
+    double deadline_ms = fc_monotonic_ms() + SHUTDOWN_DRAIN_MS;
+    for (;;) {
+        double now_ms = fc_monotonic_ms();
+        if (prepare_drain_poll(loop) == 0 || now_ms >= deadline_ms)
+            return FC_OK;
+        if (poll(loop->fds, loop->first_connection_slot + loop->count, ms_until(deadline_ms, now_ms)) < 0) {
+            if (errno == EINTR)
+                continue;
+            return fc_error_set(err, FC_ERR_IO, "poll: %s", strerror(errno));
+        }
+        if (loop->fds[RESULTS_SLOT].revents)
+            deliver_results(loop);
+        service_connections(loop, fc_monotonic_ms());
+        remove_finished(loop);
+    }
+}
+
 fc_code fc_event_loop_run(fc_event_loop *loop, fc_error *err)
 {
     for (;;) {
@@ -249,7 +304,7 @@ fc_code fc_event_loop_run(fc_event_loop *loop, fc_error *err)
             return fc_error_set(err, FC_ERR_IO, "poll: %s", strerror(errno));
         }
         if (loop->fds[STOP_SLOT].revents)
-            return FC_OK;
+            return drain_in_flight(loop, err);
         if (loop->fds[RESULTS_SLOT].revents)
             deliver_results(loop);
         fc_registry_expire(loop->ctx->sessions, fc_monotonic_ms());

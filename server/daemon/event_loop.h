@@ -17,7 +17,9 @@ typedef struct fc_event_loop fc_event_loop;
 fc_code fc_event_loop_create(const fc_listener *listeners, size_t count, int stop_fd, fc_daemon_context *ctx,
                              fc_event_loop **out, fc_error *err);
 
-/* Serves clients until stop_fd is readable (FC_OK) or poll() fails (FC_ERR_IO). */
+/* Serves clients until stop_fd is readable (FC_OK) or poll() fails (FC_ERR_IO).
+ * On the stop signal it accepts and reads nothing more, but first answers the
+ * RENDERs already in flight and sends queued replies (for at most 5 s). */
 fc_code fc_event_loop_run(fc_event_loop *loop, fc_error *err);
 
 /* Closes every client connection and frees the loop. */

@@ -2,6 +2,7 @@
  * service (GL thread and encoders), the named sessions, the listeners and the
  * event loop, in that order; exit 0 on SIGINT/SIGTERM, 1 when it cannot start,
  * 2 on a bad command line. */
+#include <arpa/inet.h>
 #include <errno.h>
 #include <signal.h>
 #include <stdio.h>
@@ -10,6 +11,7 @@
 #include <sys/signalfd.h>
 #include <unistd.h>
 
+#include "auth_token.h"
 #include "daemon_context.h"
 #include "encoder_pool.h"
 #include "event_loop.h"
@@ -76,6 +78,30 @@ static void fill_welcome(const fc_daemon_options *options, const fc_render_servi
     snprintf(w->renderer, sizeof w->renderer, "%s", fc_render_service_renderer(render));
 }
 
+static bool is_loopback_host(const char *host)
+{
+    struct in_addr v4;
+    struct in6_addr v6;
+    if (strcmp(host, "localhost") == 0)
+        return true;
+    if (inet_pton(AF_INET, host, &v4) == 1)
+        return (ntohl(v4.s_addr) >> 24) == 127;
+    return inet_pton(AF_INET6, host, &v6) == 1 && IN6_IS_ADDR_LOOPBACK(&v6);
+}
+
+/* Anyone who can reach a non-loopback port can use a daemon without a token:
+ * say so, since it may be an oversight. */
+static void warn_if_open(const fc_daemon_options *options, const fc_auth_token *token, const fc_log *log)
+{
+    if (fc_auth_token_required(token) || !fc_daemon_options_serve_tcp(options) ||
+        is_loopback_host(options->listen_host))
+        return;
+    fc_log_write(log, FC_LOG_WARN,
+                 "listening on %s without authentication: anyone who can reach it can use this daemon "
+                 "(use --token-file or FLUIDCAST_TOKEN)",
+                 options->listen_host);
+}
+
 /* Opens the TCP and/or Unix listeners the options ask for; *count of them. */
 static fc_code open_listeners(const fc_daemon_options *options, fc_listener *listeners, size_t *count,
                               fc_error *err)
@@ -122,7 +148,7 @@ static int serve(const fc_daemon_options *options, fc_daemon_context *ctx, int s
     return code == FC_OK ? 0 : EXIT_FAILURE;
 }
 
-static int run(const fc_daemon_options *options, const fc_log *log, int stop_fd)
+static int run(const fc_daemon_options *options, const fc_auth_token *token, const fc_log *log, int stop_fd)
 {
     fc_error err;
     fc_render_service *render = NULL;
@@ -147,6 +173,10 @@ static int run(const fc_daemon_options *options, const fc_log *log, int stop_fd)
         .render = render,
         .chunk_timeout_ms = options->chunk_timeout_ms,
         .refresh_ms = options->refresh_ms,
+        .token = token,
+        .max_connections = options->max_connections,
+        .idle_timeout_ms = options->idle_timeout_ms,
+        .read_timeout_ms = options->read_timeout_ms,
     };
     fill_welcome(options, render, &ctx.welcome);
     int status = EXIT_FAILURE;
@@ -173,6 +203,12 @@ int main(int argc, char **argv)
         return 0;
     }
     fc_log log = {options.log_level};
+    fc_auth_token token;
+    if (fc_auth_token_load(options.token_file, getenv("FLUIDCAST_TOKEN"), &token, &err) != FC_OK) {
+        fprintf(stderr, "fluidcastd: %s\n", err.message);
+        return err.code == FC_ERR_USAGE ? EXIT_BAD_USAGE : EXIT_FAILURE;
+    }
+    warn_if_open(&options, &token, &log);
     /* A client that disconnects mid-reply must cost an EPIPE, not the process. */
     signal(SIGPIPE, SIG_IGN);
     int stop_fd = open_stop_signals(&err);
@@ -180,7 +216,7 @@ int main(int argc, char **argv)
         fc_log_write(&log, FC_LOG_ERROR, "%s", err.message);
         return EXIT_FAILURE;
     }
-    int status = run(&options, &log, stop_fd);
+    int status = run(&options, &token, &log, stop_fd);
     close(stop_fd);
     return status;
 }

@@ -24,6 +24,9 @@ void fc_daemon_options_default(fc_daemon_options *o)
     o->chunk_timeout_ms = FC_DEFAULT_CHUNK_TIMEOUT_MS;
     o->refresh_ms = FC_DEFAULT_REFRESH_MS;
     o->max_sessions = FC_DEFAULT_MAX_SESSIONS;
+    o->max_connections = FC_DEFAULT_MAX_CONNECTIONS;
+    o->idle_timeout_ms = FC_DEFAULT_IDLE_TIMEOUT_MS;
+    o->read_timeout_ms = FC_DEFAULT_READ_TIMEOUT_MS;
 }
 
 bool fc_daemon_options_serve_tcp(const fc_daemon_options *o)
@@ -59,12 +62,25 @@ void fc_daemon_options_print_help(FILE *out, const char *program)
             "                          (default %u)\n"
             "  --encoders N            image encoder threads (default min(4, cores))\n"
             "  --max-sessions N        named sessions at once (default %u)\n"
+            "  --max-connections N     client connections at once; more are answered with\n"
+            "                          ERROR LIMIT and closed (default %u)\n"
+            "  --idle-timeout-ms MS    close a connection that completed no message for this\n"
+            "                          long (viewers excepted); 0 = never (default %u)\n"
+            "  --read-timeout-ms MS    a message whose first bytes arrived must be complete\n"
+            "                          within this, or the connection is closed; 0 = never\n"
+            "                          (default %u)\n"
+            "  --token-file PATH       require clients to send the token in PATH (one line)\n"
+            "                          in HELLO; without it the FLUIDCAST_TOKEN environment\n"
+            "                          variable, if set, is the token\n"
             "  --help                  show this help\n"
             "\n"
+            "Without a token anyone who can reach the port can use the daemon: listening\n"
+            "beyond loopback without one prints a warning.\n"
             "SIGINT or SIGTERM stops the daemon cleanly (exit status 0).\n",
             program, FC_DEFAULT_LISTEN_HOST, FC_DEFAULT_PORT, FC_DEFAULT_MAX_PARTICLES,
             FC_DEFAULT_MAX_IMAGE_SIDE, FC_DEFAULT_MAX_IMAGE_SIDE, FC_DEFAULT_MAX_MESSAGE,
-            FC_DEFAULT_CHUNK_TIMEOUT_MS, FC_DEFAULT_REFRESH_MS, FC_DEFAULT_MAX_SESSIONS);
+            FC_DEFAULT_CHUNK_TIMEOUT_MS, FC_DEFAULT_REFRESH_MS, FC_DEFAULT_MAX_SESSIONS,
+            FC_DEFAULT_MAX_CONNECTIONS, FC_DEFAULT_IDLE_TIMEOUT_MS, FC_DEFAULT_READ_TIMEOUT_MS);
 }
 
 /* Whole-string unsigned decimal within [1, max]. */
@@ -140,7 +156,8 @@ static bool is_known_option(const char *name)
     static const char *const known[] = {"--listen",        "--gpu",       "--log-level",  "--shader-dir",
                                         "--port-file",     "--max-particles", "--max-image", "--max-message",
                                         "--unix",          "--chunk-timeout-ms", "--refresh-ms", "--encoders",
-                                        "--max-sessions"};
+                                        "--max-sessions", "--max-connections", "--idle-timeout-ms",
+                                        "--read-timeout-ms", "--token-file"};
     for (size_t i = 0; i < sizeof known / sizeof known[0]; i++)
         if (strcmp(name, known[i]) == 0)
             return true;
@@ -159,6 +176,27 @@ static fc_code parse_ms(const char *option, const char *text, uint32_t *out, fc_
         return FC_ERR_USAGE;
     *out = (uint32_t)n;
     return FC_OK;
+}
+
+/* Applies one of the options of authentication and connection limits. */
+static fc_code apply_hardening_option(const char *name, const char *value, fc_daemon_options *o, fc_error *err)
+{
+    uint64_t n;
+    if (strcmp(name, "--token-file") == 0) {
+        o->token_file = value;
+        return FC_OK;
+    }
+    if (strcmp(name, "--max-connections") == 0) {
+        if (parse_count(name, value, UINT32_MAX, &n, err) != FC_OK)
+            return FC_ERR_USAGE;
+        o->max_connections = (uint32_t)n;
+        return FC_OK;
+    }
+    if (strcmp(name, "--idle-timeout-ms") == 0)
+        return parse_ms(name, value, &o->idle_timeout_ms, err);
+    if (strcmp(name, "--read-timeout-ms") == 0)
+        return parse_ms(name, value, &o->read_timeout_ms, err);
+    return fc_error_set(err, FC_ERR_USAGE, "unknown option '%s' (see --help)", name);
 }
 
 /* Applies one of the options of sessions and streaming. */
@@ -189,7 +227,7 @@ static fc_code apply_stream_option(const char *name, const char *value, fc_daemo
         o->max_sessions = (uint32_t)n;
         return FC_OK;
     }
-    return fc_error_set(err, FC_ERR_USAGE, "unknown option '%s' (see --help)", name);
+    return apply_hardening_option(name, value, o, err);
 }
 
 /* Applies one option that takes a value. */

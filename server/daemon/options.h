@@ -16,6 +16,9 @@
 #define FC_DEFAULT_CHUNK_TIMEOUT_MS 10000u
 #define FC_DEFAULT_REFRESH_MS 1000u
 #define FC_DEFAULT_MAX_SESSIONS 256u
+#define FC_DEFAULT_MAX_CONNECTIONS 1024u
+#define FC_DEFAULT_IDLE_TIMEOUT_MS 300000u
+#define FC_DEFAULT_READ_TIMEOUT_MS 30000u
 
 typedef struct fc_daemon_options {
     char listen_host[256];     /* name or address; brackets of "[v6]:port" removed */
@@ -31,6 +34,10 @@ typedef struct fc_daemon_options {
     uint32_t refresh_ms;       /* quiet time before a lossless refresh of a lossy stream image; 0 = never */
     uint32_t encoders;         /* encoder threads; 0 = min(4, cores) */
     uint32_t max_sessions;     /* named sessions at once */
+    uint32_t max_connections;  /* client connections at once; more are refused with LIMIT */
+    uint32_t idle_timeout_ms;  /* close a connection with no complete message for this long; 0 = never */
+    uint32_t read_timeout_ms;  /* a started message must be complete within this; 0 = never */
+    const char *token_file;    /* --token-file: NULL for none (then FLUIDCAST_TOKEN); points into argv */
     bool help;                 /* --help: print usage and exit */
 } fc_daemon_options;
 

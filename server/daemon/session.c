@@ -206,6 +206,29 @@ static fc_session_verdict handle_goodbye(fc_session *s, fc_daemon_context *ctx, 
     return FC_SESSION_CLOSE;
 }
 
+bool fc_session_unauthenticated(const fc_session *s)
+{
+    return s->state == FC_SESSION_AWAIT_HELLO && s->ctx->token && fc_auth_token_required(s->ctx->token);
+}
+
+/* With a token configured, nothing about the server (not even which protocol
+ * errors it finds) is revealed before the client proved it knows the token. */
+static fc_session_verdict authenticate_hello(fc_session *s, fc_daemon_context *ctx, const fc_msg_header *h,
+                                             const uint8_t *payload, fc_buf *out)
+{
+    fc_hello hello;
+    fc_error err;
+    if (h->type != FC_MSG_HELLO)
+        fc_error_set(&err, FC_ERR_UNAUTHORIZED, "authentication required: send HELLO with the token first");
+    else if (fc_wire_read_hello(payload, h->length, &hello, &err) != FC_OK || hello.token[0] == '\0')
+        fc_error_set(&err, FC_ERR_UNAUTHORIZED, "authentication required: HELLO carries no readable token");
+    else if (!fc_auth_token_matches(ctx->token->text, hello.token))
+        fc_error_set(&err, FC_ERR_UNAUTHORIZED, "wrong token");
+    else
+        return handle_hello(s, ctx, h, payload, out);
+    return reply_error(s, ctx, h, &err, FC_SESSION_CLOSE, out);
+}
+
 /* Before the handshake only HELLO (or a polite GOODBYE) is accepted; any
  * other message ends the connection, as the client is not speaking fluidcast. */
 static fc_session_verdict handle_before_hello(fc_session *s, fc_daemon_context *ctx, const fc_msg_header *h,
@@ -241,6 +264,8 @@ static fc_session_verdict refuse_after_hello(fc_session *s, fc_daemon_context *c
 fc_session_verdict fc_session_handle(fc_session *s, fc_daemon_context *ctx, const fc_msg_header *header,
                                      const uint8_t *payload, double received_ms, fc_buf *out)
 {
+    if (fc_session_unauthenticated(s))
+        return authenticate_hello(s, ctx, header, payload, out);
     if (s->state == FC_SESSION_AWAIT_HELLO)
         return handle_before_hello(s, ctx, header, payload, out);
     switch (header->type) {

@@ -66,6 +66,10 @@ fc_session_verdict fc_session_handle(fc_session *s, fc_daemon_context *ctx, cons
 fc_session_verdict fc_session_reply_error(const fc_daemon_context *ctx, const char *peer, uint32_t request_id,
                                           const fc_error *error, fc_session_verdict then, fc_buf *out);
 
+/* True while a token is required and this client has not presented it:
+ * the only reply such a client may get is ERROR UNAUTHORIZED. */
+bool fc_session_unauthenticated(const fc_session *s);
+
 /* A render job of this session finished: its IMAGE / STREAM_IMAGE (or ERROR) is queued. */
 void fc_session_job_done(fc_session *s, const fc_render_job *job);
 /* The connection's output queue has been sent completely (and the kernel

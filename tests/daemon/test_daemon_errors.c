@@ -154,7 +154,7 @@ static void test_unsupported_versions_close(uint16_t port)
     fc_buf out;
     fc_error err;
     fc_buf_init(&out);
-    fc_hello hello = {2, 5, 0, "from the future"};
+    fc_hello hello = {2, 5, 0, "from the future", ""};
     fc_wire_write_hello(&out, 3, &hello, &err);
     send_buf(fd, &out);
     expect_error(fd, 3, FC_ERR_VERSION);

@@ -76,7 +76,7 @@ static void test_welcome_describes_the_server(uint16_t port)
     /* A second HELLO is refused but the connection stays usable. */
     fc_buf out;
     fc_buf_init(&out);
-    fc_hello hello = {1, 1, 0, "again"};
+    fc_hello hello = {1, 1, 0, "again", ""};
     fc_wire_write_hello(&out, 42, &hello, &err);
     send_buf(fd, &out);
     expect_error(fd, 42, FC_ERR_BAD_STATE);

@@ -65,7 +65,7 @@ int svc_raw_connect(uint16_t port, uint32_t capabilities, int receive_buffer, fc
     int fd = connect_socket(port, receive_buffer);
     if (fd < 0)
         return -1;
-    fc_hello hello = {FC_PROTOCOL_VERSION, FC_PROTOCOL_VERSION, capabilities, "service-test"};
+    fc_hello hello = {FC_PROTOCOL_VERSION, FC_PROTOCOL_VERSION, capabilities, "service-test", ""};
     fc_buf out;
     fc_buf_init(&out);
     fc_test_message reply = {0};

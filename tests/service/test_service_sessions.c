@@ -42,7 +42,7 @@ static void test_version_mismatch(const fc_test_daemon *d)
     int fd;
     fc_error err, remote;
     CHECK_CODE(fc_test_connect(d->port, &fd, &err), FC_OK);
-    fc_hello hello = {2, 3, FC_CAPS_ALL, "from the future"};
+    fc_hello hello = {2, 3, FC_CAPS_ALL, "from the future", ""};
     fc_buf b;
     fc_buf_init(&b);
     CHECK_CODE(fc_wire_write_hello(&b, 1, &hello, &err), FC_OK);

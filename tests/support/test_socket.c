@@ -120,7 +120,7 @@ fc_code fc_test_expect_closed(int fd, int timeout_ms, fc_error *err)
 
 fc_code fc_test_handshake(int fd, uint32_t request_id, fc_welcome *welcome, fc_error *err)
 {
-    fc_hello hello = {FC_PROTOCOL_VERSION, FC_PROTOCOL_VERSION, 0, "fluidcast-test"};
+    fc_hello hello = {FC_PROTOCOL_VERSION, FC_PROTOCOL_VERSION, 0, "fluidcast-test", ""};
     fc_buf out;
     fc_buf_init(&out);
     fc_code code = fc_wire_write_hello(&out, request_id, &hello, err);

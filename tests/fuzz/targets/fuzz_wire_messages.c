@@ -1,35 +1,22 @@
-/* fuzz_wire_messages.c — libFuzzer target for the protocol decoder: the input is
- * a byte stream as a peer would send it, a sequence of messages. Each header goes
- * through fc_wire_decode_header and each payload through the fc_wire_read_* of
- * its type, exactly as long as the header says, in a buffer of its own so that
- * AddressSanitizer sees any read past the payload.
+/* fuzz_wire_messages.c — libFuzzer target for the decoders of the core
+ * messages (types 1..9) and the scene images (BACKGROUND 10, ENVIRONMENT 11):
+ * the input is a byte stream as a peer would send it, a sequence of messages,
+ * read by fuzz_read_messages (fuzz_stream.h). The session messages (16..24)
+ * have a target of their own, fuzz_wire_session.
  *
- * Decoded messages are checked against their contract, and CAMERA and FRAME,
- * whose encoding is canonical, must re-encode to the very bytes received. */
+ * Decoded messages are checked against their contract, and the messages whose
+ * encoding is canonical (CAMERA, FRAME, BACKGROUND, ENVIRONMENT) must re-encode
+ * to the very bytes received. */
+#include <stdbool.h>
 #include <stdint.h>
-#include <stdlib.h>
-#include <string.h>
 
 #include "fc_frame.h"
 #include "fuzz_check.h"
+#include "fuzz_stream.h"
 #include "wire.h"
+#include "wire_scene.h"
 
-#define FUZZ_MAX_PAYLOAD (1u << 20)   /* small, so TOO_LARGE is reachable */
-#define FUZZ_MAX_PARTICLES 4096u      /* small, so LIMIT is reachable */
-
-typedef struct payload {
-    const uint8_t *p;
-    size_t n;
-} payload;
-
-static void require_same_payload(const fc_buf *encoded, payload in)
-{
-    FUZZ_REQUIRE(!encoded->failed && encoded->len == FC_WIRE_HEADER_SIZE + in.n,
-                 "re-encoded %zu bytes for a %zu-byte payload", encoded->len, in.n);
-    FUZZ_REQUIRE(memcmp(encoded->data + FC_WIRE_HEADER_SIZE, in.p, in.n) == 0, "re-encoded payload differs");
-}
-
-static fc_code decode_hello(payload in, fc_error *err)
+static fc_code decode_hello(fuzz_payload in, fc_error *err)
 {
     fc_hello m;
     fc_code code = fc_wire_read_hello(in.p, in.n, &m, err);
@@ -38,7 +25,7 @@ static fc_code decode_hello(payload in, fc_error *err)
     return code;
 }
 
-static fc_code decode_welcome(payload in, fc_error *err)
+static fc_code decode_welcome(fuzz_payload in, fc_error *err)
 {
     fc_welcome m;
     fc_code code = fc_wire_read_welcome(in.p, in.n, &m, err);
@@ -49,7 +36,7 @@ static fc_code decode_welcome(payload in, fc_error *err)
     return code;
 }
 
-static fc_code decode_frame(payload in, fc_error *err)
+static fc_code decode_frame(fuzz_payload in, fc_error *err)
 {
     fc_frame m;
     fc_code code = fc_wire_read_frame(in.p, in.n, FUZZ_MAX_PARTICLES, &m, err);
@@ -61,13 +48,13 @@ static fc_code decode_frame(payload in, fc_error *err)
     fc_buf encoded;
     fc_buf_init(&encoded);
     FUZZ_REQUIRE(fc_wire_write_frame(&encoded, 0, &m, &check) == FC_OK, "re-encoding failed: %s", check.message);
-    require_same_payload(&encoded, in);
+    fuzz_require_same_payload(&encoded, in);
     fc_buf_free(&encoded);
     fc_frame_free(&m);
     return FC_OK;
 }
 
-static fc_code decode_camera(payload in, fc_error *err)
+static fc_code decode_camera(fuzz_payload in, fc_error *err)
 {
     fc_camera m;
     fc_code code = fc_wire_read_camera(in.p, in.n, &m, err);
@@ -78,12 +65,12 @@ static fc_code decode_camera(payload in, fc_error *err)
     fc_buf encoded;
     fc_buf_init(&encoded);
     FUZZ_REQUIRE(fc_wire_write_camera(&encoded, 0, &m, &check) == FC_OK, "re-encoding failed: %s", check.message);
-    require_same_payload(&encoded, in);
+    fuzz_require_same_payload(&encoded, in);
     fc_buf_free(&encoded);
     return FC_OK;
 }
 
-static fc_code decode_settings(payload in, fc_error *err)
+static fc_code decode_settings(fuzz_payload in, fc_error *err)
 {
     fc_settings m;
     fc_settings_default(&m);
@@ -94,30 +81,31 @@ static fc_code decode_settings(payload in, fc_error *err)
     return code;
 }
 
-static fc_code decode_render(payload in, fc_error *err)
+static fc_code decode_render(fuzz_payload in, fc_error *err)
 {
     fc_render_request m;
     fc_code code = fc_wire_read_render(in.p, in.n, &m, err);
     if (code == FC_OK) {
         FUZZ_REQUIRE(m.format >= FC_FORMAT_PNG && m.format <= FC_FORMAT_RAW, "format %d", (int)m.format);
         FUZZ_REQUIRE(m.quality >= 1 && m.quality <= 100, "quality %u", m.quality);
-        FUZZ_REQUIRE(m.aov >= FC_AOV_COLOR && m.aov <= FC_AOV_THICKNESS, "aov %d", (int)m.aov);
+        FUZZ_REQUIRE(m.aov >= FC_AOV_COLOR && m.aov <= FC_AOV_NOISE, "aov %d", (int)m.aov);
+        /* PNG and JPEG hold 8-bit colour only. */
+        FUZZ_REQUIRE(m.aov == FC_AOV_COLOR || m.format == FC_FORMAT_EXR || m.format == FC_FORMAT_RAW,
+                     "aov %d accepted in format %d", (int)m.aov, (int)m.format);
     }
     return code;
 }
 
-static fc_code decode_image(payload in, fc_error *err)
+static fc_code decode_image(fuzz_payload in, fc_error *err)
 {
     fc_image_reply m;
     fc_code code = fc_wire_read_image(in.p, in.n, &m, err);
-    if (code == FC_OK) {
-        /* The image data is the tail of the payload. */
-        FUZZ_REQUIRE(m.size <= in.n && m.data == in.p + (in.n - m.size), "image data is not the payload's tail");
-    }
+    if (code == FC_OK)
+        fuzz_require_image_in_payload(&m, in);
     return code;
 }
 
-static fc_code decode_error(payload in, fc_error *err)
+static fc_code decode_error(fuzz_payload in, fc_error *err)
 {
     fc_error m;
     fc_code code = fc_wire_read_error(in.p, in.n, &m, err);
@@ -128,7 +116,7 @@ static fc_code decode_error(payload in, fc_error *err)
     return code;
 }
 
-static fc_code decode_goodbye(payload in, fc_error *err)
+static fc_code decode_goodbye(fuzz_payload in, fc_error *err)
 {
     fc_code code = fc_wire_read_goodbye(in.p, in.n, err);
     if (code == FC_OK)
@@ -136,7 +124,67 @@ static fc_code decode_goodbye(payload in, fc_error *err)
     return code;
 }
 
-static fc_code decode_payload(uint16_t type, payload in, fc_error *err)
+static fc_code decode_background(fuzz_payload in, fc_error *err)
+{
+    fc_encoded_image m;
+    fc_code code = fc_wire_read_background(in.p, in.n, &m, err);
+    FUZZ_REQUIRE(code == FC_OK, "BACKGROUND frames any payload, yet refused %zu bytes", in.n);
+    FUZZ_REQUIRE(m.size == in.n && m.data == (in.n > 0 ? in.p : NULL), "the file is not the whole payload");
+    fc_error check = {FC_OK, ""};
+    fc_buf encoded;
+    fc_buf_init(&encoded);
+    FUZZ_REQUIRE(fc_wire_write_background(&encoded, 0, &m, &check) == FC_OK, "re-encoding failed: %s",
+                 check.message);
+    fuzz_require_same_payload(&encoded, in);
+    fc_buf_free(&encoded);
+    return FC_OK;
+}
+
+/* Accepted faces are non-empty and lie back to back in the payload, each after its u64 length. */
+static void require_faces_in_payload(const fc_encoded_image *faces, fuzz_payload in)
+{
+    size_t offset = 0;
+    for (int i = 0; i < FC_CUBE_FACES; i++) {
+        offset += 8;
+        FUZZ_REQUIRE(faces[i].size > 0, "face %s is empty", fc_cube_face_name(i));
+        FUZZ_REQUIRE(faces[i].data == in.p + offset && faces[i].size <= in.n - offset,
+                     "face %s is not where its length says", fc_cube_face_name(i));
+        offset += (size_t)faces[i].size;
+    }
+    FUZZ_REQUIRE(offset == in.n, "six faces take %zu of %zu payload bytes", offset, in.n);
+}
+
+static fc_code decode_environment(fuzz_payload in, fc_error *err)
+{
+    fc_encoded_image faces[FC_CUBE_FACES];
+    bool has_faces = true;
+    fc_code code = fc_wire_read_environment(in.p, in.n, faces, &has_faces, err);
+    if (code != FC_OK)
+        return code;
+    FUZZ_REQUIRE(has_faces == (in.n > 0), "%zu payload bytes but has_faces %d", in.n, (int)has_faces);
+    if (has_faces)
+        require_faces_in_payload(faces, in);
+    fc_error check = {FC_OK, ""};
+    fc_buf encoded;
+    fc_buf_init(&encoded);
+    FUZZ_REQUIRE(fc_wire_write_environment(&encoded, 0, has_faces ? faces : NULL, &check) == FC_OK,
+                 "re-encoding failed: %s", check.message);
+    fuzz_require_same_payload(&encoded, in);
+    fc_buf_free(&encoded);
+    return FC_OK;
+}
+
+/* The extensions this target knows, which fc_msg_type leaves out. */
+static fc_code decode_extension(uint16_t type, fuzz_payload in, fc_error *err)
+{
+    switch (type) {
+    case FC_MSG_BACKGROUND: return decode_background(in, err);
+    case FC_MSG_ENVIRONMENT: return decode_environment(in, err);
+    }
+    return FC_OK; /* no decoder here: the server answers UNKNOWN_TYPE (or fuzz_wire_session decodes it) */
+}
+
+static fc_code decode_payload(uint16_t type, fuzz_payload in, fc_error *err)
 {
     switch ((fc_msg_type)type) {
     case FC_MSG_HELLO: return decode_hello(in, err);
@@ -149,51 +197,11 @@ static fc_code decode_payload(uint16_t type, payload in, fc_error *err)
     case FC_MSG_ERROR: return decode_error(in, err);
     case FC_MSG_GOODBYE: return decode_goodbye(in, err);
     }
-    return FC_OK; /* unknown types have no decoder: the server answers UNKNOWN_TYPE */
-}
-
-/* A refused payload is the sender's fault, so its code is one a server sends back. */
-static void check_payload_refusal(fc_code code, const fc_error *err)
-{
-    fuzz_require_reported(code, err);
-    FUZZ_REQUIRE(code == FC_ERR_MALFORMED || code == FC_ERR_INVALID_VALUE || code == FC_ERR_LIMIT,
-                 "payload refused with code %d: %s", (int)code, err->message);
-}
-
-/* Decodes one payload from a heap copy of exactly its size. */
-static void decode_copy(uint16_t type, const uint8_t *p, size_t n)
-{
-    uint8_t *copy = malloc(n);
-    FUZZ_REQUIRE(copy != NULL || n == 0, "cannot copy a %zu-byte payload", n);
-    if (n > 0)
-        memcpy(copy, p, n);
-    fc_error err = {FC_OK, ""};
-    fc_code code = decode_payload(type, (payload){copy, n}, &err);
-    if (code != FC_OK)
-        check_payload_refusal(code, &err);
-    free(copy);
+    return decode_extension(type, in, err);
 }
 
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
 {
-    while (size >= FC_WIRE_HEADER_SIZE) {
-        fc_msg_header header;
-        fc_error err = {FC_OK, ""};
-        fc_code code = fc_wire_decode_header(data, FUZZ_MAX_PAYLOAD, &header, &err);
-        if (code != FC_OK) {
-            fuzz_require_reported(code, &err);
-            FUZZ_REQUIRE(code == FC_ERR_BAD_MAGIC || code == FC_ERR_TOO_LARGE || code == FC_ERR_MALFORMED,
-                         "header refused with code %d", (int)code);
-            return 0; /* the connection would be closed here */
-        }
-        FUZZ_REQUIRE(header.length <= FUZZ_MAX_PAYLOAD, "accepted length %u", header.length);
-        data += FC_WIRE_HEADER_SIZE;
-        size -= FC_WIRE_HEADER_SIZE;
-        if (header.length > size)
-            return 0; /* the stream ends inside this message */
-        decode_copy(header.type, data, header.length);
-        data += header.length;
-        size -= header.length;
-    }
+    fuzz_read_messages(data, size, decode_payload);
     return 0;
 }

@@ -1,6 +1,6 @@
 /* make_seeds.c — writes the generated part of the seed corpus: binary particle
- * files and one valid encoded message of every type (plus a whole session),
- * built with the fc_wire_write_* encoders. The text seeds (ascii PLY and VTK,
+ * files and one valid encoded message of every type (plus whole sessions, and
+ * packed frames in every encoding), built with the fc_wire_write_* encoders. The text seeds (ascii PLY and VTK,
  * CSV) are written by hand and committed as they are.
  *
  * Usage: fuzz_make_seeds CORPUS_DIR   (CORPUS_DIR/<target>/ must exist) */
@@ -12,6 +12,8 @@
 #include "fc_error.h"
 #include "fc_frame.h"
 #include "wire.h"
+#include "wire_scene.h"
+#include "wire_session.h"
 
 enum { SEED_PARTICLES = 4 };
 
@@ -21,6 +23,15 @@ static const float DENSITY[SEED_PARTICLES] = {1000.0f, 998.5f, 1002.25f, 999.0f}
 static const float VELOCITY[SEED_PARTICLES][3] = {
     {0.0f, 0.0f, -9.81f}, {1.0f, 2.0f, 3.0f}, {-0.5f, 0.25f, 0.0f}, {0.0f, 0.0f, 0.0f}};
 static const uint32_t IDS[SEED_PARTICLES] = {0, 1, 7, 4294967295u};
+
+/* A complete 1x1 RGB PNG: what BACKGROUND and ENVIRONMENT carry (the codec frames the files, never decodes them). */
+static const uint8_t PNG_1X1[] = {
+    0x89, 0x50, 0x4e, 0x47, 0x0d, 0x0a, 0x1a, 0x0a, 0x00, 0x00, 0x00, 0x0d, 0x49, 0x48, 0x44, 0x52, 0x00, 0x00,
+    0x00, 0x01, 0x00, 0x00, 0x00, 0x01, 0x08, 0x02, 0x00, 0x00, 0x00, 0x90, 0x77, 0x53, 0xde, 0x00, 0x00, 0x00,
+    0x0c, 0x49, 0x44, 0x41, 0x54, 0x78, 0x9c, 0x63, 0x50, 0x48, 0x58, 0x00, 0x00, 0x01, 0xc4, 0x01, 0x21, 0x62,
+    0x5f, 0x8a, 0xfd, 0x00, 0x00, 0x00, 0x00, 0x49, 0x45, 0x4e, 0x44, 0xae, 0x42, 0x60, 0x82};
+
+static const char SESSION_NAME[] = "sim/run-1";
 
 /* ---- writing files ---- */
 
@@ -175,15 +186,21 @@ static fc_code write_welcome(fc_buf *out)
     return fc_wire_write_welcome(out, 1, &m, NULL);
 }
 
-static fc_frame seed_frame(bool with_attributes)
+/* Particles first .. first + count - 1 of the seed particles. */
+static fc_frame seed_part(size_t first, size_t count, bool with_attributes)
 {
-    fc_frame frame = {.count = SEED_PARTICLES, .positions = (float *)&POSITIONS[0][0]};
+    fc_frame frame = {.count = count, .positions = (float *)&POSITIONS[first][0]};
     if (with_attributes) {
-        frame.density = (float *)DENSITY;
-        frame.velocity = (float *)&VELOCITY[0][0];
-        frame.ids = (uint32_t *)IDS;
+        frame.density = (float *)&DENSITY[first];
+        frame.velocity = (float *)&VELOCITY[first][0];
+        frame.ids = (uint32_t *)&IDS[first];
     }
     return frame;
+}
+
+static fc_frame seed_frame(bool with_attributes)
+{
+    return seed_part(0, SEED_PARTICLES, with_attributes);
 }
 
 static fc_code write_frame_positions(fc_buf *out)
@@ -218,13 +235,19 @@ static fc_code write_render(fc_buf *out)
     return fc_wire_write_render(out, 5, &m, NULL);
 }
 
-static fc_code write_image(fc_buf *out)
+static fc_image_reply seed_image(void)
 {
     static const uint8_t pixels[2 * 2 * 4] = {255, 0, 0, 255, 0, 255, 0, 255, 0, 0, 255, 255, 9, 9, 9, 0};
     fc_image_reply m = {.width = 2, .height = 2, .format = FC_FORMAT_RAW, .aov = FC_AOV_COLOR,
                         .data = pixels, .size = sizeof pixels};
     for (int s = 0; s < FC_STAGE_COUNT; s++)
         m.stage_ms[s] = s == FC_STAGE_SMOOTHING ? -1.0f : 0.5f * (float)s; /* one stage not measured */
+    return m;
+}
+
+static fc_code write_image(fc_buf *out)
+{
+    fc_image_reply m = seed_image();
     return fc_wire_write_image(out, 5, &m, NULL);
 }
 
@@ -239,37 +262,204 @@ static fc_code write_goodbye(fc_buf *out)
     return fc_wire_write_goodbye(out, 6, NULL);
 }
 
-static int save_messages(const char *dir, const char *file, const message_writer *writers, size_t count)
+static fc_code write_background(fc_buf *out)
+{
+    fc_encoded_image image = {PNG_1X1, sizeof PNG_1X1};
+    return fc_wire_write_background(out, 7, &image, NULL);
+}
+
+static fc_code write_environment(fc_buf *out)
+{
+    fc_encoded_image faces[FC_CUBE_FACES];
+    for (int i = 0; i < FC_CUBE_FACES; i++)
+        faces[i] = (fc_encoded_image){PNG_1X1, sizeof PNG_1X1};
+    return fc_wire_write_environment(out, 8, faces, NULL);
+}
+
+/* The empty payloads that return to the built-in floor, sky and reflections. */
+static fc_code write_background_reset(fc_buf *out)
+{
+    return fc_wire_write_background(out, 9, NULL, NULL);
+}
+
+static fc_code write_environment_reset(fc_buf *out)
+{
+    return fc_wire_write_environment(out, 10, NULL, NULL);
+}
+
+/* ---- session messages ---- */
+
+static fc_session_info seed_session_info(const char *name, uint32_t producers, uint64_t frames)
+{
+    fc_session_info m = {.producers = producers, .viewers = 1, .frames = frames, .last_frame = 40 + frames};
+    snprintf(m.name, sizeof m.name, "%s", name);
+    return m;
+}
+
+static fc_code write_publish(fc_buf *out)
+{
+    return fc_wire_write_publish(out, 1, SESSION_NAME, NULL);
+}
+
+static fc_code write_subscribe(fc_buf *out)
+{
+    fc_subscribe m = {.request = {.format = FC_FORMAT_JPEG, .quality = 80, .aov = FC_AOV_COLOR},
+                      .width = 64, .height = 48};
+    snprintf(m.name, sizeof m.name, "%s", SESSION_NAME);
+    return fc_wire_write_subscribe(out, 2, &m, NULL);
+}
+
+static fc_code write_session_state(fc_buf *out)
+{
+    fc_session_info m = seed_session_info(SESSION_NAME, 2, 3);
+    return fc_wire_write_session_state(out, 2, &m, NULL);
+}
+
+static fc_code write_session_leave(fc_buf *out)
+{
+    return fc_wire_write_session_leave(out, 9, NULL);
+}
+
+static fc_code write_session_end(fc_buf *out)
+{
+    return fc_wire_write_session_end(out, 2, SESSION_NAME, NULL);
+}
+
+static fc_code write_list_sessions(fc_buf *out)
+{
+    return fc_wire_write_list_sessions(out, 3, NULL);
+}
+
+static fc_code write_session_list(fc_buf *out)
+{
+    fc_session_info m[2] = {seed_session_info(SESSION_NAME, 2, 3), seed_session_info("rank-test", 0, 0)};
+    return fc_wire_write_session_list(out, 3, m, 2, NULL);
+}
+
+static fc_code write_stream_image(fc_buf *out)
+{
+    fc_stream_tag tag = {.frame_number = 41, .sequence = 3, .missed = 1, .flags = 0};
+    fc_image_reply image = seed_image();
+    return fc_wire_write_stream_image(out, 2, &tag, &image, NULL);
+}
+
+/* Frame 41 in two chunks of 1 and 3 particles: odd counts, so quantised ones carry padding. */
+static fc_code write_chunk_plain(fc_buf *out)
+{
+    fc_chunk_header h = {.frame_number = 41, .index = 0, .count = 2};
+    fc_frame part = seed_part(0, 1, true);
+    return fc_wire_write_chunk(out, 4, &h, &part, 0, 0, NULL);
+}
+
+static fc_code write_chunk_packed(fc_buf *out)
+{
+    fc_chunk_header h = {.frame_number = 41, .index = 1, .count = 2};
+    fc_frame part = seed_part(1, SEED_PARTICLES - 1, true);
+    return fc_wire_write_chunk(out, 5, &h, &part, FC_PACK_ZSTD | FC_PACK_QUANTIZE16, 0, NULL);
+}
+
+static fc_code write_frame_packed(fc_buf *out, uint32_t encoding)
+{
+    fc_frame frame = seed_frame(true);
+    return fc_wire_write_frame_packed(out, 6, &frame, encoding, 0, NULL);
+}
+
+static fc_code write_frame_packed_plain(fc_buf *out)
+{
+    return write_frame_packed(out, 0);
+}
+
+static fc_code write_frame_packed_zstd(fc_buf *out)
+{
+    return write_frame_packed(out, FC_PACK_ZSTD);
+}
+
+static fc_code write_frame_packed_quantized(fc_buf *out)
+{
+    return write_frame_packed(out, FC_PACK_QUANTIZE16);
+}
+
+static fc_code write_frame_packed_positions(fc_buf *out)
+{
+    fc_frame frame = seed_frame(false);
+    return fc_wire_write_frame_packed(out, 6, &frame, FC_PACK_ZSTD | FC_PACK_QUANTIZE16, 0, NULL);
+}
+
+/* ---- saving messages ---- */
+
+typedef struct seed_file {
+    const char *file;
+    message_writer writer;
+} seed_file;
+
+static int save_messages(const char *dir, const char *target, const char *file, const message_writer *writers,
+                         size_t count)
 {
     fc_buf b;
     fc_buf_init(&b);
     int failed = 0;
     for (size_t i = 0; i < count; i++)
         failed |= writers[i](&b) != FC_OK;
-    failed |= save(dir, "fuzz_wire_messages", file, &b);
+    failed |= save(dir, target, file, &b);
     fc_buf_free(&b);
     return failed;
 }
 
+static int save_singles(const char *dir, const char *target, const seed_file *files, size_t count)
+{
+    int failed = 0;
+    for (size_t i = 0; i < count; i++)
+        failed |= save_messages(dir, target, files[i].file, &files[i].writer, 1);
+    return failed;
+}
+
+#define COUNT(array) (sizeof(array) / sizeof((array)[0]))
+
 static int write_messages(const char *dir)
 {
-    static const struct {
-        const char *file;
-        message_writer writer;
-    } singles[] = {
+    static const seed_file singles[] = {
         {"hello.bin", write_hello},     {"welcome.bin", write_welcome},
         {"frame.bin", write_frame_positions}, {"frame_attributes.bin", write_frame_all},
         {"camera.bin", write_camera},   {"settings.bin", write_settings},
         {"render.bin", write_render},   {"image.bin", write_image},
         {"error.bin", write_error},     {"goodbye.bin", write_goodbye},
+        {"background.bin", write_background}, {"environment.bin", write_environment},
     };
     static const message_writer session[] = {write_hello,    write_frame_all, write_camera,
                                              write_settings, write_render,    write_goodbye};
-    int failed = 0;
-    for (size_t i = 0; i < sizeof singles / sizeof singles[0]; i++)
-        failed |= save_messages(dir, singles[i].file, &singles[i].writer, 1);
-    failed |= save_messages(dir, "session.bin", session, sizeof session / sizeof session[0]);
-    return failed;
+    static const message_writer scene_reset[] = {write_background_reset, write_environment_reset};
+    const char *target = "fuzz_wire_messages";
+    return save_singles(dir, target, singles, COUNT(singles)) |
+           save_messages(dir, target, "session.bin", session, COUNT(session)) |
+           save_messages(dir, target, "scene_reset.bin", scene_reset, COUNT(scene_reset));
+}
+
+static int write_session_messages(const char *dir)
+{
+    static const seed_file singles[] = {
+        {"publish.bin", write_publish},
+        {"subscribe.bin", write_subscribe},
+        {"session_state.bin", write_session_state},
+        {"session_leave.bin", write_session_leave},
+        {"session_end.bin", write_session_end},
+        {"list_sessions.bin", write_list_sessions},
+        {"session_list.bin", write_session_list},
+        {"stream_image.bin", write_stream_image},
+        {"chunk.bin", write_chunk_plain},
+        {"chunk_zstd_quantized.bin", write_chunk_packed},
+        {"frame_packed.bin", write_frame_packed_plain},
+        {"frame_packed_zstd.bin", write_frame_packed_zstd},
+        {"frame_packed_quantized.bin", write_frame_packed_quantized},
+        {"frame_packed_positions_zstd_quantized.bin", write_frame_packed_positions},
+    };
+    static const message_writer producer[] = {write_publish, write_chunk_plain, write_chunk_packed,
+                                              write_frame_packed_zstd, write_session_leave};
+    static const message_writer viewer[] = {write_subscribe, write_session_state, write_stream_image,
+                                            write_list_sessions, write_session_list, write_session_end};
+    const char *target = "fuzz_wire_session";
+    return save_singles(dir, target, singles, COUNT(singles)) |
+           save_messages(dir, target, "producer.bin", producer, COUNT(producer)) |
+           save_messages(dir, target, "viewer.bin", viewer, COUNT(viewer));
 }
 
 /* fuzz_wire_settings takes bare payloads: the SETTINGS message without its header. */
@@ -291,6 +481,17 @@ static int write_settings_payloads(const char *dir)
     append_word(&payload, 3u | 1u << 16, false);
     append_word(&payload, 3, false);
     failed |= save(dir, "fuzz_wire_settings", "some.bin", &payload);
+
+    /* Keys of the optional effects: smooth_scale = 0.5 (key 8), noise = 0.5 (key 14), foam = 1 (key 15). */
+    fc_buf_reset(&payload);
+    append_word(&payload, 3, false);
+    append_word(&payload, 8u | 1u << 16, false);
+    append_f32(&payload, 0.5f, false);
+    append_word(&payload, 14u | 1u << 16, false);
+    append_f32(&payload, 0.5f, false);
+    append_word(&payload, 15u | 1u << 16, false);
+    append_f32(&payload, 1.0f, false);
+    failed |= save(dir, "fuzz_wire_settings", "effects.bin", &payload);
     fc_buf_free(&message);
     fc_buf_free(&payload);
     return failed;
@@ -305,6 +506,6 @@ int main(int argc, char **argv)
     const char *dir = argv[1];
     int failed = write_f32(dir) | write_binary_ply(dir, false) | write_binary_ply(dir, true) |
                  write_binary_vtk(dir, false) | write_binary_vtk(dir, true) | write_messages(dir) |
-                 write_settings_payloads(dir);
+                 write_session_messages(dir) | write_settings_payloads(dir);
     return failed ? 1 : 0;
 }
