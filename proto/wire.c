@@ -311,13 +311,10 @@ fc_code fc_wire_read_error(const uint8_t *p, size_t n, fc_error *m, fc_error *er
 
 fc_code fc_wire_write_goodbye(fc_buf *out, uint32_t request_id, fc_error *err)
 {
-    size_t start = wire_begin_message(out, FC_MSG_GOODBYE, request_id, 0);
-    return wire_end_message(out, start, err);
+    return wire_write_empty(out, FC_MSG_GOODBYE, request_id, err);
 }
 
 fc_code fc_wire_read_goodbye(const uint8_t *p, size_t n, fc_error *err)
 {
-    wire_reader r = wire_reader_start(p, n, "GOODBYE", err);
-    wire_expect_end(&r);
-    return r.code;
+    return wire_read_empty(p, n, "GOODBYE", err);
 }

@@ -3,7 +3,7 @@
 
 #include "fc_error.h"
 #include "fc_frame.h"
-#include "wire_io.h"
+#include "wire_frame_io.h"
 
 #define FRAME_FIXED_SIZE 16u
 #define FRAME_ATTR_ALL (FC_ATTR_DENSITY | FC_ATTR_VELOCITY | FC_ATTR_IDS)
@@ -80,20 +80,26 @@ fc_code fc_wire_read_frame(const uint8_t *p, size_t n, uint64_t max_particles, f
     if (code != FC_OK)
         return code;
     /* The layout check proved count * stride == the bytes left, so count fits size_t. */
-    size_t particles = (size_t)count;
-    wire_get_f32_array(&r, frame.positions, 3 * particles, "positions");
-    if (frame.density)
-        wire_get_f32_array(&r, frame.density, particles, "density");
-    if (frame.velocity)
-        wire_get_f32_array(&r, frame.velocity, 3 * particles, "velocity");
-    if (frame.ids)
-        wire_get_u32_array(&r, frame.ids, particles, "ids");
-    wire_expect_end(&r);
-    code = r.code != FC_OK ? r.code : fc_frame_validate(&frame, err);
+    wire_get_f32_array(&r, frame.positions, 3 * (size_t)count, "positions");
+    return wire_get_frame_attributes(&r, &frame, m, err);
+}
+
+fc_code wire_get_frame_attributes(wire_reader *r, fc_frame *frame, fc_frame *out, fc_error *err)
+{
+    /* Both layout checks proved the particles' bytes are in the payload, so count fits size_t. */
+    size_t particles = (size_t)frame->count;
+    if (frame->density)
+        wire_get_f32_array(r, frame->density, particles, "density");
+    if (frame->velocity)
+        wire_get_f32_array(r, frame->velocity, 3 * particles, "velocity");
+    if (frame->ids)
+        wire_get_u32_array(r, frame->ids, particles, "ids");
+    wire_expect_end(r);
+    fc_code code = r->code != FC_OK ? r->code : fc_frame_validate(frame, err);
     if (code != FC_OK) {
-        fc_frame_free(&frame);
+        fc_frame_free(frame);
         return code;
     }
-    *m = frame;
+    *out = *frame;
     return FC_OK;
 }

@@ -126,6 +126,12 @@ fc_code wire_end_message(fc_buf *b, size_t start, fc_error *err)
     return fc_error_set(err, FC_ERR_NOMEM, "out of memory while encoding a message");
 }
 
+fc_code wire_write_empty(fc_buf *b, fc_msg_type type, uint32_t request_id, fc_error *err)
+{
+    size_t start = wire_begin_message(b, type, request_id, 0);
+    return wire_end_message(b, start, err);
+}
+
 fc_code wire_check_length(uint64_t fixed, uint64_t count, uint64_t unit, const char *message, fc_error *err)
 {
     if (count > (UINT32_MAX - fixed) / unit)
@@ -235,4 +241,11 @@ void wire_expect_end(wire_reader *r)
 {
     if (r->code == FC_OK && wire_remaining(r) != 0)
         wire_fail(r, FC_ERR_MALFORMED, "%zu unexpected bytes after the last field", wire_remaining(r));
+}
+
+fc_code wire_read_empty(const uint8_t *p, size_t n, const char *message, fc_error *err)
+{
+    wire_reader r = wire_reader_start(p, n, message, err);
+    wire_expect_end(&r);
+    return r.code;
 }

@@ -29,6 +29,9 @@ fc_code wire_end_message(fc_buf *b, size_t start, fc_error *err);
  * 4 GiB, unit >= 1) fits the u32 length field; never overflows computing it. */
 fc_code wire_check_length(uint64_t fixed, uint64_t count, uint64_t unit, const char *message, fc_error *err);
 
+/* A message with no payload (GOODBYE, LIST_SESSIONS, a viewer's SESSION_END). */
+fc_code wire_write_empty(fc_buf *b, fc_msg_type type, uint32_t request_id, fc_error *err);
+
 /* ---- Reading: a cursor over one payload. The first failure sticks: later
  * reads return zeros and leave the error as it was, so a decoder reads every
  * field and checks `code` once. ---- */
@@ -56,6 +59,8 @@ void wire_get_str(wire_reader *r, char *out, size_t capacity, const char *field)
 const uint8_t *wire_get_bytes(wire_reader *r, size_t n, const char *field);
 /* MALFORMED when bytes are left over. */
 void wire_expect_end(wire_reader *r);
+/* Decodes a message with no payload: MALFORMED unless the payload is empty. */
+fc_code wire_read_empty(const uint8_t *p, size_t n, const char *message, fc_error *err);
 /* Records a failure found by the decoder itself (unless one is recorded already). */
 void wire_fail(wire_reader *r, fc_code code, const char *fmt, ...)
 #if defined(__GNUC__)

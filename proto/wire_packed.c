@@ -10,6 +10,7 @@
 
 #include "fc_error.h"
 #include "fc_frame.h"
+#include "wire_frame_io.h"
 #include "wire_session_io.h"
 
 #define QUANT_FIXED_SIZE 40u             /* count, attributes, reserved, lo[3], hi[3] */
@@ -125,22 +126,8 @@ static fc_code read_quantized(const uint8_t *p, size_t n, uint64_t max_particles
     fc_code code = fc_frame_alloc(&frame, count, attributes, err);
     if (code != FC_OK)
         return code;
-    size_t particles = (size_t)count;
     get_quantized_positions(&r, &frame, lo, hi);
-    if (frame.density)
-        wire_get_f32_array(&r, frame.density, particles, "density");
-    if (frame.velocity)
-        wire_get_f32_array(&r, frame.velocity, 3 * particles, "velocity");
-    if (frame.ids)
-        wire_get_u32_array(&r, frame.ids, particles, "ids");
-    wire_expect_end(&r);
-    code = r.code != FC_OK ? r.code : fc_frame_validate(&frame, err);
-    if (code != FC_OK) {
-        fc_frame_free(&frame);
-        return code;
-    }
-    *out = frame;
-    return FC_OK;
+    return wire_get_frame_attributes(&r, &frame, out, err);
 }
 
 /* ---- Packed body: encoding, reserved, raw_size, bytes ---- */

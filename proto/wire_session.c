@@ -60,28 +60,40 @@ static void get_name(wire_reader *r, char *name)
     }
 }
 
-/* ---- PUBLISH ---- */
-
-fc_code fc_wire_write_publish(fc_buf *out, uint32_t request_id, const char *name, fc_error *err)
+/* A message whose whole payload is a session name (PUBLISH, SESSION_END). */
+static fc_code write_named(fc_buf *out, int type, uint32_t request_id, const char *name, fc_error *err)
 {
     fc_code code = check_name(name, err);
     if (code != FC_OK)
         return code;
-    size_t start = begin_session_message(out, FC_MSG_PUBLISH, request_id, (uint32_t)name_size(name));
+    size_t start = begin_session_message(out, type, request_id, (uint32_t)name_size(name));
     put_name(out, name);
     return wire_end_message(out, start, err);
 }
 
-fc_code fc_wire_read_publish(const uint8_t *p, size_t n, char *name, fc_error *err)
+/* *name is left untouched unless the whole message is valid. */
+static fc_code read_named(const uint8_t *p, size_t n, const char *message, char *name, fc_error *err)
 {
     char read[FC_SESSION_NAME_MAX + 1];
-    wire_reader r = wire_reader_start(p, n, "PUBLISH", err);
+    wire_reader r = wire_reader_start(p, n, message, err);
     get_name(&r, read);
     wire_expect_end(&r);
     if (r.code != FC_OK)
         return r.code;
     memcpy(name, read, sizeof read);
     return FC_OK;
+}
+
+/* ---- PUBLISH ---- */
+
+fc_code fc_wire_write_publish(fc_buf *out, uint32_t request_id, const char *name, fc_error *err)
+{
+    return write_named(out, FC_MSG_PUBLISH, request_id, name, err);
+}
+
+fc_code fc_wire_read_publish(const uint8_t *p, size_t n, char *name, fc_error *err)
+{
+    return read_named(p, n, "PUBLISH", name, err);
 }
 
 /* ---- SUBSCRIBE ---- */
@@ -174,15 +186,12 @@ fc_code fc_wire_read_session_state(const uint8_t *p, size_t n, fc_session_info *
 
 fc_code fc_wire_write_list_sessions(fc_buf *out, uint32_t request_id, fc_error *err)
 {
-    size_t start = begin_session_message(out, FC_MSG_LIST_SESSIONS, request_id, 0);
-    return wire_end_message(out, start, err);
+    return wire_write_empty(out, (fc_msg_type)FC_MSG_LIST_SESSIONS, request_id, err);
 }
 
 fc_code fc_wire_read_list_sessions(const uint8_t *p, size_t n, fc_error *err)
 {
-    wire_reader r = wire_reader_start(p, n, "LIST_SESSIONS", err);
-    wire_expect_end(&r);
-    return r.code;
+    return wire_read_empty(p, n, "LIST_SESSIONS", err);
 }
 
 fc_code fc_wire_write_session_list(fc_buf *out, uint32_t request_id, const fc_session_info *sessions,
@@ -236,37 +245,22 @@ fc_code fc_wire_read_session_list(const uint8_t *p, size_t n, fc_session_info **
 
 fc_code fc_wire_write_session_leave(fc_buf *out, uint32_t request_id, fc_error *err)
 {
-    size_t start = begin_session_message(out, FC_MSG_SESSION_END, request_id, 0);
-    return wire_end_message(out, start, err);
+    return wire_write_empty(out, (fc_msg_type)FC_MSG_SESSION_END, request_id, err);
 }
 
 fc_code fc_wire_read_session_leave(const uint8_t *p, size_t n, fc_error *err)
 {
-    wire_reader r = wire_reader_start(p, n, "SESSION_END", err);
-    wire_expect_end(&r);
-    return r.code;
+    return wire_read_empty(p, n, "SESSION_END", err);
 }
 
 fc_code fc_wire_write_session_end(fc_buf *out, uint32_t request_id, const char *name, fc_error *err)
 {
-    fc_code code = check_name(name, err);
-    if (code != FC_OK)
-        return code;
-    size_t start = begin_session_message(out, FC_MSG_SESSION_END, request_id, (uint32_t)name_size(name));
-    put_name(out, name);
-    return wire_end_message(out, start, err);
+    return write_named(out, FC_MSG_SESSION_END, request_id, name, err);
 }
 
 fc_code fc_wire_read_session_end(const uint8_t *p, size_t n, char *name, fc_error *err)
 {
-    char read[FC_SESSION_NAME_MAX + 1];
-    wire_reader r = wire_reader_start(p, n, "SESSION_END", err);
-    get_name(&r, read);
-    wire_expect_end(&r);
-    if (r.code != FC_OK)
-        return r.code;
-    memcpy(name, read, sizeof read);
-    return FC_OK;
+    return read_named(p, n, "SESSION_END", name, err);
 }
 
 /* ---- STREAM_IMAGE ---- */

@@ -4,28 +4,16 @@
 
 #include <stdio.h>
 
+#include "cli_particles.h"
 #include "cli_report.h"
 #include "cli_token.h"
 #include "fc_error.h"
 #include "fc_frame.h"
 #include "fluidcast.h"
 #include "output_file.h"
-#include "particle_reader.h"
 #include "snapshot_camera.h"
 #include "snapshot_options.h"
 #include "snapshot_scene.h"
-
-static int load_particles(const char *path, fc_frame *frame)
-{
-    fc_error err;
-    if (fc_read_particles(path, frame, &err) != FC_OK)
-        return fc_cli_fail(FC_EXIT_INPUT, "%s", err.message);
-    if (frame->count == 0)
-        return fc_cli_fail(FC_EXIT_INPUT, "%s holds no particles", path);
-    if (fc_frame_validate(frame, &err) != FC_OK)
-        return fc_cli_fail(FC_EXIT_INPUT, "%s: %s", path, err.message);
-    return FC_EXIT_OK;
-}
 
 /* The options' settings (checked while parsing), with the radius resolved so it can be reported. */
 static void choose_settings(const fc_snapshot_options *o, const fc_frame *frame, fc_settings *s)
@@ -103,7 +91,7 @@ static int snapshot(const fc_snapshot_options *o, fc_frame *frame)
     fc_snapshot_scene scene;
     int status = resolve_scene(o, &scene);
     if (status == FC_EXIT_OK)
-        status = load_particles(o->input, frame);
+        status = fc_cli_load_particles(o->input, frame);
     if (status != FC_EXIT_OK)
         return status;
     fc_camera cam;

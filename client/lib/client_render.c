@@ -41,39 +41,6 @@ static fc_code take_image(fc_client *c, fc_image_result *out, fc_error *err)
     return FC_OK;
 }
 
-/* Reads messages up to the reply to request `id`. The first ERROR answering an
- * earlier request is kept in *cause: it explains what the render used (or why
- * it failed) better than the render's own reply. */
-static fc_code await_reply(fc_client *c, uint32_t id, fc_image_result *out, fc_error *cause, fc_error *err)
-{
-    for (;;) {
-        fc_msg_header header;
-        fc_code code = fc_client_receive(c, &header, err);
-        if (code != FC_OK)
-            return code;
-        if (fc_client_absorb_stream(c, &header))
-            continue;
-        if (header.type == FC_MSG_ERROR) {
-            fc_error server;
-            fc_client_decode_server_error(c, &server);
-            if (server.code == FC_ERR_PROTOCOL || header.request_id == id) {
-                *err = server;
-                return server.code;
-            }
-            if (cause->code == FC_OK)
-                *cause = server;
-            continue;
-        }
-        if (header.type == FC_MSG_IMAGE && header.request_id == id)
-            return take_image(c, out, err);
-        if (header.type == FC_MSG_GOODBYE) {
-            c->broken = true;
-            return fc_error_set(err, FC_ERR_CLOSED, "the server ended the connection (GOODBYE)");
-        }
-        return fc_client_unexpected(c, &header, "IMAGE", err);
-    }
-}
-
 fc_code fc_client_render(fc_client *client, const fc_render_request *request,
                          fc_image_result *out, fc_error *err)
 {
@@ -92,7 +59,11 @@ fc_code fc_client_render(fc_client *client, const fc_render_request *request,
     fc_error cause;
     fc_error_clear(&cause);
     fc_error reply;
-    code = await_reply(client, id, out, &cause, &reply);
+    /* The first ERROR answering an earlier request explains what the render
+     * used (or why it failed) better than the render's own reply. */
+    code = fc_client_await_reply(client, id, FC_MSG_IMAGE, &cause, &reply);
+    if (code == FC_OK)
+        code = take_image(client, out, &reply);
     /* An earlier rejection is the cause, also when the connection then failed:
      * a server that closes after an ERROR has said why. */
     if (cause.code != FC_OK) {
