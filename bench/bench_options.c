@@ -27,22 +27,19 @@ const char *bench_smoothing_name(fc_smoothing s)
     return "?";
 }
 
-void bench_options_print_smoothings(void)
-{
-    for (size_t i = 0; i < N_SMOOTHING_NAMES; i++)
-        printf("%s\n", smoothing_names[i].name);
-}
-
 void bench_options_print_usage(void)
 {
     printf("usage: fluidcast-bench [--gpu auto|software|N] [--particles 16k,64k,...]\n"
-           "         [--size 1280x720,...] [--smoothing curvature,none,...] [--iterations 15,40,...]\n"
-           "         [--scale 1|0.5|0.25] [--frames N] [--encode png|jpeg|exr|none] [--image PATH.png]\n"
+           "         [--size 1280x720,...] [--smoothing curvature,none,...] [--iterations 15,40,default,...]\n"
+           "         [--scale 1,0.5,0.25] [--frames N] [--encode png|jpeg|exr|none] [--image PATH.png]\n"
            "       fluidcast-bench --particles N --write-scene PATH.f32\n"
-           "       fluidcast-bench --list-smoothings\n"
            "Prints a markdown table: median GPU ms per stage (timer queries), encode ms, wall ms.\n"
-           "--scale smooths depth at that fraction of the image's resolution, in every configuration.\n"
-           "--image writes each configuration's last frame there, so it ends up with the last one's.\n"
+           "Every combination of the lists runs; --iterations default: each method's own default;\n"
+           "--scale: the resolution of depth smoothing, as a fraction of the image's.\n"
+           "--smoothing:");
+    for (size_t i = 0; i < N_SMOOTHING_NAMES; i++)
+        printf(" %s", smoothing_names[i].name);
+    printf("\n--image writes each configuration's last frame there, so it ends up with the last one's.\n"
            "--write-scene writes the drop scene as raw little-endian float32 xyz and prints\n"
            "'particles N spacing S radius R' (R: the sphere radius the benchmark renders with).\n");
 }
@@ -56,7 +53,7 @@ void bench_options_default(bench_options *o)
         .sizes = {{1280, 720}}, .n_sizes = 1,
         .smoothings = {FC_SMOOTHING_CURVATURE}, .n_smoothings = 1,
         .iterations = {40}, .n_iterations = 1,
-        .smooth_scale = 1.0f,
+        .smooth_scales = {1.0f}, .n_smooth_scales = 1,
         .frames = 10,
         .format = FC_FORMAT_PNG,
     };
@@ -103,10 +100,23 @@ static int parse_smoothing(const char *item, bench_options *o)
 
 static int parse_iterations(const char *item, bench_options *o)
 {
+    if (!strcmp(item, "default")) {
+        o->iterations[o->n_iterations++] = BENCH_DEFAULT_ITERATIONS;
+        return 0;
+    }
     char *end;
     const unsigned long n = strtoul(item, &end, 10);
     o->iterations[o->n_iterations++] = (uint32_t)n;
     return end != item && *end == '\0' && n <= 1000 ? 0 : -1;
+}
+
+/* The resolutions fc_settings_validate accepts; any other would fail every frame. */
+static int parse_smooth_scale(const char *item, bench_options *o)
+{
+    char *end;
+    const float v = strtof(item, &end);
+    o->smooth_scales[o->n_smooth_scales++] = v;
+    return end != item && *end == '\0' && (v == 1.0f || v == 0.5f || v == 0.25f) ? 0 : -1;
 }
 
 /* Splits a comma-separated value and hands each item to parse_item, which
@@ -137,16 +147,6 @@ static fc_code parse_frames(const char *value, bench_options *o, fc_error *err)
     return FC_OK;
 }
 
-static fc_code parse_scale(const char *value, bench_options *o, fc_error *err)
-{
-    char *end;
-    const float scale = strtof(value, &end);
-    if (end == value || *end != '\0' || !(scale == 1.0f || scale == 0.5f || scale == 0.25f))
-        return fc_error_set(err, FC_ERR_USAGE, "--scale must be 1, 0.5 or 0.25, not '%s'", value);
-    o->smooth_scale = scale;
-    return FC_OK;
-}
-
 static fc_code parse_encoding(const char *value, bench_options *o, fc_error *err)
 {
     static const struct { const char *name; fc_image_format format; } formats[] = {
@@ -173,7 +173,7 @@ static fc_code parse_valued(const char *option, const char *value, bench_options
     if (!strcmp(option, "--iterations"))
         return parse_list(option, value, &o->n_iterations, parse_iterations, o, err);
     if (!strcmp(option, "--scale"))
-        return parse_scale(value, o, err);
+        return parse_list(option, value, &o->n_smooth_scales, parse_smooth_scale, o, err);
     if (!strcmp(option, "--frames"))
         return parse_frames(value, o, err);
     if (!strcmp(option, "--encode"))
@@ -195,10 +195,6 @@ fc_code bench_options_parse(int argc, char **argv, bench_options *o, fc_error *e
     for (int i = 1; i < argc; i++) {
         if (!strcmp(argv[i], "--help")) {
             o->action = BENCH_HELP;
-            return FC_OK;
-        }
-        if (!strcmp(argv[i], "--list-smoothings")) {
-            o->action = BENCH_LIST_SMOOTHINGS;
             return FC_OK;
         }
         if (i + 1 == argc)

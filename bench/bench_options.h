@@ -6,11 +6,12 @@
 #include "fluidcast_types.h"
 
 #define BENCH_MAX_LIST 16
+/* In the iterations list: the method's own default (fc_smoothing_default_iterations). */
+#define BENCH_DEFAULT_ITERATIONS UINT32_MAX
 
 typedef enum bench_action {
     BENCH_RUN = 0,           /* render every configuration and print the table */
     BENCH_WRITE_SCENE,       /* write the scene of the (single) particle count as .f32 and exit */
-    BENCH_LIST_SMOOTHINGS,   /* print the accepted --smoothing names and exit */
     BENCH_HELP
 } bench_action;
 
@@ -25,23 +26,22 @@ typedef struct bench_options {
     int n_sizes;
     fc_smoothing smoothings[BENCH_MAX_LIST];
     int n_smoothings;
-    uint32_t iterations[BENCH_MAX_LIST];
+    uint32_t iterations[BENCH_MAX_LIST];   /* or BENCH_DEFAULT_ITERATIONS */
     int n_iterations;
-    float smooth_scale;      /* resolution of depth smoothing, for every configuration */
+    float smooth_scales[BENCH_MAX_LIST];   /* --scale, fc_settings.smooth_scale: 1, 0.5, 0.25 */
+    int n_smooth_scales;
     int frames;
     fc_image_format format;  /* 0 = no encoding */
 } bench_options;
 
-/* Defaults: 64k particles, 1280x720, curvature flow 40 iterations, 10 frames, PNG. */
+/* Defaults: 64k particles, 1280x720, curvature flow 40 iterations at full
+ * resolution, 10 frames, PNG. */
 void bench_options_default(bench_options *o);
 
 /* Parses argv over the defaults; FC_ERR_USAGE with the offending argument. */
 fc_code bench_options_parse(int argc, char **argv, bench_options *o, fc_error *err);
 
 void bench_options_print_usage(void);
-
-/* Every name --smoothing accepts, one per line. */
-void bench_options_print_smoothings(void);
 
 /* The --smoothing name of a method, "?" for one without a name. */
 const char *bench_smoothing_name(fc_smoothing s);

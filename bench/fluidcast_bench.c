@@ -1,9 +1,9 @@
 /* fluidcast-bench — per-stage timings of the render pipeline without a socket.
  *
- * For every combination of particle count, image size, smoothing method and
- * iteration count it renders a warm-up frame and then --frames measured ones,
- * and prints one markdown table row with the median GPU time of each stage
- * (timer queries), the encode time and the wall time per frame.
+ * For every combination of particle count, image size, smoothing method,
+ * iteration count and smoothing resolution it renders a warm-up frame and then
+ * --frames measured ones, and prints one markdown table row with the median GPU
+ * time of each stage (timer queries), the encode time and the wall time per frame.
  * --write-scene exports the particles instead, for the peer benchmark (bench/peer/). */
 #include <stdio.h>
 #include <stdlib.h>
@@ -113,9 +113,9 @@ static void print_ms(float v)
 
 static void print_header(void)
 {
-    printf("| particles | size | smoothing | iter | upload | depth | thickness | smoothing | composite |"
+    printf("| particles | size | smoothing | iter | scale | upload | depth | thickness | smoothing | composite |"
            " readback | encode | GPU sum | wall/frame | fps |\n");
-    printf("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
+    printf("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
 }
 
 static void print_row(uint64_t particles, uint32_t w, uint32_t h, const fc_settings *settings, float upload_ms,
@@ -124,8 +124,8 @@ static void print_row(uint64_t particles, uint32_t w, uint32_t h, const fc_setti
     float gpu = 0.0f;
     for (int s = FC_STAGE_DEPTH; s <= FC_STAGE_READBACK; s++)
         gpu += row->stage[s] > 0 ? row->stage[s] : 0.0f;
-    printf("| %llu | %ux%u | %s | %u |", (unsigned long long)particles, w, h,
-           bench_smoothing_name(settings->smoothing), settings->iterations);
+    printf("| %llu | %ux%u | %s | %u | %g |", (unsigned long long)particles, w, h,
+           bench_smoothing_name(settings->smoothing), settings->iterations, settings->smooth_scale);
     print_ms(upload_ms);
     for (int s = FC_STAGE_DEPTH; s <= FC_STAGE_ENCODE; s++)
         print_ms(row->stage[s]);
@@ -135,26 +135,37 @@ static void print_row(uint64_t particles, uint32_t w, uint32_t h, const fc_setti
     fflush(stdout);
 }
 
-/* Every smoothing method x iteration count at one image size; a method that
- * does not iterate gets one row, with 0 iterations. */
+/* fluidcast's defaults but for the quantities the benchmark varies. */
+static void config_settings(fc_smoothing method, uint32_t iterations, float smooth_scale, float radius,
+                            fc_settings *settings)
+{
+    fc_settings_default(settings);
+    settings->radius = radius;
+    settings->smoothing = method;
+    settings->iterations =
+        iterations == BENCH_DEFAULT_ITERATIONS ? fc_smoothing_default_iterations(method) : iterations;
+    settings->smooth_scale = smooth_scale;
+}
+
+/* The rows of one image size: every smoothing method x iteration count x
+ * smoothing resolution; "none" does not smooth, so it gets one row. */
 static fc_code bench_size(fc_pipeline *pipe, const bench_options *o, uint64_t particles, uint32_t w, uint32_t h,
                           float radius, float upload_ms, fc_error *err)
 {
     for (int mi = 0; mi < o->n_smoothings; mi++) {
-        const int iterates = o->smoothings[mi] != FC_SMOOTHING_NONE;
-        for (int ii = 0; ii < (iterates ? o->n_iterations : 1); ii++) {
-            fc_settings settings;
-            fc_settings_default(&settings);
-            settings.radius = radius;
-            settings.smoothing = o->smoothings[mi];
-            settings.iterations = iterates ? o->iterations[ii] : 0;
-            settings.smooth_scale = o->smooth_scale;
-            bench_row row;
-            fc_code rc = bench_config(pipe, o, w, h, &settings, &row, err);
-            if (rc != FC_OK)
-                return rc;
-            print_row(particles, w, h, &settings, upload_ms, &row);
-        }
+        const fc_smoothing method = o->smoothings[mi];
+        const int smooths = method != FC_SMOOTHING_NONE;
+        for (int ii = 0; ii < (smooths ? o->n_iterations : 1); ii++)
+            for (int ri = 0; ri < (smooths ? o->n_smooth_scales : 1); ri++) {
+                fc_settings settings;
+                config_settings(method, smooths ? o->iterations[ii] : 0, smooths ? o->smooth_scales[ri] : 1.0f,
+                                radius, &settings);
+                bench_row row;
+                fc_code rc = bench_config(pipe, o, w, h, &settings, &row, err);
+                if (rc != FC_OK)
+                    return rc;
+                print_row(particles, w, h, &settings, upload_ms, &row);
+            }
     }
     return FC_OK;
 }
@@ -218,8 +229,6 @@ int main(int argc, char **argv)
     fc_code rc = bench_options_parse(argc, argv, &o, &err);
     if (rc == FC_OK && o.action == BENCH_HELP)
         bench_options_print_usage();
-    else if (rc == FC_OK && o.action == BENCH_LIST_SMOOTHINGS)
-        bench_options_print_smoothings();
     else if (rc == FC_OK && o.action == BENCH_WRITE_SCENE)
         rc = write_scene(&o, &err);
     else if (rc == FC_OK)

@@ -7,9 +7,13 @@
 # Builds fluidcast-bench (in $BUILD_DIR, default build-bench), exports each particle
 # count's drop scene as .f32 so both renderers read identical data, times both, and
 # prints a markdown report: machine, GL renderers, load, the raw tables and the ratio
-# fluidcast fps / VTK fps per configuration; then the paper's configurations (van der
-# Laan et al. 2009, Table 1: 64K particles, 1024x768, curvature flow 15/40/100 iterations).
-# It also leaves one picture of each renderer in bench/peer/ (fluidcast.png, vtk.png).
+# fluidcast fps / VTK fps per configuration. fluidcast runs without smoothing, with
+# curvature flow (40 iterations) and with its narrow-range filter at VTK's 3 passes.
+# Then the paper's configurations (van der Laan et al. 2009, Table 1: 64K particles,
+# 1024x768): curvature flow at 1/4 resolution 15 iterations, 1/2 resolution 40, full
+# resolution 100, and the bilateral filter (fluidcast's default passes), next to VTK.
+# It also leaves one picture of each renderer in $IMAGE_DIR (default bench/peer/:
+# fluidcast.png, vtk.png), of the last particle count at the last size.
 #
 # Without $DISPLAY, VTK (Debian's python3-vtk9, an X build) runs under `xvfb-run -a` with
 # Mesa llvmpipe, and fluidcast is told --gpu software so both rasterize on the same CPU
@@ -18,9 +22,10 @@
 #
 # Environment: FRAMES (timed frames per configuration, default 3), PARTICLES (default
 # 16k,64k), SIZES (default 640x360,1280x720), PAPER=0 skips the paper's configurations,
+# IMAGE_DIR (where the pictures go; set it elsewhere for trial runs at other sizes),
 # STEP_TIMEOUT (seconds any one step may take, default 600). With the defaults it takes
-# about three minutes on 2 cores with llvmpipe when the machine is otherwise idle.
-# Needs: python3-vtk9 xvfb (Debian packages), and what deploy/setup.sh installs.
+# about two and a half minutes on 2 cores with llvmpipe when the machine is otherwise idle.
+# Needs: python3-vtk9 python3-numpy xvfb xauth (Debian packages), and what deploy/setup.sh installs.
 set -euo pipefail
 
 ROOT=$(cd "$(dirname "$0")/.." && pwd)
@@ -31,12 +36,14 @@ SIZES=${SIZES:-640x360,1280x720}
 PAPER=${PAPER:-1}
 STEP_TIMEOUT=${STEP_TIMEOUT:-600}
 PEER_DIR=$ROOT/bench/peer
+IMAGE_DIR=${IMAGE_DIR:-$PEER_DIR}
 VTK_PYTHON=/usr/bin/python3   # Debian's: python3-vtk9 is not in other interpreters
 VTK_ITERATIONS=3              # VTK 9.1's narrow-range default; Python cannot change it
-PEER_ITERATIONS=40            # fluidcast's default curvature flow
+PEER_ITERATIONS=40            # curvature flow in the peer comparison
 PAPER_PARTICLES=64k
 PAPER_SIZE=1024x768
-PAPER_ITERATIONS=15,40,100
+# Table 1's curvature-flow rows: smoothing resolution and iterations
+PAPER_CURVATURE=("0.25 15" "0.5 40" "1 100")
 
 BENCH=$BUILD_DIR/bin/fluidcast-bench
 WORK=$(mktemp -d)
@@ -53,10 +60,10 @@ build() {
 }
 
 check_peer() {
-    "$VTK_PYTHON" -c 'import vtkmodules.vtkRenderingOpenGL2' 2>/dev/null ||
-        { log "VTK missing: apt-get install python3-vtk9"; exit 1; }
+    "$VTK_PYTHON" -c 'import numpy, vtkmodules.vtkRenderingOpenGL2' 2>/dev/null ||
+        { log "VTK or numpy missing: apt-get install python3-vtk9 python3-numpy"; exit 1; }
     if [ -z "${DISPLAY:-}" ] && ! command -v xvfb-run >/dev/null; then
-        log "no \$DISPLAY and no xvfb-run: apt-get install xvfb"; exit 1
+        log "no \$DISPLAY and no xvfb-run: apt-get install xvfb xauth"; exit 1
     fi
 }
 
@@ -74,11 +81,6 @@ fi
 
 run_fluidcast() { timeout "$STEP_TIMEOUT" "$BENCH" --gpu "$GPU" --encode none --frames "$FRAMES" "$@"; }
 
-# Smoothing names fluidcast-bench accepts beyond the two it always had (the
-# narrow-range filter, reduced-resolution variants), as they are added.
-accepts_smoothing() { "$BENCH" --list-smoothings | grep -x "$1" >/dev/null; }
-extra_smoothings() { "$BENCH" --list-smoothings | { grep -vx -e none -e curvature -e narrow || true; } | paste -sd, -; }
-
 table_rows() { grep '^| [0-9]' || true; }
 
 # Exports the scene of one particle count once; prints the radius fluidcast renders it with.
@@ -88,24 +90,31 @@ export_scene() {
     cat "$path.radius"
 }
 
-# Every fluidcast configuration of one particle count: rows appended to $out/fluidcast.md.
-# The optional image gets the last configuration, curvature flow at the last size.
+# One fluidcast-bench run: rows appended to $out/fluidcast.md, the whole output to fluidcast.log.
 bench_fluidcast() {
-    local out=$1 particles=$2 sizes=$3 iterations=$4 image=${5:-}
+    local out=$1
+    shift
+    run_fluidcast "$@" | tee -a "$out/fluidcast.log" | table_rows >>"$out/fluidcast.md"
+}
+
+# The peer configurations of one particle count; the optional image gets
+# curvature flow at the last size.
+bench_fluidcast_peer() {
+    local out=$1 particles=$2 sizes=$3 image=${4:-}
     local args=(--particles "$particles" --size "$sizes")
+    bench_fluidcast "$out" "${args[@]}" --smoothing narrow --iterations "$VTK_ITERATIONS"
     [ -n "$image" ] && args+=(--image "$image")
-    run_fluidcast "${args[@]}" --smoothing none,curvature --iterations "$iterations" |
-        tee -a "$out/fluidcast.log" | table_rows >>"$out/fluidcast.md"
-    if accepts_smoothing narrow; then
-        run_fluidcast --particles "$particles" --size "$sizes" --smoothing narrow --iterations "$VTK_ITERATIONS" |
-            table_rows >>"$out/fluidcast.md"
-    fi
-    local extra
-    extra=$(extra_smoothings)
-    if [ -n "$extra" ]; then
-        run_fluidcast --particles "$particles" --size "$sizes" --smoothing "$extra" --iterations "$iterations" |
-            table_rows >>"$out/fluidcast.md"
-    fi
+    bench_fluidcast "$out" "${args[@]}" --smoothing none,curvature --iterations "$PEER_ITERATIONS"
+}
+
+bench_fluidcast_paper() {
+    local out=$1 args=(--particles "$PAPER_PARTICLES" --size "$PAPER_SIZE") config scale iterations
+    for config in "${PAPER_CURVATURE[@]}"; do
+        read -r scale iterations <<<"$config"
+        bench_fluidcast "$out" "${args[@]}" --smoothing curvature --scale "$scale" --iterations "$iterations"
+    done
+    bench_fluidcast "$out" "${args[@]}" --smoothing bilateral --iterations default
+    bench_fluidcast "$out" "${args[@]}" --smoothing narrow --iterations "$VTK_ITERATIONS"
 }
 
 # VTK at every size for one particle count: rows appended to $out/vtk.md; the
@@ -115,15 +124,15 @@ bench_vtk() {
     radius=$(export_scene "$particles")
     for size in ${sizes//,/ }; do
         local args=(--scene "$WORK/scene_$particles.f32" --radius "$radius" --size "$size" --frames "$FRAMES")
-        [ "$size" = "$image_size" ] && args+=(--image "$PEER_DIR/vtk.png")
+        [ "$size" = "$image_size" ] && args+=(--image "$IMAGE_DIR/vtk.png")
         run_vtk "${args[@]}" | tee -a "$out/vtk.log" | table_rows >>"$out/vtk.md"
     done
 }
 
 # Joins fluidcast rows with the VTK row of the same particles and size.
 ratio_table() {
-    echo "| particles | size | fluidcast smoothing | iter | fluidcast ms | fluidcast fps | VTK ms (narrow-range, $VTK_ITERATIONS iter) | VTK fps | fluidcast fps / VTK fps |"
-    echo "|---|---|---|---|---|---|---|---|---|"
+    echo "| particles | size | fluidcast smoothing | iter | scale | fluidcast ms | fluidcast fps | VTK ms (narrow-range, $VTK_ITERATIONS iter) | VTK fps | fluidcast fps / VTK fps |"
+    echo "|---|---|---|---|---|---|---|---|---|---|"
     awk -F'|' '
         function trim(s) { gsub(/^ +| +$/, "", s); return s }
         FNR == NR { key = trim($2) " " trim($3); vtk_ms[key] = trim($7); vtk_fps[key] = trim($8); next }
@@ -131,8 +140,8 @@ ratio_table() {
             key = trim($2) " " trim($3)
             if (!(key in vtk_fps)) next
             ms = trim($(NF - 2)); fps = trim($(NF - 1))
-            printf "| %s | %s | %s | %s | %s | %s | %s | %s | %.2f |\n", trim($2), trim($3), trim($4), trim($5),
-                   ms, fps, vtk_ms[key], vtk_fps[key], fps / vtk_fps[key]
+            printf "| %s | %s | %s | %s | %s | %s | %s | %s | %s | %.2f |\n", trim($2), trim($3), trim($4), trim($5),
+                   trim($6), ms, fps, vtk_ms[key], vtk_fps[key], fps / vtk_fps[key]
         }' "$1" "$2"
 }
 
@@ -140,8 +149,8 @@ print_tables() {
     local title=$1 dir=$2
     echo "### $title: fluidcast-bench (median per frame; stage columns are GPU timer queries)"
     echo
-    echo "| particles | size | smoothing | iter | upload | depth | thickness | smoothing | composite | readback | encode | GPU sum | wall/frame | fps |"
-    echo "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"
+    echo "| particles | size | smoothing | iter | scale | upload | depth | thickness | smoothing | composite | readback | encode | GPU sum | wall/frame | fps |"
+    echo "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"
     cat "$dir/fluidcast.md"
     echo
     echo "### $title: VTK vtkOpenGLFluidMapper (median wall ms per Render() + RGBA8 readback)"
@@ -164,13 +173,15 @@ machine() {
     echo "- fluidcast: $(head -n1 "$logs/fluidcast.log")"
     echo "- VTK $("$VTK_PYTHON" -c 'import vtkmodules; print(vtkmodules.__version__)'): $(head -n1 "$logs/vtk.log")"
     echo "- date: $(date -u '+%Y-%m-%d %H:%M UTC'); git: $(git -C "$ROOT" rev-parse --short HEAD 2>/dev/null || echo '?')"
-    echo "- load average (1/5/15 min): start $LOAD_START; end $(cut -d' ' -f1-3 /proc/loadavg)"
+    echo "- load average (1/5/15 min): before the build $LOAD_BEFORE_BUILD; start $LOAD_START;" \
+         "end $(cut -d' ' -f1-3 /proc/loadavg) (the benchmark itself keeps 2 cores busy)"
     echo "- command: FRAMES=$FRAMES PARTICLES=$PARTICLES SIZES=$SIZES PAPER=$PAPER bench/run_bench.sh" \
          "(fluidcast --gpu $GPU; VTK on ${DISPLAY:-xvfb-run + LIBGL_ALWAYS_SOFTWARE=1})"
 }
 
 main() {
     check_peer
+    LOAD_BEFORE_BUILD=$(cut -d' ' -f1-3 /proc/loadavg)
     build
     LOAD_START=$(cut -d' ' -f1-3 /proc/loadavg)
     log "load average $LOAD_START"
@@ -179,16 +190,16 @@ main() {
     for particles in ${PARTICLES//,/ }; do
         log "peer configurations, $particles particles"
         if [ "$particles" = "$last_particles" ]; then
-            bench_fluidcast "$peer" "$particles" "$SIZES" "$PEER_ITERATIONS" "$PEER_DIR/fluidcast.png"
+            bench_fluidcast_peer "$peer" "$particles" "$SIZES" "$IMAGE_DIR/fluidcast.png"
             bench_vtk "$peer" "$particles" "$SIZES" "$last_size"
         else
-            bench_fluidcast "$peer" "$particles" "$SIZES" "$PEER_ITERATIONS"
+            bench_fluidcast_peer "$peer" "$particles" "$SIZES"
             bench_vtk "$peer" "$particles" "$SIZES"
         fi
     done
     if [ "$PAPER" = 1 ]; then
         log "paper configurations"
-        bench_fluidcast "$paper" "$PAPER_PARTICLES" "$PAPER_SIZE" "$PAPER_ITERATIONS"
+        bench_fluidcast_paper "$paper"
         bench_vtk "$paper" "$PAPER_PARTICLES" "$PAPER_SIZE"
     fi
     echo "## fluidcast vs VTK vtkOpenGLFluidMapper"
@@ -201,7 +212,7 @@ main() {
         echo "Paper, GeForce 8800 GTS: curvature flow 1/4 res 15 iterations 17.5 ms, 1/2 res 40 iterations" \
              "19.6 ms, full res 100 iterations 50 ms; bilateral Gaussian 18.1 ms."
     fi
-    log "done; pictures of the last peer configuration in $PEER_DIR (fluidcast.png, vtk.png)"
+    log "done; pictures of the last peer configuration in $IMAGE_DIR (fluidcast.png, vtk.png)"
 }
 
 main

@@ -12,6 +12,7 @@
 #include <exception>
 #include <new>
 #include <string>
+#include <type_traits>
 #include <vector>
 
 #include "fc_error.h"
@@ -40,8 +41,12 @@ fc_code check_image(const fc_image *img, fc_error *err)
         return fc_error_set(err, FC_ERR_USAGE, "encode: empty image");
     if (img->channels != 1 && img->channels != 3 && img->channels != 4)
         return fc_error_set(err, FC_ERR_USAGE, "encode: %u channels (expected 1, 3 or 4)", img->channels);
-    if (img->type != FC_PIXEL_U8 && img->type != FC_PIXEL_F32)
-        return fc_error_set(err, FC_ERR_USAGE, "encode: unknown pixel type %d", (int)img->type);
+    /* C callers may store any value in the enum; in C++ loading one outside the
+     * enumerators' range is undefined, so the check reads the raw integer. */
+    std::underlying_type_t<fc_pixel_type> type;
+    std::memcpy(&type, &img->type, sizeof type);
+    if (type != FC_PIXEL_U8 && type != FC_PIXEL_F32)
+        return fc_error_set(err, FC_ERR_USAGE, "encode: unknown pixel type %lld", (long long)type);
     return FC_OK;
 }
 
