@@ -24,11 +24,13 @@
 # 16k,64k), SIZES (default 640x360,1280x720), PAPER=0 skips the paper's configurations,
 # IMAGE_DIR (where the pictures go; set it elsewhere for trial runs at other sizes),
 # STEP_TIMEOUT (seconds any one step may take, default 600). With the defaults it takes
-# about two and a half minutes on 2 cores with llvmpipe when the machine is otherwise idle.
-# Needs: python3-vtk9 python3-numpy xvfb xauth (Debian packages), and what deploy/setup.sh installs.
+# about one minute on 2 cores with llvmpipe when the machine is otherwise idle.
+# Needs: python3-vtk9 python3-numpy xvfb xauth (Debian packages), installed first by
+# `deploy/setup.sh --bench` with everything the build needs.
 set -euo pipefail
 
 ROOT=$(cd "$(dirname "$0")/.." && pwd)
+"$ROOT/deploy/setup.sh" --bench
 BUILD_DIR=${BUILD_DIR:-$ROOT/build-bench}
 FRAMES=${FRAMES:-3}
 PARTICLES=${PARTICLES:-16k,64k}

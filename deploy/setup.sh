@@ -18,6 +18,12 @@ PACKAGES=(
   clang-14 libclang-rt-14-dev
 )
 
+# The peer benchmark (bench/run_bench.sh) also needs VTK and a virtual X server:
+# `deploy/setup.sh --bench` adds them.
+if [ "${1:-}" = "--bench" ]; then
+  PACKAGES+=(python3-vtk9 python3-numpy xvfb xauth)
+fi
+
 missing=()
 for p in "${PACKAGES[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
