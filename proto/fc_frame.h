@@ -41,7 +41,8 @@ void fc_frame_bounds(const fc_frame *frame, float lo[3], float hi[3]);
  * particles, the neighbour being the nearest particle at a different position
  * among all particles, found exactly with a grid in O(count). Positions must be
  * finite (fc_frame_validate). Always positive: a frame whose particles all
- * coincide (or count <= 1) gets 1.0. */
+ * coincide (or count <= 1) gets 1.0; never more than 1e6, the largest radius
+ * settings accept. */
 float fc_frame_estimate_radius(const fc_frame *frame);
 
 /* A camera that frames the frame's bounding box: it looks at the box centre

@@ -26,6 +26,9 @@
 #define SAMPLE_MAX 4096u
 #define RADIUS_PER_SPACING 0.9
 #define FALLBACK_RADIUS 1.0f
+/* The largest radius settings accept (fc_settings_validate): an estimate beyond
+ * it would make "auto" fail validation, and beyond FLT_MAX the cast overflows. */
+#define MAX_ESTIMATE 1e6
 /* A random sample's nearest-neighbour distance is ~0.55 x its mean spacing,
  * so base cells end up ~1.1 mean spacings of the frame wide: most nearest
  * neighbours then lie in the 3x3x3 block of cells around a particle. */
@@ -494,5 +497,7 @@ float fc_frame_estimate_radius(const fc_frame *frame)
     }
     free(s);
     free(g);
-    return spacing > 0 ? (float)(RADIUS_PER_SPACING * spacing) : FALLBACK_RADIUS;
+    if (!(spacing > 0))
+        return FALLBACK_RADIUS;
+    return (float)fmin(RADIUS_PER_SPACING * spacing, MAX_ESTIMATE);
 }

@@ -167,23 +167,6 @@ static void extension_not_negotiated(fc_buf *out)
     hx_header(out, 23, 0, HX_BAD_ID, 0);
 }
 
-static void frame_one_particle(fc_buf *out, uint32_t request_id)
-{
-    size_t at = hx_begin(out, FC_MSG_FRAME, request_id);
-    hx_u64(out, 1);
-    hx_u32(out, 0);
-    hx_u32(out, 0);
-    hx_f32(out, 0.0f);
-    hx_f32(out, 0.0f);
-    hx_f32(out, 0.0f);
-    hx_end(out, at);
-}
-
-static void frame_before_hello(fc_buf *out)
-{
-    frame_one_particle(out, HX_BAD_ID);
-}
-
 static void camera_before_hello(fc_buf *out)
 {
     hx_header(out, FC_MSG_CAMERA, 0, HX_BAD_ID, 48);
@@ -261,6 +244,12 @@ static void frame_fixed(fc_buf *out, uint64_t count, uint32_t attributes, uint32
     for (size_t i = 0; i < extra; i++)
         hx_bytes(out, "", 1);
     hx_end(out, at);
+}
+
+/* One particle at the origin. */
+static void frame_before_hello(fc_buf *out)
+{
+    frame_fixed(out, 1, 0, 0, 12);
 }
 
 /* (2^59 + 1) x 32 = 2^64 + 32 and (2^62 + 1) x 12 = 3 x 2^64 + 12: a decoder

@@ -106,6 +106,17 @@ static void test_degenerate_frames(void)
     CHECK_NEAR(fc_frame_estimate_radius(&same), 1.8, 1e-6);
     fc_frame_free(&same);
 
+    /* Particles millions of units apart: the estimate stays a radius settings accept. */
+    fc_frame far = make_frame(4);
+    for (int i = 0; i < 4; i++)
+        set_point(&far, i, 2e6f * (float)i, 0, 0);
+    CHECK(fc_frame_estimate_radius(&far) == 1e6f);
+    fc_settings s;
+    fc_settings_default(&s);
+    s.radius = fc_frame_estimate_radius(&far);
+    CHECK_CODE(fc_settings_validate(&s, NULL), FC_OK);
+    fc_frame_free(&far);
+
     /* Far more particles than the sample, nearly all coincident: the sample
      * alone shows no spacing, yet the neighbours beyond it are found. */
     fc_frame piled = make_frame(100 * 4096);
