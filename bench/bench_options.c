@@ -32,6 +32,7 @@ void bench_options_print_usage(void)
     printf("usage: fluidcast-bench [--gpu auto|software|N] [--particles 16k,64k,...]\n"
            "         [--size 1280x720,...] [--smoothing curvature,none,...] [--iterations 15,40,default,...]\n"
            "         [--scale 1,0.5,0.25] [--frames N] [--encode png|jpeg|exr|none] [--image PATH.png]\n"
+           "         [--profile] [--shader-dir DIR]\n"
            "       fluidcast-bench --particles N --write-scene PATH.f32\n"
            "Prints a markdown table: median GPU ms per stage (timer queries), encode ms, wall ms.\n"
            "Every combination of the lists runs; --iterations default: each method's own default;\n"
@@ -40,6 +41,9 @@ void bench_options_print_usage(void)
     for (size_t i = 0; i < N_SMOOTHING_NAMES; i++)
         printf(" %s", smoothing_names[i].name);
     printf("\n--image writes each configuration's last frame there, so it ends up with the last one's.\n"
+           "--profile prints after each row where its time goes: every pass's wall time with the GL\n"
+           "queue drained around it, its fragment shader invocations, and the sprites' sizes.\n"
+           "--shader-dir loads the *.glsl files from DIR, to time shader changes without rebuilding.\n"
            "--write-scene writes the drop scene as raw little-endian float32 xyz and prints\n"
            "'particles N spacing S radius R' (R: the sphere radius the benchmark renders with).\n");
 }
@@ -178,6 +182,10 @@ static fc_code parse_valued(const char *option, const char *value, bench_options
         return parse_frames(value, o, err);
     if (!strcmp(option, "--encode"))
         return parse_encoding(value, o, err);
+    if (!strcmp(option, "--shader-dir")) {
+        o->shader_dir = value;
+        return FC_OK;
+    }
     if (!strcmp(option, "--image")) {
         o->image_path = value;
         return FC_OK;
@@ -196,6 +204,10 @@ fc_code bench_options_parse(int argc, char **argv, bench_options *o, fc_error *e
         if (!strcmp(argv[i], "--help")) {
             o->action = BENCH_HELP;
             return FC_OK;
+        }
+        if (!strcmp(argv[i], "--profile")) {
+            o->profile = 1;
+            continue;
         }
         if (i + 1 == argc)
             return fc_error_set(err, FC_ERR_USAGE, "%s needs a value", argv[i]);

@@ -32,6 +32,8 @@ typedef struct bench_options {
     int n_smooth_scales;
     int frames;
     fc_image_format format;  /* 0 = no encoding */
+    int profile;             /* --profile: a per-pass table after each row */
+    const char *shader_dir;  /* --shader-dir: GLSL from there instead of the built-in copies; NULL: built-in */
 } bench_options;
 
 /* Defaults: 64k particles, 1280x720, curvature flow 40 iterations at full

@@ -10,6 +10,7 @@
 #include <time.h>
 
 #include "bench_options.h"
+#include "bench_profile.h"
 #include "bench_output.h"
 #include "egl_context.h"
 #include "fc_error.h"
@@ -149,9 +150,13 @@ static void config_settings(fc_smoothing method, uint32_t iterations, float smoo
 
 /* The rows of one image size: every smoothing method x iteration count x
  * smoothing resolution; "none" does not smooth, so it gets one row. */
-static fc_code bench_size(fc_pipeline *pipe, const bench_options *o, uint64_t particles, uint32_t w, uint32_t h,
+static fc_code bench_size(fc_pipeline *pipe, const bench_options *o, const fc_frame *frame, uint32_t w, uint32_t h,
                           float radius, float upload_ms, fc_error *err)
 {
+    fc_camera cam;
+    bench_scene_drop_camera(w, h, &cam);
+    float sprite_px[3];
+    bench_sprite_diameters(frame, &cam, radius, sprite_px);
     for (int mi = 0; mi < o->n_smoothings; mi++) {
         const fc_smoothing method = o->smoothings[mi];
         const int smooths = method != FC_SMOOTHING_NONE;
@@ -164,7 +169,11 @@ static fc_code bench_size(fc_pipeline *pipe, const bench_options *o, uint64_t pa
                 fc_code rc = bench_config(pipe, o, w, h, &settings, &row, err);
                 if (rc != FC_OK)
                     return rc;
-                print_row(particles, w, h, &settings, upload_ms, &row);
+                print_row(frame->count, w, h, &settings, upload_ms, &row);
+                if (o->profile)
+                    rc = bench_profile_config(pipe, o->frames, &cam, &settings, frame->count, sprite_px, err);
+                if (rc != FC_OK)
+                    return rc;
             }
     }
     return FC_OK;
@@ -179,10 +188,10 @@ static fc_code bench_particles(fc_pipeline *pipe, const bench_options *o, uint64
         return rc;
     float upload_ms = -1.0f;
     rc = fc_pipeline_upload(pipe, &frame, &upload_ms, err);
-    fc_frame_free(&frame);
     for (int si = 0; rc == FC_OK && si < o->n_sizes; si++)
-        rc = bench_size(pipe, o, particles, o->sizes[si][0], o->sizes[si][1],
-                        BENCH_SCENE_RADIUS_PER_SPACING * spacing, upload_ms, err);
+        rc = bench_size(pipe, o, &frame, o->sizes[si][0], o->sizes[si][1], BENCH_SCENE_RADIUS_PER_SPACING * spacing,
+                        upload_ms, err);
+    fc_frame_free(&frame);
     return rc;
 }
 
@@ -194,7 +203,7 @@ static fc_code run_benchmark(const bench_options *o, fc_error *err)
     if (rc == FC_OK) {
         printf("GL_RENDERER: %s; GL_VERSION: %s; EGL vendor: %s\n\n", fc_gl_context_renderer(ctx),
                fc_gl_context_version(ctx), fc_gl_context_egl_vendor(ctx));
-        rc = fc_pipeline_create(&(fc_pipeline_config){0}, &pipe, err);
+        rc = fc_pipeline_create(&(fc_pipeline_config){.shader_dir = o->shader_dir}, &pipe, err);
     }
     if (rc == FC_OK)
         print_header();

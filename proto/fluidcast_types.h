@@ -139,8 +139,8 @@ typedef struct fc_render_request {
 /* Server-side stages whose duration is reported with every image. */
 typedef enum fc_stage {
     FC_STAGE_UPLOAD = 0,       /* particle upload to the GPU */
-    FC_STAGE_DEPTH,            /* sphere depth splatting */
-    FC_STAGE_THICKNESS,
+    FC_STAGE_DEPTH,            /* sphere depth splatting (and the thickness splat at thickness_scale 1) */
+    FC_STAGE_THICKNESS,        /* the thickness splat at reduced scale, its blur and resampling */
     FC_STAGE_SMOOTHING,
     FC_STAGE_COMPOSITE,
     FC_STAGE_READBACK,

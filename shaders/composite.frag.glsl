@@ -1,18 +1,28 @@
 #version 450 core
 // Compositing (van der Laan et al. 2009, §3.5, eqs. 13-15): Fresnel between
 // the refracted background and the reflected environment, Phong specular,
-// grey foam where the surface noise is strong; the fluid's depth goes to the
-// depth buffer so later geometry (spray) composites with it.
+// grey foam where the surface noise is strong. The last of three passes
+// (composite_pass.c): it runs only where fluid_mask.frag.glsl set the
+// stencil, over the background and depth of composite_base.frag.glsl.
+
+layout(early_fragment_tests) in;
 
 vec3 view_ray(vec2 window);
 vec3 to_world_point(vec3 view_point);
 vec3 to_world_direction(vec3 view_direction);
 vec3 scene_radiance(vec3 origin, vec3 dir);
+struct surface_spans {
+    ivec2 x;
+    ivec2 y;
+};
+
 float depth_at(ivec2 p);
 float noise_at(ivec2 p);
 vec3 view_point(ivec2 p, float z);
-vec3 shading_normal(ivec2 p, vec3 centre, float z);
-bool inside_surface(ivec2 p, float z);
+surface_spans spans_at(ivec2 p, float z);
+vec3 shading_normal(ivec2 p, vec3 centre, float z, surface_spans spans);
+bool inside_surface(surface_spans spans);
+bool fluid_here(out float z, out float z_floor);
 
 layout(binding = 1) uniform sampler2D thickness;         // world units, any resolution (bilinear)
 layout(binding = 2) uniform sampler2D background;        // the scene without fluid, linear RGB
@@ -30,32 +40,14 @@ layout(location = 12) uniform float particle_radius;     // world units; thinner
 layout(location = 13) uniform float shininess;           // α of eq. 13
 layout(location = 14) uniform float foam;                // settings.foam: how fast foam turns opaque
 layout(location = 15) uniform bool use_environment_map;  // else the procedural scene is reflected
-layout(location = 16) uniform vec4 floor_plane;          // view space, dot(xyz, x) + w > 0 above; (0,0,0,1) = none
-layout(location = 17) uniform vec2 depth_projection;     // P[2][2], P[3][2]
 layout(location = 18) uniform vec2 foam_noise_range;     // mean |N| where foam starts and where it is complete
 
 // Refraction may shift the background by at most this fraction of the image,
 // so very thick fluid cannot sample far-away, unrelated parts of the scene.
 const float max_shift_fraction = 0.05;
 const vec3 foam_color = vec3(0.90, 0.92, 0.94);
-// Stands for "no floor on this ray": beyond any far plane, still finite.
-const float beyond_everything = 3.0e38;
 
 layout(location = 0) out vec4 color;
-
-// Linear depth at which this pixel's ray meets the floor.
-float floor_depth(vec3 ray)
-{
-    float rate = dot(floor_plane.xyz, ray);
-    float t = rate < 0.0 ? -floor_plane.w / rate : -1.0;
-    return t > 0.0 ? t : beyond_everything;
-}
-
-float window_depth(float z)
-{
-    float ndc = depth_projection.y / z - depth_projection.x;
-    return clamp(0.5 * ndc + 0.5, 0.0, 1.0);
-}
 
 vec3 reflected_radiance(vec3 origin, vec3 dir)
 {
@@ -81,7 +73,8 @@ float noise_magnitude(ivec2 p, float z)
 vec3 shade_fluid(ivec2 p, float z, vec3 behind_here)
 {
     vec3 centre = view_point(p, z);
-    vec3 n = shading_normal(p, centre, z);
+    surface_spans spans = spans_at(p, z);
+    vec3 n = shading_normal(p, centre, z, spans);
     vec3 v = normalize(-centre);
     float t = texture(thickness, gl_FragCoord.xy / viewport).r;
 
@@ -100,13 +93,17 @@ vec3 shade_fluid(ivec2 p, float z, vec3 behind_here)
     // On a silhouette the guessed normal would put highlights on single
     // rim pixels, a dotted line along the edge: only the inside shines.
     vec3 half_vector = normalize(v + light_view);
-    float highlight = inside_surface(p, z) ? specular_strength * pow(max(dot(n, half_vector), 0.0), shininess) : 0.0;
+    float highlight = inside_surface(spans) ? specular_strength * pow(max(dot(n, half_vector), 0.0), shininess) : 0.0;
 
     vec3 fluid = mix(refracted, reflected, fresnel) + vec3(highlight);
-    // Foam is a diffuse white layer on the surface, lit like one.
-    float foam_amount = min(foam * smoothstep(foam_noise_range.x, foam_noise_range.y, noise_magnitude(p, z)), 1.0);
-    vec3 foam_lit = foam_color * (0.6 + 0.4 * max(dot(n, light_view), 0.0));
-    fluid = mix(fluid, foam_lit, foam_amount);
+    // Foam is a diffuse white layer on the surface, lit like one. Without
+    // foam there is no noise texture to read: the uniform branch keeps the
+    // fetches out (a GPU skips them; llvmpipe runs and discards them).
+    if (foam > 0.0) {
+        float foam_amount = min(foam * smoothstep(foam_noise_range.x, foam_noise_range.y, noise_magnitude(p, z)), 1.0);
+        vec3 foam_lit = foam_color * (0.6 + 0.4 * max(dot(n, light_view), 0.0));
+        fluid = mix(fluid, foam_lit, foam_amount);
+    }
     // Silhouettes are the rims of single sprites, jagged and seen at grazing
     // angles; fading out where the fluid is thinner than a particle (the
     // thickness falls smoothly to 0 there) softens them (cf. the silhouette
@@ -117,15 +114,8 @@ vec3 shade_fluid(ivec2 p, float z, vec3 behind_here)
 
 void main()
 {
+    float z, z_floor;
+    fluid_here(z, z_floor);   // true: the stencil holds where it is
     ivec2 p = ivec2(gl_FragCoord.xy);
-    vec3 behind_here = texelFetch(background, p, 0).rgb;
-    float z = depth_at(p);
-    float z_floor = floor_depth(view_ray(gl_FragCoord.xy));
-    if (z <= 0.0 || z >= z_floor) {
-        color = vec4(behind_here, 1.0);
-        gl_FragDepth = window_depth(z_floor);
-        return;
-    }
-    color = vec4(shade_fluid(p, z, behind_here), 1.0);
-    gl_FragDepth = window_depth(z);
+    color = vec4(shade_fluid(p, z, texelFetch(background, p, 0).rgb), 1.0);
 }

@@ -1,8 +1,7 @@
 #version 450 core
 // Per-particle records beside the positions (particle_attributes.c), in draw
 // order; linked into the sprite programs that need more than a position.
-// Without a geometry shader gl_PrimitiveID counts the points of the current
-// draw call, so first_particle + gl_PrimitiveID is this sprite's record.
+// sphere.vert.glsl passes each sprite's draw slot, the index of its record.
 
 struct particle_record {
     uint id;          // persistent id (or frame index): chooses the noise pattern
@@ -15,19 +14,19 @@ layout(std430, binding = 0) readonly buffer particle_records {
     particle_record records[];
 };
 
-layout(location = 9) uniform int first_particle;   // draw slot of the call's first point
+layout(location = 1) flat in int particle_slot;
 
 uint particle_id()
 {
-    return records[first_particle + gl_PrimitiveID].id;
+    return records[particle_slot].id;
 }
 
 float particle_speed()
 {
-    return records[first_particle + gl_PrimitiveID].speed;
+    return records[particle_slot].speed;
 }
 
 float particle_amplitude()
 {
-    return records[first_particle + gl_PrimitiveID].amplitude;
+    return records[particle_slot].amplitude;
 }

@@ -12,6 +12,7 @@ layout(binding = 3) uniform sampler2D surface_noise;   // N(x, y) of noise.frag.
 layout(location = 0) uniform vec2 focal;               // P[0][0], P[1][1]
 layout(location = 5) uniform vec2 viewport;
 layout(location = 12) uniform float particle_radius;   // world units
+layout(location = 19) uniform bool has_noise;          // false: N is 0 everywhere and is not read
 
 float depth_at(ivec2 p)
 {
@@ -51,27 +52,37 @@ ivec2 difference_span(ivec2 p, ivec2 axis, float z)
     return ivec2(fwd ? 1 : 0, bwd ? 1 : 0);
 }
 
+// The spans of both axes at a pixel, found once: the normal, the noise
+// slope and inside_surface all need them, and each costs four depth fetches.
+struct surface_spans {
+    ivec2 x;
+    ivec2 y;
+};
+
+surface_spans spans_at(ivec2 p, float z)
+{
+    return surface_spans(difference_span(p, ivec2(1, 0), z), difference_span(p, ivec2(0, 1), z));
+}
+
 // Whether the surface continues to all four neighbours: where it does not,
 // the normal comes from one-sided differences across a sphere's rim and is
 // only a guess.
-bool inside_surface(ivec2 p, float z)
+bool inside_surface(surface_spans spans)
 {
-    ivec2 x = difference_span(p, ivec2(1, 0), z), y = difference_span(p, ivec2(0, 1), z);
-    return x.x + x.y + y.x + y.y == 4;
+    return spans.x.x + spans.x.y + spans.y.x + spans.y.y == 4;
 }
 
-vec3 surface_tangent(ivec2 p, ivec2 axis, vec3 centre, float z)
+vec3 surface_tangent(ivec2 p, ivec2 axis, ivec2 span, vec3 centre)
 {
-    ivec2 span = difference_span(p, axis, z);
     ivec2 ahead = p + span.x * axis, behind = p - span.y * axis;
     vec3 a = span.x > 0 ? view_point(ahead, depth_at(ahead)) : centre;
     vec3 b = span.y > 0 ? view_point(behind, depth_at(behind)) : centre;
     return a - b;
 }
 
-vec3 surface_normal(ivec2 p, vec3 centre, float z)
+vec3 surface_normal(ivec2 p, vec3 centre, surface_spans spans)
 {
-    vec3 n = cross(surface_tangent(p, ivec2(1, 0), centre, z), surface_tangent(p, ivec2(0, 1), centre, z));
+    vec3 n = cross(surface_tangent(p, ivec2(1, 0), spans.x, centre), surface_tangent(p, ivec2(0, 1), spans.y, centre));
     float len = length(n);
     if (len == 0.0)
         return vec3(0.0, 0.0, 1.0);   // an isolated pixel: assume it faces the camera
@@ -81,9 +92,8 @@ vec3 surface_normal(ivec2 p, vec3 centre, float z)
 
 // dN per pixel along `axis`, over the same span as the surface tangent, so
 // the noise outside the fluid (0) never enters.
-float noise_slope(ivec2 p, ivec2 axis, float z)
+float noise_slope(ivec2 p, ivec2 axis, ivec2 span)
 {
-    ivec2 span = difference_span(p, axis, z);
     if (span.x + span.y == 0)
         return 0.0;
     return (noise_at(p + span.x * axis) - noise_at(p - span.y * axis)) / float(span.x + span.y);
@@ -92,11 +102,13 @@ float noise_slope(ivec2 p, ivec2 axis, float z)
 // N is a height field in particle radii over the surface (the patent adds its
 // partial derivatives to the normal): its world-space slope is dN/dpixel
 // times the radius times the pixels per world unit at this depth.
-vec3 shading_normal(ivec2 p, vec3 centre, float z)
+vec3 shading_normal(ivec2 p, vec3 centre, float z, surface_spans spans)
 {
-    vec3 n = surface_normal(p, centre, z);
+    vec3 n = surface_normal(p, centre, spans);
+    if (!has_noise)
+        return n;
     vec2 pixels_per_unit = 0.5 * viewport * focal / z;
-    vec2 slope = vec2(noise_slope(p, ivec2(1, 0), z), noise_slope(p, ivec2(0, 1), z)) * particle_radius *
+    vec2 slope = vec2(noise_slope(p, ivec2(1, 0), spans.x), noise_slope(p, ivec2(0, 1), spans.y)) * particle_radius *
                  pixels_per_unit;
     return normalize(n - vec3(slope, 0.0));
 }

@@ -1,15 +1,12 @@
 #version 450 core
 // Thickness (van der Laan et al. 2009, §3.3, eq. 9): each sphere adds the
-// length of the view ray inside it, so the additive sum is fluid thickness in
-// world units. The paper depth-tests against the scene; the only opaque scene
-// geometry is the floor, a plane, so the chord is clipped against it exactly
-// instead: fluid below the floor does not count.
+// length of the view ray inside it above the floor (thickness_chord.frag.glsl),
+// so the additive sum is fluid thickness in world units. Used where thickness
+// is splatted on its own, at reduced resolution; at full resolution
+// surface_splat.frag.glsl writes it with the depth.
 
 bool cast_sphere_ray(vec3 centre, out float depth, out float chord);
-
-layout(location = 1) uniform vec4 projection;    // P[0][0], P[1][1], P[2][2], P[3][2]
-layout(location = 2) uniform vec2 viewport;
-layout(location = 10) uniform vec4 floor_plane;  // view space: dot(xyz, x) + w > 0 above; (0,0,0,1) = none
+float thickness_above_floor(float depth, float chord);
 
 layout(location = 0) flat in vec3 sphere_centre;
 layout(location = 0) out float thickness;
@@ -19,19 +16,5 @@ void main()
     float depth, chord;
     if (!cast_sphere_ray(sphere_centre, depth, chord))
         discard;
-    // Along the ray x(t) = t·dir (t is linear depth) the height above the
-    // floor is rate·t + w: the part with positive height counts.
-    vec3 dir = vec3((gl_FragCoord.xy / viewport * 2.0 - 1.0) / projection.xy, -1.0);
-    float len = length(dir);
-    float near = depth, far = depth + chord / len;
-    float rate = dot(floor_plane.xyz, dir);
-    if (rate < 0.0)
-        far = min(far, -floor_plane.w / rate);
-    else if (rate > 0.0)
-        near = max(near, -floor_plane.w / rate);
-    else if (floor_plane.w <= 0.0)
-        discard;
-    if (far <= near)
-        discard;
-    thickness = (far - near) * len;
+    thickness = thickness_above_floor(depth, chord);
 }

@@ -5,8 +5,10 @@
 #include "normal_pass.h"
 #include "shader_program.h"
 
-/* Uniform locations fixed by layout(location) in composite.frag.glsl. */
+/* Uniform locations fixed by layout(location) in camera.frag.glsl, composite.frag.glsl and fluid_pixel.frag.glsl. */
 enum {
+    LOC_FOCAL = 0,
+    LOC_VIEWPORT = 5,
     LOC_LIGHT_VIEW = 6,
     LOC_FLUID_COLOR = 7,
     LOC_ABSORPTION = 8,
@@ -20,8 +22,8 @@ enum {
     LOC_DEPTH_PROJECTION = 17,
     LOC_FOAM_NOISE_RANGE = 18
 };
-/* Texture units fixed by layout(binding) in composite.frag.glsl (surface_normal.frag.glsl has 0 and 3). */
-enum { UNIT_THICKNESS = 1, UNIT_BACKGROUND = 2, UNIT_ENVIRONMENT_MAP = 4 };
+/* Texture units fixed by layout(binding) in the composite shaders (surface_normal.frag.glsl also has 3). */
+enum { UNIT_SURFACE_DEPTH = 0, UNIT_THICKNESS = 1, UNIT_BACKGROUND = 2, UNIT_ENVIRONMENT_MAP = 4 };
 /* Foam starts where the local mean of |N| (composite.frag.glsl) exceeds this
  * many times settings.noise, which only 1% of a calm surface reaches (its
  * median is 0.10), and is complete at the second, about the median where the
@@ -36,18 +38,29 @@ fc_code fc_composite_pass_create(const char *shader_dir, fc_composite_pass *pass
         .float_target = fc_render_target_init(GL_RGBA32F, true, false),
     };
     glCreateVertexArrays(1, &pass->empty_vertex_array);
-    const char *files[] = {"fullscreen.vert.glsl", "camera.frag.glsl", "environment.frag.glsl",
-                           "surface_normal.frag.glsl", "composite.frag.glsl"};
-    return fc_program_build(shader_dir, files, sizeof files / sizeof files[0], &pass->program, err);
+    const char *base[] = {"fullscreen.vert.glsl", "camera.frag.glsl", "fluid_pixel.frag.glsl",
+                          "composite_base.frag.glsl"};
+    const char *mask[] = {"fullscreen.vert.glsl", "camera.frag.glsl", "fluid_pixel.frag.glsl",
+                          "fluid_mask.frag.glsl"};
+    const char *shade[] = {"fullscreen.vert.glsl", "camera.frag.glsl", "environment.frag.glsl",
+                           "surface_normal.frag.glsl", "fluid_pixel.frag.glsl", "composite.frag.glsl"};
+    fc_code code = fc_program_build(shader_dir, base, sizeof base / sizeof base[0], &pass->base_program, err);
+    if (code == FC_OK)
+        code = fc_program_build(shader_dir, mask, sizeof mask / sizeof mask[0], &pass->mask_program, err);
+    if (code == FC_OK)
+        code = fc_program_build(shader_dir, shade, sizeof shade / sizeof shade[0], &pass->program, err);
+    return code;
 }
 
 void fc_composite_pass_destroy(fc_composite_pass *pass)
 {
+    glDeleteProgram(pass->base_program);
+    glDeleteProgram(pass->mask_program);
     glDeleteProgram(pass->program);
     glDeleteVertexArrays(1, &pass->empty_vertex_array);
     fc_render_target_release(&pass->srgb_target);
     fc_render_target_release(&pass->float_target);
-    pass->program = pass->empty_vertex_array = 0;
+    pass->base_program = pass->mask_program = pass->program = pass->empty_vertex_array = 0;
 }
 
 /* Schlick's reflectance at normal incidence for a fluid of index `ior` in air. */
@@ -84,12 +97,42 @@ static void bind_inputs(const fc_composite_inputs *in, float radius)
     }
 }
 
-/* Every pixel writes its depth (fluid, floor or far) unconditionally. */
-static void write_depth_always(void)
+/* The uniforms of fluid_pixel.frag.glsl (and the camera's it uses) on `program`. */
+static void apply_fluid_pixel(GLuint program, const fc_view *view, const fc_environment *env)
+{
+    glProgramUniform2f(program, LOC_FOCAL, view->fx, view->fy);
+    glProgramUniform2f(program, LOC_VIEWPORT, (float)view->width, (float)view->height);
+    glProgramUniform4fv(program, LOC_FLOOR_PLANE, 1, env->floor_plane);
+}
+
+/* Background colour and the scene's depth on every pixel. */
+static void draw_base(const fc_composite_pass *pass, const fc_composite_inputs *in)
 {
     glEnable(GL_DEPTH_TEST);
     glDepthFunc(GL_ALWAYS);
     glDepthMask(GL_TRUE);
+    glUseProgram(pass->base_program);
+    glBindTextureUnit(UNIT_SURFACE_DEPTH, in->surface_depth->color);
+    glBindTextureUnit(UNIT_BACKGROUND, in->background->color);
+    fc_gl_draw_fullscreen(pass->empty_vertex_array);
+    glDepthMask(GL_FALSE);
+    glDisable(GL_DEPTH_TEST);
+}
+
+/* Stencil 1 on the fluid pixels, 0 elsewhere; no colour. */
+static void draw_mask(const fc_composite_pass *pass, const fc_render_target *target)
+{
+    const GLint clear = 0;
+    glClearNamedFramebufferiv(target->framebuffer, GL_STENCIL, 0, &clear);
+    glEnable(GL_STENCIL_TEST);
+    glStencilFunc(GL_ALWAYS, 1, 0xff);
+    glStencilOp(GL_KEEP, GL_KEEP, GL_REPLACE);
+    glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
+    glUseProgram(pass->mask_program);
+    fc_gl_draw_fullscreen(pass->empty_vertex_array);
+    glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+    glStencilFunc(GL_EQUAL, 1, 0xff);
+    glStencilOp(GL_KEEP, GL_KEEP, GL_KEEP);
 }
 
 fc_code fc_composite_pass_run(fc_composite_pass *pass, const fc_composite_inputs *in, const fc_view *view,
@@ -101,23 +144,27 @@ fc_code fc_composite_pass_run(fc_composite_pass *pass, const fc_composite_inputs
     if (code != FC_OK)
         return code;
     fc_render_target_bind(target);
-    write_depth_always();
     glDisable(GL_BLEND);
-    /* The shader works in linear RGB; the sRGB target encodes on write. */
+    /* The shaders work in linear RGB; the sRGB target encodes on write. */
     if (want_u8)
         glEnable(GL_FRAMEBUFFER_SRGB);
     else
         glDisable(GL_FRAMEBUFFER_SRGB);
+    apply_fluid_pixel(pass->base_program, view, env);
+    glProgramUniform2f(pass->base_program, LOC_DEPTH_PROJECTION, view->p22, view->p32);   /* only it writes depth */
+    apply_fluid_pixel(pass->mask_program, view, env);
+    draw_base(pass, in);
+    draw_mask(pass, target);
     glUseProgram(pass->program);
     fc_environment_apply(env, view);
     glUniform3fv(LOC_LIGHT_VIEW, 1, env->light_view);
     glUniform4fv(LOC_FLOOR_PLANE, 1, env->floor_plane);
-    glUniform2f(LOC_DEPTH_PROJECTION, view->p22, view->p32);
     apply_material(settings);
     bind_inputs(in, settings->radius);
-    fc_gl_draw_fullscreen(pass->empty_vertex_array);
+    fc_gl_draw_fullscreen(pass->empty_vertex_array);   /* the stencil keeps it to the fluid */
+    glDisable(GL_STENCIL_TEST);
     glDisable(GL_FRAMEBUFFER_SRGB);
-    glDisable(GL_DEPTH_TEST);
+    glDepthMask(GL_TRUE);
     *result = target;
     return fc_gl_check("composite pass", err);
 }

@@ -11,7 +11,9 @@
 #include "render_target.h"
 
 typedef struct fc_composite_pass {
-    GLuint program;
+    GLuint base_program;    /* background and depth everywhere (composite_base.frag.glsl) */
+    GLuint mask_program;    /* stencil on fluid pixels (fluid_mask.frag.glsl) */
+    GLuint program;         /* the fluid's shading, on the stencil (composite.frag.glsl) */
     GLuint empty_vertex_array;
     fc_render_target srgb_target;    /* GL_SRGB8_ALPHA8: display-ready 8-bit output, with depth */
     fc_render_target float_target;   /* GL_RGBA32F: linear output, with depth */
@@ -22,7 +24,7 @@ typedef struct fc_composite_inputs {
     const fc_render_target *surface_depth;   /* smoothed linear depth */
     const fc_render_target *thickness;       /* any resolution: sampled bilinearly */
     const fc_render_target *background;
-    const fc_render_target *noise;           /* N(x, y) of the noise pass */
+    const fc_render_target *noise;           /* N(x, y) of the noise pass; NULL: no noise (nor foam) */
     GLuint environment_map;                  /* cube map reflected in the fluid; 0 = the built-in scene */
 } fc_composite_inputs;
 

@@ -1,36 +1,103 @@
-/* depth_pass.c — nearest sphere depth per pixel. */
+/* depth_pass.c — nearest sphere depth and summed thickness in one splat. */
 #include "depth_pass.h"
 
+#include <math.h>
+
+#include "fc_error.h"
 #include "gl_util.h"
+#include "shader_program.h"
+
+/* Uniform location fixed by layout(location) in thickness_chord.frag.glsl. */
+enum { LOC_FLOOR_PLANE = 10 };
+enum { UNIT_SPLAT_DEPTH = 0 };
 
 fc_code fc_depth_pass_create(const char *shader_dir, fc_depth_pass *pass, fc_error *err)
 {
-    pass->target = fc_render_target_init(GL_R32F, true, false);
-    return fc_sphere_sprites_create(shader_dir, "depth.frag.glsl", &pass->sprites, err);
+    *pass = (fc_depth_pass){
+        .raw = fc_render_target_init(GL_R32F, false, false),
+        .thickness = fc_render_target_init(GL_R32F, false, true),
+        .target = fc_render_target_init(GL_R32F, false, false),
+    };
+    glCreateVertexArrays(1, &pass->empty_vertex_array);
+    glCreateFramebuffers(1, &pass->splat_framebuffer);
+    const char *resolve[] = {"fullscreen.vert.glsl", "depth_resolve.frag.glsl"};
+    fc_code code = fc_sphere_sprites_create_with(shader_dir, "thickness_chord.frag.glsl", "surface_splat.frag.glsl",
+                                                 &pass->sprites, err);
+    if (code == FC_OK)
+        code = fc_program_build(shader_dir, resolve, sizeof resolve / sizeof resolve[0], &pass->resolve_program,
+                                err);
+    return code;
 }
 
 void fc_depth_pass_destroy(fc_depth_pass *pass)
 {
     fc_sphere_sprites_destroy(&pass->sprites);
+    glDeleteProgram(pass->resolve_program);
+    glDeleteVertexArrays(1, &pass->empty_vertex_array);
+    glDeleteFramebuffers(1, &pass->splat_framebuffer);
+    fc_render_target_release(&pass->raw);
+    fc_render_target_release(&pass->thickness);
     fc_render_target_release(&pass->target);
+    pass->resolve_program = pass->empty_vertex_array = pass->splat_framebuffer = 0;
+}
+
+/* Sizes the three images to the view; the splat framebuffer follows the
+ * textures when they are reallocated. */
+static fc_code resize(fc_depth_pass *pass, const fc_view *view, fc_error *err)
+{
+    GLuint raw = pass->raw.color, thickness = pass->thickness.color;
+    fc_code code = fc_render_target_resize(&pass->raw, view->width, view->height, err);
+    if (code == FC_OK)
+        code = fc_render_target_resize(&pass->thickness, view->width, view->height, err);
+    if (code == FC_OK)
+        code = fc_render_target_resize(&pass->target, view->width, view->height, err);
+    if (code != FC_OK || (raw == pass->raw.color && thickness == pass->thickness.color))
+        return code;
+    glNamedFramebufferTexture(pass->splat_framebuffer, GL_COLOR_ATTACHMENT0, pass->raw.color, 0);
+    glNamedFramebufferTexture(pass->splat_framebuffer, GL_COLOR_ATTACHMENT1, pass->thickness.color, 0);
+    GLenum status = glCheckNamedFramebufferStatus(pass->splat_framebuffer, GL_FRAMEBUFFER);
+    if (status != GL_FRAMEBUFFER_COMPLETE)
+        return fc_error_set(err, FC_ERR_GL, "surface splat framebuffer %ux%u incomplete: status 0x%04x",
+                            view->width, view->height, (unsigned)status);
+    return fc_gl_check("attaching the surface splat images", err);
+}
+
+/* Nearest depth by GL_MIN on attachment 0, thickness (with a floor plane) by
+ * addition on 1. */
+static void splat(fc_depth_pass *pass, const fc_particle_buffer *particles, const fc_view *view, float radius,
+                  const float *floor_plane)
+{
+    const GLenum attachments[2] = {GL_COLOR_ATTACHMENT0, floor_plane ? GL_COLOR_ATTACHMENT1 : GL_NONE};
+    glNamedFramebufferDrawBuffers(pass->splat_framebuffer, 2, attachments);
+    glBindFramebuffer(GL_FRAMEBUFFER, pass->splat_framebuffer);
+    glViewport(0, 0, (GLsizei)view->width, (GLsizei)view->height);
+    const GLfloat nothing_yet = INFINITY, no_thickness = 0.0f;
+    glClearNamedFramebufferfv(pass->splat_framebuffer, GL_COLOR, 0, &nothing_yet);
+    if (floor_plane)
+        glClearNamedFramebufferfv(pass->splat_framebuffer, GL_COLOR, 1, &no_thickness);
+    glDisable(GL_DEPTH_TEST);
+    glDisable(GL_FRAMEBUFFER_SRGB);
+    glEnable(GL_BLEND);
+    glBlendEquationi(0, GL_MIN);
+    glBlendEquationi(1, GL_FUNC_ADD);
+    glBlendFunc(GL_ONE, GL_ONE);
+    if (floor_plane)
+        glProgramUniform4fv(pass->sprites.program, LOC_FLOOR_PLANE, 1, floor_plane);
+    fc_sphere_sprites_draw(&pass->sprites, particles, view, radius);
+    glBlendEquation(GL_FUNC_ADD);
+    glDisable(GL_BLEND);
 }
 
 fc_code fc_depth_pass_run(fc_depth_pass *pass, const fc_particle_buffer *particles, const fc_view *view,
-                          float radius, fc_error *err)
+                          float radius, const float *floor_plane, fc_error *err)
 {
-    fc_code code = fc_render_target_resize(&pass->target, view->width, view->height, err);
+    fc_code code = resize(pass, view, err);
     if (code != FC_OK)
         return code;
+    splat(pass, particles, view, radius, floor_plane);
     fc_render_target_bind(&pass->target);
-    const GLfloat no_fluid = 0.0f, farthest = 1.0f;
-    glClearNamedFramebufferfv(pass->target.framebuffer, GL_COLOR, 0, &no_fluid);
-    glClearNamedFramebufferfv(pass->target.framebuffer, GL_DEPTH, 0, &farthest);
-    glDisable(GL_BLEND);
-    glDisable(GL_FRAMEBUFFER_SRGB);
-    glEnable(GL_DEPTH_TEST);
-    glDepthFunc(GL_LESS);
-    glDepthMask(GL_TRUE);
-    fc_sphere_sprites_draw(&pass->sprites, particles, view, radius);
-    glDisable(GL_DEPTH_TEST);
+    glUseProgram(pass->resolve_program);
+    glBindTextureUnit(UNIT_SPLAT_DEPTH, pass->raw.color);
+    fc_gl_draw_fullscreen(pass->empty_vertex_array);
     return fc_gl_check("depth pass", err);
 }

@@ -1,5 +1,7 @@
 /* depth_pass.h — sphere depth splatting (van der Laan et al. 2009, §3.1):
- * linear view depth of the nearest sphere surface per pixel, 0 = no fluid. */
+ * linear view depth of the nearest sphere surface per pixel, 0 = no fluid;
+ * the same splat also sums the spheres' full-resolution thickness (§3.3),
+ * so the spheres are rasterised once for both (surface_splat.frag.glsl). */
 #ifndef FC_DEPTH_PASS_H
 #define FC_DEPTH_PASS_H
 
@@ -8,14 +10,21 @@
 
 typedef struct fc_depth_pass {
     fc_sphere_sprites sprites;
-    fc_render_target target;   /* R32F linear depth + the depth buffer of the nearest-sphere test */
+    GLuint resolve_program;
+    GLuint empty_vertex_array;
+    GLuint splat_framebuffer;     /* raw depth + thickness as attachments 0 and 1 */
+    fc_render_target raw;         /* R32F nearest depth, +inf where no sphere is */
+    fc_render_target thickness;   /* R32F thickness, unblurred, bilinear */
+    fc_render_target target;      /* R32F linear depth, 0 = no fluid */
 } fc_depth_pass;
 
 fc_code fc_depth_pass_create(const char *shader_dir, fc_depth_pass *pass, fc_error *err);
 void fc_depth_pass_destroy(fc_depth_pass *pass);
 
-/* Renders the particles' depth into pass->target, sized to the view. */
+/* Renders the particles' depth into pass->target and, when `floor_plane`
+ * is not NULL, their thickness above that view-space plane (see
+ * fc_environment.floor_plane) into pass->thickness, both sized to the view. */
 fc_code fc_depth_pass_run(fc_depth_pass *pass, const fc_particle_buffer *particles, const fc_view *view,
-                          float radius, fc_error *err);
+                          float radius, const float *floor_plane, fc_error *err);
 
 #endif

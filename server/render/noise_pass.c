@@ -3,14 +3,15 @@
 
 #include "gl_util.h"
 
-/* Locations and units fixed by layout() in noise.frag.glsl and particle_attributes.frag.glsl. */
-enum { LOC_FIRST_PARTICLE = 9, LOC_NOISE_AMPLITUDE = 10 };
+/* Locations and units fixed by layout() in noise.frag.glsl. */
+enum { LOC_NOISE_AMPLITUDE = 10 };
 enum { UNIT_SURFACE_DEPTH = 0 };
 
 fc_code fc_noise_pass_create(const char *shader_dir, fc_noise_pass *pass, fc_error *err)
 {
     pass->target = fc_render_target_init(GL_R32F, false, false);
-    return fc_sphere_sprites_create_with_records(shader_dir, "noise.frag.glsl", &pass->sprites, err);
+    return fc_sphere_sprites_create_with(shader_dir, "particle_attributes.frag.glsl", "noise.frag.glsl",
+                                         &pass->sprites, err);
 }
 
 void fc_noise_pass_destroy(fc_noise_pass *pass)
@@ -37,7 +38,6 @@ fc_code fc_noise_pass_run(fc_noise_pass *pass, const fc_particle_buffer *surface
     glEnable(GL_BLEND);
     glBlendEquation(GL_FUNC_ADD);
     glBlendFunc(GL_ONE, GL_ONE);
-    glProgramUniform1i(pass->sprites.program, LOC_FIRST_PARTICLE, 0);
     glProgramUniform1f(pass->sprites.program, LOC_NOISE_AMPLITUDE, amplitude);
     glBindTextureUnit(UNIT_SURFACE_DEPTH, surface_depth->color);
     fc_particle_attributes_bind(attributes);

@@ -5,7 +5,7 @@
 #include "shader_program.h"
 
 /* Locations and units fixed by layout() in camera.frag.glsl and surface_normal.frag.glsl. */
-enum { LOC_FOCAL = 0, LOC_VIEWPORT = 5, LOC_PARTICLE_RADIUS = 12 };
+enum { LOC_FOCAL = 0, LOC_VIEWPORT = 5, LOC_PARTICLE_RADIUS = 12, LOC_HAS_NOISE = 19 };
 enum { UNIT_SURFACE_DEPTH = 0, UNIT_NOISE = 3 };
 
 fc_code fc_normal_pass_create(const char *shader_dir, fc_normal_pass *pass, fc_error *err)
@@ -28,8 +28,10 @@ void fc_normal_pass_destroy(fc_normal_pass *pass)
 void fc_surface_normal_bind(const fc_render_target *surface_depth, const fc_render_target *noise, float radius)
 {
     glUniform1f(LOC_PARTICLE_RADIUS, radius);
+    glUniform1i(LOC_HAS_NOISE, noise != NULL);
     glBindTextureUnit(UNIT_SURFACE_DEPTH, surface_depth->color);
-    glBindTextureUnit(UNIT_NOISE, noise->color);
+    if (noise)
+        glBindTextureUnit(UNIT_NOISE, noise->color);
 }
 
 fc_code fc_normal_pass_run(fc_normal_pass *pass, const fc_render_target *surface_depth,

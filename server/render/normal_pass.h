@@ -18,7 +18,8 @@ fc_code fc_normal_pass_create(const char *shader_dir, fc_normal_pass *pass, fc_e
 void fc_normal_pass_destroy(fc_normal_pass *pass);
 
 /* Sets the inputs of surface_normal.frag.glsl on the program in use: the
- * smoothed depth, the noise texture and the particle radius. */
+ * smoothed depth, the noise texture (NULL: no noise, none is read) and the
+ * particle radius. */
 void fc_surface_normal_bind(const fc_render_target *surface_depth, const fc_render_target *noise, float radius);
 
 fc_code fc_normal_pass_run(fc_normal_pass *pass, const fc_render_target *surface_depth,

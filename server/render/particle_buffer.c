@@ -31,7 +31,7 @@ static fc_code grow(fc_particle_buffer *pb, uint64_t count, fc_error *err)
     glDeleteBuffers(1, &pb->buffer);
     pb->buffer = 0;
     pb->capacity = 0;
-    /* glDrawArrays counts vertices in a GLsizei. */
+    /* Draws count vertices and instances in a GLsizei. */
     if (count > (uint64_t)INT32_MAX)
         return fc_error_set(err, FC_ERR_RENDER, "%llu particles exceed the %d one draw call can render",
                             (unsigned long long)count, INT32_MAX);
@@ -66,11 +66,9 @@ fc_code fc_particle_buffer_upload(fc_particle_buffer *pb, const fc_frame *frame,
     return code;
 }
 
-void fc_particle_buffer_draw_points(const fc_particle_buffer *pb)
+void fc_particle_buffer_bind(const fc_particle_buffer *pb, bool per_instance)
 {
-    if (pb->count == 0)
-        return;
+    glVertexArrayBindingDivisor(pb->vertex_array, 0, per_instance ? 1 : 0);
     glBindVertexArray(pb->vertex_array);
-    glDrawArrays(GL_POINTS, 0, (GLsizei)pb->count);
 }
 

@@ -4,6 +4,7 @@
 #define FC_PARTICLE_BUFFER_H
 
 #include <epoxy/gl.h>
+#include <stdbool.h>
 #include <stdint.h>
 
 #include "fluidcast_types.h"
@@ -24,7 +25,8 @@ void fc_particle_buffer_destroy(fc_particle_buffer *pb);
  * GPU has no room for it. */
 fc_code fc_particle_buffer_upload(fc_particle_buffer *pb, const fc_frame *frame, fc_error *err);
 
-/* Draws every particle as a point. */
-void fc_particle_buffer_draw_points(const fc_particle_buffer *pb);
+/* Binds the vertex array with a position per vertex (point sprites) or per
+ * instance (quads: instance i reads particle i from the base instance on). */
+void fc_particle_buffer_bind(const fc_particle_buffer *pb, bool per_instance);
 
 #endif

@@ -17,6 +17,7 @@
 #include "normal_pass.h"
 #include "particle_attributes.h"
 #include "particle_buffer.h"
+#include "pass_profile.h"
 #include "pipeline_internal.h"
 #include "readback.h"
 #include "scene_textures.h"
@@ -44,6 +45,7 @@ struct fc_pipeline {
     fc_composite_pass composite;
     fc_spray_pass spray;
     fc_stage_timer timer;
+    fc_pass_profile profile;
     GLint max_image_size;   /* largest width or height the GPU renders */
 };
 
@@ -89,17 +91,32 @@ static fc_code create_passes(fc_pipeline *p, const char *dir, fc_error *err)
         code = fc_spray_pass_create(dir, &p->spray, err);
     if (code == FC_OK)
         code = fc_stage_timer_create(&p->timer, err);
+    if (code == FC_OK)
+        code = fc_pass_profile_create(&p->profile, err);
     return code;
 }
 
-static fc_code depth_stage(fc_pipeline *p, const render_job *job, fc_error *err)
+/* Whether the depth pass splats the thickness too: at full resolution, when
+ * the image needs thickness. */
+static bool splats_thickness(const render_job *job, fc_aov aov)
 {
+    return job->settings->thickness_scale == 1.0f && (aov == FC_AOV_COLOR || aov == FC_AOV_THICKNESS);
+}
+
+/* Depth, and the thickness splat where splats_thickness: both are timed as the depth stage. */
+static fc_code depth_stage(fc_pipeline *p, const render_job *job, fc_aov aov, fc_error *err)
+{
+    const float *floor_plane = splats_thickness(job, aov) ? job->env.floor_plane : NULL;
     fc_stage_timer_begin(&p->timer, FC_STAGE_DEPTH);
-    fc_code code = fc_depth_pass_run(&p->depth, &job->surface, job->view, job->settings->radius, err);
+    fc_pass_profile_begin(&p->profile, floor_plane ? "depth + thickness splat" : "depth splat");
+    fc_code code = fc_depth_pass_run(&p->depth, &job->surface, job->view, job->settings->radius, floor_plane, err);
+    fc_pass_profile_end(&p->profile);
     fc_stage_timer_end(&p->timer, FC_STAGE_DEPTH);
     return code;
 }
 
+/* The thickness: splatted here at reduced resolution, else by the depth
+ * stage, which must have run first; blurred and resampled here. */
 static fc_code thickness_stage(fc_pipeline *p, const render_job *job, const fc_render_target **result,
                                fc_error *err)
 {
@@ -109,6 +126,8 @@ static fc_code thickness_stage(fc_pipeline *p, const render_job *job, const fc_r
         .scale = s->thickness_scale,
         .blur = s->thickness_blur,
         .floor_plane = job->env.floor_plane,
+        .profile = &p->profile,
+        .full_splat = &p->depth.thickness,
     };
     fc_stage_timer_begin(&p->timer, FC_STAGE_THICKNESS);
     fc_code code = fc_thickness_pass_run(&p->thickness, &job->surface, job->view, &params, result, err);
@@ -118,8 +137,11 @@ static fc_code thickness_stage(fc_pipeline *p, const render_job *job, const fc_r
 
 static fc_code run_noise(fc_pipeline *p, const render_job *job, const fc_render_target *surface, fc_error *err)
 {
-    return fc_noise_pass_run(&p->noise, &job->surface, &p->attributes, surface, job->view, job->settings->radius,
-                             job->settings->noise, err);
+    fc_pass_profile_begin(&p->profile, "noise splat");
+    fc_code code = fc_noise_pass_run(&p->noise, &job->surface, &p->attributes, surface, job->view,
+                                     job->settings->radius, job->settings->noise, err);
+    fc_pass_profile_end(&p->profile);
+    return code;
 }
 
 static fc_code smoothing_stage(fc_pipeline *p, const fc_view *view, const fc_settings *s,
@@ -134,6 +156,7 @@ static fc_code smoothing_stage(fc_pipeline *p, const fc_view *view, const fc_set
         /* Near and far hug the particles: their middle is a typical fluid depth. */
         .reference_depth = 0.5f * (view->near_plane + view->far_plane),
         .smooth_scale = s->smooth_scale,
+        .profile = &p->profile,
     };
     fc_view_pixel_scale(view, &params.pixel_scale[0], &params.pixel_scale[1]);
     bool runs = s->smoothing != FC_SMOOTHING_NONE && s->iterations > 0;
@@ -145,26 +168,51 @@ static fc_code smoothing_stage(fc_pipeline *p, const fc_view *view, const fc_set
     return code;
 }
 
+/* The noise texture shading reads, NULL without noise: the splats are then
+ * skipped, not summed to 0. */
+static fc_code shading_noise(fc_pipeline *p, const render_job *job, const fc_render_target *surface,
+                             const fc_render_target **noise, fc_error *err)
+{
+    *noise = NULL;
+    if (!(job->settings->noise > 0.0f))
+        return FC_OK;
+    *noise = &p->noise.target;
+    return run_noise(p, job, surface, err);
+}
+
 /* Noise, background and spray are rendered for the composite alone, so they
  * are timed with it. */
 static fc_code composite_stage(fc_pipeline *p, const render_job *job, const fc_render_target *surface,
                                const fc_render_target *thickness, const fc_render_target **result, fc_error *err)
 {
-    fc_composite_inputs inputs = {surface, thickness, &p->background.target, &p->noise.target,
+    fc_composite_inputs inputs = {surface, thickness, &p->background.target, NULL,
                                   job->scene ? job->scene->environment_map : 0};
     bool want_u8 = job->want_u8;
     fc_stage_timer_begin(&p->timer, FC_STAGE_COMPOSITE);
-    fc_code code = run_noise(p, job, surface, err);
-    if (code == FC_OK)
+    fc_code code = shading_noise(p, job, surface, &inputs.noise, err);
+    fc_pass_profile *profile = &p->profile;
+    if (code == FC_OK) {
+        fc_pass_profile_begin(profile, "background");
         code = fc_background_pass_run(&p->background, job->view, &job->env, job->scene, err);
-    if (code == FC_OK)
+        fc_pass_profile_end(profile);
+    }
+    if (code == FC_OK) {
+        fc_pass_profile_begin(profile, "composite");
         code = fc_composite_pass_run(&p->composite, &inputs, job->view, &job->env, job->settings, want_u8, result,
                                      err);
-    if (code == FC_OK)
+        fc_pass_profile_end(profile);
+    }
+    if (code == FC_OK) {
+        fc_pass_profile_begin(profile, "spray");
         code = fc_spray_pass_run(&p->spray, &p->particles, job->surface.count, &p->attributes, job->view, &job->env,
                                  job->settings, *result, err);
-    if (code == FC_OK)
+        fc_pass_profile_end(profile);
+    }
+    if (code == FC_OK) {
+        fc_pass_profile_begin(profile, "silhouette blend");
         code = fc_smoother_blend_silhouettes(&p->smoother, *result, want_u8, result, err);
+        fc_pass_profile_end(profile);
+    }
     fc_stage_timer_end(&p->timer, FC_STAGE_COMPOSITE);
     return code;
 }
@@ -174,11 +222,16 @@ static fc_code shading_aov_stage(fc_pipeline *p, const render_job *job, const fc
                                  const fc_render_target **result, fc_error *err)
 {
     fc_stage_timer_begin(&p->timer, FC_STAGE_COMPOSITE);
-    fc_code code = run_noise(p, job, surface, err);
-    *result = &p->noise.target;
-    if (code == FC_OK && aov == FC_AOV_NORMAL)
-        code = fc_normal_pass_run(&p->normal, surface, &p->noise.target, job->view, job->settings->radius, result,
-                                  err);
+    fc_code code;
+    if (aov == FC_AOV_NOISE) {
+        code = run_noise(p, job, surface, err);
+        *result = &p->noise.target;
+    } else {
+        const fc_render_target *noise = NULL;
+        code = shading_noise(p, job, surface, &noise, err);
+        if (code == FC_OK)
+            code = fc_normal_pass_run(&p->normal, surface, noise, job->view, job->settings->radius, result, err);
+    }
     fc_stage_timer_end(&p->timer, FC_STAGE_COMPOSITE);
     return code;
 }
@@ -188,9 +241,11 @@ static fc_code shading_aov_stage(fc_pipeline *p, const render_job *job, const fc
 static fc_code render_stages(fc_pipeline *p, const render_job *job, fc_aov aov, const fc_render_target **result,
                              fc_error *err)
 {
-    if (aov == FC_AOV_THICKNESS)
-        return thickness_stage(p, job, result, err);
-    fc_code code = depth_stage(p, job, err);
+    if (aov == FC_AOV_THICKNESS) {
+        fc_code code = splats_thickness(job, aov) ? depth_stage(p, job, aov, err) : FC_OK;
+        return code == FC_OK ? thickness_stage(p, job, result, err) : code;
+    }
+    fc_code code = depth_stage(p, job, aov, err);
     *result = &p->depth.target;
     if (code != FC_OK || aov == FC_AOV_DEPTH)
         return code;
@@ -288,6 +343,7 @@ void fc_pipeline_destroy(fc_pipeline *p)
 {
     if (!p)
         return;
+    fc_pass_profile_destroy(&p->profile);
     fc_stage_timer_destroy(&p->timer);
     fc_spray_pass_destroy(&p->spray);
     fc_composite_pass_destroy(&p->composite);
@@ -358,6 +414,7 @@ fc_code fc_pipeline_render_scene(fc_pipeline *p, const fc_camera *camera, const 
     if (!p || !camera || !settings || !out)
         return fc_error_set(err, FC_ERR_USAGE, "fc_pipeline_render: missing pipeline, camera, settings or image");
     fc_stage_timer_reset(&p->timer);
+    fc_pass_profile_reset(&p->profile);
     report_stages(&p->timer, stage_ms);
     fc_code code = check_request(p, camera, settings, aov, err);
     if (code != FC_OK)
@@ -374,7 +431,9 @@ fc_code fc_pipeline_render_scene(fc_pipeline *p, const fc_camera *camera, const 
 
     fc_pixel_type type = aov == FC_AOV_COLOR && want_u8 ? FC_PIXEL_U8 : FC_PIXEL_F32;
     fc_stage_timer_begin(&p->timer, FC_STAGE_READBACK);
+    fc_pass_profile_begin(&p->profile, "readback");
     code = fc_readback(result, channels_of(aov), type, out, err);
+    fc_pass_profile_end(&p->profile);
     fc_stage_timer_end(&p->timer, FC_STAGE_READBACK);
     if (code == FC_OK)
         report_stages(&p->timer, stage_ms);
@@ -390,4 +449,16 @@ fc_code fc_pipeline_render(fc_pipeline *p, const fc_camera *camera, const fc_set
 fc_particle_attributes *fc_pipeline_particle_attributes(fc_pipeline *p)
 {
     return &p->attributes;
+}
+
+void fc_pipeline_set_profiling(fc_pipeline *p, int on)
+{
+    p->profile.enabled = on != 0;
+    fc_pass_profile_reset(&p->profile);
+}
+
+int fc_pipeline_pass_profile(const fc_pipeline *p, const fc_pass_sample **samples)
+{
+    *samples = p->profile.samples;
+    return p->profile.enabled ? p->profile.count : 0;
 }

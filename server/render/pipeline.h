@@ -74,4 +74,21 @@ fc_code fc_pipeline_render_scene(fc_pipeline *p, const fc_camera *camera, const 
                                  const fc_scene_textures *scene, fc_aov aov, int want_u8, fc_image *out,
                                  float *stage_ms, fc_error *err);
 
+/* ---- Profiling, for the benchmark (see pass_profile.h) ---- */
+
+/* One pass of a profiled render: its wall time with the GL queue drained
+ * around it, and the fragment shader invocations it ran (-1: not counted). */
+typedef struct fc_pass_sample {
+    const char *name;
+    double ms;
+    int64_t fragments;
+} fc_pass_sample;
+
+/* With profiling on, every render records its passes (and runs slower: the
+ * queue is drained around each one). Off after fc_pipeline_create. */
+void fc_pipeline_set_profiling(fc_pipeline *p, int on);
+
+/* The passes of the last render, in order; their number (0 when profiling is off). */
+int fc_pipeline_pass_profile(const fc_pipeline *p, const fc_pass_sample **samples);
+
 #endif

@@ -21,8 +21,8 @@ static void delete_attachments(fc_render_target *t)
 static fc_code attach_depth(fc_render_target *t, fc_error *err)
 {
     glCreateRenderbuffers(1, &t->depth);
-    glNamedRenderbufferStorage(t->depth, GL_DEPTH_COMPONENT32F, (GLsizei)t->width, (GLsizei)t->height);
-    glNamedFramebufferRenderbuffer(t->framebuffer, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, t->depth);
+    glNamedRenderbufferStorage(t->depth, GL_DEPTH32F_STENCIL8, (GLsizei)t->width, (GLsizei)t->height);
+    glNamedFramebufferRenderbuffer(t->framebuffer, GL_DEPTH_STENCIL_ATTACHMENT, GL_RENDERBUFFER, t->depth);
     return fc_gl_check("allocating a depth buffer", err);
 }
 

@@ -1,5 +1,5 @@
 /* render_target.h — a framebuffer with one colour texture and an optional
- * depth buffer, reallocated only when its size changes. */
+ * depth and stencil buffer, reallocated only when its size changes. */
 #ifndef FC_RENDER_TARGET_H
 #define FC_RENDER_TARGET_H
 
@@ -12,7 +12,7 @@
 typedef struct fc_render_target {
     GLuint framebuffer;
     GLuint color;           /* texture, sampled by later passes */
-    GLuint depth;           /* GL_DEPTH_COMPONENT32F renderbuffer, 0 without depth */
+    GLuint depth;           /* GL_DEPTH32F_STENCIL8 renderbuffer, 0 without depth */
     GLenum color_format;    /* sized internal format, e.g. GL_R32F */
     bool with_depth;
     bool linear;            /* bilinear sampling of `color` */

@@ -40,7 +40,7 @@ void fc_smoother_destroy(fc_smoother *s)
 }
 
 /* Runs the method on `depth`, whose grid `grid` describes. */
-static fc_code run_method(fc_smoother *s, const fc_render_target *depth, const fc_smoothing_params *grid,
+static fc_code run_method_passes(fc_smoother *s, const fc_render_target *depth, const fc_smoothing_params *grid,
                           const fc_render_target **result, fc_error *err)
 {
     switch (grid->method) {
@@ -58,6 +58,15 @@ static fc_code run_method(fc_smoother *s, const fc_render_target *depth, const f
         return fc_separable_filter_run(&s->narrow_range, depth, grid, result, err);
     }
     return fc_error_set(err, FC_ERR_INVALID_VALUE, "unknown smoothing method %d", (int)grid->method);
+}
+
+static fc_code run_method(fc_smoother *s, const fc_render_target *depth, const fc_smoothing_params *grid,
+                          const fc_render_target **result, fc_error *err)
+{
+    fc_pass_profile_begin(grid->profile, "smoothing filter");
+    fc_code code = run_method_passes(s, depth, grid, result, err);
+    fc_pass_profile_end(grid->profile);
+    return code;
 }
 
 /* The parameters for a grid with `block` image pixels per texel: one texel
@@ -86,11 +95,15 @@ fc_code fc_smoother_run(fc_smoother *s, const fc_render_target *depth, const fc_
 
     fc_smoothing_params grid = coarser_grid(params, block);
     const fc_render_target *low = NULL, *smoothed = NULL;
+    fc_pass_profile_begin(params->profile, "smoothing downsample");
     fc_code code = fc_resolution_scale_down(&s->resolution, depth, block, &low, err);
+    fc_pass_profile_end(params->profile);
     if (code == FC_OK)
         code = run_method(s, low, &grid, &smoothed, err);
+    fc_pass_profile_begin(params->profile, "smoothing upsample");
     if (code == FC_OK)
         code = fc_resolution_scale_up(&s->resolution, smoothed, depth, block, params->depth_jump, result, err);
+    fc_pass_profile_end(params->profile);
     if (code == FC_OK) {
         s->low_resolution = smoothed;
         s->block = block;

@@ -6,6 +6,7 @@
 #include <stdint.h>
 
 #include "fluidcast_types.h"
+#include "pass_profile.h"
 
 /* fc_smoother_run takes pixel sizes for the image; the method modules get a
  * copy converted to the grid they smooth (coarser at a smooth_scale < 1). */
@@ -18,6 +19,7 @@ typedef struct fc_smoothing_params {
     uint32_t filter_radius;   /* kernel half-width in pixels; 0 = from the projected particle size */
     float reference_depth;    /* typical depth of the fluid, for a method with one kernel for the image */
     float smooth_scale;       /* resolution of smoothing: 1, 0.5 or 0.25 of the image (0 = 1) */
+    fc_pass_profile *profile; /* records the resampling and the method; NULL: none */
 } fc_smoothing_params;
 
 #endif

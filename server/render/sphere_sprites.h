@@ -1,6 +1,7 @@
-/* sphere_sprites.h — particles drawn as ray-cast sphere sprites
- * (sphere.vert.glsl + sphere_ray.frag.glsl + a pass's fragment shader).
- * The depth and thickness passes differ only in that shader and GL state. */
+/* sphere_sprites.h — particles drawn as ray-cast sphere sprites: a point
+ * sprite where that is exact, else an instanced quad bounding the projected
+ * sphere (sphere.vert.glsl + sphere_ray.frag.glsl + a pass's fragment shader).
+ * The passes differ only in that shader and GL state. */
 #ifndef FC_SPHERE_SPRITES_H
 #define FC_SPHERE_SPRITES_H
 
@@ -12,15 +13,16 @@
 
 typedef struct fc_sphere_sprites {
     GLuint program;
-    float max_point_size;   /* the driver's limit: larger spheres are cut to it */
+    float max_point_size;   /* the driver's limit: larger spheres are drawn as quads */
 } fc_sphere_sprites;
 
 fc_code fc_sphere_sprites_create(const char *shader_dir, const char *fragment_file, fc_sphere_sprites *s,
                                  fc_error *err);
-/* The same with particle_attributes.frag.glsl linked in, for fragment shaders
- * that read the particle records (bind them with fc_particle_attributes_bind). */
-fc_code fc_sphere_sprites_create_with_records(const char *shader_dir, const char *fragment_file,
-                                              fc_sphere_sprites *s, fc_error *err);
+/* The same with a file of helper functions linked in: e.g.
+ * particle_attributes.frag.glsl for fragment shaders that read the particle
+ * records (bind them with fc_particle_attributes_bind). */
+fc_code fc_sphere_sprites_create_with(const char *shader_dir, const char *helper_file, const char *fragment_file,
+                                      fc_sphere_sprites *s, fc_error *err);
 void fc_sphere_sprites_destroy(fc_sphere_sprites *s);
 
 /* Draws every particle as a sphere of `radius` into the bound framebuffer. */

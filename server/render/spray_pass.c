@@ -3,9 +3,8 @@
 
 #include "gl_util.h"
 
-/* Uniform locations fixed by layout(location) in spray.frag.glsl and particle_attributes.frag.glsl. */
+/* Uniform locations fixed by layout(location) in spray.frag.glsl. */
 enum {
-    LOC_FIRST_PARTICLE = 9,
     LOC_LIGHT_VIEW = 10,
     LOC_FLUID_COLOR = 11,
     LOC_WHITENING = 12,
@@ -17,7 +16,8 @@ enum {
 
 fc_code fc_spray_pass_create(const char *shader_dir, fc_spray_pass *pass, fc_error *err)
 {
-    return fc_sphere_sprites_create_with_records(shader_dir, "spray.frag.glsl", &pass->sprites, err);
+    return fc_sphere_sprites_create_with(shader_dir, "particle_attributes.frag.glsl", "spray.frag.glsl",
+                                         &pass->sprites, err);
 }
 
 void fc_spray_pass_destroy(fc_spray_pass *pass)
@@ -25,11 +25,9 @@ void fc_spray_pass_destroy(fc_spray_pass *pass)
     fc_sphere_sprites_destroy(&pass->sprites);
 }
 
-static void set_uniforms(const fc_spray_pass *pass, uint64_t first, const fc_environment *env,
-                         const fc_settings *settings)
+static void set_uniforms(const fc_spray_pass *pass, const fc_environment *env, const fc_settings *settings)
 {
     GLuint program = pass->sprites.program;
-    glProgramUniform1i(program, LOC_FIRST_PARTICLE, (GLint)first);
     glProgramUniform3fv(program, LOC_LIGHT_VIEW, 1, env->light_view);
     glProgramUniform3fv(program, LOC_FLUID_COLOR, 1, settings->fluid_color);
     glProgramUniform1f(program, LOC_WHITENING, settings->foam);
@@ -53,7 +51,7 @@ fc_code fc_spray_pass_run(fc_spray_pass *pass, const fc_particle_buffer *particl
     glBlendFuncSeparate(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA, GL_ZERO, GL_ONE);
     if (target->color_format == GL_SRGB8_ALPHA8)
         glEnable(GL_FRAMEBUFFER_SRGB);
-    set_uniforms(pass, first, env, settings);
+    set_uniforms(pass, env, settings);
     fc_particle_attributes_bind(attributes);
     fc_sphere_sprites_draw_range(&pass->sprites, particles, first, particles->count - first, view,
                                  DROPLET_RADIUS_FRACTION * settings->radius);

@@ -5,13 +5,14 @@
 
 #include "gl_util.h"
 
-/* Uniform location fixed by layout(location) in thickness.frag.glsl. */
+/* Uniform location fixed by layout(location) in thickness_chord.frag.glsl. */
 enum { LOC_FLOOR_PLANE = 10 };
 
 fc_code fc_thickness_pass_create(const char *shader_dir, fc_thickness_pass *pass, fc_error *err)
 {
     pass->splat = fc_render_target_init(GL_R32F, false, true);
-    fc_code code = fc_sphere_sprites_create(shader_dir, "thickness.frag.glsl", &pass->sprites, err);
+    fc_code code = fc_sphere_sprites_create_with(shader_dir, "thickness_chord.frag.glsl", "thickness.frag.glsl",
+                                                 &pass->sprites, err);
     if (code == FC_OK)
         code = fc_thickness_filter_create(shader_dir, &pass->filter, err);
     return code;
@@ -59,12 +60,23 @@ fc_code fc_thickness_pass_run(fc_thickness_pass *pass, const fc_particle_buffer 
     fc_view reduced = *view;
     reduced.width = scaled(view->width, scale);
     reduced.height = scaled(view->height, scale);
-    fc_code code = splat(pass, particles, &reduced, params, err);
-    *result = &pass->splat;
+    fc_pass_profile *profile = params->profile;
+    const fc_render_target *splatted = params->full_splat;
+    fc_code code = FC_OK;
+    if (scale != 1.0f || !splatted) {
+        fc_pass_profile_begin(profile, "thickness splat");
+        code = splat(pass, particles, &reduced, params, err);
+        fc_pass_profile_end(profile);
+        splatted = &pass->splat;
+    }
+    *result = splatted;
     if (code != FC_OK || (scale == 1.0f && params->blur == 0))
         return code;
     /* The blur radius is where the filter cuts the Gaussian off, three
      * standard deviations out; the filter works in splat texels. */
     float sigma = (float)params->blur * scale / 3.0f;
-    return fc_thickness_filter_run(&pass->filter, &pass->splat, sigma, view->width, view->height, result, err);
+    fc_pass_profile_begin(profile, "thickness blur");
+    code = fc_thickness_filter_run(&pass->filter, splatted, sigma, view->width, view->height, result, err);
+    fc_pass_profile_end(profile);
+    return code;
 }

@@ -6,6 +6,7 @@
 
 #include <stdint.h>
 
+#include "pass_profile.h"
 #include "render_target.h"
 #include "sphere_sprites.h"
 #include "thickness_filter.h"
@@ -21,6 +22,9 @@ typedef struct fc_thickness_params {
     float scale;                  /* resolution relative to the view, in (0, 1] */
     uint32_t blur;                /* Gaussian blur radius in image pixels; 0 = none */
     const float *floor_plane;     /* view space, see fc_environment.floor_plane */
+    fc_pass_profile *profile;     /* records the splat and the filter; NULL: none */
+    const fc_render_target *full_splat;   /* the thickness already splatted at the view's size (the depth
+                                             pass does), used at scale 1; NULL: the pass splats */
 } fc_thickness_params;
 
 fc_code fc_thickness_pass_create(const char *shader_dir, fc_thickness_pass *pass, fc_error *err);

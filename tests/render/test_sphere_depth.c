@@ -1,6 +1,8 @@
 /* test_sphere_depth.c — the depth pass against analytic spheres: projected
  * disc size and centre, linear depth at and off the centre, background 0,
- * exact silhouettes off axis, and the nearest sphere winning. */
+ * exact silhouettes off axis, the nearest sphere winning, a sphere whose
+ * centre lies outside the image, and a close-up larger than point sprites
+ * can be (GL_POINT_SIZE_RANGE ends at 255 pixels on llvmpipe). */
 #include <math.h>
 #include <stdio.h>
 
@@ -125,6 +127,61 @@ static void test_nearest_sphere_wins(render_fixture *f)
     fc_image_free(&depth);
 }
 
+static int covered_pixels(const fc_image *depth)
+{
+    int covered = 0;
+    for (uint32_t row = 0; row < depth->height; row++)
+        for (uint32_t x = 0; x < depth->width; x++)
+            covered += pixel_f32(depth, x, row) > 0.0f;
+    return covered;
+}
+
+/* The first centre is 0.2 beyond the right edge of the view at the sphere's
+ * depth, the sphere reaches 0.3 into it: its visible part must be there,
+ * exact. The second sphere, wholly in view, is drawn the other way (a point
+ * sprite, see sphere.vert.glsl) in the same draw. */
+static void test_centre_outside_image(render_fixture *f)
+{
+    fc_camera cam = axis_camera(5.0, 96, 64);
+    const double radius = 0.5;
+    fc_settings settings = test_settings((float)radius, FC_SMOOTHING_NONE, 0);
+    double half_width = 5.0 * tan(cam.fov_y_deg * PI / 360.0) * 96.0 / 64.0;
+    const sphere spheres[2] = {{{half_width + 0.2, 0.0, 0.0}}, {{-0.5, 0.2, 0.0}}};
+    const float positions[6] = {(float)spheres[0].centre[0], 0.0f, 0.0f, -0.5f, 0.2f, 0.0f};
+    double x, row;
+    analytic_project(&cam, spheres[0].centre, &x, &row);
+    CHECK(x > 96.0);
+    fc_image depth = {0};
+    CHECK_CODE(render_positions(f, positions, 1, &cam, &settings, FC_AOV_DEPTH, 0, &depth), FC_OK);
+    int edge_only = covered_pixels(&depth);
+    CHECK_MSG(edge_only > 50, "%d pixels show the sphere", edge_only);
+    check_against_spheres(&depth, &cam, spheres, 1, radius);
+    CHECK_CODE(render_positions(f, positions, 2, &cam, &settings, FC_AOV_DEPTH, 0, &depth), FC_OK);
+    CHECK(covered_pixels(&depth) > edge_only + 100);
+    check_against_spheres(&depth, &cam, spheres, 2, radius);
+    fc_image_free(&depth);
+}
+
+/* 1 unit from the camera a sphere of radius 0.5 spans about 390 of 400
+ * pixels: complete, with its analytic depth everywhere. */
+static void test_close_up_larger_than_point_sprites(render_fixture *f)
+{
+    const uint32_t size = 400;
+    fc_camera cam = axis_camera(1.5, size, size);
+    const double radius = 0.5;
+    fc_settings settings = test_settings((float)radius, FC_SMOOTHING_NONE, 0);
+    const sphere s = {{0.0, 0.0, 0.0}};
+    const float position[3] = {0.0f, 0.0f, 0.0f};
+    fc_image depth = {0};
+    CHECK_CODE(render_positions(f, position, 1, &cam, &settings, FC_AOV_DEPTH, 0, &depth), FC_OK);
+    double fy = 1.0 / tan(cam.fov_y_deg * PI / 360.0);
+    double diameter_px = size * fy * radius / sqrt(1.5 * 1.5 - radius * radius);
+    CHECK(diameter_px > 300.0 && diameter_px < size);
+    CHECK_NEAR(sqrt(covered_pixels(&depth) / PI), 0.5 * diameter_px, 0.5);
+    check_against_spheres(&depth, &cam, &s, 1, radius);
+    fc_image_free(&depth);
+}
+
 int main(void)
 {
     render_fixture f;
@@ -133,6 +190,8 @@ int main(void)
     test_on_axis_sphere(&f);
     test_off_axis_sphere(&f);
     test_nearest_sphere_wins(&f);
+    test_centre_outside_image(&f);
+    test_close_up_larger_than_point_sprites(&f);
     fixture_close(&f);
     return test_result();
 }
