@@ -97,8 +97,9 @@ fc_code fc_client_connect(const char *host_port, const fc_connect_options *optio
 void fc_client_server_info(const fc_client *client, fc_server_info *out);
 
 /* Sends a particle frame; it replaces the previous one on the server. The server
- * answers only when it rejects the frame (non-finite values, too many particles):
- * that ERROR is reported by the next fc_client_render. The frame is not retained.
+ * answers only when it rejects the frame (non-finite values, too many particles,
+ * more memory than the server lets one connection hold): that ERROR is reported
+ * by the next fc_client_render. The frame is not retained.
  * Errors: FC_ERR_TOO_LARGE (without sending) when the encoded frame exceeds the
  * server's message limit, FC_ERR_USAGE for an empty or NULL frame, plus the
  * connection errors. */
@@ -121,7 +122,8 @@ fc_code fc_client_set_settings(fc_client *client, const fc_settings *settings, f
  * reported by the next fc_client_render: FC_ERR_INVALID_VALUE for bytes that do
  * not decode as such an image (or cube faces that are not square, or differ in
  * size or pixel format — all 8-bit or all float), FC_ERR_LIMIT for an image
- * larger than 8192 pixels per side or the GPU's texture size. Errors returned
+ * larger than 8192 pixels per side or the GPU's texture size, or one that
+ * decodes to more memory than the server lets one connection hold. Errors returned
  * directly: FC_ERR_TOO_LARGE (without sending) when the message exceeds the
  * server's message limit, FC_ERR_USAGE, plus the connection errors. */
 

@@ -148,7 +148,28 @@ static int serve(const fc_daemon_options *options, fc_daemon_context *ctx, int s
     return code == FC_OK ? 0 : EXIT_FAILURE;
 }
 
-static int run(const fc_daemon_options *options, const fc_auth_token *token, const fc_log *log, int stop_fd)
+/* Test hook, in the manner of SQLite's test controls: FLUIDCASTD_TEST_LOSE_CONTEXT=N
+ * makes the N-th render report a lost GPU context, so the tests can drive the
+ * real recovery on drivers that never lose one (llvmpipe). Read here once and
+ * passed down; deliberately absent from --help. *render 0 when unset. */
+static fc_code read_test_hooks(uint64_t *lose_context_at_render, fc_error *err)
+{
+    const char *text = getenv("FLUIDCASTD_TEST_LOSE_CONTEXT");
+    *lose_context_at_render = 0;
+    if (!text)
+        return FC_OK;
+    char *end = NULL;
+    errno = 0;
+    unsigned long long n = strtoull(text, &end, 10);
+    if (text[0] < '1' || text[0] > '9' || *end != '\0' || errno == ERANGE)
+        return fc_error_set(err, FC_ERR_USAGE, "FLUIDCASTD_TEST_LOSE_CONTEXT '%s': expected a whole number >= 1",
+                            text);
+    *lose_context_at_render = n;
+    return FC_OK;
+}
+
+static int run(const fc_daemon_options *options, const fc_auth_token *token, const fc_log *log,
+               uint64_t lose_context_at_render, int stop_fd)
 {
     fc_error err;
     fc_render_service *render = NULL;
@@ -156,6 +177,8 @@ static int run(const fc_daemon_options *options, const fc_auth_token *token, con
         .gpu = options->gpu,
         .shader_dir = options->shader_dir,
         .encoders = options->encoders ? options->encoders : fc_encoder_pool_default_threads(),
+        .log = log,
+        .lose_context_at_render = lose_context_at_render,
     };
     if (fc_render_service_create(&config, &render, &err) != FC_OK) {
         fc_log_write(log, FC_LOG_ERROR, "cannot render: %s", err.message);
@@ -167,6 +190,12 @@ static int run(const fc_daemon_options *options, const fc_auth_token *token, con
     fc_log_write(log, FC_LOG_INFO, "EGL vendor: %s", fc_render_service_egl_vendor(render));
     fc_log_write(log, FC_LOG_INFO, "GL_RENDERER: %s", fc_render_service_renderer(render));
     fc_log_write(log, FC_LOG_INFO, "GL_VERSION: %s", fc_render_service_gl_version(render));
+    fc_log_write(log, FC_LOG_INFO, "GL context: %s",
+                 fc_render_service_robust(render) ? "robust (a GPU reset is noticed and recovered from)"
+                                                  : "not robust (the driver refused reset notification)");
+    if (lose_context_at_render)
+        fc_log_write(log, FC_LOG_WARN, "test hook: render %llu will report a lost GPU context",
+                     (unsigned long long)lose_context_at_render);
     fc_log_write(log, FC_LOG_INFO, "%u encoder thread(s)", config.encoders);
     fc_daemon_context ctx = {
         .log = log,
@@ -177,6 +206,7 @@ static int run(const fc_daemon_options *options, const fc_auth_token *token, con
         .max_connections = options->max_connections,
         .idle_timeout_ms = options->idle_timeout_ms,
         .read_timeout_ms = options->read_timeout_ms,
+        .max_session_memory = options->max_session_memory,
     };
     fill_welcome(options, render, &ctx.welcome);
     int status = EXIT_FAILURE;
@@ -208,6 +238,11 @@ int main(int argc, char **argv)
         fprintf(stderr, "fluidcastd: %s\n", err.message);
         return err.code == FC_ERR_USAGE ? EXIT_BAD_USAGE : EXIT_FAILURE;
     }
+    uint64_t lose_context_at_render;
+    if (read_test_hooks(&lose_context_at_render, &err) != FC_OK) {
+        fprintf(stderr, "fluidcastd: %s\n", err.message);
+        return EXIT_BAD_USAGE;
+    }
     warn_if_open(&options, &token, &log);
     /* A client that disconnects mid-reply must cost an EPIPE, not the process. */
     signal(SIGPIPE, SIG_IGN);
@@ -216,7 +251,7 @@ int main(int argc, char **argv)
         fc_log_write(&log, FC_LOG_ERROR, "%s", err.message);
         return EXIT_FAILURE;
     }
-    int status = run(&options, &token, &log, stop_fd);
+    int status = run(&options, &token, &log, lose_context_at_render, stop_fd);
     close(stop_fd);
     return status;
 }

@@ -27,6 +27,7 @@ void fc_daemon_options_default(fc_daemon_options *o)
     o->max_connections = FC_DEFAULT_MAX_CONNECTIONS;
     o->idle_timeout_ms = FC_DEFAULT_IDLE_TIMEOUT_MS;
     o->read_timeout_ms = FC_DEFAULT_READ_TIMEOUT_MS;
+    o->max_session_memory = FC_DEFAULT_MAX_SESSION_MEMORY;
 }
 
 bool fc_daemon_options_serve_tcp(const fc_daemon_options *o)
@@ -69,6 +70,11 @@ void fc_daemon_options_print_help(FILE *out, const char *program)
             "  --read-timeout-ms MS    a message whose first bytes arrived must be complete\n"
             "                          within this, or the connection is closed; 0 = never\n"
             "                          (default %u)\n"
+            "  --max-session-memory BYTES\n"
+            "                          bytes one connection may hold: its frame, scene images\n"
+            "                          and unsent replies, and for a producer its session's\n"
+            "                          frame and the multi-rank frames being assembled; a\n"
+            "                          message beyond it gets ERROR LIMIT (default %llu)\n"
             "  --token-file PATH       require clients to send the token in PATH (one line)\n"
             "                          in HELLO; without it the FLUIDCAST_TOKEN environment\n"
             "                          variable, if set, is the token\n"
@@ -76,16 +82,21 @@ void fc_daemon_options_print_help(FILE *out, const char *program)
             "\n"
             "Without a token anyone who can reach the port can use the daemon: listening\n"
             "beyond loopback without one prints a warning.\n"
+            "A render that fails on the GPU (out of memory, a GL error, a lost context) is\n"
+            "answered with ERROR RENDER; the daemon then rebuilds its pipeline or recreates\n"
+            "its GL context, and keeps serving.\n"
             "SIGINT or SIGTERM stops the daemon cleanly (exit status 0).\n",
             program, FC_DEFAULT_LISTEN_HOST, FC_DEFAULT_PORT, FC_DEFAULT_MAX_PARTICLES,
             FC_DEFAULT_MAX_IMAGE_SIDE, FC_DEFAULT_MAX_IMAGE_SIDE, FC_DEFAULT_MAX_MESSAGE,
             FC_DEFAULT_CHUNK_TIMEOUT_MS, FC_DEFAULT_REFRESH_MS, FC_DEFAULT_MAX_SESSIONS,
-            FC_DEFAULT_MAX_CONNECTIONS, FC_DEFAULT_IDLE_TIMEOUT_MS, FC_DEFAULT_READ_TIMEOUT_MS);
+            FC_DEFAULT_MAX_CONNECTIONS, FC_DEFAULT_IDLE_TIMEOUT_MS, FC_DEFAULT_READ_TIMEOUT_MS,
+            (unsigned long long)FC_DEFAULT_MAX_SESSION_MEMORY);
 }
 
 /* Whole-string unsigned decimal within [1, max]. */
 static fc_code parse_count(const char *option, const char *text, uint64_t max, uint64_t *out, fc_error *err)
 {
+    *out = 0;
     char *end = NULL;
     errno = 0;
     unsigned long long value = strtoull(text, &end, 10);
@@ -157,7 +168,7 @@ static bool is_known_option(const char *name)
                                         "--port-file",     "--max-particles", "--max-image", "--max-message",
                                         "--unix",          "--chunk-timeout-ms", "--refresh-ms", "--encoders",
                                         "--max-sessions", "--max-connections", "--idle-timeout-ms",
-                                        "--read-timeout-ms", "--token-file"};
+                                        "--read-timeout-ms", "--token-file", "--max-session-memory"};
     for (size_t i = 0; i < sizeof known / sizeof known[0]; i++)
         if (strcmp(name, known[i]) == 0)
             return true;
@@ -178,7 +189,7 @@ static fc_code parse_ms(const char *option, const char *text, uint32_t *out, fc_
     return FC_OK;
 }
 
-/* Applies one of the options of authentication and connection limits. */
+/* Applies one of the options of authentication and per-connection limits. */
 static fc_code apply_hardening_option(const char *name, const char *value, fc_daemon_options *o, fc_error *err)
 {
     uint64_t n;
@@ -196,6 +207,8 @@ static fc_code apply_hardening_option(const char *name, const char *value, fc_da
         return parse_ms(name, value, &o->idle_timeout_ms, err);
     if (strcmp(name, "--read-timeout-ms") == 0)
         return parse_ms(name, value, &o->read_timeout_ms, err);
+    if (strcmp(name, "--max-session-memory") == 0)
+        return parse_count(name, value, UINT64_MAX, &o->max_session_memory, err);
     return fc_error_set(err, FC_ERR_USAGE, "unknown option '%s' (see --help)", name);
 }
 

@@ -19,6 +19,7 @@
 #define FC_DEFAULT_MAX_CONNECTIONS 1024u
 #define FC_DEFAULT_IDLE_TIMEOUT_MS 300000u
 #define FC_DEFAULT_READ_TIMEOUT_MS 30000u
+#define FC_DEFAULT_MAX_SESSION_MEMORY (4ull << 30)   /* 4 GiB */
 
 typedef struct fc_daemon_options {
     char listen_host[256];     /* name or address; brackets of "[v6]:port" removed */
@@ -37,6 +38,7 @@ typedef struct fc_daemon_options {
     uint32_t max_connections;  /* client connections at once; more are refused with LIMIT */
     uint32_t idle_timeout_ms;  /* close a connection with no complete message for this long; 0 = never */
     uint32_t read_timeout_ms;  /* a started message must be complete within this; 0 = never */
+    uint64_t max_session_memory;   /* bytes one connection (with the named session it produces) may hold */
     const char *token_file;    /* --token-file: NULL for none (then FLUIDCAST_TOKEN); points into argv */
     bool help;                 /* --help: print usage and exit */
 } fc_daemon_options;

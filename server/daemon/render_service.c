@@ -16,13 +16,13 @@
 #include "foam_track.h"
 #include "job_queue.h"
 #include "monotonic.h"
-#include "render/pipeline.h"
-#include "scene_texture_cache.h"
+#include "gpu_state.h"
 
 typedef struct gl_identity {
     char renderer[128];
     char egl_vendor[128];
     char gl_version[128];
+    bool robust;
 } gl_identity;
 
 struct fc_render_service {
@@ -40,10 +40,8 @@ struct fc_render_service {
     fc_error start_error;
     gl_identity identity;
     /* GL thread only */
-    fc_gl_context *gl;
-    fc_pipeline *pipeline;
-    uint64_t uploaded_frame_id;      /* frame whose particles the pipeline holds; 0 = none or unknown */
-    fc_scene_texture_cache scene_textures;   /* clients' background and cube map textures */
+    fc_gpu_state gpu;
+    uint64_t renders;                /* requests that reached the GPU, for the lost-context test hook */
 };
 
 /* ---- GL thread ---- */
@@ -60,25 +58,25 @@ static float resolve_radius(fc_render_job *job)
 
 /* The pipeline holds the noise amplitudes of the uploaded frame only: every
  * upload gives the frame its own, from its stream's foam history. */
-static fc_code ensure_uploaded(fc_render_service *rs, fc_shared_frame *frame, const fc_settings *settings,
+static fc_code ensure_uploaded(fc_gpu_state *gpu, fc_shared_frame *frame, const fc_settings *settings,
                                float *upload_ms, fc_error *err)
 {
-    if (rs->uploaded_frame_id == frame->id)
+    if (gpu->uploaded_frame_id == frame->id)
         return FC_OK;
-    rs->uploaded_frame_id = 0;
-    fc_code code = fc_pipeline_upload(rs->pipeline, &frame->frame, upload_ms, err);
+    gpu->uploaded_frame_id = 0;
+    fc_code code = fc_pipeline_upload(gpu->pipeline, &frame->frame, upload_ms, err);
     if (code == FC_OK)
-        code = fc_foam_track_apply(frame, rs->pipeline, settings, err);
+        code = fc_foam_track_apply(frame, gpu->pipeline, settings, err);
     if (code == FC_OK)
-        rs->uploaded_frame_id = frame->id;
+        gpu->uploaded_frame_id = frame->id;
     return code;
 }
 
 /* Renders job->image and fills the GPU stages of job->stage_ms. */
-static fc_code draw(fc_render_service *rs, fc_render_job *job, fc_error *err)
+static fc_code draw(fc_gpu_state *gpu, fc_render_job *job, fc_error *err)
 {
     float render_ms[FC_STAGE_COUNT];
-    fc_code code = ensure_uploaded(rs, job->frame, &job->settings, &job->stage_ms[FC_STAGE_UPLOAD], err);
+    fc_code code = ensure_uploaded(gpu, job->frame, &job->settings, &job->stage_ms[FC_STAGE_UPLOAD], err);
     if (code != FC_OK)
         return code;
     if (job->auto_camera)
@@ -88,11 +86,11 @@ static fc_code draw(fc_render_service *rs, fc_render_job *job, fc_error *err)
     /* RAW colour is RGBA8 and PNG/JPEG are 8-bit anyway; only EXR keeps linear floats. */
     int want_u8 = job->request.aov == FC_AOV_COLOR && job->request.format != FC_FORMAT_EXR;
     const fc_scene_textures *scene;
-    code = fc_scene_texture_cache_get(&rs->scene_textures, rs->pipeline, job->background, job->environment, &scene,
-                                      err);
+    code = fc_scene_texture_cache_get(&gpu->scene_textures, gpu->pipeline, job->background, job->environment,
+                                      &scene, err);
     if (code != FC_OK)
         return code;
-    code = fc_pipeline_render_scene(rs->pipeline, &job->camera, &settings, scene, job->request.aov, want_u8,
+    code = fc_pipeline_render_scene(gpu->pipeline, &job->camera, &settings, scene, job->request.aov, want_u8,
                                     &job->image, render_ms, err);
     if (code != FC_OK)
         return code;
@@ -103,17 +101,45 @@ static fc_code draw(fc_render_service *rs, fc_render_job *job, fc_error *err)
     return FC_OK;
 }
 
+/* Back to the loop with job->error set. */
+static void finish_failed(fc_render_service *rs, fc_render_job *job)
+{
+    fc_image_free(&job->image);
+    fc_job_queue_push(&rs->done, job);
+}
+
+/* Replaces the pipeline's error with one that says what happened to "a
+ * 640x480 image of 216 particles". */
+static void explain_failure(fc_render_job *job, fc_gpu_failure failure, fc_gl_reset reset)
+{
+    char request[96];
+    snprintf(request, sizeof request, "a %ux%u image of %llu particles", (unsigned)job->camera.width,
+             (unsigned)job->camera.height, (unsigned long long)job->frame->frame.count);
+    fc_gpu_state_explain(failure, reset, request, &job->error);
+}
+
 static void render_job(fc_render_service *rs, fc_render_job *job)
 {
     double start = fc_monotonic_ms();
     job->stage_ms[FC_STAGE_QUEUE] = (float)(start - job->submitted_ms);
-    if (draw(rs, job, &job->error) != FC_OK) {
-        fc_image_free(&job->image);
-        fc_job_queue_push(&rs->done, job);
+    if (fc_gpu_state_acquire(&rs->gpu, start, &job->error) != FC_OK) {
+        finish_failed(rs, job);
         return;
     }
-    job->rendered_ms = fc_monotonic_ms();
-    fc_encoder_pool_submit(rs->encoders, job);
+    fc_code code = draw(&rs->gpu, job, &job->error);
+    bool simulate_loss = ++rs->renders == rs->config.lose_context_at_render;
+    fc_gl_reset reset;
+    fc_gpu_failure failure = fc_gpu_state_diagnose(&rs->gpu, code, simulate_loss, &reset);
+    if (code == FC_OK && failure == FC_GPU_FINE) {
+        job->rendered_ms = fc_monotonic_ms();
+        fc_encoder_pool_submit(rs->encoders, job);
+        return;
+    }
+    if (failure != FC_GPU_FINE)
+        explain_failure(job, failure, reset);
+    finish_failed(rs, job);
+    /* After the answer, so the requester does not wait for the recovery. */
+    fc_gpu_state_recover(&rs->gpu, failure);
 }
 
 static void report_start(fc_render_service *rs, fc_code code, const fc_error *err)
@@ -126,45 +152,25 @@ static void report_start(fc_render_service *rs, fc_code code, const fc_error *er
     pthread_mutex_unlock(&rs->start_lock);
 }
 
-static fc_code start_gl(fc_render_service *rs, fc_error *err)
-{
-    fc_code code = fc_gl_context_create(&rs->config.gpu, &rs->gl, err);
-    if (code != FC_OK)
-        return code;
-    fc_pipeline_config pipeline_config = {rs->config.shader_dir};
-    code = fc_pipeline_create(&pipeline_config, &rs->pipeline, err);
-    if (code != FC_OK)
-        return code;
-    snprintf(rs->identity.renderer, sizeof rs->identity.renderer, "%s", fc_gl_context_renderer(rs->gl));
-    snprintf(rs->identity.egl_vendor, sizeof rs->identity.egl_vendor, "%s", fc_gl_context_egl_vendor(rs->gl));
-    snprintf(rs->identity.gl_version, sizeof rs->identity.gl_version, "%s", fc_gl_context_version(rs->gl));
-    return FC_OK;
-}
-
-static void stop_gl(fc_render_service *rs)
-{
-    /* The pipeline's GL objects die with the context: destroy them first. */
-    fc_scene_texture_cache_free(&rs->scene_textures);
-    if (rs->pipeline)
-        fc_pipeline_destroy(rs->pipeline);
-    if (rs->gl)
-        fc_gl_context_destroy(rs->gl);
-    rs->pipeline = NULL;
-    rs->gl = NULL;
-}
-
 static void *gl_main(void *arg)
 {
     fc_render_service *rs = arg;
     fc_error err;
-    fc_code code = start_gl(rs, &err);
+    fc_code code = fc_gpu_state_open(&rs->gpu, &rs->config.gpu, rs->config.shader_dir, rs->config.log, &err);
+    if (code == FC_OK) {
+        gl_identity *id = &rs->identity;
+        snprintf(id->renderer, sizeof id->renderer, "%s", fc_gl_context_renderer(rs->gpu.gl));
+        snprintf(id->egl_vendor, sizeof id->egl_vendor, "%s", fc_gl_context_egl_vendor(rs->gpu.gl));
+        snprintf(id->gl_version, sizeof id->gl_version, "%s", fc_gl_context_version(rs->gpu.gl));
+        id->robust = fc_gl_context_robust(rs->gpu.gl);
+    }
     report_start(rs, code, &err);
     if (code == FC_OK) {
         fc_render_job *job;
         while ((job = fc_job_queue_pop(&rs->render_queue)) != NULL)
             render_job(rs, job);
     }
-    stop_gl(rs);
+    fc_gpu_state_close(&rs->gpu);
     return NULL;
 }
 
@@ -256,6 +262,11 @@ const char *fc_render_service_egl_vendor(const fc_render_service *rs)
 const char *fc_render_service_gl_version(const fc_render_service *rs)
 {
     return rs->identity.gl_version;
+}
+
+bool fc_render_service_robust(const fc_render_service *rs)
+{
+    return rs->identity.robust;
 }
 
 void fc_render_service_submit(fc_render_service *rs, fc_render_job *job)

@@ -6,7 +6,11 @@
 #ifndef FC_DAEMON_RENDER_SERVICE_H
 #define FC_DAEMON_RENDER_SERVICE_H
 
+#include <stdbool.h>
+#include <stdint.h>
+
 #include "gl/egl_context.h"
+#include "log.h"
 #include "render_job.h"
 
 typedef struct fc_render_service fc_render_service;
@@ -15,11 +19,17 @@ typedef struct fc_render_service_config {
     fc_gpu_choice gpu;
     const char *shader_dir;   /* NULL: shaders built into the binary */
     unsigned encoders;        /* encoder threads, >= 1 */
+    const fc_log *log;        /* GPU failures and recoveries are logged here */
+    /* Test hook: the N-th request that reaches the GPU reports a lost context
+     * (an unknown reset) and the real recovery follows; 0 = never. */
+    uint64_t lose_context_at_render;
 } fc_render_service_config;
 
 /* Starts the GL thread, waits until it has created the context and compiled
  * the pipeline (FC_ERR_GL with the reason when it cannot), then starts the
- * encoders. */
+ * encoders. A request that fails on the GPU later (out of memory, a GL error,
+ * a lost context) is answered with FC_ERR_RENDER and the GL thread recovers
+ * (gpu_state.h); the service itself never stops for it. */
 fc_code fc_render_service_create(const fc_render_service_config *config, fc_render_service **out,
                                  fc_error *err);
 /* Stops the threads (jobs not yet rendered are dropped) and frees everything. */
@@ -29,6 +39,8 @@ void fc_render_service_destroy(fc_render_service *rs);
 const char *fc_render_service_renderer(const fc_render_service *rs);
 const char *fc_render_service_egl_vendor(const fc_render_service *rs);
 const char *fc_render_service_gl_version(const fc_render_service *rs);
+/* Whether that context is robust (a GPU reset can be noticed and recovered from). */
+bool fc_render_service_robust(const fc_render_service *rs);
 
 /* Queues a job for the GL thread; the service owns it until it comes back
  * from fc_render_service_collect, rendered and encoded or with its error set. */

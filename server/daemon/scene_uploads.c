@@ -65,31 +65,23 @@ static fc_code check_faces_match(const fc_image *faces, fc_error *err)
     return FC_OK;
 }
 
-/* Replaces *slot with `part` (NULL: the built-in one). */
-static void replace(fc_scene_part **slot, fc_scene_part *part)
-{
-    fc_scene_part_unref(*slot);
-    *slot = part;
-}
-
-fc_code fc_scene_uploads_set_background(fc_scene_uploads *u, const uint8_t *payload, size_t n, fc_error *err)
+fc_code fc_scene_part_decode_background(const uint8_t *payload, size_t n, fc_scene_part **out, fc_error *err)
 {
     fc_encoded_image file;
+    *out = NULL;
     fc_code code = fc_wire_read_background(payload, n, &file, err);
-    fc_scene_part *part = NULL;
     if (code == FC_OK && file.size > 0)
-        code = decode_part(&file, 1, "BACKGROUND", &part, err);
-    if (code == FC_OK)
-        replace(&u->background, part);
+        code = decode_part(&file, 1, "BACKGROUND", out, err);
     return code;
 }
 
-fc_code fc_scene_uploads_set_environment(fc_scene_uploads *u, const uint8_t *payload, size_t n, fc_error *err)
+fc_code fc_scene_part_decode_environment(const uint8_t *payload, size_t n, fc_scene_part **out, fc_error *err)
 {
     fc_encoded_image files[FC_CUBE_FACES];
     bool has_faces;
-    fc_code code = fc_wire_read_environment(payload, n, files, &has_faces, err);
     fc_scene_part *part = NULL;
+    *out = NULL;
+    fc_code code = fc_wire_read_environment(payload, n, files, &has_faces, err);
     if (code == FC_OK && has_faces)
         code = decode_part(files, FC_CUBE_FACES, "ENVIRONMENT", &part, err);
     if (code == FC_OK && part)
@@ -98,12 +90,18 @@ fc_code fc_scene_uploads_set_environment(fc_scene_uploads *u, const uint8_t *pay
         fc_scene_part_unref(part);
         return code;
     }
-    replace(&u->environment, part);
+    *out = part;
     return FC_OK;
+}
+
+void fc_scene_uploads_replace(fc_scene_part **slot, fc_scene_part *part)
+{
+    fc_scene_part_unref(*slot);
+    *slot = part;
 }
 
 void fc_scene_uploads_free(fc_scene_uploads *u)
 {
-    replace(&u->background, NULL);
-    replace(&u->environment, NULL);
+    fc_scene_uploads_replace(&u->background, NULL);
+    fc_scene_uploads_replace(&u->environment, NULL);
 }

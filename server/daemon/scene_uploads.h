@@ -31,13 +31,17 @@ typedef struct fc_scene_uploads {
     fc_scene_part *environment;
 } fc_scene_uploads;
 
-/* Apply a BACKGROUND / ENVIRONMENT payload: decode and keep the image(s), or
- * drop them for an empty payload. On any error the scene stays as it was:
+/* Decode a BACKGROUND / ENVIRONMENT payload into a part with one reference,
+ * or *out NULL for an empty payload (back to the built-in one). Errors:
  * FC_ERR_MALFORMED (framing), FC_ERR_INVALID_VALUE (an image that does not
  * decode; faces not square, of different sizes or of different pixel types),
  * FC_ERR_LIMIT (a side beyond FC_SCENE_IMAGE_MAX_SIDE), FC_ERR_NOMEM. */
-fc_code fc_scene_uploads_set_background(fc_scene_uploads *u, const uint8_t *payload, size_t n, fc_error *err);
-fc_code fc_scene_uploads_set_environment(fc_scene_uploads *u, const uint8_t *payload, size_t n, fc_error *err);
+fc_code fc_scene_part_decode_background(const uint8_t *payload, size_t n, fc_scene_part **out, fc_error *err);
+fc_code fc_scene_part_decode_environment(const uint8_t *payload, size_t n, fc_scene_part **out, fc_error *err);
+
+/* Puts `part` (its reference is taken; NULL: the built-in one) in a slot of
+ * fc_scene_uploads, dropping the part that was there. */
+void fc_scene_uploads_replace(fc_scene_part **slot, fc_scene_part *part);
 
 /* Drops both parts: back to the built-in scene. */
 void fc_scene_uploads_free(fc_scene_uploads *u);

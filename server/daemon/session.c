@@ -7,6 +7,7 @@
 #include "fc_frame.h"
 #include "monotonic.h"
 #include "session_internal.h"
+#include "session_memory.h"
 #include "wire_session.h"
 
 void fc_session_init(fc_session *s, const char *peer, fc_daemon_context *ctx, uint64_t connection_id, fc_buf *out)
@@ -155,16 +156,25 @@ static fc_session_verdict handle_settings(fc_session *s, fc_daemon_context *ctx,
 }
 
 /* BACKGROUND / ENVIRONMENT: decoded now, so a bad image is answered at once;
- * renders queued before keep the images they were submitted with. */
+ * renders queued before keep the images they were submitted with. The image
+ * it replaces is given up only once the new one is known to fit. */
 static fc_session_verdict handle_scene_image(fc_session *s, fc_daemon_context *ctx, const fc_msg_header *h,
                                              const uint8_t *payload, fc_buf *out)
 {
     fc_error err;
-    fc_code code = h->type == FC_MSG_BACKGROUND
-                       ? fc_scene_uploads_set_background(&s->scene, payload, h->length, &err)
-                       : fc_scene_uploads_set_environment(&s->scene, payload, h->length, &err);
-    if (code != FC_OK)
+    bool background = h->type == FC_MSG_BACKGROUND;
+    fc_scene_part **slot = background ? &s->scene.background : &s->scene.environment;
+    fc_scene_part *part;
+    fc_code code = background ? fc_scene_part_decode_background(payload, h->length, &part, &err)
+                              : fc_scene_part_decode_environment(payload, h->length, &part, &err);
+    if (code == FC_OK)
+        code = fc_session_memory_admit(s, fc_memory_of_scene_part(*slot), fc_memory_of_scene_part(part),
+                                       background ? "BACKGROUND" : "ENVIRONMENT", &err);
+    if (code != FC_OK) {
+        fc_scene_part_unref(part);
         return reply_error(s, ctx, h, &err, FC_SESSION_CONTINUE, out);
+    }
+    fc_scene_uploads_replace(slot, part);
     fc_viewer_view_changed(s, fc_monotonic_ms());
     return FC_SESSION_CONTINUE;
 }

@@ -14,8 +14,11 @@ fc_code fc_session_check_image_limit(const fc_limits *limits, uint32_t width, ui
 /* Appends an ERROR answering request_id to the session's output queue; the connection stays open. */
 void fc_session_send_error(fc_session *s, uint32_t request_id, const fc_error *err);
 
-/* Appends a whole message to the output queue; false (queue unchanged) when out of memory. */
-bool fc_session_queue_message(fc_session *s, const fc_buf *message);
+/* Appends a whole message (`what`, e.g. "the IMAGE", for errors) to the
+ * output queue. The queue is unchanged on failure: FC_ERR_LIMIT when it would
+ * take the connection beyond its memory limit (session_memory.h),
+ * FC_ERR_INTERNAL when out of memory. */
+fc_code fc_session_queue_message(fc_session *s, const fc_buf *message, const char *what, fc_error *err);
 
 /* What a render shows: the named session's newest frame, else the connection's own FRAME (NULL: none yet). */
 fc_shared_frame *fc_session_current_frame(const fc_session *s);

@@ -2,10 +2,12 @@
  * results back into replies; frames becoming current; the session's timers. */
 #include "session_internal.h"
 
+#include <stdio.h>
 #include <string.h>
 
 #include "fc_error.h"
 #include "monotonic.h"
+#include "session_memory.h"
 #include "stream_session.h"
 
 void fc_session_send_error(fc_session *s, uint32_t request_id, const fc_error *err)
@@ -13,15 +15,18 @@ void fc_session_send_error(fc_session *s, uint32_t request_id, const fc_error *e
     fc_session_reply_error(s->ctx, s->peer, request_id, err, FC_SESSION_CONTINUE, s->out);
 }
 
-bool fc_session_queue_message(fc_session *s, const fc_buf *message)
+fc_code fc_session_queue_message(fc_session *s, const fc_buf *message, const char *what, fc_error *err)
 {
+    fc_code code = fc_session_memory_admit(s, 0, message->len, what, err);
+    if (code != FC_OK)
+        return code;
     if (!fc_buf_reserve(s->out, message->len)) {
         s->out->failed = false;
-        return false;
+        return fc_error_set(err, FC_ERR_INTERNAL, "no memory to queue %s of %zu bytes", what, message->len);
     }
     memcpy(s->out->data + s->out->len, message->data, message->len);
     s->out->len += message->len;
-    return true;
+    return FC_OK;
 }
 
 fc_shared_frame *fc_session_current_frame(const fc_session *s)
@@ -82,6 +87,16 @@ static fc_code foam_history(fc_session *s, bool publishes, fc_foam_track **out, 
     return code;
 }
 
+/* The frame a new one replaces must make room for it. */
+static fc_code admit_frame(const fc_session *s, bool publishes, const fc_frame *frame, fc_error *err)
+{
+    const fc_shared_frame *replaced = publishes ? s->stream->latest : s->frame;
+    char what[64];
+    snprintf(what, sizeof what, "a frame of %llu particles", (unsigned long long)frame->count);
+    return fc_session_memory_admit(s, replaced ? fc_memory_of_frame(&replaced->frame) : 0, fc_memory_of_frame(frame),
+                                   what, err);
+}
+
 fc_code fc_session_take_frame(fc_session *s, fc_frame *frame, double received_ms, double decode_ms,
                               fc_error *err)
 {
@@ -91,7 +106,9 @@ fc_code fc_session_take_frame(fc_session *s, fc_frame *frame, double received_ms
     uint64_t number = publishes && s->stream->latest ? s->stream->latest->number + 1 : 1;
     fc_foam_track *foam;
     fc_shared_frame *shared;
-    fc_code code = foam_history(s, publishes, &foam, err);
+    fc_code code = admit_frame(s, publishes, frame, err);
+    if (code == FC_OK)
+        code = foam_history(s, publishes, &foam, err);
     if (code == FC_OK)
         code = share_frame(s, frame, foam, publishes ? number : 0, received_ms, decode_ms, &shared, err);
     if (code != FC_OK)
@@ -116,14 +133,14 @@ void fc_session_job_done(fc_session *s, const fc_render_job *job)
         fc_session_send_error(s, job->request_id, &job->error);
         return;
     }
+    fc_error err;
+    /* A reply that does not fit leaves the queue as it was, so an ERROR can still follow. */
+    if (fc_session_queue_message(s, &job->message, "the IMAGE", &err) != FC_OK) {
+        fc_session_send_error(s, job->request_id, &err);
+        return;
+    }
     fc_log_write(s->ctx->log, FC_LOG_DEBUG, "%s: request %u: IMAGE of %zu bytes queued", s->peer,
                  (unsigned)job->request_id, job->message.len);
-    if (!fc_session_queue_message(s, &job->message)) {
-        /* The reply did not fit: the queue stays as it was, so an ERROR can still follow. */
-        fc_error err;
-        fc_error_set(&err, FC_ERR_INTERNAL, "no memory to queue a %zu-byte IMAGE", job->message.len);
-        fc_session_send_error(s, job->request_id, &err);
-    }
 }
 
 void fc_session_output_drained(fc_session *s)

@@ -2,6 +2,7 @@
  * PUBLISH, SUBSCRIBE, SESSION_END, CHUNK, FRAME_PACKED and LIST_SESSIONS. */
 #include "session_internal.h"
 
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -9,6 +10,7 @@
 #include "fc_frame.h"
 #include "monotonic.h"
 #include "session_events.h"
+#include "session_memory.h"
 #include "stream_session.h"
 #include "wire_session.h"
 
@@ -165,6 +167,15 @@ static fc_code publish_assembled(fc_session *s, fc_assembled_frame *done, fc_err
     return FC_OK;
 }
 
+/* The frames being assembled hold every chunk until their last one arrives. */
+static fc_code admit_chunk(const fc_session *s, const fc_chunk *chunk, fc_error *err)
+{
+    char what[96];
+    snprintf(what, sizeof what, "chunk %u of frame %llu (%llu particles)", chunk->header.index,
+             (unsigned long long)chunk->header.frame_number, (unsigned long long)chunk->part.count);
+    return fc_session_memory_admit(s, 0, fc_memory_of_frame(&chunk->part), what, err);
+}
+
 static fc_session_verdict handle_chunk(fc_session *s, const fc_msg_header *h, const uint8_t *payload,
                                        double received_ms, fc_buf *out)
 {
@@ -177,8 +188,12 @@ static fc_session_verdict handle_chunk(fc_session *s, const fc_msg_header *h, co
     double start = fc_monotonic_ms();
     fc_code code = fc_wire_read_chunk(payload, h->length, fc_pack_allowed(s->capabilities),
                                       s->ctx->welcome.limits.max_particles, &chunk.header, &chunk.part, &err);
-    if (code != FC_OK)
+    if (code == FC_OK)
+        code = admit_chunk(s, &chunk, &err);
+    if (code != FC_OK) {
+        fc_frame_free(&chunk.part);
         return reply_error(s, h, &err, out);
+    }
     double now = fc_monotonic_ms();
     chunk.origin = (fc_chunk_origin){s, h->request_id};
     chunk.first_byte_ms = s->message_started_ms;

@@ -129,14 +129,15 @@ void fc_viewer_job_done(struct fc_session *s, const fc_render_job *job)
     if (!is_viewer(s))
         return;
     s->viewer.queued = true;
+    fc_error err;
     if (job->error.code != FC_OK) {
         fc_session_send_error(s, job->request_id, &job->error);
         return;
     }
-    if (!fc_session_queue_message(s, &job->message)) {
-        /* Out of memory: this image is lost like one a slow viewer misses. */
-        s->viewer.queued = false;
-        s->viewer.busy = false;
+    if (fc_session_queue_message(s, &job->message, "the STREAM_IMAGE", &err) != FC_OK) {
+        /* The image is lost like one a slow viewer misses; the ERROR says why. */
+        fc_session_send_error(s, job->request_id, &err);
+        return;
     }
     s->viewer.queued_bytes = job->message.len;
 }

@@ -21,6 +21,7 @@
 struct fc_gl_context {
     EGLDisplay display;
     EGLContext context;
+    bool robust;            /* created with reset notification: glGetGraphicsResetStatus can report a loss */
     char egl_vendor[128];
     char renderer[256];
     char version[256];
@@ -111,6 +112,55 @@ static bool is_software_device(EGLDeviceEXT device)
     return has_extension(eglQueryDeviceStringEXT(device, EGL_EXTENSIONS), "EGL_MESA_device_software");
 }
 
+/* The names a robust context is asked for with: robust buffer access, and a
+ * context that is lost on a GPU reset and says so through
+ * glGetGraphicsResetStatus. EGL 1.5 spells them one way,
+ * EGL_EXT_create_context_robustness another; false when the display has
+ * neither. names: access, reset strategy, lose-on-reset. */
+static bool robustness_names(EGLDisplay display, EGLint egl_major, EGLint egl_minor, EGLint names[3])
+{
+    if (egl_major > 1 || (egl_major == 1 && egl_minor >= 5)) {
+        names[0] = EGL_CONTEXT_OPENGL_ROBUST_ACCESS;
+        names[1] = EGL_CONTEXT_OPENGL_RESET_NOTIFICATION_STRATEGY;
+        names[2] = EGL_LOSE_CONTEXT_ON_RESET;
+        return true;
+    }
+    if (has_extension(eglQueryString(display, EGL_EXTENSIONS), "EGL_EXT_create_context_robustness")) {
+        names[0] = EGL_CONTEXT_OPENGL_ROBUST_ACCESS_EXT;
+        names[1] = EGL_CONTEXT_OPENGL_RESET_NOTIFICATION_STRATEGY_EXT;
+        names[2] = EGL_LOSE_CONTEXT_ON_RESET_EXT;
+        return true;
+    }
+    return false;
+}
+
+/* A robust 4.5 core context where the driver grants one (a lost context can
+ * then be noticed and replaced), else a plain one. */
+static EGLContext create_gl45(EGLDisplay display, EGLint egl_major, EGLint egl_minor, bool *robust)
+{
+    enum { ROBUSTNESS_AT = 6 };   /* where the robustness pairs go; EGL_NONE there ends the list before them */
+    EGLint attributes[] = {
+        EGL_CONTEXT_MAJOR_VERSION, 4,
+        EGL_CONTEXT_MINOR_VERSION, 5,
+        EGL_CONTEXT_OPENGL_PROFILE_MASK, EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT,
+        EGL_NONE, EGL_TRUE,
+        EGL_NONE, EGL_NONE,
+        EGL_NONE};
+    EGLint names[3];
+    *robust = robustness_names(display, egl_major, egl_minor, names);
+    if (*robust) {
+        attributes[ROBUSTNESS_AT] = names[0];
+        attributes[ROBUSTNESS_AT + 2] = names[1];
+        attributes[ROBUSTNESS_AT + 3] = names[2];
+        EGLContext context = eglCreateContext(display, EGL_NO_CONFIG_KHR, EGL_NO_CONTEXT, attributes);
+        if (context != EGL_NO_CONTEXT)
+            return context;
+        *robust = false;
+        attributes[ROBUSTNESS_AT] = EGL_NONE;
+    }
+    return eglCreateContext(display, EGL_NO_CONFIG_KHR, EGL_NO_CONTEXT, attributes);
+}
+
 /* Initialises `display`, then creates a 4.5 core context without config or
  * surface and makes it current. `tried` names the platform for messages. */
 static fc_code create_on_display(EGLDisplay display, const char *tried, fc_gl_context *ctx, fc_error *err)
@@ -128,12 +178,8 @@ static fc_code create_on_display(EGLDisplay display, const char *tried, fc_gl_co
                             tried);
     if (!eglBindAPI(EGL_OPENGL_API))
         return egl_failure(err, tried, "eglBindAPI(EGL_OPENGL_API)");
-    const EGLint attributes[] = {
-        EGL_CONTEXT_MAJOR_VERSION, 4,
-        EGL_CONTEXT_MINOR_VERSION, 5,
-        EGL_CONTEXT_OPENGL_PROFILE_MASK, EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT,
-        EGL_NONE};
-    EGLContext context = eglCreateContext(display, EGL_NO_CONFIG_KHR, EGL_NO_CONTEXT, attributes);
+    bool robust = false;
+    EGLContext context = create_gl45(display, major, minor, &robust);
     if (context == EGL_NO_CONTEXT)
         return egl_failure(err, tried, "eglCreateContext(OpenGL 4.5 core)");
     if (!eglMakeCurrent(display, EGL_NO_SURFACE, EGL_NO_SURFACE, context)) {
@@ -143,6 +189,7 @@ static fc_code create_on_display(EGLDisplay display, const char *tried, fc_gl_co
     }
     ctx->display = display;
     ctx->context = context;
+    ctx->robust = robust;
     return FC_OK;
 }
 
@@ -275,4 +322,33 @@ const char *fc_gl_context_renderer(const fc_gl_context *ctx)
 const char *fc_gl_context_version(const fc_gl_context *ctx)
 {
     return ctx->version;
+}
+
+bool fc_gl_context_robust(const fc_gl_context *ctx)
+{
+    return ctx->robust;
+}
+
+fc_gl_reset fc_gl_context_reset_status(const fc_gl_context *ctx)
+{
+    /* Without reset notification GL answers GL_NO_ERROR whatever happened. */
+    if (!ctx->robust)
+        return FC_GL_NO_RESET;
+    switch (glGetGraphicsResetStatus()) {
+    case GL_NO_ERROR: return FC_GL_NO_RESET;
+    case GL_GUILTY_CONTEXT_RESET: return FC_GL_RESET_GUILTY;
+    case GL_INNOCENT_CONTEXT_RESET: return FC_GL_RESET_INNOCENT;
+    default: return FC_GL_RESET_UNKNOWN;
+    }
+}
+
+const char *fc_gl_reset_name(fc_gl_reset reset)
+{
+    switch (reset) {
+    case FC_GL_NO_RESET: return "no";
+    case FC_GL_RESET_GUILTY: return "guilty";
+    case FC_GL_RESET_INNOCENT: return "innocent";
+    case FC_GL_RESET_UNKNOWN: break;
+    }
+    return "unknown";
 }

@@ -3,6 +3,8 @@
 #ifndef FC_EGL_CONTEXT_H
 #define FC_EGL_CONTEXT_H
 
+#include <stdbool.h>
+
 #include "fluidcast_types.h"
 
 typedef enum fc_gpu_mode {
@@ -21,8 +23,10 @@ fc_code fc_gpu_choice_parse(const char *text, fc_gpu_choice *out, fc_error *err)
 
 typedef struct fc_gl_context fc_gl_context;
 
-/* Creates the context and makes it current on the calling thread. FC_ERR_GL with
- * the EGL error and what was tried when no context can be made. */
+/* Creates the context and makes it current on the calling thread: a robust
+ * one (lost on a GPU reset, which fc_gl_context_reset_status then reports)
+ * where the driver grants it, else a plain one. FC_ERR_GL with the EGL error
+ * and what was tried when no context can be made. */
 fc_code fc_gl_context_create(const fc_gpu_choice *choice, fc_gl_context **out, fc_error *err);
 void fc_gl_context_destroy(fc_gl_context *ctx);
 fc_code fc_gl_context_make_current(fc_gl_context *ctx, fc_error *err);
@@ -30,5 +34,22 @@ fc_code fc_gl_context_make_current(fc_gl_context *ctx, fc_error *err);
 const char *fc_gl_context_egl_vendor(const fc_gl_context *ctx);
 const char *fc_gl_context_renderer(const fc_gl_context *ctx);   /* GL_RENDERER */
 const char *fc_gl_context_version(const fc_gl_context *ctx);    /* GL_VERSION */
+
+/* Whether the context was created robust, with reset notification. */
+bool fc_gl_context_robust(const fc_gl_context *ctx);
+
+/* What glGetGraphicsResetStatus says of the context (current on the calling
+ * thread): whether the GPU was reset since it was created, and whose fault
+ * that was. A context that is not robust always reports FC_GL_NO_RESET. Once
+ * reset, a context stays unusable: destroy it and create another. */
+typedef enum fc_gl_reset {
+    FC_GL_NO_RESET = 0,
+    FC_GL_RESET_GUILTY,      /* this context caused it */
+    FC_GL_RESET_INNOCENT,    /* something else on the GPU did */
+    FC_GL_RESET_UNKNOWN      /* the driver cannot tell */
+} fc_gl_reset;
+fc_gl_reset fc_gl_context_reset_status(const fc_gl_context *ctx);
+/* "guilty", "innocent", "unknown" (and "no" for FC_GL_NO_RESET). */
+const char *fc_gl_reset_name(fc_gl_reset reset);
 
 #endif

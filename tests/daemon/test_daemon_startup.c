@@ -1,23 +1,30 @@
 /* test_daemon_startup.c — fluidcastd's exit status when it cannot start:
- * 1 without a GL context or a listening socket, 2 for a bad command line. */
+ * 1 without a GL context or a listening socket, 2 for a bad command line (or
+ * a malformed test hook in the environment). */
 #include <string.h>
 
 #include "daemon_process.h"
 #include "fc_error.h"
 #include "test_util.h"
 
-/* Starts the daemon with extra_args and expects it to exit with `status` before listening. */
-static void expect_exit(const char *const *extra_args, int status)
+/* Starts the daemon as `setup` says and expects it to exit with `status`
+ * before listening; `what` names the case. */
+static void expect_exit_with(const char *what, const fc_test_daemon_setup *setup, int status)
 {
     fc_test_daemon d;
     fc_error err;
-    fc_code code = fc_test_daemon_start(&d, extra_args, FC_TEST_DAEMON_START_TIMEOUT_MS, &err);
-    CHECK_MSG(code == FC_ERR_IO, "%s %s: started (port %u) but should not have", extra_args[0], extra_args[1],
-              (unsigned)d.port);
-    CHECK_MSG(d.early_exit == status, "%s %s: exit status %d, expected %d", extra_args[0], extra_args[1],
-              d.early_exit, status);
+    fc_code code = fc_test_daemon_start_with(&d, setup, FC_TEST_DAEMON_START_TIMEOUT_MS, &err);
+    CHECK_MSG(code == FC_ERR_IO, "%s: started (port %u) but should not have", what, (unsigned)d.port);
+    CHECK_MSG(d.early_exit == status, "%s: exit status %d, expected %d", what, d.early_exit, status);
     if (code == FC_OK)
         fc_test_daemon_stop(&d, FC_TEST_DAEMON_STOP_TIMEOUT_MS, &err);
+}
+
+/* Starts the daemon with extra_args and expects it to exit with `status` before listening. */
+static void expect_exit(const char *const *extra_args, int status)
+{
+    fc_test_daemon_setup setup = {.extra_args = extra_args};
+    expect_exit_with(extra_args[0], &setup, status);
 }
 
 int main(void)
@@ -30,6 +37,11 @@ int main(void)
     expect_exit(bogus, 2);
     static const char *const bad_limit[] = {"--max-image", "0x100", NULL};
     expect_exit(bad_limit, 2);
+    static const char *const no_memory[] = {"--max-session-memory", "0", NULL};
+    expect_exit(no_memory, 2);
+    /* The lost-context test hook takes a render number or nothing. */
+    static const char *const bad_hook[] = {"FLUIDCASTD_TEST_LOSE_CONTEXT=soon", NULL};
+    expect_exit_with("FLUIDCASTD_TEST_LOSE_CONTEXT=soon", &(fc_test_daemon_setup){.environment = bad_hook}, 2);
 
     /* A port already taken by a running daemon. */
     fc_test_daemon first;

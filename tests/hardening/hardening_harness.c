@@ -3,14 +3,17 @@
 
 #include <dirent.h>
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 #include <sys/socket.h>
 #include <time.h>
 #include <unistd.h>
 
 #include "fc_error.h"
+#include "integration/scene_fixtures.h"
 #include "test_scene.h"
 #include "test_util.h"
+#include "wire_scene.h"
 #include "wire_session.h"
 
 #define WITNESS_FIRST_ID 10000u
@@ -191,7 +194,7 @@ void hx_publish(int fd, const char *session)
 
 /* ---- expectations ---- */
 
-void hx_expect_error(int fd, uint32_t request_id, fc_code code)
+void hx_expect_error_mentioning(int fd, uint32_t request_id, fc_code code, const char *phrase)
 {
     uint32_t got_id = 0;
     fc_error remote = {0}, err;
@@ -204,6 +207,13 @@ void hx_expect_error(int fd, uint32_t request_id, fc_code code)
     CHECK_MSG(remote.code == code, "ERROR code %d (%s: %s), expected %d (%s)", remote.code,
               fc_code_name(remote.code), remote.message, code, fc_code_name(code));
     CHECK_MSG(remote.message[0] != '\0', "ERROR %d without a reason", code);
+    CHECK_MSG(!phrase || strstr(remote.message, phrase), "ERROR %d says \"%s\", expected it to mention \"%s\"", code,
+              remote.message, phrase);
+}
+
+void hx_expect_error(int fd, uint32_t request_id, fc_code code)
+{
+    hx_expect_error_mentioning(fd, request_id, code, NULL);
 }
 
 void hx_expect_closed(int fd)
@@ -237,17 +247,113 @@ static void check_cube_depth(const fc_image_reply *image)
         CHECK_MSG(corners[i] == 0.0f, "corner %d depth %g, expected 0 (no fluid)", i, corners[i]);
 }
 
+static void check_cube_reply(const fc_test_message *reply, uint32_t render_id)
+{
+    fc_image_reply image;
+    fc_error err;
+    if (fc_wire_read_image(reply->payload, reply->header.length, &image, &err) == FC_OK)
+        check_cube_depth(&image);
+    else
+        CHECK_MSG(0, "RENDER %u: unreadable IMAGE: %s", render_id, err.message);
+}
+
 void hx_expect_cube_image(int fd, uint32_t render_id)
+{
+    fc_test_message reply;
+    if (!read_reply(fd, render_id, FC_MSG_IMAGE, &reply))
+        return;
+    check_cube_reply(&reply, render_id);
+    fc_test_message_free(&reply);
+}
+
+bool hx_expect_cube_image_or_error(int fd, uint32_t render_id, fc_code code, const char *phrase)
+{
+    fc_test_message reply;
+    fc_error err;
+    if (fc_test_read_message(fd, FC_TEST_IO_TIMEOUT_MS, &reply, &err) != FC_OK) {
+        CHECK_MSG(0, "no reply to RENDER %u: %s", render_id, err.message);
+        return false;
+    }
+    bool failed = reply.header.type == FC_MSG_ERROR;
+    fc_error remote = {0};
+    CHECK_MSG(reply.header.request_id == render_id, "reply to request %u, expected %u", reply.header.request_id,
+              render_id);
+    if (failed) {
+        CHECK_CODE(fc_wire_read_error(reply.payload, reply.header.length, &remote, &err), FC_OK);
+        CHECK_MSG(remote.code == code && strstr(remote.message, phrase), "RENDER %u: ERROR %d (%s), expected %d (%s)",
+                  render_id, remote.code, remote.message, code, phrase);
+    } else {
+        CHECK_MSG(reply.header.type == FC_MSG_IMAGE, "RENDER %u answered by type %u", render_id, reply.header.type);
+        check_cube_reply(&reply, render_id);
+    }
+    fc_test_message_free(&reply);
+    return failed;
+}
+
+void hx_send_magenta_background(int fd, uint32_t request_id)
+{
+    fc_buf out;
+    fc_error err;
+    fc_buf_init(&out);
+    fc_encoded_image file = {png_magenta_4x4, png_magenta_4x4_size};
+    CHECK_CODE(fc_wire_write_background(&out, request_id, &file, &err), FC_OK);
+    hx_send_buf(fd, &out);
+    fc_buf_free(&out);
+}
+
+void hx_send_render(int fd, uint32_t request_id, fc_image_format format, fc_aov aov)
+{
+    fc_buf out;
+    fc_error err;
+    fc_buf_init(&out);
+    fc_render_request request = {format, 0, aov};
+    CHECK_CODE(fc_wire_write_render(&out, request_id, &request, &err), FC_OK);
+    hx_send_buf(fd, &out);
+    fc_buf_free(&out);
+}
+
+static bool is_magenta(const uint8_t *rgba)
+{
+    static const int magenta[3] = {200, 40, 120};   /* png_magenta_4x4 */
+    for (int c = 0; c < 3; c++)
+        if (abs(rgba[c] - magenta[c]) > 2)
+            return false;
+    return true;
+}
+
+static void check_magenta_image(const fc_image_reply *image, uint32_t render_id)
+{
+    const uint32_t side = HX_IMAGE_SIDE;
+    if (image->width != side || image->height != side || image->format != FC_FORMAT_RAW ||
+        image->aov != FC_AOV_COLOR || image->size != (uint64_t)side * side * 4) {
+        CHECK_MSG(0, "RENDER %u: expected %ux%u RAW colour, got %ux%u format %d aov %d", render_id, side, side,
+                  image->width, image->height, (int)image->format, (int)image->aov);
+        return;
+    }
+    const uint32_t corners[4][2] = {{0, 0}, {side - 1, 0}, {0, side - 1}, {side - 1, side - 1}};
+    for (int i = 0; i < 4; i++) {
+        const uint8_t *p = image->data + 4 * ((size_t)corners[i][1] * side + corners[i][0]);
+        CHECK_MSG(is_magenta(p), "RENDER %u: corner %d is (%u,%u,%u), not the background", render_id, i, p[0], p[1],
+                  p[2]);
+    }
+    const uint8_t *centre = image->data + 4 * ((size_t)(side / 2) * side + side / 2);
+    CHECK_MSG(!is_magenta(centre), "RENDER %u: no fluid at the centre", render_id);
+}
+
+void hx_expect_magenta_image(int fd, uint32_t render_id, fc_buf *pixels)
 {
     fc_test_message reply;
     if (!read_reply(fd, render_id, FC_MSG_IMAGE, &reply))
         return;
     fc_image_reply image;
     fc_error err;
-    if (fc_wire_read_image(reply.payload, reply.header.length, &image, &err) == FC_OK)
-        check_cube_depth(&image);
-    else
+    if (fc_wire_read_image(reply.payload, reply.header.length, &image, &err) == FC_OK) {
+        check_magenta_image(&image, render_id);
+        if (pixels)
+            hx_bytes(pixels, image.data, (size_t)image.size);
+    } else {
         CHECK_MSG(0, "RENDER %u: unreadable IMAGE: %s", render_id, err.message);
+    }
     fc_test_message_free(&reply);
 }
 
@@ -281,15 +387,23 @@ void hx_expect_witness_served(hx_env *env)
 
 bool hx_env_start(hx_env *env, const char *const *extra_args)
 {
+    fc_test_daemon_setup setup = {.extra_args = extra_args};
+    return hx_env_start_with(env, &setup);
+}
+
+bool hx_env_start_with(hx_env *env, const fc_test_daemon_setup *setup)
+{
     const char *args[MAX_DAEMON_ARGS + 1] = {"--log-level", "warn"};
     int n = 2;
-    for (int i = 0; extra_args && extra_args[i] && n < MAX_DAEMON_ARGS; i++)
-        args[n++] = extra_args[i];
+    for (int i = 0; setup->extra_args && setup->extra_args[i] && n < MAX_DAEMON_ARGS; i++)
+        args[n++] = setup->extra_args[i];
     args[n] = NULL;
+    fc_test_daemon_setup with_args = *setup;
+    with_args.extra_args = args;
     fc_error err;
     env->witness_fd = -1;
     env->witness_next_id = WITNESS_FIRST_ID;
-    if (fc_test_daemon_start(&env->daemon, args, FC_TEST_DAEMON_START_TIMEOUT_MS, &err) != FC_OK) {
+    if (fc_test_daemon_start_with(&env->daemon, &with_args, FC_TEST_DAEMON_START_TIMEOUT_MS, &err) != FC_OK) {
         CHECK_MSG(0, "cannot start the daemon: %s", err.message);
         return false;
     }
@@ -305,6 +419,22 @@ void hx_env_stop(hx_env *env)
         close(env->witness_fd);
     fc_error err;
     CHECK_MSG(fc_test_daemon_stop(&env->daemon, FC_TEST_DAEMON_STOP_TIMEOUT_MS, &err) == FC_OK, "%s", err.message);
+}
+
+long long hx_daemon_status_kib(const hx_env *env, const char *field)
+{
+    char path[64], line[256];
+    snprintf(path, sizeof path, "/proc/%d/status", (int)env->daemon.pid);
+    FILE *f = fopen(path, "r");
+    if (!f)
+        return -1;
+    size_t len = strlen(field);
+    long long kib = -1;
+    while (kib < 0 && fgets(line, sizeof line, f))
+        if (strncmp(line, field, len) == 0 && line[len] == ':')
+            kib = strtoll(line + len + 1, NULL, 10);
+    fclose(f);
+    return kib;
 }
 
 int hx_daemon_open_fds(const hx_env *env)

@@ -80,6 +80,8 @@ typedef struct hx_env {
 
 /* Starts fluidcastd with extra_args (plus --log-level warn) and connects the witness. */
 bool hx_env_start(hx_env *env, const char *const *extra_args);
+/* The same with the daemon's process set up as `setup` says. */
+bool hx_env_start_with(hx_env *env, const fc_test_daemon_setup *setup);
 /* Checks the witness once more, closes it and requires a clean daemon exit. */
 void hx_env_stop(hx_env *env);
 
@@ -105,6 +107,8 @@ void hx_send(int fd, const void *data, size_t size);
 void hx_send_buf(int fd, fc_buf *out);   /* sends and empties out */
 /* The next message is an ERROR echoing request_id with exactly `code` and a reason. */
 void hx_expect_error(int fd, uint32_t request_id, fc_code code);
+/* ...whose reason contains `phrase` (NULL: any reason). */
+void hx_expect_error_mentioning(int fd, uint32_t request_id, fc_code code, const char *phrase);
 /* The daemon closes the connection without sending anything more. */
 void hx_expect_closed(int fd);
 /* Appends FRAME (the test cube), CAMERA (front, HX_IMAGE_SIDE square) and
@@ -113,13 +117,31 @@ void hx_write_render_sequence(fc_buf *out, uint32_t first_id);
 /* The next message is the IMAGE for render_id, its depths those of the cube
  * seen from the front (analytic centre depth, nothing in the corners). */
 void hx_expect_cube_image(int fd, uint32_t render_id);
+/* The next message answers render_id: either an ERROR with `code` whose
+ * reason contains `phrase` (true), or the cube's correct IMAGE (false). */
+bool hx_expect_cube_image_or_error(int fd, uint32_t render_id, fc_code code, const char *phrase);
 /* A complete render sequence on fd, answered by the correct image. */
 void hx_expect_renders(int fd, uint32_t first_id);
 /* The witness renders correctly (a client is served while others misbehave). */
 void hx_expect_witness_served(hx_env *env);
+/* ---- scene images ---- */
+
+/* BACKGROUND with the 4x4 magenta PNG (tests/integration/scene_fixtures.h):
+ * accepted without a reply. */
+void hx_send_magenta_background(int fd, uint32_t request_id);
+/* RENDER alone (the connection's frame and camera stay as they are). */
+void hx_send_render(int fd, uint32_t request_id, fc_image_format format, fc_aov aov);
+/* The next message is the IMAGE for render_id: the cube's render sequence
+ * camera in RAW colour over the magenta background, which fills the corners
+ * while the fluid covers the centre. Its pixels are appended to `pixels`
+ * (may be NULL) for comparisons. */
+void hx_expect_magenta_image(int fd, uint32_t render_id, fc_buf *pixels);
+
 /* The next message is of `type` and answers request_id. */
 void hx_expect_reply_type(int fd, uint32_t request_id, uint16_t type);
 
+/* A field of /proc/PID/status of the daemon in KiB ("VmPeak", "VmRSS"), or -1 when unreadable. */
+long long hx_daemon_status_kib(const hx_env *env, const char *field);
 /* Descriptors the daemon holds open (from /proc), or -1 when unreadable. */
 int hx_daemon_open_fds(const hx_env *env);
 /* Waits up to timeout_ms for the daemon to hold at most `count` descriptors. */

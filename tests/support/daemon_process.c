@@ -7,6 +7,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include <sys/prctl.h>
+#include <sys/resource.h>
 #include <sys/wait.h>
 #include <time.h>
 #include <unistd.h>
@@ -50,18 +51,34 @@ static void describe_status(int status, char *out, size_t size)
         snprintf(out, size, "stopped (status 0x%x)", status);
 }
 
-static void spawn(const fc_test_daemon *d, const char *const *extra_args, pid_t test_pid)
+/* In the child: the setup's address-space limit and environment. */
+static void apply_setup(const fc_test_daemon_setup *setup)
+{
+    if (setup->address_space_limit > 0) {
+        struct rlimit limit = {setup->address_space_limit, setup->address_space_limit};
+        if (setrlimit(RLIMIT_AS, &limit) != 0) {
+            fprintf(stderr, "setrlimit(RLIMIT_AS): %s\n", strerror(errno));
+            _exit(127);
+        }
+    }
+    for (int i = 0; setup->environment && setup->environment[i]; i++)
+        if (putenv((char *)setup->environment[i]) != 0)
+            _exit(127);
+}
+
+static void spawn(const fc_test_daemon *d, const fc_test_daemon_setup *setup, pid_t test_pid)
 {
     /* A test that crashes (or is aborted by a sanitizer) takes its daemon
      * along, instead of leaving it holding ctest's output pipe open until the
      * test's timeout. */
     if (prctl(PR_SET_PDEATHSIG, SIGKILL) != 0 || getppid() != test_pid)
         _exit(127);
+    apply_setup(setup);
     const char *argv[8 + MAX_EXTRA_ARGS] = {fc_test_daemon_path(), "--listen", "127.0.0.1:0", "--port-file",
                                             d->port_file, "--gpu", "software"};
     int argc = 7;
-    for (int i = 0; extra_args && extra_args[i] && i < MAX_EXTRA_ARGS; i++)
-        argv[argc++] = extra_args[i];
+    for (int i = 0; setup->extra_args && setup->extra_args[i] && i < MAX_EXTRA_ARGS; i++)
+        argv[argc++] = setup->extra_args[i];
     argv[argc] = NULL;
     execv(argv[0], (char *const *)argv);
     fprintf(stderr, "cannot run %s: %s\n", argv[0], strerror(errno));
@@ -108,6 +125,13 @@ static fc_code wait_for_port(fc_test_daemon *d, int timeout_ms, fc_error *err)
 
 fc_code fc_test_daemon_start(fc_test_daemon *d, const char *const *extra_args, int timeout_ms, fc_error *err)
 {
+    fc_test_daemon_setup setup = {.extra_args = extra_args};
+    return fc_test_daemon_start_with(d, &setup, timeout_ms, err);
+}
+
+fc_code fc_test_daemon_start_with(fc_test_daemon *d, const fc_test_daemon_setup *setup, int timeout_ms,
+                                  fc_error *err)
+{
     memset(d, 0, sizeof *d);
     d->early_exit = -1;
     snprintf(d->dir, sizeof d->dir, "/tmp/fc-test-XXXXXX");
@@ -124,7 +148,7 @@ fc_code fc_test_daemon_start(fc_test_daemon *d, const char *const *extra_args, i
         return fc_error_set(err, FC_ERR_IO, "fork: %s", strerror(errno));
     }
     if (d->pid == 0)
-        spawn(d, extra_args, test_pid);
+        spawn(d, setup, test_pid);
     fc_code code = wait_for_port(d, timeout_ms, err);
     if (code != FC_OK)
         remove_temp_files(d);

@@ -30,6 +30,17 @@ const char *fc_test_daemon_path(void);
  * earlier ones, so extra_args may replace the defaults. */
 fc_code fc_test_daemon_start(fc_test_daemon *d, const char *const *extra_args, int timeout_ms, fc_error *err);
 
+/* What a test may change about the daemon's process beyond its arguments. */
+typedef struct fc_test_daemon_setup {
+    const char *const *extra_args;      /* as for fc_test_daemon_start */
+    uint64_t address_space_limit;       /* RLIMIT_AS set in the child before exec, bytes; 0 = inherited */
+    const char *const *environment;     /* "NAME=VALUE" entries added to its environment, NULL-terminated; or NULL */
+} fc_test_daemon_setup;
+
+/* fc_test_daemon_start with the setup's limit and environment. */
+fc_code fc_test_daemon_start_with(fc_test_daemon *d, const fc_test_daemon_setup *setup, int timeout_ms,
+                                  fc_error *err);
+
 /* Sends SIGTERM and waits up to timeout_ms. FC_OK only when the daemon exited
  * with status 0; FC_ERR_IO otherwise (killed with SIGKILL if still running). */
 fc_code fc_test_daemon_stop(fc_test_daemon *d, int timeout_ms, fc_error *err);
