@@ -1,10 +1,10 @@
 /* test_soak_renders.c — a bounded soak of the real fluidcastd: 8 libfluidcast
- * clients render tiny images in PNG, JPEG, EXR and RAW concurrently until about
- * 2000 renders are done (or the time budget is spent). Every request must be
- * answered with an image of the requested size and format that decodes
- * independently, and the daemon's resident memory must not keep growing once
- * it is warm: leaking one 32x32 RGBA image (4 KiB) per render would already
- * exceed the bound over ~1900 measured renders. */
+ * clients each push 1500 frames (every one moved from the last) and render each
+ * as a tiny image in PNG, JPEG, EXR or RAW, concurrently, until 12000 frames are
+ * done (or the time budget is spent). Every request must be answered with an
+ * image of the requested size and format that decodes independently, and the
+ * daemon's resident memory must not keep growing once it is warm: leaking one
+ * 32x32 RGBA image (4 KiB) per render would exceed the bound many times over. */
 #include <pthread.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -21,18 +21,19 @@ enum {
     CLIENTS = 8,
     SIZE = 32,
     WARMUP_RENDERS = 15,          /* per client, before the baseline RSS sample */
-    RENDERS_PER_CLIENT = 250,     /* 2000 in all */
+    RENDERS_PER_CLIENT = 1500,    /* frames, each rendered once: 12000 in all */
     MIN_RENDERS_PER_CLIENT = 40,  /* fewer means the daemon stalled, not just a slow machine */
     MAX_RSS_GROWTH_KB = 10 * 1024
 };
 /* Wall-clock budget for the measured phase, so a slow shared machine ends early instead of timing out. */
-static const double SOAK_BUDGET_MS = 75000.0;
+static const double SOAK_BUDGET_MS = 120000.0;
 
 typedef struct soak_worker {
     int index;
     pthread_barrier_t *warm;      /* every client warmed up: the baseline is sampled between the two waits */
     double deadline_ms;           /* set by the main thread before releasing the second wait */
     fc_client *client;
+    fc_frame frame;               /* this client's particles, nudged before every send */
     int renders;                  /* answered with a valid image */
     int failures;
 } soak_worker;
@@ -77,14 +78,19 @@ static bool image_valid(const fc_image_result *img, size_t format_index, fc_erro
     return sized;
 }
 
-/* One render in the format this client's turn picks; counts the outcome. */
+/* One new frame, rendered in the format this client's turn picks; counts the outcome. */
 static void render_once(soak_worker *w, int turn)
 {
     size_t format_index = (size_t)(w->index + turn) % 4;
     fc_render_request request = {.format = FORMATS[format_index], .quality = 90, .aov = FC_AOV_COLOR};
     fc_image_result img = {0};
     fc_error err;
-    if (fc_client_render(w->client, &request, &img, &err) == FC_OK && image_valid(&img, format_index, &err)) {
+    /* Back and forth along x, so every frame differs from the last and the particles stay in view. */
+    float nudge = turn % 2 ? 0.01f : -0.01f;
+    for (uint64_t i = 0; i < w->frame.count; i++)
+        w->frame.positions[3 * i] += nudge;
+    if (fc_client_send_frame(w->client, &w->frame, &err) == FC_OK &&
+        fc_client_render(w->client, &request, &img, &err) == FC_OK && image_valid(&img, format_index, &err)) {
         w->renders++;
     } else if (w->failures++ < 3) {
         fprintf(stderr, "client %d render %d (%s): %s\n", w->index, turn, EXTENSIONS[format_index] ? EXTENSIONS[format_index] : "raw",
@@ -93,24 +99,21 @@ static void render_once(soak_worker *w, int turn)
     fc_image_result_free(&img);
 }
 
-static bool send_scene(fc_client *c)
+static bool make_scene(soak_worker *w)
 {
-    fc_frame frame = {0};
     fc_camera camera;
     fc_error err;
     fc_test_front_camera(SIZE, SIZE, &camera);
-    bool ok = fc_test_cube_frame(&frame, &err) == FC_OK && fc_client_send_frame(c, &frame, &err) == FC_OK &&
-              fc_client_set_camera(c, &camera, &err) == FC_OK;
+    bool ok = fc_test_cube_frame(&w->frame, &err) == FC_OK && fc_client_set_camera(w->client, &camera, &err) == FC_OK;
     if (!ok)
         fprintf(stderr, "scene: %s\n", err.message);
-    fc_frame_free(&frame);
     return ok;
 }
 
 static void *soak_client(void *arg)
 {
     soak_worker *w = arg;
-    bool ready = w->client && send_scene(w->client);
+    bool ready = w->client && make_scene(w);
     int turn = 0;
     for (; ready && turn < WARMUP_RENDERS; turn++)
         render_once(w, turn);
@@ -118,6 +121,7 @@ static void *soak_client(void *arg)
     pthread_barrier_wait(w->warm);
     for (; ready && turn < RENDERS_PER_CLIENT && svc_now_ms() < w->deadline_ms; turn++)
         render_once(w, turn);
+    fc_frame_free(&w->frame);
     return NULL;
 }
 
@@ -150,7 +154,7 @@ int main(void)
     }
     double elapsed_s = (svc_now_ms() - started_ms) / 1000.0;
     long final_kb = resident_kb(daemon.pid);
-    printf("soak: %d renders (%d after warm-up), %d failed, %.1f s measured, %.1f renders/s\n", total,
+    printf("soak: %d frames rendered (%d after warm-up), %d failed, %.1f s measured, %.1f renders/s\n", total,
            total - CLIENTS * WARMUP_RENDERS, failures, elapsed_s, (total - CLIENTS * WARMUP_RENDERS) / elapsed_s);
     printf("soak: daemon RSS %ld KiB after warm-up, %ld KiB at the end: growth %ld KiB (bound %d KiB)\n",
            baseline_kb, final_kb, final_kb - baseline_kb, MAX_RSS_GROWTH_KB);
