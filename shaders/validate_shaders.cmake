@@ -1,6 +1,7 @@
 # Script mode (cmake -P): compiles every *.glsl file of SHADER_DIR with
-# VALIDATOR (glslangValidator; the stage comes from the .vert.glsl/.frag.glsl
-# suffix) and fails when any of them has an error.
+# VALIDATOR (glslangValidator; the stage comes from the .vert.glsl/.frag.glsl/
+# .comp.glsl suffix; a library without one is compiled as a fragment and as a
+# compute shader, the stages that link it) and fails when any of them has an error.
 file(GLOB SHADERS ${SHADER_DIR}/*.glsl)
 list(SORT SHADERS)
 list(LENGTH SHADERS count)
@@ -8,11 +9,19 @@ if(count EQUAL 0)
   message(FATAL_ERROR "no shaders in ${SHADER_DIR}")
 endif()
 set(failed "")
-foreach(path IN LISTS SHADERS)
-  execute_process(COMMAND ${VALIDATOR} ${path} RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE out)
+function(validate path)
+  execute_process(COMMAND ${VALIDATOR} ${ARGN} ${path} RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE out)
   if(NOT rc EQUAL 0)
     message("${out}")
-    list(APPEND failed ${path})
+    set(failed ${failed} ${path} PARENT_SCOPE)
+  endif()
+endfunction()
+foreach(path IN LISTS SHADERS)
+  if(path MATCHES "\\.(vert|frag|comp)\\.glsl$")
+    validate(${path})
+  else()
+    validate(${path} -S frag)
+    validate(${path} -S comp)
   endif()
 endforeach()
 if(failed)

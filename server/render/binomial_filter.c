@@ -9,7 +9,7 @@
 /* Uniform location and phases fixed by binomial_filter.frag.glsl. */
 enum { LOC_PHASE = 6 };
 enum { SMOOTH_FROM_DEPTH = 0, SMOOTH = 1, SILHOUETTE_START = 2, SILHOUETTE = 3, SILHOUETTE_FINISH = 4 };
-/* MAX_KERNEL_RADIUS of depth_filter_common.frag.glsl. */
+/* MAX_KERNEL_RADIUS of depth_filter_common.glsl. */
 #define MAX_KERNEL_RADIUS 64.0f
 
 fc_code fc_binomial_filter_create(const char *shader_dir, fc_binomial_filter *b, fc_error *err)

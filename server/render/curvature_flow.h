@@ -10,8 +10,8 @@
 #include "render_target.h"
 
 typedef struct fc_curvature_flow {
-    GLuint program;
-    GLuint empty_vertex_array;
+    GLuint program;                  /* a compute shader writing image unit 0 */
+    GLint group_size[3];             /* its workgroup's invocations */
     fc_render_target ping_pong[2];   /* R32F, sized to the input */
 } fc_curvature_flow;
 

@@ -1,4 +1,4 @@
-/* gl_util.c — GL error checks and texture creation shared by the passes. */
+/* gl_util.c — GL error checks, waits, texture creation, draws and dispatches shared by the passes. */
 #include "gl_util.h"
 
 #include "fc_error.h"
@@ -32,6 +32,20 @@ fc_code fc_gl_check(const char *what, fc_error *err)
     return fc_error_set(err, FC_ERR_GL, "%s: %s (0x%04x)", what, gl_error_name(first), (unsigned)first);
 }
 
+fc_code fc_gl_failure(const char *what, fc_error *err)
+{
+    fc_code code = fc_gl_check(what, err);
+    return code != FC_OK ? code : fc_error_set(err, FC_ERR_RENDER, "%s failed", what);
+}
+
+fc_code fc_gl_wait_until_done(const char *what, fc_error *err)
+{
+    GLsync done = glFenceSync(GL_SYNC_GPU_COMMANDS_COMPLETE, 0);
+    GLenum status = glClientWaitSync(done, GL_SYNC_FLUSH_COMMANDS_BIT, GL_TIMEOUT_IGNORED);
+    glDeleteSync(done);
+    return status == GL_WAIT_FAILED ? fc_gl_failure(what, err) : FC_OK;
+}
+
 fc_code fc_gl_texture_create(GLenum internal_format, uint32_t width, uint32_t height, bool linear,
                              GLuint *texture, fc_error *err)
 {
@@ -56,4 +70,16 @@ void fc_gl_draw_fullscreen(GLuint empty_vertex_array)
 {
     glBindVertexArray(empty_vertex_array);
     glDrawArrays(GL_TRIANGLES, 0, 3);
+}
+
+static GLuint groups_over(uint32_t pixels, uint32_t per_group)
+{
+    return (pixels + per_group - 1) / per_group;
+}
+
+void fc_gl_dispatch_over_image(uint32_t width, uint32_t height, uint32_t group_width, uint32_t group_height)
+{
+    glDispatchCompute(groups_over(width, group_width), groups_over(height, group_height), 1);
+    /* Image stores are not ordered with later reads by themselves. */
+    glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_FRAMEBUFFER_BARRIER_BIT);
 }

@@ -14,6 +14,14 @@
  * FC_ERR_GL naming the first error otherwise. */
 fc_code fc_gl_check(const char *what, fc_error *err);
 
+/* For a call that reported failure by its result (a NULL mapping, a failed
+ * wait): the GL error it left, else FC_ERR_RENDER "<what> failed". */
+fc_code fc_gl_failure(const char *what, fc_error *err);
+
+/* Blocks until the GPU has run every command issued so far (a fence the
+ * caller waits on); `what` names the wait in the error. */
+fc_code fc_gl_wait_until_done(const char *what, fc_error *err);
+
 /* A width x height 2D texture with immutable storage of `internal_format`,
  * clamped at the edges; `linear` chooses bilinear over nearest sampling. */
 fc_code fc_gl_texture_create(GLenum internal_format, uint32_t width, uint32_t height, bool linear,
@@ -22,5 +30,11 @@ fc_code fc_gl_texture_create(GLenum internal_format, uint32_t width, uint32_t he
 /* Draws the triangle of fullscreen.vert.glsl with the current program; core
  * profile needs a vertex array bound even when no attribute is read. */
 void fc_gl_draw_fullscreen(GLuint empty_vertex_array);
+
+/* Runs the current compute program over a width x height image, each
+ * workgroup covering group_width x group_height pixels, then makes its image
+ * stores visible to what reads them next: texture fetches (the next pass)
+ * and framebuffer reads (the readback of an image straight from it). */
+void fc_gl_dispatch_over_image(uint32_t width, uint32_t height, uint32_t group_width, uint32_t group_height);
 
 #endif

@@ -1,6 +1,8 @@
 /* particle_buffer.c — particle positions on the GPU. */
 #include "particle_buffer.h"
 
+#include <string.h>
+
 #include "fc_error.h"
 #include "fc_frame.h"
 #include "gl_util.h"
@@ -17,29 +19,43 @@ fc_code fc_particle_buffer_create(fc_particle_buffer *pb, fc_error *err)
     return fc_gl_check("creating the particle vertex array", err);
 }
 
+static void release_buffer(fc_particle_buffer *pb)
+{
+    if (pb->mapped)
+        glUnmapNamedBuffer(pb->buffer);
+    glDeleteBuffers(1, &pb->buffer);
+    pb->mapped = NULL;
+    pb->buffer = 0;
+    pb->capacity = 0;
+}
+
 void fc_particle_buffer_destroy(fc_particle_buffer *pb)
 {
+    release_buffer(pb);
     glDeleteVertexArrays(1, &pb->vertex_array);
-    glDeleteBuffers(1, &pb->buffer);
     *pb = (fc_particle_buffer){0};
 }
 
 /* A new buffer of `count` particles; the old one is dropped first so both
- * never occupy GPU memory at once. */
+ * never occupy GPU memory at once. Coherent mapping: writes need no flush. */
 static fc_code grow(fc_particle_buffer *pb, uint64_t count, fc_error *err)
 {
-    glDeleteBuffers(1, &pb->buffer);
-    pb->buffer = 0;
-    pb->capacity = 0;
+    release_buffer(pb);
     /* Draws count vertices and instances in a GLsizei. */
     if (count > (uint64_t)INT32_MAX)
         return fc_error_set(err, FC_ERR_RENDER, "%llu particles exceed the %d one draw call can render",
                             (unsigned long long)count, INT32_MAX);
+    GLbitfield flags = GL_MAP_WRITE_BIT | GL_MAP_PERSISTENT_BIT | GL_MAP_COHERENT_BIT;
+    GLsizeiptr bytes = (GLsizeiptr)(count * POSITION_STRIDE);
     glCreateBuffers(1, &pb->buffer);
-    glNamedBufferStorage(pb->buffer, (GLsizeiptr)(count * POSITION_STRIDE), NULL, GL_DYNAMIC_STORAGE_BIT);
+    glNamedBufferStorage(pb->buffer, bytes, NULL, flags);
     fc_code code = fc_gl_check("allocating the particle buffer", err);
-    if (code != FC_OK)
+    if (code == FC_OK && !(pb->mapped = glMapNamedBufferRange(pb->buffer, 0, bytes, flags)))
+        code = fc_gl_failure("mapping the particle buffer", err);
+    if (code != FC_OK) {
+        release_buffer(pb);
         return code;
+    }
     glVertexArrayVertexBuffer(pb->vertex_array, 0, pb->buffer, 0, POSITION_STRIDE);
     pb->capacity = count;
     return FC_OK;
@@ -48,19 +64,19 @@ static fc_code grow(fc_particle_buffer *pb, uint64_t count, fc_error *err)
 fc_code fc_particle_buffer_upload(fc_particle_buffer *pb, const fc_frame *frame, fc_error *err)
 {
     pb->count = 0;
-    if (frame->count > pb->capacity) {
-        fc_code code = grow(pb, frame->count, err);
-        if (code != FC_OK)
-            return code;
-    }
+    /* Waiting for every command so far covers the draws that read the frame about to be overwritten. */
+    fc_code code = frame->count > pb->capacity ? grow(pb, frame->count, err)
+                                               : fc_gl_wait_until_done("waiting for the last frame's draws", err);
+    if (code != FC_OK)
+        return code;
     if (frame->count > 0) {
-        glNamedBufferSubData(pb->buffer, 0, (GLsizeiptr)(frame->count * POSITION_STRIDE), frame->positions);
+        memcpy(pb->mapped, frame->positions, frame->count * POSITION_STRIDE);
         fc_frame_bounds(frame, pb->lo, pb->hi);
     } else {
         for (int i = 0; i < 3; i++)
             pb->lo[i] = pb->hi[i] = 0.0f;
     }
-    fc_code code = fc_gl_check("uploading particles", err);
+    code = fc_gl_check("uploading particles", err);
     if (code == FC_OK)
         pb->count = frame->count;
     return code;

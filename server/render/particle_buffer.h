@@ -1,5 +1,11 @@
 /* particle_buffer.h — the uploaded frame's positions in a GL buffer, plus the
- * bounds the camera and the floor are derived from. */
+ * bounds the camera and the floor are derived from.
+ *
+ * The buffer is persistently mapped: a frame is copied straight into memory
+ * the GPU reads, once. On a discrete GPU glBufferSubData copies the frame
+ * into a driver staging buffer first, and may stall until draws still reading
+ * the buffer finish; here the only wait is a fence on the draws of the frame
+ * before (already done when a render's readback ended it). */
 #ifndef FC_PARTICLE_BUFFER_H
 #define FC_PARTICLE_BUFFER_H
 
@@ -12,6 +18,7 @@
 typedef struct fc_particle_buffer {
     GLuint vertex_array;    /* attribute 0 = vec3 position */
     GLuint buffer;
+    float *mapped;          /* the buffer's storage, mapped for writing as long as it lives */
     uint64_t capacity;      /* particles the buffer holds; it only ever grows */
     uint64_t count;         /* particles of the current frame */
     float lo[3], hi[3];     /* bounds of the current frame; a point at the origin when empty */
@@ -21,8 +28,9 @@ fc_code fc_particle_buffer_create(fc_particle_buffer *pb, fc_error *err);
 void fc_particle_buffer_destroy(fc_particle_buffer *pb);
 
 /* Replaces the particles with the frame's positions, reallocating the GPU
- * buffer only when the frame is larger than any before. FC_ERR_RENDER when the
- * GPU has no room for it. */
+ * buffer only when the frame is larger than any before, after the GPU is done
+ * with every draw issued so far. FC_ERR_RENDER when the GPU has no room for
+ * the frame or does not finish those draws. */
 fc_code fc_particle_buffer_upload(fc_particle_buffer *pb, const fc_frame *frame, fc_error *err);
 
 /* Binds the vertex array with a position per vertex (point sprites) or per

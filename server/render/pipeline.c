@@ -46,6 +46,7 @@ struct fc_pipeline {
     fc_spray_pass spray;
     fc_stage_timer timer;
     fc_pass_profile profile;
+    fc_readback readback;
     GLint max_image_size;   /* largest width or height the GPU renders */
 };
 
@@ -70,6 +71,7 @@ static GLint query_max_image_size(void)
 
 static fc_code create_passes(fc_pipeline *p, const char *dir, fc_error *err)
 {
+    p->readback = fc_readback_init();
     fc_code code = fc_particle_buffer_create(&p->particles, err);
     if (code == FC_OK)
         code = fc_particle_attributes_create(&p->attributes, err);
@@ -343,6 +345,7 @@ void fc_pipeline_destroy(fc_pipeline *p)
 {
     if (!p)
         return;
+    fc_readback_release(&p->readback);
     fc_pass_profile_destroy(&p->profile);
     fc_stage_timer_destroy(&p->timer);
     fc_spray_pass_destroy(&p->spray);
@@ -432,7 +435,7 @@ fc_code fc_pipeline_render_scene(fc_pipeline *p, const fc_camera *camera, const 
     fc_pixel_type type = aov == FC_AOV_COLOR && want_u8 ? FC_PIXEL_U8 : FC_PIXEL_F32;
     fc_stage_timer_begin(&p->timer, FC_STAGE_READBACK);
     fc_pass_profile_begin(&p->profile, "readback");
-    code = fc_readback(result, channels_of(aov), type, out, err);
+    code = fc_readback_run(&p->readback, result, channels_of(aov), type, out, err);
     fc_pass_profile_end(&p->profile);
     fc_stage_timer_end(&p->timer, FC_STAGE_READBACK);
     if (code == FC_OK)

@@ -1,4 +1,5 @@
-/* readback.c — glReadPixels into fc_image with rows flipped to top-down. */
+/* readback.c — glReadPixels into a persistently mapped pixel-pack buffer,
+ * then rows copied out top-down. */
 #include "readback.h"
 
 #include <stdlib.h>
@@ -20,30 +21,57 @@ static fc_code reserve(fc_image *img, size_t bytes, fc_error *err)
     return FC_OK;
 }
 
-static void swap_bytes(unsigned char *a, unsigned char *b, size_t n)
+fc_readback fc_readback_init(void)
 {
-    unsigned char chunk[256];
-    while (n > 0) {
-        size_t step = n < sizeof chunk ? n : sizeof chunk;
-        memcpy(chunk, a, step);
-        memcpy(a, b, step);
-        memcpy(b, chunk, step);
-        a += step;
-        b += step;
-        n -= step;
+    return (fc_readback){0};
+}
+
+void fc_readback_release(fc_readback *r)
+{
+    if (r->mapped)
+        glUnmapNamedBuffer(r->pack_buffer);
+    glDeleteBuffers(1, &r->pack_buffer);
+    *r = fc_readback_init();
+}
+
+/* A pack buffer of at least `bytes`, mapped for reading as long as it lives. */
+static fc_code reserve_pack_buffer(fc_readback *r, size_t bytes, fc_error *err)
+{
+    if (bytes <= r->capacity)
+        return FC_OK;
+    fc_readback_release(r);
+    GLbitfield flags = GL_MAP_READ_BIT | GL_MAP_PERSISTENT_BIT | GL_MAP_COHERENT_BIT;
+    glCreateBuffers(1, &r->pack_buffer);
+    glNamedBufferStorage(r->pack_buffer, (GLsizeiptr)bytes, NULL, flags);
+    fc_code code = fc_gl_check("allocating the readback buffer", err);
+    if (code == FC_OK && !(r->mapped = glMapNamedBufferRange(r->pack_buffer, 0, (GLsizeiptr)bytes, flags)))
+        code = fc_gl_failure("mapping the readback buffer", err);
+    if (code != FC_OK) {
+        fc_readback_release(r);
+        return code;
     }
+    r->capacity = bytes;
+    return FC_OK;
 }
 
-static void flip_rows(fc_image *img)
+/* Starts the copy of the target into the pack buffer and waits until it is there. */
+static fc_code read_into_pack_buffer(const fc_readback *r, const fc_render_target *target, uint32_t channels,
+                                     fc_pixel_type type, fc_error *err)
 {
-    size_t stride = fc_image_size(img) / img->height;
-    unsigned char *pixels = img->pixels;
-    for (uint32_t top = 0, bottom = img->height - 1; top < bottom; top++, bottom--)
-        swap_bytes(pixels + top * stride, pixels + bottom * stride, stride);
+    glBindFramebuffer(GL_READ_FRAMEBUFFER, target->framebuffer);
+    glNamedFramebufferReadBuffer(target->framebuffer, GL_COLOR_ATTACHMENT0);
+    glPixelStorei(GL_PACK_ALIGNMENT, 1);
+    glBindBuffer(GL_PIXEL_PACK_BUFFER, r->pack_buffer);
+    GLenum format = channels == 1 ? GL_RED : channels == 3 ? GL_RGB : GL_RGBA;
+    GLenum gl_type = type == FC_PIXEL_F32 ? GL_FLOAT : GL_UNSIGNED_BYTE;
+    glReadPixels(0, 0, (GLsizei)target->width, (GLsizei)target->height, format, gl_type, NULL);
+    glBindBuffer(GL_PIXEL_PACK_BUFFER, 0);
+    fc_code code = fc_gl_check("reading back the image", err);
+    return code == FC_OK ? fc_gl_wait_until_done("waiting for the readback", err) : code;
 }
 
-fc_code fc_readback(const fc_render_target *target, uint32_t channels, fc_pixel_type type, fc_image *out,
-                    fc_error *err)
+fc_code fc_readback_run(fc_readback *r, const fc_render_target *target, uint32_t channels, fc_pixel_type type,
+                        fc_image *out, fc_error *err)
 {
     out->width = target->width;
     out->height = target->height;
@@ -51,16 +79,15 @@ fc_code fc_readback(const fc_render_target *target, uint32_t channels, fc_pixel_
     out->type = type;
     size_t bytes = fc_image_size(out);
     fc_code code = reserve(out, bytes, err);
+    if (code == FC_OK)
+        code = reserve_pack_buffer(r, bytes, err);
+    if (code == FC_OK)
+        code = read_into_pack_buffer(r, target, channels, type, err);
     if (code != FC_OK)
         return code;
-    glBindFramebuffer(GL_READ_FRAMEBUFFER, target->framebuffer);
-    glNamedFramebufferReadBuffer(target->framebuffer, GL_COLOR_ATTACHMENT0);
-    glPixelStorei(GL_PACK_ALIGNMENT, 1);
-    GLenum format = channels == 1 ? GL_RED : channels == 3 ? GL_RGB : GL_RGBA;
-    GLenum gl_type = type == FC_PIXEL_F32 ? GL_FLOAT : GL_UNSIGNED_BYTE;
-    glReadPixels(0, 0, (GLsizei)out->width, (GLsizei)out->height, format, gl_type, out->pixels);
-    code = fc_gl_check("reading back the image", err);
-    if (code == FC_OK)
-        flip_rows(out);
-    return code;
+    size_t stride = bytes / out->height;
+    unsigned char *rows = out->pixels;
+    for (uint32_t y = 0; y < out->height; y++)
+        memcpy(rows + (size_t)(out->height - 1 - y) * stride, r->mapped + (size_t)y * stride, stride);
+    return FC_OK;
 }

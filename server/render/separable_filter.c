@@ -1,27 +1,44 @@
-/* separable_filter.c — x/y passes of a depth filter shader. */
+/* separable_filter.c — x/y passes of a depth filter shader, drawn or dispatched. */
 #include "separable_filter.h"
 
 #include "gl_util.h"
 #include "shader_program.h"
 
-/* Uniforms of depth_filter_common.frag.glsl, looked up by name: a filter that
+/* Uniforms of depth_filter_common.glsl, looked up by name: a filter that
  * does not use one (the binomial one has a single kernel size) lets the
  * linker drop it, and setting a dropped location would be an error. */
 enum { AXIS, PIXEL_SCALE, PARTICLE_RADIUS, DEPTH_JUMP, FIXED_RADIUS, RADII_PER_KERNEL };
 static const char *const UNIFORM_NAMES[FC_FILTER_UNIFORMS] = {"axis", "pixel_scale", "particle_radius",
                                                               "depth_jump", "fixed_radius", "radii_per_kernel"};
-/* MAX_KERNEL_RADIUS of depth_filter_common.frag.glsl. */
+/* MAX_KERNEL_RADIUS of depth_filter_common.glsl. */
 #define MAX_KERNEL_RADIUS 64u
 
-fc_code fc_separable_filter_create(const char *shader_dir, const char *fragment_file, GLenum color_format,
+static fc_code build_program(const char *shader_dir, const char *shader_file, fc_separable_filter *f,
+                             fc_error *err)
+{
+    if (fc_shader_stage(shader_file) != GL_COMPUTE_SHADER) {
+        glCreateVertexArrays(1, &f->empty_vertex_array);
+        const char *files[] = {"fullscreen.vert.glsl", "depth_filter_common.glsl", shader_file};
+        return fc_program_build(shader_dir, files, 3, &f->program, err);
+    }
+    const char *files[] = {"depth_filter_common.glsl", shader_file};
+    fc_code code = fc_program_build(shader_dir, files, 2, &f->program, err);
+    if (code != FC_OK)
+        return code;
+    GLint group[3] = {0, 0, 0};
+    glGetProgramiv(f->program, GL_COMPUTE_WORK_GROUP_SIZE, group);
+    f->group_size[0] = group[0];
+    f->group_size[1] = group[1];
+    return fc_gl_check("querying a filter's workgroup size", err);
+}
+
+fc_code fc_separable_filter_create(const char *shader_dir, const char *shader_file, GLenum color_format,
                                    float radii_per_kernel, fc_separable_filter *f, fc_error *err)
 {
     *f = (fc_separable_filter){.radii_per_kernel = radii_per_kernel};
     for (int i = 0; i < 2; i++)
         f->ping_pong[i] = fc_render_target_init(color_format, false, false);
-    glCreateVertexArrays(1, &f->empty_vertex_array);
-    const char *files[] = {"fullscreen.vert.glsl", "depth_filter_common.frag.glsl", fragment_file};
-    fc_code code = fc_program_build(shader_dir, files, sizeof files / sizeof files[0], &f->program, err);
+    fc_code code = build_program(shader_dir, shader_file, f, err);
     for (int i = 0; code == FC_OK && i < FC_FILTER_UNIFORMS; i++)
         f->uniform[i] = glGetUniformLocation(f->program, UNIFORM_NAMES[i]);   /* -1 when dropped: ignored */
     return code;
@@ -57,13 +74,26 @@ fc_code fc_separable_filter_begin(fc_separable_filter *f, const fc_render_target
     return FC_OK;
 }
 
+/* Each invocation filters a run of FC_FILTER_RUN pixels along the axis. */
+static void dispatch_pass(const fc_separable_filter *f, const fc_render_target *destination, int axis)
+{
+    glBindImageTexture(0, destination->color, 0, GL_FALSE, 0, GL_WRITE_ONLY, destination->color_format);
+    uint32_t run[2] = {axis == 0 ? FC_FILTER_RUN : 1, axis == 1 ? FC_FILTER_RUN : 1};
+    fc_gl_dispatch_over_image(destination->width, destination->height, (uint32_t)f->group_size[0] * run[0],
+                              (uint32_t)f->group_size[1] * run[1]);
+}
+
 const fc_render_target *fc_separable_filter_pass(fc_separable_filter *f, const fc_render_target *source, int axis)
 {
     const fc_render_target *destination = source == &f->ping_pong[0] ? &f->ping_pong[1] : &f->ping_pong[0];
-    fc_render_target_bind(destination);
     glUniform2i(f->uniform[AXIS], axis == 0, axis == 1);
     glBindTextureUnit(0, source->color);
-    fc_gl_draw_fullscreen(f->empty_vertex_array);
+    if (f->group_size[0] > 0) {
+        dispatch_pass(f, destination, axis);
+    } else {
+        fc_render_target_bind(destination);
+        fc_gl_draw_fullscreen(f->empty_vertex_array);
+    }
     return destination;
 }
 

@@ -1,7 +1,9 @@
 /* separable_filter.h — a depth filter applied as 1-D passes along x, then y,
  * ping-ponging between two targets: the shape shared by the bilateral,
  * narrow-range and binomial smoothing (their shaders link
- * depth_filter_common.frag.glsl, whose uniforms are set here). */
+ * depth_filter_common.glsl, whose uniforms are set here). A filter is a
+ * fragment shader drawn over the target, or a compute shader writing the
+ * target's texture as an image. */
 #ifndef FC_SEPARABLE_FILTER_H
 #define FC_SEPARABLE_FILTER_H
 
@@ -12,18 +14,24 @@
 #include "smoothing_params.h"
 
 #define FC_FILTER_UNIFORMS 6
+/* A compute filter's invocation filters this many consecutive pixels along
+ * the axis (RUN of the *.comp.glsl filters). */
+#define FC_FILTER_RUN 8u
 
 typedef struct fc_separable_filter {
     GLuint program;
     GLint uniform[FC_FILTER_UNIFORMS];   /* locations of the common uniforms, -1 where unused */
     GLuint empty_vertex_array;
+    GLint group_size[2];             /* compute: invocations of a workgroup in x and y; 0: fragment */
     float radii_per_kernel;          /* automatic half-width, in projected particle radii */
     fc_render_target ping_pong[2];   /* of the format the shader writes, sized to the input */
 } fc_separable_filter;
 
-/* Links fullscreen.vert.glsl, depth_filter_common.frag.glsl and `fragment_file`
- * into a filter writing `color_format`. */
-fc_code fc_separable_filter_create(const char *shader_dir, const char *fragment_file, GLenum color_format,
+/* Links depth_filter_common.glsl and `shader_file` into a filter writing
+ * `color_format`: with fullscreen.vert.glsl for a *.frag.glsl; a *.comp.glsl
+ * lays its invocations over the image, each filtering FC_FILTER_RUN pixels
+ * along the axis, and writes image unit 0. */
+fc_code fc_separable_filter_create(const char *shader_dir, const char *shader_file, GLenum color_format,
                                    float radii_per_kernel, fc_separable_filter *f, fc_error *err);
 void fc_separable_filter_destroy(fc_separable_filter *f);
 

@@ -20,18 +20,15 @@ static int ends_with(const char *text, const char *suffix)
     return n >= m && strcmp(text + n - m, suffix) == 0;
 }
 
-static fc_code stage_of(const char *file, GLenum *stage, fc_error *err)
+GLenum fc_shader_stage(const char *file)
 {
     if (ends_with(file, ".vert.glsl"))
-        *stage = GL_VERTEX_SHADER;
-    else if (ends_with(file, ".frag.glsl"))
-        *stage = GL_FRAGMENT_SHADER;
-    else if (ends_with(file, ".comp.glsl"))
-        *stage = GL_COMPUTE_SHADER;
-    else
-        return fc_error_set(err, FC_ERR_GL, "shader %s: no stage suffix (.vert.glsl, .frag.glsl, .comp.glsl)",
-                            file);
-    return FC_OK;
+        return GL_VERTEX_SHADER;
+    if (ends_with(file, ".frag.glsl"))
+        return GL_FRAGMENT_SHADER;
+    if (ends_with(file, ".comp.glsl"))
+        return GL_COMPUTE_SHADER;
+    return 0;
 }
 
 static fc_code read_file(const char *dir, const char *file, char **text, fc_error *err)
@@ -76,14 +73,11 @@ static fc_code load_source(const char *dir, const char *file, const char **sourc
     return FC_OK;
 }
 
-static fc_code compile(const char *dir, const char *file, GLuint *shader, fc_error *err)
+static fc_code compile(const char *dir, const char *file, GLenum stage, GLuint *shader, fc_error *err)
 {
-    GLenum stage;
     const char *source;
     char *owned;
-    fc_code code = stage_of(file, &stage, err);
-    if (code == FC_OK)
-        code = load_source(dir, file, &source, &owned, err);
+    fc_code code = load_source(dir, file, &source, &owned, err);
     if (code != FC_OK)
         return code;
     GLuint s = glCreateShader(stage);
@@ -123,11 +117,16 @@ fc_code fc_program_build(const char *shader_dir, const char *const *files, size_
     if (count == 0 || count > MAX_PROGRAM_FILES)
         return fc_error_set(err, FC_ERR_USAGE, "a program needs 1 to %d shader files, got %zu",
                             MAX_PROGRAM_FILES, count);
+    GLenum last_stage = fc_shader_stage(files[count - 1]);
+    if (!last_stage)
+        return fc_error_set(err, FC_ERR_GL, "shader %s: no stage suffix (.vert.glsl, .frag.glsl, .comp.glsl)",
+                            files[count - 1]);
     GLuint shaders[MAX_PROGRAM_FILES] = {0};
     GLuint p = glCreateProgram();
     fc_code code = FC_OK;
     for (size_t i = 0; i < count && code == FC_OK; i++) {
-        code = compile(shader_dir, files[i], &shaders[i], err);
+        GLenum stage = fc_shader_stage(files[i]);
+        code = compile(shader_dir, files[i], stage ? stage : last_stage, &shaders[i], err);
         if (code == FC_OK)
             glAttachShader(p, shaders[i]);
     }

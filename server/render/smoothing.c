@@ -18,7 +18,7 @@ fc_code fc_smoother_create(const char *shader_dir, fc_smoother *s, fc_error *err
         code = fc_separable_filter_create(shader_dir, "bilateral_filter.frag.glsl", GL_R32F,
                                           BILATERAL_RADII_PER_KERNEL, &s->bilateral, err);
     if (code == FC_OK)
-        code = fc_separable_filter_create(shader_dir, "narrow_range_filter.frag.glsl", GL_RG32F,
+        code = fc_separable_filter_create(shader_dir, "narrow_range_filter.comp.glsl", GL_RG32F,
                                           NARROW_RANGE_RADII_PER_KERNEL, &s->narrow_range, err);
     if (code == FC_OK)
         code = fc_binomial_filter_create(shader_dir, &s->binomial, err);

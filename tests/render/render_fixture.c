@@ -5,6 +5,8 @@
 #include <stdio.h>
 #include <stdlib.h>
 
+#include "readback.h"
+
 static const double PI = 3.14159265358979323846;
 
 bool fixture_open(render_fixture *f)
@@ -116,4 +118,12 @@ void analytic_project(const fc_camera *cam, const double point[3], double *x, do
     double ndc_y = fy * point[1] / depth;
     *x = (ndc_x + 1.0) * 0.5 * cam->width;
     *row = (1.0 - ndc_y) * 0.5 * cam->height;
+}
+
+fc_code read_target(const fc_render_target *target, uint32_t channels, fc_image *img, fc_error *err)
+{
+    fc_readback readback = fc_readback_init();
+    fc_code code = fc_readback_run(&readback, target, channels, FC_PIXEL_F32, img, err);
+    fc_readback_release(&readback);
+    return code;
 }

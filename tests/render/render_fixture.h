@@ -11,6 +11,7 @@
 #include "fluidcast_types.h"
 #include "image.h"
 #include "pipeline.h"
+#include "render_target.h"
 
 typedef struct render_fixture {
     fc_gl_context *gl;
@@ -34,6 +35,10 @@ fc_code render_positions(render_fixture *f, const float *positions, uint64_t cou
 
 /* Value of a one-channel float image at column x, row (0 = top). */
 float pixel_f32(const fc_image *img, uint32_t x, uint32_t row);
+
+/* Reads a render target of a pass run on its own as `channels` floats into
+ * img (rows top to bottom), through a readback made for the call. */
+fc_code read_target(const fc_render_target *target, uint32_t channels, fc_image *img, fc_error *err);
 
 /* The sphere seen through pixel (x, row) of an axis_camera image, solved
  * analytically. Returns the linear view depth of the front hit, or 0 on a

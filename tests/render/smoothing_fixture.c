@@ -6,7 +6,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "readback.h"
+#include "render_fixture.h"
 
 #define SCENE_DEPTH 5.0f
 /* 2 / (V cot 20°): the view-space size of a pixel at unit depth, 40° vertical fov. */
@@ -59,7 +59,7 @@ fc_code smoothing_read(const fc_render_target *target, float *out)
 {
     fc_error err = {0};
     fc_image img = {0};
-    fc_code code = fc_readback(target, 1, FC_PIXEL_F32, &img, &err);
+    fc_code code = read_target(target, 1, &img, &err);
     if (code == FC_OK) {
         /* The readback is top to bottom; put it back in GL order. */
         const float *rows = img.pixels;

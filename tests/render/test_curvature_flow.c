@@ -6,7 +6,6 @@
 #include <stdlib.h>
 
 #include "curvature_flow.h"
-#include "readback.h"
 #include "render_fixture.h"
 #include "test_util.h"
 
@@ -51,7 +50,7 @@ static fc_code run_flow(flow_fixture *ff, const float *depth, uint32_t iteration
     fc_image img = {0};
     fc_code code = fc_curvature_flow_run(&ff->flow, &ff->input, iterations, PIXEL_SCALE, depth_jump, &result, &err);
     if (code == FC_OK)
-        code = fc_readback(result, 1, FC_PIXEL_F32, &img, &err);
+        code = read_target(result, 1, &img, &err);
     if (code == FC_OK) {
         /* The readback is top to bottom; put it back in GL order. */
         const float *rows = img.pixels;

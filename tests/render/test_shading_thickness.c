@@ -6,7 +6,6 @@
 #include <math.h>
 
 #include "particle_buffer.h"
-#include "readback.h"
 #include "shading_fixture.h"
 #include "test_util.h"
 #include "thickness_pass.h"
@@ -149,7 +148,7 @@ static void test_floor_cuts_chords(void)
     const fc_render_target *result = NULL;
     fc_image img = {0};
     CHECK_CODE(fc_thickness_pass_run(&pass, &particles, &view, &params, &result, &err), FC_OK);
-    CHECK_CODE(fc_readback(result, 1, FC_PIXEL_F32, &img, &err), FC_OK);
+    CHECK_CODE(read_target(result, 1, &img, &err), FC_OK);
     const double centre[3] = {0.0, 0.0, 0.0};
     int wrong = 0, clipped = 0;
     for (uint32_t row = 0; row < SIZE; row++)

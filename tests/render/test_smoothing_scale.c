@@ -10,7 +10,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "readback.h"
+#include "render_fixture.h"
 #include "smoothing_fixture.h"
 #include "test_util.h"
 
@@ -127,7 +127,7 @@ static fc_code read_rgba(const fc_render_target *target, float *rgba)
 {
     fc_error err = {0};
     fc_image img = {0};
-    fc_code code = fc_readback(target, 4, FC_PIXEL_F32, &img, &err);
+    fc_code code = read_target(target, 4, &img, &err);
     if (code == FC_OK)
         for (uint32_t row = 0; row < img.height; row++)   /* back to GL order */
             memcpy(rgba + 4 * (size_t)(img.height - 1 - row) * img.width,

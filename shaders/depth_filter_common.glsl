@@ -2,7 +2,8 @@
 // What the separable depth filters (bilateral, narrow-range, binomial) share:
 // one 1-D pass along `axis` over linear view depth (z > 0; 0 = background)
 // and the kernel half-width, fixed or from the projected particle size.
-// Linked into each filter's program; the uniforms are set by
+// A library without a stage: linked into each filter's program, fragment
+// (bilateral, binomial) or compute (narrow-range); the uniforms are set by
 // separable_filter.c.
 
 layout(binding = 0) uniform sampler2D depth_in;
