@@ -32,7 +32,7 @@ void bench_options_print_usage(void)
     printf("usage: fluidcast-bench [--gpu auto|software|N] [--particles 16k,64k,...]\n"
            "         [--size 1280x720,...] [--smoothing curvature,none,...] [--iterations 15,40,default,...]\n"
            "         [--scale 1,0.5,0.25] [--frames N] [--encode png|jpeg|exr|none] [--image PATH.png]\n"
-           "         [--profile] [--shader-dir DIR]\n"
+           "         [--profile] [--shader-dir DIR] [--splat auto|fragment|compute]\n"
            "       fluidcast-bench --particles N --write-scene PATH.f32\n"
            "Prints a markdown table: median GPU ms per stage (timer queries), encode ms, wall ms.\n"
            "Every combination of the lists runs; --iterations default: each method's own default;\n"
@@ -44,6 +44,8 @@ void bench_options_print_usage(void)
            "--profile prints after each row where its time goes: every pass's wall time with the GL\n"
            "queue drained around it, its fragment shader invocations, and the sprites' sizes.\n"
            "--shader-dir loads the *.glsl files from DIR, to time shader changes without rebuilding.\n"
+           "--splat forces the surface splat: sprites through the rasterizer or the compute splat\n"
+           "(default auto: the pipeline's choice by sprite size).\n"
            "--write-scene writes the drop scene as raw little-endian float32 xyz and prints\n"
            "'particles N spacing S radius R' (R: the sphere radius the benchmark renders with).\n");
 }
@@ -164,6 +166,19 @@ static fc_code parse_encoding(const char *value, bench_options *o, fc_error *err
     return fc_error_set(err, FC_ERR_USAGE, "--encode: unknown encoding '%s'", value);
 }
 
+static fc_code parse_splat(const char *value, bench_options *o, fc_error *err)
+{
+    if (!strcmp(value, "auto"))
+        o->splat = FC_SPLAT_AUTO;
+    else if (!strcmp(value, "fragment"))
+        o->splat = FC_SPLAT_FRAGMENT;
+    else if (!strcmp(value, "compute"))
+        o->splat = FC_SPLAT_COMPUTE;
+    else
+        return fc_error_set(err, FC_ERR_USAGE, "--splat %s: expected auto, fragment or compute", value);
+    return FC_OK;
+}
+
 static fc_code parse_valued(const char *option, const char *value, bench_options *o, fc_error *err)
 {
     if (!strcmp(option, "--gpu"))
@@ -186,6 +201,8 @@ static fc_code parse_valued(const char *option, const char *value, bench_options
         o->shader_dir = value;
         return FC_OK;
     }
+    if (!strcmp(option, "--splat"))
+        return parse_splat(value, o, err);
     if (!strcmp(option, "--image")) {
         o->image_path = value;
         return FC_OK;

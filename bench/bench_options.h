@@ -2,6 +2,7 @@
 #ifndef FC_BENCH_OPTIONS_H
 #define FC_BENCH_OPTIONS_H
 
+#include "depth_pass.h"
 #include "egl_context.h"
 #include "fluidcast_types.h"
 
@@ -34,6 +35,7 @@ typedef struct bench_options {
     fc_image_format format;  /* 0 = no encoding */
     int profile;             /* --profile: a per-pass table after each row */
     const char *shader_dir;  /* --shader-dir: GLSL from there instead of the built-in copies; NULL: built-in */
+    fc_splat_method splat;   /* --splat: the surface splat forced on the pipeline; AUTO: its own choice */
 } bench_options;
 
 /* Defaults: 64k particles, 1280x720, curvature flow 40 iterations at full

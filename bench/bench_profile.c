@@ -8,6 +8,7 @@
 
 #include "bench_options.h"
 #include "fc_error.h"
+#include "pipeline_internal.h"
 
 static int compare_float(const void *a, const void *b)
 {
@@ -90,13 +91,14 @@ static float median_of(float *v, int n)
 }
 
 static void print_table(pass_series *all, int count, int frames, uint64_t particles, const fc_camera *cam,
-                        const fc_settings *settings, const float sprite_px[3])
+                        const fc_settings *settings, const float sprite_px[3], fc_splat_method splat)
 {
     printf("\nprofile: %llu particles, %ux%u, smoothing %s x%u at %g, sprite diameter px min %.1f median %.1f "
-           "max %.1f\n\n",
+           "max %.1f, %s splat\n\n",
            (unsigned long long)particles, cam->width, cam->height, bench_smoothing_name(settings->smoothing),
            settings->iterations,
-           settings->smooth_scale, sprite_px[0], sprite_px[1], sprite_px[2]);
+           settings->smooth_scale, sprite_px[0], sprite_px[1], sprite_px[2],
+           splat == FC_SPLAT_COMPUTE ? "compute" : "fragment");
     printf("| pass | ms | fragments | fragments / pixel | fragments / particle |\n|---|---|---|---|---|\n");
     float total = 0.0f;
     const float pixels = (float)cam->width * (float)cam->height;
@@ -127,7 +129,7 @@ fc_code bench_profile_config(fc_pipeline *pipe, int frames, const fc_camera *cam
     }
     fc_pipeline_set_profiling(pipe, 0);
     if (rc == FC_OK)
-        print_table(all, count, frames, particles, cam, settings, sprite_px);
+        print_table(all, count, frames, particles, cam, settings, sprite_px, fc_pipeline_last_splat(pipe));
     for (int i = 0; i < count; i++) {
         free(all[i].ms);
         free(all[i].fragments);

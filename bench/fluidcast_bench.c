@@ -17,6 +17,7 @@
 #include "fc_frame.h"
 #include "image_encoder.h"
 #include "pipeline.h"
+#include "pipeline_internal.h"
 #include "scene.h"
 
 static double now_ms(void)
@@ -205,6 +206,8 @@ static fc_code run_benchmark(const bench_options *o, fc_error *err)
                fc_gl_context_version(ctx), fc_gl_context_egl_vendor(ctx));
         rc = fc_pipeline_create(&(fc_pipeline_config){.shader_dir = o->shader_dir}, &pipe, err);
     }
+    if (rc == FC_OK)
+        fc_pipeline_force_splat(pipe, o->splat);
     if (rc == FC_OK)
         print_header();
     for (int pi = 0; rc == FC_OK && pi < o->n_particles; pi++)

@@ -8,7 +8,7 @@
 // computed here instead of looked up: a hash of (lattice cell, id) gives the
 // lattice gradients.
 
-bool cast_sphere_ray(vec3 centre, out float depth, out float chord);
+bool cast_sphere_ray(vec2 pixel, vec3 centre, out float depth, out float chord);
 uint particle_id();
 float particle_amplitude();
 
@@ -62,7 +62,7 @@ float gradient_noise(vec2 p, uint seed)
 void main()
 {
     float depth, chord;
-    if (!cast_sphere_ray(sphere_centre, depth, chord))
+    if (!cast_sphere_ray(gl_FragCoord.xy, sphere_centre, depth, chord))
         discard;
     float surface = texelFetch(surface_depth, ivec2(gl_FragCoord.xy), 0).r;
     if (surface <= 0.0)

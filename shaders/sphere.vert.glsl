@@ -1,6 +1,6 @@
 #version 450 core
 // Particles as sprites, and the fragment shaders ray-cast the sphere inside
-// each one (sphere_ray.frag.glsl), so depth and silhouette are the sphere's
+// each one (sphere_ray.glsl), so depth and silhouette are the sphere's
 // own. Every draw comes in two parts over the same particles
 // (sphere_sprites.c), and each particle is drawn by exactly one:
 //  - points: a point sprite covering the projected sphere. Cheapest on a
@@ -27,29 +27,13 @@ layout(location = 9) uniform int first_particle;    // quads: draw slot of the f
 layout(location = 0) flat out vec3 sphere_centre;   // view space
 layout(location = 1) flat out int particle_slot;    // draw slot, for particle_attributes.frag.glsl
 
-// Where a quad corner may lie at most, in NDC: well outside the image, so an
-// unbounded silhouette still covers it after clipping, yet finite.
-const float FAR_OUTSIDE = 4.0;
 // A quarter pixel of margin on each side keeps rounding from losing a pixel
 // centre that lies on the silhouette's bounding box.
 const float MARGIN_PIXELS = 0.25;
 // A clip-space position every primitive is culled at.
 const vec4 CULLED = vec4(2.0, 2.0, 2.0, 1.0);
 
-// NDC interval a sphere covers along one screen axis, from the two lines
-// through the eye tangent to its circle in the (lateral, depth) plane. The
-// projected silhouette is an ellipse pushed away from the projected centre, so
-// the simpler r/depth estimate would cut spheres off towards the image edges.
-vec2 projected_interval(float lateral, float depth, float focal)
-{
-    float tan_centre = lateral / depth;
-    float tan_half = radius / sqrt(max(lateral * lateral + depth * depth - radius * radius, 1e-30));
-    // A tangent beyond 90 degrees means an unbounded extent on that side: the
-    // tiny denominator sends it far outside, where the clamp holds it.
-    float lo = (tan_centre - tan_half) / max(1.0 + tan_centre * tan_half, 1e-6);
-    float hi = (tan_centre + tan_half) / max(1.0 - tan_centre * tan_half, 1e-6);
-    return clamp(focal * vec2(lo, hi), -FAR_OUTSIDE, FAR_OUTSIDE);
-}
+vec2 projected_interval(float lateral, float depth, float focal);   // sphere_bounds.glsl
 
 void main()
 {

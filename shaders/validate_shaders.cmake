@@ -1,7 +1,7 @@
 # Script mode (cmake -P): compiles every *.glsl file of SHADER_DIR with
 # VALIDATOR (glslangValidator; the stage comes from the .vert.glsl/.frag.glsl/
-# .comp.glsl suffix; a library without one is compiled as a fragment and as a
-# compute shader, the stages that link it) and fails when any of them has an error.
+# .comp.glsl suffix; a library without one is compiled for each of the three
+# stages, which all link libraries) and fails when any of them has an error.
 file(GLOB SHADERS ${SHADER_DIR}/*.glsl)
 list(SORT SHADERS)
 list(LENGTH SHADERS count)
@@ -20,6 +20,7 @@ foreach(path IN LISTS SHADERS)
   if(path MATCHES "\\.(vert|frag|comp)\\.glsl$")
     validate(${path})
   else()
+    validate(${path} -S vert)
     validate(${path} -S frag)
     validate(${path} -S comp)
   endif()

@@ -7,9 +7,21 @@
 #include "gl_util.h"
 #include "shader_program.h"
 
-/* Uniform location fixed by layout(location) in thickness_chord.frag.glsl. */
+/* Uniform location fixed by layout(location) in thickness_chord.glsl. */
 enum { LOC_FLOOR_PLANE = 10 };
 enum { UNIT_SPLAT_DEPTH = 0 };
+
+/* The compute splat wins while a typical sprite (at the depth of the
+ * particles' centre) is at most this many pixels across: measured crossover
+ * on llvmpipe, bench/RESULTS.md third round. */
+#define COMPUTE_SPLAT_MAX_TYPICAL_PX 11.0f
+/* The compute splat is used only while no sprite can be wider than this.
+ * One invocation walks a whole sprite, and llvmpipe ends every invocation's
+ * loops after 65535 iterations in all (gallivm's loop limiter): a sprite of
+ * 256x256 pixels would be cut off. 160 stays far below that (25,600 pixels),
+ * and spares the other invocations of a SIMD group the wait for one large
+ * sprite. */
+#define COMPUTE_SPLAT_MAX_LARGEST_PX 160.0f
 
 fc_code fc_depth_pass_create(const char *shader_dir, fc_depth_pass *pass, fc_error *err)
 {
@@ -17,21 +29,26 @@ fc_code fc_depth_pass_create(const char *shader_dir, fc_depth_pass *pass, fc_err
         .raw = fc_render_target_init(GL_R32F, false, false),
         .thickness = fc_render_target_init(GL_R32F, false, true),
         .target = fc_render_target_init(GL_R32F, false, false),
+        .method = FC_SPLAT_AUTO,
+        .last_used = FC_SPLAT_FRAGMENT,
     };
     glCreateVertexArrays(1, &pass->empty_vertex_array);
     glCreateFramebuffers(1, &pass->splat_framebuffer);
     const char *resolve[] = {"fullscreen.vert.glsl", "depth_resolve.frag.glsl"};
-    fc_code code = fc_sphere_sprites_create_with(shader_dir, "thickness_chord.frag.glsl", "surface_splat.frag.glsl",
+    fc_code code = fc_sphere_sprites_create_with(shader_dir, "thickness_chord.glsl", "surface_splat.frag.glsl",
                                                  &pass->sprites, err);
     if (code == FC_OK)
         code = fc_program_build(shader_dir, resolve, sizeof resolve / sizeof resolve[0], &pass->resolve_program,
                                 err);
+    if (code == FC_OK)
+        code = fc_compute_splat_create(shader_dir, &pass->compute, err);
     return code;
 }
 
 void fc_depth_pass_destroy(fc_depth_pass *pass)
 {
     fc_sphere_sprites_destroy(&pass->sprites);
+    fc_compute_splat_destroy(&pass->compute);
     glDeleteProgram(pass->resolve_program);
     glDeleteVertexArrays(1, &pass->empty_vertex_array);
     glDeleteFramebuffers(1, &pass->splat_framebuffer);
@@ -88,16 +105,58 @@ static void splat(fc_depth_pass *pass, const fc_particle_buffer *particles, cons
     glDisable(GL_BLEND);
 }
 
-fc_code fc_depth_pass_run(fc_depth_pass *pass, const fc_particle_buffer *particles, const fc_view *view,
-                          float radius, const float *floor_plane, fc_error *err)
+/* Pixels across of a sphere of `radius` whose centre is `depth` in front of
+ * the camera: 2 r f / depth in NDC, half the image height per NDC unit. */
+static float sprite_px(const fc_view *view, float radius, float depth)
 {
-    fc_code code = resize(pass, view, err);
-    if (code != FC_OK)
-        return code;
+    return radius * view->fy * (float)view->height / depth;
+}
+
+/* The widest any sphere inside the bounds can be on screen, in pixels: at
+ * the nearest depth they allow, and stretched by 1 + tan² of the angle off
+ * the view axis, up to the image's corners, as a sphere's silhouette is
+ * towards the edges. */
+static float largest_sprite_px(const fc_view *view, float radius)
+{
+    float stretch = 1.0f + 1.0f / (view->fx * view->fx) + 1.0f / (view->fy * view->fy);
+    /* The near plane hugs the nearest corner of the bounds grown by the radius (view.h). */
+    return stretch * sprite_px(view, radius, view->near_plane + radius);
+}
+
+fc_splat_method fc_depth_pass_choose(const fc_view *view, const float lo[3], const float hi[3], float radius,
+                                     fc_splat_method wanted)
+{
+    if (wanted == FC_SPLAT_FRAGMENT || largest_sprite_px(view, radius) > COMPUTE_SPLAT_MAX_LARGEST_PX)
+        return FC_SPLAT_FRAGMENT;
+    if (wanted == FC_SPLAT_COMPUTE)
+        return FC_SPLAT_COMPUTE;
+    const float *m = view->view;   /* column-major: view z of a point is row 2 */
+    float centre_depth = -(m[2] * 0.5f * (lo[0] + hi[0]) + m[6] * 0.5f * (lo[1] + hi[1]) +
+                           m[10] * 0.5f * (lo[2] + hi[2]) + m[14]);
+    bool small = centre_depth > 0.0f && sprite_px(view, radius, centre_depth) <= COMPUTE_SPLAT_MAX_TYPICAL_PX;
+    return small ? FC_SPLAT_COMPUTE : FC_SPLAT_FRAGMENT;
+}
+
+static fc_code fragment_splat(fc_depth_pass *pass, const fc_particle_buffer *particles, const fc_view *view,
+                              float radius, const float *floor_plane, fc_error *err)
+{
     splat(pass, particles, view, radius, floor_plane);
     fc_render_target_bind(&pass->target);
     glUseProgram(pass->resolve_program);
     glBindTextureUnit(UNIT_SPLAT_DEPTH, pass->raw.color);
     fc_gl_draw_fullscreen(pass->empty_vertex_array);
     return fc_gl_check("depth pass", err);
+}
+
+fc_code fc_depth_pass_run(fc_depth_pass *pass, const fc_particle_buffer *particles, const fc_view *view,
+                          float radius, const float *floor_plane, fc_error *err)
+{
+    fc_code code = resize(pass, view, err);
+    if (code != FC_OK)
+        return code;
+    pass->last_used = fc_depth_pass_choose(view, particles->lo, particles->hi, radius, pass->method);
+    if (pass->last_used == FC_SPLAT_COMPUTE)
+        return fc_compute_splat_run(&pass->compute, particles, view, radius, floor_plane, pass->target.color,
+                                    pass->thickness.color, err);
+    return fragment_splat(pass, particles, view, radius, floor_plane, err);
 }

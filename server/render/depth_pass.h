@@ -1,12 +1,20 @@
 /* depth_pass.h — sphere depth splatting (van der Laan et al. 2009, §3.1):
  * linear view depth of the nearest sphere surface per pixel, 0 = no fluid;
  * the same splat also sums the spheres' full-resolution thickness (§3.3),
- * so the spheres are rasterised once for both (surface_splat.frag.glsl). */
+ * so the spheres are rasterised once for both (surface_splat.frag.glsl), or
+ * walked once by the compute splat (compute_splat.h) where sprites are small. */
 #ifndef FC_DEPTH_PASS_H
 #define FC_DEPTH_PASS_H
 
+#include "compute_splat.h"
 #include "render_target.h"
 #include "sphere_sprites.h"
+
+/* How the spheres are splatted: sprites through the rasterizer, or the
+ * compute splat (compute_splat.h); AUTO chooses per render by the projected
+ * sprite size (fc_depth_pass_choose). Tests and the benchmark force one;
+ * requests cannot. */
+typedef enum fc_splat_method { FC_SPLAT_AUTO, FC_SPLAT_FRAGMENT, FC_SPLAT_COMPUTE } fc_splat_method;
 
 typedef struct fc_depth_pass {
     fc_sphere_sprites sprites;
@@ -16,6 +24,9 @@ typedef struct fc_depth_pass {
     fc_render_target raw;         /* R32F nearest depth, +inf where no sphere is */
     fc_render_target thickness;   /* R32F thickness, unblurred, bilinear */
     fc_render_target target;      /* R32F linear depth, 0 = no fluid */
+    fc_compute_splat compute;
+    fc_splat_method method;       /* AUTO unless forced */
+    fc_splat_method last_used;    /* FRAGMENT or COMPUTE: what the last run chose */
 } fc_depth_pass;
 
 fc_code fc_depth_pass_create(const char *shader_dir, fc_depth_pass *pass, fc_error *err);
@@ -24,6 +35,13 @@ void fc_depth_pass_destroy(fc_depth_pass *pass);
 /* Renders the particles' depth into pass->target and, when `floor_plane`
  * is not NULL, their thickness above that view-space plane (see
  * fc_environment.floor_plane) into pass->thickness, both sized to the view. */
+/* The splat a render of spheres of `radius` with the particles inside
+ * [lo, hi] gets when `wanted`: FRAGMENT when wanted; COMPUTE when wanted or,
+ * for AUTO, when the sprites are small; but FRAGMENT whenever a sprite may
+ * be too large for the compute splat (a sphere close to the camera). */
+fc_splat_method fc_depth_pass_choose(const fc_view *view, const float lo[3], const float hi[3], float radius,
+                                     fc_splat_method wanted);
+
 fc_code fc_depth_pass_run(fc_depth_pass *pass, const fc_particle_buffer *particles, const fc_view *view,
                           float radius, const float *floor_plane, fc_error *err);
 

@@ -449,6 +449,16 @@ fc_code fc_pipeline_render(fc_pipeline *p, const fc_camera *camera, const fc_set
     return fc_pipeline_render_scene(p, camera, settings, NULL, aov, want_u8, out, stage_ms, err);
 }
 
+void fc_pipeline_force_splat(fc_pipeline *p, fc_splat_method method)
+{
+    p->depth.method = method;
+}
+
+fc_splat_method fc_pipeline_last_splat(const fc_pipeline *p)
+{
+    return p->depth.last_used;
+}
+
 fc_particle_attributes *fc_pipeline_particle_attributes(fc_pipeline *p)
 {
     return &p->attributes;

@@ -3,10 +3,18 @@
 #ifndef FC_PIPELINE_INTERNAL_H
 #define FC_PIPELINE_INTERNAL_H
 
+#include "depth_pass.h"
 #include "particle_attributes.h"
 #include "pipeline.h"
 
 /* The per-particle records of the uploaded frame. */
 fc_particle_attributes *fc_pipeline_particle_attributes(fc_pipeline *p);
+
+/* Forces the surface splat of every render from now on (FC_SPLAT_AUTO
+ * restores the choice by sprite size); for tests and the benchmark. */
+void fc_pipeline_force_splat(fc_pipeline *p, fc_splat_method method);
+
+/* The splat the last render used: FC_SPLAT_FRAGMENT or FC_SPLAT_COMPUTE. */
+fc_splat_method fc_pipeline_last_splat(const fc_pipeline *p);
 
 #endif

@@ -111,6 +111,17 @@ static fc_code link(GLuint program, const char *const *files, size_t count, fc_e
     return fc_error_set(err, FC_ERR_GL, "linking %s: %s", names, log);
 }
 
+/* The stage files[i] is compiled for: its own, or for a library without a
+ * stage suffix that of the next file with one, so one library can serve the
+ * vertex and the fragment stage of a program. */
+static GLenum library_stage(const char *const *files, size_t count, size_t i)
+{
+    GLenum stage = 0;
+    while (i < count && !(stage = fc_shader_stage(files[i])))
+        i++;
+    return stage;
+}
+
 fc_code fc_program_build(const char *shader_dir, const char *const *files, size_t count, GLuint *program,
                          fc_error *err)
 {
@@ -125,8 +136,7 @@ fc_code fc_program_build(const char *shader_dir, const char *const *files, size_
     GLuint p = glCreateProgram();
     fc_code code = FC_OK;
     for (size_t i = 0; i < count && code == FC_OK; i++) {
-        GLenum stage = fc_shader_stage(files[i]);
-        code = compile(shader_dir, files[i], stage ? stage : last_stage, &shaders[i], err);
+        code = compile(shader_dir, files[i], library_stage(files, count, i), &shaders[i], err);
         if (code == FC_OK)
             glAttachShader(p, shaders[i]);
     }

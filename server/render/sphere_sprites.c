@@ -34,14 +34,14 @@ static fc_code build(const char *shader_dir, const char *const *files, size_t co
 fc_code fc_sphere_sprites_create(const char *shader_dir, const char *fragment_file, fc_sphere_sprites *s,
                                  fc_error *err)
 {
-    const char *files[] = {"sphere.vert.glsl", "sphere_ray.frag.glsl", fragment_file};
+    const char *files[] = {"sphere_bounds.glsl", "sphere.vert.glsl", "sphere_ray.glsl", fragment_file};
     return build(shader_dir, files, sizeof files / sizeof files[0], s, err);
 }
 
 fc_code fc_sphere_sprites_create_with(const char *shader_dir, const char *helper_file, const char *fragment_file,
                                       fc_sphere_sprites *s, fc_error *err)
 {
-    const char *files[] = {"sphere.vert.glsl", "sphere_ray.frag.glsl", helper_file, fragment_file};
+    const char *files[] = {"sphere_bounds.glsl", "sphere.vert.glsl", "sphere_ray.glsl", helper_file, fragment_file};
     return build(shader_dir, files, sizeof files / sizeof files[0], s, err);
 }
 

@@ -1,6 +1,7 @@
 /* sphere_sprites.h — particles drawn as ray-cast sphere sprites: a point
  * sprite where that is exact, else an instanced quad bounding the projected
- * sphere (sphere.vert.glsl + sphere_ray.frag.glsl + a pass's fragment shader).
+ * sphere (sphere_bounds.glsl + sphere.vert.glsl + sphere_ray.glsl + a pass's
+ * fragment shader).
  * The passes differ only in that shader and GL state. */
 #ifndef FC_SPHERE_SPRITES_H
 #define FC_SPHERE_SPRITES_H

@@ -5,13 +5,13 @@
 
 #include "gl_util.h"
 
-/* Uniform location fixed by layout(location) in thickness_chord.frag.glsl. */
+/* Uniform location fixed by layout(location) in thickness_chord.glsl. */
 enum { LOC_FLOOR_PLANE = 10 };
 
 fc_code fc_thickness_pass_create(const char *shader_dir, fc_thickness_pass *pass, fc_error *err)
 {
     pass->splat = fc_render_target_init(GL_R32F, false, true);
-    fc_code code = fc_sphere_sprites_create_with(shader_dir, "thickness_chord.frag.glsl", "thickness.frag.glsl",
+    fc_code code = fc_sphere_sprites_create_with(shader_dir, "thickness_chord.glsl", "thickness.frag.glsl",
                                                  &pass->sprites, err);
     if (code == FC_OK)
         code = fc_thickness_filter_create(shader_dir, &pass->filter, err);

@@ -4,7 +4,9 @@
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
+#include <string.h>
 
+#include "pipeline_internal.h"
 #include "readback.h"
 
 static const double PI = 3.14159265358979323846;
@@ -24,6 +26,29 @@ bool fixture_open(render_fixture *f)
         return false;
     }
     return true;
+}
+
+bool fixture_open_splat(render_fixture *f, int argc, char **argv)
+{
+    fc_splat_method method = FC_SPLAT_AUTO;
+    if (argc > 1 && strcmp(argv[1], "fragment") == 0)
+        method = FC_SPLAT_FRAGMENT;
+    else if (argc > 1 && strcmp(argv[1], "compute") == 0)
+        method = FC_SPLAT_COMPUTE;
+    else if (argc > 1) {
+        fprintf(stderr, "usage: %s [fragment|compute]\n", argv[0]);
+        return false;
+    }
+    if (!fixture_open(f))
+        return false;
+    fc_pipeline_force_splat(f->pipeline, method);
+    f->splat = method;
+    return true;
+}
+
+bool fixture_splat_as_forced(const render_fixture *f)
+{
+    return f->splat == FC_SPLAT_AUTO || fc_pipeline_last_splat(f->pipeline) == f->splat;
 }
 
 void fixture_close(render_fixture *f)

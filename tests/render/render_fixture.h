@@ -10,18 +10,29 @@
 #include "egl_context.h"
 #include "fluidcast_types.h"
 #include "image.h"
+#include "depth_pass.h"
 #include "pipeline.h"
 #include "render_target.h"
 
 typedef struct render_fixture {
     fc_gl_context *gl;
     fc_pipeline *pipeline;
+    fc_splat_method splat;   /* forced on the pipeline; FC_SPLAT_AUTO: not forced */
 } render_fixture;
 
 /* A software (llvmpipe) context and a pipeline with built-in shaders; false,
  * after printing why, when either fails. */
 bool fixture_open(render_fixture *f);
 void fixture_close(render_fixture *f);
+
+/* fixture_open, then the surface splat the test's argument names forced on
+ * the pipeline: "fragment" or "compute" (depth_pass.h); none leaves the
+ * choice by sprite size. False, after printing why, for another argument. */
+bool fixture_open_splat(render_fixture *f, int argc, char **argv);
+
+/* Whether the last render splatted the way the fixture forced (a test that
+ * should cover the compute splat must not silently test the other). */
+bool fixture_splat_as_forced(const render_fixture *f);
 
 /* Eye at (0, 0, distance) looking at the origin, up +y, 40 degree vertical fov. */
 fc_camera axis_camera(double distance, uint32_t width, uint32_t height);

@@ -2,9 +2,11 @@
  * stacked spheres add up to k diameters at full and half resolution, and to
  * the analytic value at the sampled texels at ¼; the Gaussian blur conserves the total and
  * lowers the peak; the floor cuts the chords off exactly where the analytic
- * ray leaves the half-space above it. */
+ * ray leaves the half-space above it, in the thickness pass and in both
+ * surface splats. Run with "fragment" and "compute" (depth_pass.h). */
 #include <math.h>
 
+#include "depth_pass.h"
 #include "particle_buffer.h"
 #include "shading_fixture.h"
 #include "test_util.h"
@@ -125,15 +127,39 @@ static double analytic_clipped_chord(const fc_camera *cam, const double centre[3
     return t1 > t0 ? (t1 - t0) * sqrt(dd) : 0.0;
 }
 
-/* The pass itself, with a floor through the lower part of the sphere (the
- * built-in floor always lies below the particles). */
-static void test_floor_cuts_chords(void)
+/* Every pixel of `result` (one sphere of RADIUS at the origin) against the
+ * analytic chord above `view_plane`; the plane must cut off a good part. */
+static void check_clipped_chords(const fc_render_target *result, const fc_camera *cam, const double view_plane[4])
+{
+    fc_image img = {0};
+    fc_error err = {0};
+    CHECK_CODE(read_target(result, 1, &img, &err), FC_OK);
+    const double centre[3] = {0.0, 0.0, 0.0};
+    int wrong = 0, clipped = 0;
+    for (uint32_t row = 0; row < SIZE; row++)
+        for (uint32_t x = 0; x < SIZE; x++) {
+            double full = analytic_clipped_chord(cam, centre, RADIUS, (const double[4]){0, 0, 0, 1}, x, row);
+            double expected = analytic_clipped_chord(cam, centre, RADIUS, view_plane, x, row);
+            clipped += expected < full - 0.05;
+            wrong += fabs(pixel_f32(&img, x, row) - expected) > 2e-3;
+        }
+    CHECK_MSG(clipped > 100, "only %d pixels lose thickness to the floor", clipped);
+    CHECK_MSG(wrong == 0, "%d pixels off the analytic clipped chord", wrong);
+    fc_image_free(&img);
+}
+
+/* The passes themselves, with a floor through the lower part of the sphere
+ * (the built-in floor always lies below the particles): the thickness pass,
+ * and the surface splat of the depth pass with `splat`. */
+static void test_floor_cuts_chords(fc_splat_method splat)
 {
     fc_particle_buffer particles;
     fc_thickness_pass pass;
+    fc_depth_pass depth;
     fc_error err = {0};
     CHECK_CODE(fc_particle_buffer_create(&particles, &err), FC_OK);
     CHECK_CODE(fc_thickness_pass_create(NULL, &pass, &err), FC_OK);
+    CHECK_CODE(fc_depth_pass_create(NULL, &depth, &err), FC_OK);
     const float origin[3] = {0.0f, 0.0f, 0.0f};
     fc_frame frame = {.count = 1, .positions = (float *)origin};
     CHECK_CODE(fc_particle_buffer_upload(&particles, &frame, &err), FC_OK);
@@ -146,33 +172,26 @@ static void test_floor_cuts_chords(void)
     const double view_plane[4] = {world_normal[0], world_normal[1], world_normal[2], offset + 0.3 * DISTANCE};
     fc_thickness_params params = {.radius = (float)RADIUS, .scale = 1.0f, .floor_plane = plane};
     const fc_render_target *result = NULL;
-    fc_image img = {0};
     CHECK_CODE(fc_thickness_pass_run(&pass, &particles, &view, &params, &result, &err), FC_OK);
-    CHECK_CODE(read_target(result, 1, &img, &err), FC_OK);
-    const double centre[3] = {0.0, 0.0, 0.0};
-    int wrong = 0, clipped = 0;
-    for (uint32_t row = 0; row < SIZE; row++)
-        for (uint32_t x = 0; x < SIZE; x++) {
-            double full = analytic_clipped_chord(&cam, centre, RADIUS, (const double[4]){0, 0, 0, 1}, x, row);
-            double expected = analytic_clipped_chord(&cam, centre, RADIUS, view_plane, x, row);
-            clipped += expected < full - 0.05;
-            wrong += fabs(pixel_f32(&img, x, row) - expected) > 2e-3;
-        }
-    CHECK_MSG(clipped > 100, "only %d pixels lose thickness to the floor", clipped);
-    CHECK_MSG(wrong == 0, "%d pixels off the analytic clipped chord", wrong);
-    fc_image_free(&img);
+    check_clipped_chords(result, &cam, view_plane);
+    depth.method = splat;
+    CHECK_CODE(fc_depth_pass_run(&depth, &particles, &view, (float)RADIUS, plane, &err), FC_OK);
+    CHECK(splat == FC_SPLAT_AUTO || depth.last_used == splat);
+    check_clipped_chords(&depth.thickness, &cam, view_plane);
+    fc_depth_pass_destroy(&depth);
     fc_thickness_pass_destroy(&pass);
     fc_particle_buffer_destroy(&particles);
 }
 
-int main(void)
+int main(int argc, char **argv)
 {
     render_fixture f;
-    if (!fixture_open(&f))
+    if (!fixture_open_splat(&f, argc, argv))
         return 1;
     test_stacks_at_each_scale(&f);
     test_blur_conserves_thickness(&f);
-    test_floor_cuts_chords();
+    CHECK(fixture_splat_as_forced(&f));
+    test_floor_cuts_chords(f.splat);
     fixture_close(&f);
     return test_result();
 }

@@ -2,12 +2,17 @@
  * disc size and centre, linear depth at and off the centre, background 0,
  * exact silhouettes off axis, the nearest sphere winning, a sphere whose
  * centre lies outside the image, and a close-up larger than point sprites
- * can be (GL_POINT_SIZE_RANGE ends at 255 pixels on llvmpipe). */
+ * can be (GL_POINT_SIZE_RANGE ends at 255 pixels on llvmpipe). Run with
+ * "fragment" and "compute", once per surface splat (depth_pass.h); the
+ * choice between them by sprite size is tested here too. */
 #include <math.h>
 #include <stdio.h>
 
+#include "depth_pass.h"
+#include "pipeline_internal.h"
 #include "render_fixture.h"
 #include "test_util.h"
+#include "view.h"
 
 static const double PI = 3.14159265358979323846;
 
@@ -177,21 +182,57 @@ static void test_close_up_larger_than_point_sprites(render_fixture *f)
     double fy = 1.0 / tan(cam.fov_y_deg * PI / 360.0);
     double diameter_px = size * fy * radius / sqrt(1.5 * 1.5 - radius * radius);
     CHECK(diameter_px > 300.0 && diameter_px < size);
+    /* Too large for the compute splat: the fragment splat draws it even where the compute splat is forced. */
+    CHECK(fc_pipeline_last_splat(f->pipeline) == FC_SPLAT_FRAGMENT);
     CHECK_NEAR(sqrt(covered_pixels(&depth) / PI), 0.5 * diameter_px, 0.5);
     check_against_spheres(&depth, &cam, &s, 1, radius);
     fc_image_free(&depth);
 }
 
-int main(void)
+/* The automatic choice: the compute splat for small sprites only, never for
+ * a view from inside the particles or with a sphere near the camera, where
+ * forcing the compute splat gets the fragment splat too. */
+static void test_choice_by_sprite_size(void)
+{
+    const float lo[3] = {-0.5f, -0.5f, -0.5f}, hi[3] = {0.5f, 0.5f, 0.5f};
+    const float radius = 0.01f;
+    fc_view view;
+    /* 0.01 at 5 units, 40 degrees over 360 rows: 2 r f H / 2 d = 0.01 · 2.747 · 360 / 5 = 2.0 px. */
+    fc_camera cam = axis_camera(5.0, 640, 360);
+    fc_view_from_camera(&cam, lo, hi, radius, &view);
+    CHECK(fc_depth_pass_choose(&view, lo, hi, radius, FC_SPLAT_AUTO) == FC_SPLAT_COMPUTE);
+    CHECK(fc_depth_pass_choose(&view, lo, hi, radius, FC_SPLAT_FRAGMENT) == FC_SPLAT_FRAGMENT);
+    /* 20 times the radius: 40 px across. */
+    fc_view_from_camera(&cam, lo, hi, 20.0f * radius, &view);
+    CHECK(fc_depth_pass_choose(&view, lo, hi, 20.0f * radius, FC_SPLAT_AUTO) == FC_SPLAT_FRAGMENT);
+    CHECK(fc_depth_pass_choose(&view, lo, hi, 20.0f * radius, FC_SPLAT_COMPUTE) == FC_SPLAT_COMPUTE);
+    /* Half the radius, seen from 0.52: 9.5 px at the centre's depth, but the
+     * nearest particles may lie 0.02 from the eye, 250 px across. */
+    cam = axis_camera(0.52, 640, 360);
+    fc_view_from_camera(&cam, lo, hi, 0.5f * radius, &view);
+    CHECK(fc_depth_pass_choose(&view, lo, hi, 0.5f * radius, FC_SPLAT_AUTO) == FC_SPLAT_FRAGMENT);
+    CHECK(fc_depth_pass_choose(&view, lo, hi, 0.5f * radius, FC_SPLAT_COMPUTE) == FC_SPLAT_FRAGMENT);
+    cam = axis_camera(0.9, 640, 360);
+    fc_view_from_camera(&cam, lo, hi, 0.5f * radius, &view);
+    CHECK(fc_depth_pass_choose(&view, lo, hi, 0.5f * radius, FC_SPLAT_AUTO) == FC_SPLAT_COMPUTE);
+    /* The eye inside the particles. */
+    cam = axis_camera(0.3, 640, 360);
+    fc_view_from_camera(&cam, lo, hi, radius, &view);
+    CHECK(fc_depth_pass_choose(&view, lo, hi, radius, FC_SPLAT_AUTO) == FC_SPLAT_FRAGMENT);
+}
+
+int main(int argc, char **argv)
 {
     render_fixture f;
-    if (!fixture_open(&f))
+    if (!fixture_open_splat(&f, argc, argv))
         return 1;
     test_on_axis_sphere(&f);
     test_off_axis_sphere(&f);
     test_nearest_sphere_wins(&f);
     test_centre_outside_image(&f);
+    CHECK(fixture_splat_as_forced(&f));
     test_close_up_larger_than_point_sprites(&f);
+    test_choice_by_sprite_size();
     fixture_close(&f);
     return test_result();
 }

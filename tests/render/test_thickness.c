@@ -1,6 +1,8 @@
 /* test_thickness.c — the thickness pass: one sphere on the view axis is 2r
  * thick at its centre and follows the analytic chord elsewhere; k spheres
- * stacked along the axis are k times as thick. */
+ * stacked along the axis are k times as thick, and so are k spheres in one
+ * place, up to thousands (the compute splat sums in fixed point). Run with
+ * "fragment" and "compute", once per surface splat (depth_pass.h). */
 #include <math.h>
 
 #include "render_fixture.h"
@@ -52,13 +54,28 @@ static void test_stacks_add_up(render_fixture *f)
     fc_image_free(&stack);
 }
 
-int main(void)
+static void test_coincident_spheres_add_up(render_fixture *f)
+{
+    enum { COUNT = 5000 };
+    static float positions[3 * COUNT];   /* all at the origin */
+    fc_camera cam = axis_camera(6.0, SIZE, SIZE);
+    fc_settings settings = test_settings((float)RADIUS, FC_SMOOTHING_NONE, 0);
+    fc_image img = {0};
+    CHECK_CODE(render_positions(f, positions, COUNT, &cam, &settings, FC_AOV_THICKNESS, 0, &img), FC_OK);
+    CHECK_NEAR(pixel_f32(&img, 32, 32), COUNT * 2.0 * RADIUS, 1e-5 * COUNT * 2.0 * RADIUS);
+    CHECK(pixel_f32(&img, 0, 0) == 0.0f);
+    fc_image_free(&img);
+}
+
+int main(int argc, char **argv)
 {
     render_fixture f;
-    if (!fixture_open(&f))
+    if (!fixture_open_splat(&f, argc, argv))
         return 1;
     test_single_sphere(&f);
     test_stacks_add_up(&f);
+    test_coincident_spheres_add_up(&f);
+    CHECK(fixture_splat_as_forced(&f));
     fixture_close(&f);
     return test_result();
 }

@@ -2,20 +2,22 @@
 // The part of a sphere's chord that counts as thickness (van der Laan et al.
 // 2009, §3.3, eq. 9). The paper depth-tests against the scene; the only
 // opaque scene geometry is the floor, a plane, so the chord is clipped
-// against it exactly instead: fluid below the floor does not count. Linked
-// into the thickness and surface splat programs.
+// against it exactly instead: fluid below the floor does not count. A library
+// without a stage, linked into the thickness splat and both surface splats
+// (fragment and compute) after sphere_ray.glsl.
 
-layout(location = 1) uniform vec4 projection;    // P[0][0], P[1][1], P[2][2], P[3][2]
-layout(location = 2) uniform vec2 viewport;
+vec3 pixel_ray(vec2 pixel);
+
 layout(location = 10) uniform vec4 floor_plane;  // view space: dot(xyz, x) + w > 0 above; (0,0,0,1) = none
 
-// Length (world units) of this pixel's view ray inside the sphere it meets at
-// linear `depth` with a chord of `chord`, above the floor; 0 when none is.
-float thickness_above_floor(float depth, float chord)
+// Length (world units) of the view ray through `pixel` inside the sphere it
+// meets at linear `depth` with a chord of `chord`, above the floor; 0 when
+// none is.
+float thickness_above_floor(vec2 pixel, float depth, float chord)
 {
     // Along the ray x(t) = t·dir (t is linear depth) the height above the
     // floor is rate·t + w: the part with positive height counts.
-    vec3 dir = vec3((gl_FragCoord.xy / viewport * 2.0 - 1.0) / projection.xy, -1.0);
+    vec3 dir = pixel_ray(pixel);
     float len = length(dir);
     float near = depth, far = depth + chord / len;
     float rate = dot(floor_plane.xyz, dir);

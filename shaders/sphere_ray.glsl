@@ -1,19 +1,26 @@
 #version 450 core
-// Ray-casts a particle's sphere at this fragment's pixel centre; linked into
-// the depth and thickness programs together with sphere.vert.glsl.
+// Ray-casts a particle's sphere at a pixel centre. A library without a stage:
+// linked into the fragment splats (with gl_FragCoord.xy) and into the compute
+// splat (surface_splat.comp.glsl, with the pixels it walks), so both splats
+// find the same sphere surface.
 
 layout(location = 1) uniform vec4 projection;   // P[0][0], P[1][1], P[2][2], P[3][2]
 layout(location = 2) uniform vec2 viewport;
 layout(location = 3) uniform float radius;
 
-// False when the view ray through this pixel misses the sphere. Otherwise
+// The view ray through `pixel` (window coordinates of a pixel centre, origin
+// at the lower left) with dir.z = -1, so the ray parameter is linear depth.
+vec3 pixel_ray(vec2 pixel)
+{
+    return vec3((pixel / viewport * 2.0 - 1.0) / projection.xy, -1.0);
+}
+
+// False when the view ray through `pixel` misses the sphere. Otherwise
 // `depth` is the linear view depth of the front hit and `chord` the length of
 // the ray inside the sphere (world units).
-bool cast_sphere_ray(vec3 centre, out float depth, out float chord)
+bool cast_sphere_ray(vec2 pixel, vec3 centre, out float depth, out float chord)
 {
-    vec2 ndc = gl_FragCoord.xy / viewport * 2.0 - 1.0;
-    // With dir.z = -1 the ray parameter is the linear depth itself.
-    vec3 dir = vec3(ndc / projection.xy, -1.0);
+    vec3 dir = pixel_ray(pixel);
     float t_closest = dot(dir, centre) / dot(dir, dir);
     // Measuring the miss distance from the closest point, rather than solving
     // the quadratic directly, avoids cancelling two large numbers when the

@@ -1,0 +1,145 @@
+/* compute_splat.c — depth and thickness splat by compute shader and image atomics. */
+#include "compute_splat.h"
+
+#include <math.h>
+
+#include "fc_error.h"
+#include "gl_util.h"
+#include "shader_program.h"
+
+/* Uniform locations fixed by layout(location) in surface_splat.comp.glsl and its libraries. */
+enum {
+    LOC_VIEW_MATRIX = 0,
+    LOC_PROJECTION = 1,
+    LOC_VIEWPORT = 2,
+    LOC_RADIUS = 3,
+    LOC_PARTICLE_COUNT = 6,
+    LOC_UNITS_PER_CHORD = 7,
+    LOC_FLOOR_PLANE = 10
+};
+/* ... and in surface_resolve.comp.glsl. */
+enum { LOC_CHORD_PER_UNIT = 0 };
+enum { IMAGE_NEAREST_DEPTH = 0, IMAGE_THICKNESS_SUM = 1, IMAGE_DEPTH_OUT = 2, IMAGE_THICKNESS_OUT = 3 };
+enum { BINDING_POSITIONS = 0 };
+/* local_size of the two shaders. */
+enum { SPLAT_GROUP = 64, RESOLVE_TILE = 8 };
+/* Workgroups along x per row of the dispatch: below the 65535 GL guarantees. */
+#define SPLAT_GROUPS_PER_ROW 32768u
+
+/* Thickness is summed in fixed point, as a share of the sphere's diameter
+ * (no chord is longer). The worst case for one pixel is every particle of
+ * the frame on it with its full diameter, so with U units per diameter the
+ * sum stays below 2^32 as long as count * U < 2^32: U is chosen per render
+ * from the count. Up to 256 particles U is 2^24 (the steps of a float's
+ * mantissa; more would not be resolved); 64k particles still get 65535 units
+ * (a rounding error of 1/131070 diameter per sphere), and the 16M particles a
+ * frame may hold get 255 (1/510 of a diameter, under 0.1% of the thickness of
+ * any pixel that many spheres cover). */
+#define MAX_UNITS_PER_CHORD 16777216.0
+
+static double units_per_chord(uint64_t particles)
+{
+    double fit = floor(4294967295.0 / (double)(particles ? particles : 1));
+    return fit < MAX_UNITS_PER_CHORD ? fit : MAX_UNITS_PER_CHORD;
+}
+
+fc_code fc_compute_splat_create(const char *shader_dir, fc_compute_splat *s, fc_error *err)
+{
+    *s = (fc_compute_splat){0};
+    const char *splat[] = {"sphere_bounds.glsl", "sphere_ray.glsl", "thickness_chord.glsl",
+                           "surface_splat.comp.glsl"};
+    const char *resolve[] = {"surface_resolve.comp.glsl"};
+    fc_code code = fc_program_build(shader_dir, splat, sizeof splat / sizeof splat[0], &s->splat_program, err);
+    if (code == FC_OK)
+        code = fc_program_build(shader_dir, resolve, 1, &s->resolve_program, err);
+    return code;
+}
+
+static void release_images(fc_compute_splat *s)
+{
+    glDeleteTextures(1, &s->nearest_depth);
+    glDeleteTextures(1, &s->thickness_sum);
+    s->nearest_depth = s->thickness_sum = 0;
+    s->width = s->height = 0;
+}
+
+void fc_compute_splat_destroy(fc_compute_splat *s)
+{
+    glDeleteProgram(s->splat_program);
+    glDeleteProgram(s->resolve_program);
+    release_images(s);
+    *s = (fc_compute_splat){0};
+}
+
+static fc_code resize(fc_compute_splat *s, uint32_t width, uint32_t height, fc_error *err)
+{
+    if (s->nearest_depth && s->width == width && s->height == height)
+        return FC_OK;
+    release_images(s);
+    fc_code code = fc_gl_texture_create(GL_R32UI, width, height, false, &s->nearest_depth, err);
+    if (code == FC_OK)
+        code = fc_gl_texture_create(GL_R32UI, width, height, false, &s->thickness_sum, err);
+    if (code != FC_OK) {
+        release_images(s);
+        return code;
+    }
+    s->width = width;
+    s->height = height;
+    return FC_OK;
+}
+
+static void splat(const fc_compute_splat *s, const fc_particle_buffer *particles, const fc_view *view,
+                  float radius, const float *floor_plane, double units)
+{
+    GLuint program = s->splat_program;
+    glProgramUniformMatrix4fv(program, LOC_VIEW_MATRIX, 1, GL_FALSE, view->view);
+    glProgramUniform4f(program, LOC_PROJECTION, view->fx, view->fy, view->p22, view->p32);
+    glProgramUniform2f(program, LOC_VIEWPORT, (float)view->width, (float)view->height);
+    glProgramUniform1f(program, LOC_RADIUS, radius);
+    glProgramUniform1ui(program, LOC_PARTICLE_COUNT, (GLuint)particles->count);
+    glProgramUniform1f(program, LOC_UNITS_PER_CHORD, floor_plane ? (float)units : 0.0f);
+    if (floor_plane)
+        glProgramUniform4fv(program, LOC_FLOOR_PLANE, 1, floor_plane);
+    glBindBufferRange(GL_SHADER_STORAGE_BUFFER, BINDING_POSITIONS, particles->buffer, 0,
+                      (GLsizeiptr)(particles->count * 3 * sizeof(float)));
+    glBindImageTexture(IMAGE_NEAREST_DEPTH, s->nearest_depth, 0, GL_FALSE, 0, GL_READ_WRITE, GL_R32UI);
+    glBindImageTexture(IMAGE_THICKNESS_SUM, s->thickness_sum, 0, GL_FALSE, 0, GL_READ_WRITE, GL_R32UI);
+    glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_UPDATE_BARRIER_BIT);
+    glUseProgram(program);
+    GLuint groups = (GLuint)((particles->count + SPLAT_GROUP - 1) / SPLAT_GROUP);
+    GLuint per_row = groups < SPLAT_GROUPS_PER_ROW ? groups : SPLAT_GROUPS_PER_ROW;
+    glDispatchCompute(per_row, (groups + per_row - 1) / per_row, 1);
+}
+
+static void resolve(const fc_compute_splat *s, float radius, bool with_thickness, double units, GLuint depth,
+                    GLuint thickness)
+{
+    glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
+    float chord_per_unit = with_thickness ? (float)(2.0 * radius / units) : 0.0f;
+    glProgramUniform1f(s->resolve_program, LOC_CHORD_PER_UNIT, chord_per_unit);
+    glBindImageTexture(IMAGE_DEPTH_OUT, depth, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_R32F);
+    glBindImageTexture(IMAGE_THICKNESS_OUT, thickness, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_R32F);
+    glUseProgram(s->resolve_program);
+    glDispatchCompute((s->width + RESOLVE_TILE - 1) / RESOLVE_TILE, (s->height + RESOLVE_TILE - 1) / RESOLVE_TILE,
+                      1);
+    /* Later passes sample the two images as textures, the readback reads them through a framebuffer. */
+    glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_FRAMEBUFFER_BARRIER_BIT);
+}
+
+fc_code fc_compute_splat_run(fc_compute_splat *s, const fc_particle_buffer *particles, const fc_view *view,
+                             float radius, const float *floor_plane, GLuint depth, GLuint thickness,
+                             fc_error *err)
+{
+    fc_code code = resize(s, view->width, view->height, err);
+    if (code != FC_OK)
+        return code;
+    const GLuint no_depth = 0x7f800000u, no_thickness = 0;   /* +inf bits, 0 */
+    glClearTexImage(s->nearest_depth, 0, GL_RED_INTEGER, GL_UNSIGNED_INT, &no_depth);
+    if (floor_plane)
+        glClearTexImage(s->thickness_sum, 0, GL_RED_INTEGER, GL_UNSIGNED_INT, &no_thickness);
+    double units = units_per_chord(particles->count);
+    if (particles->count > 0)
+        splat(s, particles, view, radius, floor_plane, units);
+    resolve(s, radius, floor_plane != NULL, units, depth, thickness);
+    return fc_gl_check("compute surface splat", err);
+}

@@ -1,0 +1,33 @@
+/* compute_splat.h — the surface splat of depth_pass.h without the
+ * rasterizer: one compute invocation per particle walks its sphere's pixels
+ * and merges them with image atomics (surface_splat.comp.glsl), then a
+ * resolve writes the same images the fragment splat does. Faster on llvmpipe
+ * where sprites are small (bench/RESULTS.md, third round). */
+#ifndef FC_COMPUTE_SPLAT_H
+#define FC_COMPUTE_SPLAT_H
+
+#include <epoxy/gl.h>
+
+#include "particle_buffer.h"
+#include "view.h"
+
+typedef struct fc_compute_splat {
+    GLuint splat_program;
+    GLuint resolve_program;
+    GLuint nearest_depth;     /* R32UI: bits of the nearest depth, +inf where no sphere is */
+    GLuint thickness_sum;     /* R32UI: thickness in fixed point */
+    uint32_t width, height;   /* of the two images; 0 before the first run */
+} fc_compute_splat;
+
+fc_code fc_compute_splat_create(const char *shader_dir, fc_compute_splat *s, fc_error *err);
+void fc_compute_splat_destroy(fc_compute_splat *s);
+
+/* Writes the particles' linear depth (0 = no fluid) into `depth` and, when
+ * `floor_plane` is not NULL, their thickness above it into `thickness`: both
+ * R32F textures of the view's size, as the fragment splat and its resolve
+ * leave them. */
+fc_code fc_compute_splat_run(fc_compute_splat *s, const fc_particle_buffer *particles, const fc_view *view,
+                             float radius, const float *floor_plane, GLuint depth, GLuint thickness,
+                             fc_error *err);
+
+#endif

@@ -1,0 +1,24 @@
+#version 450 core
+// The compute splat's images (surface_splat.comp.glsl) in the pipeline's
+// convention: depth as float, +inf (no sphere) as 0; thickness from fixed
+// point back to world units.
+
+layout(location = 0) uniform float chord_per_unit;   // world units per thickness step; 0 = no thickness
+
+layout(binding = 0, r32ui) uniform readonly uimage2D nearest_depth;
+layout(binding = 1, r32ui) uniform readonly uimage2D thickness_sum;
+layout(binding = 2, r32f) uniform writeonly image2D depth_out;
+layout(binding = 3, r32f) uniform writeonly image2D thickness_out;
+
+layout(local_size_x = 8, local_size_y = 8) in;
+
+void main()
+{
+    ivec2 p = ivec2(gl_GlobalInvocationID.xy);
+    if (any(greaterThanEqual(p, imageSize(depth_out))))
+        return;
+    float z = uintBitsToFloat(imageLoad(nearest_depth, p).r);
+    imageStore(depth_out, p, vec4(isinf(z) ? 0.0 : z));
+    if (chord_per_unit > 0.0)
+        imageStore(thickness_out, p, vec4(float(imageLoad(thickness_sum, p).r) * chord_per_unit));
+}
