@@ -34,7 +34,9 @@ void bench_options_print_usage(void)
            "         [--scale 1,0.5,0.25] [--frames N] [--encode png|jpeg|exr|none] [--image PATH.png]\n"
            "         [--profile] [--shader-dir DIR] [--splat auto|fragment|compute]\n"
            "       fluidcast-bench --particles N --write-scene PATH.f32\n"
-           "Prints a markdown table: median GPU ms per stage (timer queries), encode ms, wall ms.\n"
+           "Prints a markdown table: median GPU ms per stage (timer queries), encode ms, wall ms, and\n"
+           "the GPU MiB the pipeline holds after the row's frames (its own count from the sizes and\n"
+           "formats it allocated; the driver's next to it where GL_NVX_gpu_memory_info reports one).\n"
            "Every combination of the lists runs; --iterations default: each method's own default;\n"
            "--scale: the resolution of depth smoothing, as a fraction of the image's.\n"
            "--smoothing:");
@@ -42,7 +44,8 @@ void bench_options_print_usage(void)
         printf(" %s", smoothing_names[i].name);
     printf("\n--image writes each configuration's last frame there, so it ends up with the last one's.\n"
            "--profile prints after each row where its time goes: every pass's wall time with the GL\n"
-           "queue drained around it, its fragment shader invocations, and the sprites' sizes.\n"
+           "queue drained around it, its fragment shader invocations, the sprites' sizes, and the GPU\n"
+           "memory split into particle buffers, render targets and the readback buffer.\n"
            "--shader-dir loads the *.glsl files from DIR, to time shader changes without rebuilding.\n"
            "--splat forces the surface splat: sprites through the rasterizer or the compute splat\n"
            "(default auto: the pipeline's choice by sprite size).\n"

@@ -3,12 +3,14 @@
  * For every combination of particle count, image size, smoothing method,
  * iteration count and smoothing resolution it renders a warm-up frame and then
  * --frames measured ones, and prints one markdown table row with the median GPU
- * time of each stage (timer queries), the encode time and the wall time per frame.
+ * time of each stage (timer queries), the encode time, the wall time per frame and
+ * the GPU memory the pipeline holds afterwards (bench_memory.h).
  * --write-scene exports the particles instead, for the peer benchmark (bench/peer/). */
 #include <stdio.h>
 #include <stdlib.h>
 #include <time.h>
 
+#include "bench_memory.h"
 #include "bench_options.h"
 #include "bench_profile.h"
 #include "bench_output.h"
@@ -116,12 +118,12 @@ static void print_ms(float v)
 static void print_header(void)
 {
     printf("| particles | size | smoothing | iter | scale | upload | depth | thickness | smoothing | composite |"
-           " readback | encode | GPU sum | wall/frame | fps |\n");
-    printf("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
+           " readback | encode | GPU sum | wall/frame | fps | GPU MiB |\n");
+    printf("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
 }
 
 static void print_row(uint64_t particles, uint32_t w, uint32_t h, const fc_settings *settings, float upload_ms,
-                      const bench_row *row)
+                      const bench_row *row, const bench_memory *memory, const fc_pipeline *pipe)
 {
     float gpu = 0.0f;
     for (int s = FC_STAGE_DEPTH; s <= FC_STAGE_READBACK; s++)
@@ -133,7 +135,9 @@ static void print_row(uint64_t particles, uint32_t w, uint32_t h, const fc_setti
         print_ms(row->stage[s]);
     print_ms(gpu);
     print_ms(row->wall);
-    printf(" %.2f |\n", 1000.0f / row->wall);
+    printf(" %.2f |", 1000.0f / row->wall);
+    bench_memory_print_cell(memory, pipe);
+    printf("\n");
     fflush(stdout);
 }
 
@@ -151,8 +155,8 @@ static void config_settings(fc_smoothing method, uint32_t iterations, float smoo
 
 /* The rows of one image size: every smoothing method x iteration count x
  * smoothing resolution; "none" does not smooth, so it gets one row. */
-static fc_code bench_size(fc_pipeline *pipe, const bench_options *o, const fc_frame *frame, uint32_t w, uint32_t h,
-                          float radius, float upload_ms, fc_error *err)
+static fc_code bench_size(fc_pipeline *pipe, const bench_options *o, const bench_memory *memory,
+                          const fc_frame *frame, uint32_t w, uint32_t h, float radius, float upload_ms, fc_error *err)
 {
     fc_camera cam;
     bench_scene_drop_camera(w, h, &cam);
@@ -170,9 +174,11 @@ static fc_code bench_size(fc_pipeline *pipe, const bench_options *o, const fc_fr
                 fc_code rc = bench_config(pipe, o, w, h, &settings, &row, err);
                 if (rc != FC_OK)
                     return rc;
-                print_row(frame->count, w, h, &settings, upload_ms, &row);
+                print_row(frame->count, w, h, &settings, upload_ms, &row, memory, pipe);
                 if (o->profile)
                     rc = bench_profile_config(pipe, o->frames, &cam, &settings, frame->count, sprite_px, err);
+                if (o->profile && rc == FC_OK)
+                    bench_memory_print_split(pipe);
                 if (rc != FC_OK)
                     return rc;
             }
@@ -180,7 +186,8 @@ static fc_code bench_size(fc_pipeline *pipe, const bench_options *o, const fc_fr
     return FC_OK;
 }
 
-static fc_code bench_particles(fc_pipeline *pipe, const bench_options *o, uint64_t particles, fc_error *err)
+static fc_code bench_particles(fc_pipeline *pipe, const bench_options *o, const bench_memory *memory,
+                               uint64_t particles, fc_error *err)
 {
     fc_frame frame;
     float spacing;
@@ -190,8 +197,8 @@ static fc_code bench_particles(fc_pipeline *pipe, const bench_options *o, uint64
     float upload_ms = -1.0f;
     rc = fc_pipeline_upload(pipe, &frame, &upload_ms, err);
     for (int si = 0; rc == FC_OK && si < o->n_sizes; si++)
-        rc = bench_size(pipe, o, &frame, o->sizes[si][0], o->sizes[si][1], BENCH_SCENE_RADIUS_PER_SPACING * spacing,
-                        upload_ms, err);
+        rc = bench_size(pipe, o, memory, &frame, o->sizes[si][0], o->sizes[si][1],
+                        BENCH_SCENE_RADIUS_PER_SPACING * spacing, upload_ms, err);
     fc_frame_free(&frame);
     return rc;
 }
@@ -206,12 +213,15 @@ static fc_code run_benchmark(const bench_options *o, fc_error *err)
                fc_gl_context_version(ctx), fc_gl_context_egl_vendor(ctx));
         rc = fc_pipeline_create(&(fc_pipeline_config){.shader_dir = o->shader_dir}, &pipe, err);
     }
-    if (rc == FC_OK)
+    bench_memory memory = {0};
+    if (rc == FC_OK) {
         fc_pipeline_force_splat(pipe, o->splat);
+        bench_memory_start(&memory);
+    }
     if (rc == FC_OK)
         print_header();
     for (int pi = 0; rc == FC_OK && pi < o->n_particles; pi++)
-        rc = bench_particles(pipe, o, o->particles[pi], err);
+        rc = bench_particles(pipe, o, &memory, o->particles[pi], err);
     fc_pipeline_destroy(pipe);
     fc_gl_context_destroy(ctx);
     return rc;

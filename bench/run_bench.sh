@@ -141,7 +141,7 @@ ratio_table() {
         {
             key = trim($2) " " trim($3)
             if (!(key in vtk_fps)) next
-            ms = trim($(NF - 2)); fps = trim($(NF - 1))
+            ms = trim($15); fps = trim($16)   # wall/frame and fps, before the GPU memory column
             printf "| %s | %s | %s | %s | %s | %s | %s | %s | %s | %.2f |\n", trim($2), trim($3), trim($4), trim($5),
                    trim($6), ms, fps, vtk_ms[key], vtk_fps[key], fps / vtk_fps[key]
         }' "$1" "$2"
@@ -151,8 +151,8 @@ print_tables() {
     local title=$1 dir=$2
     echo "### $title: fluidcast-bench (median per frame; stage columns are GPU timer queries)"
     echo
-    echo "| particles | size | smoothing | iter | scale | upload | depth | thickness | smoothing | composite | readback | encode | GPU sum | wall/frame | fps |"
-    echo "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"
+    echo "| particles | size | smoothing | iter | scale | upload | depth | thickness | smoothing | composite | readback | encode | GPU sum | wall/frame | fps | GPU MiB |"
+    echo "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"
     cat "$dir/fluidcast.md"
     echo
     echo "### $title: VTK vtkOpenGLFluidMapper (median wall ms per Render() + RGBA8 readback)"

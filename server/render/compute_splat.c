@@ -76,6 +76,7 @@ static fc_code resize(fc_compute_splat *s, uint32_t width, uint32_t height, fc_e
     if (s->nearest_depth && s->width == width && s->height == height)
         return FC_OK;
     release_images(s);
+    s->allocations++;
     fc_code code = fc_gl_texture_create(GL_R32UI, width, height, false, &s->nearest_depth, err);
     if (code == FC_OK)
         code = fc_gl_texture_create(GL_R32UI, width, height, false, &s->thickness_sum, err);
@@ -142,4 +143,10 @@ fc_code fc_compute_splat_run(fc_compute_splat *s, const fc_particle_buffer *part
         splat(s, particles, view, radius, floor_plane, units);
     resolve(s, radius, floor_plane != NULL, units, depth, thickness);
     return fc_gl_check("compute surface splat", err);
+}
+
+void fc_compute_splat_tally(const fc_compute_splat *s, fc_gpu_memory *m)
+{
+    m->render_target_bytes += 2ull * fc_gl_texel_bytes(GL_R32UI) * s->width * s->height;
+    m->allocations += s->allocations;
 }

@@ -8,6 +8,7 @@
 
 #include <epoxy/gl.h>
 
+#include "gpu_memory.h"
 #include "particle_buffer.h"
 #include "view.h"
 
@@ -17,6 +18,7 @@ typedef struct fc_compute_splat {
     GLuint nearest_depth;     /* R32UI: bits of the nearest depth, +inf where no sphere is */
     GLuint thickness_sum;     /* R32UI: thickness in fixed point */
     uint32_t width, height;   /* of the two images; 0 before the first run */
+    uint32_t allocations;     /* times the images were (re)allocated */
 } fc_compute_splat;
 
 fc_code fc_compute_splat_create(const char *shader_dir, fc_compute_splat *s, fc_error *err);
@@ -29,5 +31,8 @@ void fc_compute_splat_destroy(fc_compute_splat *s);
 fc_code fc_compute_splat_run(fc_compute_splat *s, const fc_particle_buffer *particles, const fc_view *view,
                              float radius, const float *floor_plane, GLuint depth, GLuint thickness,
                              fc_error *err);
+
+/* Adds the two images' bytes and allocations to m's render targets. */
+void fc_compute_splat_tally(const fc_compute_splat *s, fc_gpu_memory *m);
 
 #endif

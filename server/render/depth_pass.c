@@ -160,3 +160,11 @@ fc_code fc_depth_pass_run(fc_depth_pass *pass, const fc_particle_buffer *particl
                                     pass->thickness.color, err);
     return fragment_splat(pass, particles, view, radius, floor_plane, err);
 }
+
+void fc_depth_pass_tally(const fc_depth_pass *pass, fc_gpu_memory *m)
+{
+    fc_render_target_tally(&pass->raw, m);
+    fc_render_target_tally(&pass->thickness, m);
+    fc_render_target_tally(&pass->target, m);
+    fc_compute_splat_tally(&pass->compute, m);
+}

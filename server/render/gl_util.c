@@ -66,6 +66,24 @@ fc_code fc_gl_texture_create(GLenum internal_format, uint32_t width, uint32_t he
     return FC_OK;
 }
 
+uint32_t fc_gl_texel_bytes(GLenum internal_format)
+{
+    switch (internal_format) {
+    case GL_R32F:
+    case GL_R32UI:
+    case GL_SRGB8_ALPHA8:
+        return 4;
+    case GL_RG32F:
+    case GL_RGBA16F:
+    case GL_DEPTH32F_STENCIL8:   /* 32-bit float depth, 8-bit stencil and 24 unused bits */
+        return 8;
+    case GL_RGBA32F:
+        return 16;
+    default:
+        return 0;
+    }
+}
+
 void fc_gl_draw_fullscreen(GLuint empty_vertex_array)
 {
     glBindVertexArray(empty_vertex_array);

@@ -27,6 +27,10 @@ fc_code fc_gl_wait_until_done(const char *what, fc_error *err);
 fc_code fc_gl_texture_create(GLenum internal_format, uint32_t width, uint32_t height, bool linear,
                              GLuint *texture, fc_error *err);
 
+/* Bytes per texel of the sized internal formats the pipeline allocates
+ * (colour, compute images, depth/stencil); 0 for any other format. */
+uint32_t fc_gl_texel_bytes(GLenum internal_format);
+
 /* Draws the triangle of fullscreen.vert.glsl with the current program; core
  * profile needs a vertex array bound even when no attribute is read. */
 void fc_gl_draw_fullscreen(GLuint empty_vertex_array);

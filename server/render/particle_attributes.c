@@ -15,6 +15,7 @@ static fc_code grow_gpu(fc_particle_attributes *a, uint64_t count, fc_error *err
     glDeleteBuffers(1, &a->buffer);
     a->buffer = 0;
     a->gpu_capacity = 0;
+    a->gpu_allocations++;
     glCreateBuffers(1, &a->buffer);
     glNamedBufferStorage(a->buffer, (GLsizeiptr)(count * sizeof(fc_particle_record)), NULL,
                          GL_DYNAMIC_STORAGE_BIT);
@@ -152,4 +153,10 @@ fc_code fc_particle_attributes_set_amplitudes(fc_particle_attributes *a, const f
 void fc_particle_attributes_bind(const fc_particle_attributes *a)
 {
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, FC_PARTICLE_RECORDS_BINDING, a->buffer);
+}
+
+void fc_particle_attributes_tally(const fc_particle_attributes *a, fc_gpu_memory *m)
+{
+    m->particle_bytes += a->gpu_capacity * sizeof(fc_particle_record);
+    m->allocations += a->gpu_allocations;
 }

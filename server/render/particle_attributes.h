@@ -11,6 +11,7 @@
 
 #include "density_order.h"
 #include "fluidcast_types.h"
+#include "gpu_memory.h"
 
 /* One particle as the shaders see it (std430: four 4-byte members). */
 typedef struct fc_particle_record {
@@ -26,6 +27,7 @@ typedef struct fc_particle_record {
 typedef struct fc_particle_attributes {
     GLuint buffer;                 /* the records in draw order, on the GPU */
     uint64_t gpu_capacity;         /* records `buffer` holds; it only grows */
+    uint32_t gpu_allocations;      /* times `buffer` was (re)allocated */
     fc_particle_record *records;   /* CPU copy in draw order */
     uint64_t record_capacity;
     float *positions;              /* positions in draw order, when that differs from the frame's */
@@ -56,5 +58,8 @@ fc_code fc_particle_attributes_set_amplitudes(fc_particle_attributes *a, const f
 
 /* Binds the record buffer for the next draws. */
 void fc_particle_attributes_bind(const fc_particle_attributes *a);
+
+/* Adds the GPU records' bytes (gpu_capacity x 16) and allocations to m's particles. */
+void fc_particle_attributes_tally(const fc_particle_attributes *a, fc_gpu_memory *m);
 
 #endif

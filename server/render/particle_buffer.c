@@ -41,6 +41,7 @@ void fc_particle_buffer_destroy(fc_particle_buffer *pb)
 static fc_code grow(fc_particle_buffer *pb, uint64_t count, fc_error *err)
 {
     release_buffer(pb);
+    pb->allocations++;
     /* Draws count vertices and instances in a GLsizei. */
     if (count > (uint64_t)INT32_MAX)
         return fc_error_set(err, FC_ERR_RENDER, "%llu particles exceed the %d one draw call can render",
@@ -88,3 +89,9 @@ void fc_particle_buffer_bind(const fc_particle_buffer *pb, bool per_instance)
     glBindVertexArray(pb->vertex_array);
 }
 
+
+void fc_particle_buffer_tally(const fc_particle_buffer *pb, fc_gpu_memory *m)
+{
+    m->particle_bytes += pb->capacity * POSITION_STRIDE;
+    m->allocations += pb->allocations;
+}

@@ -14,6 +14,7 @@
 #include <stdint.h>
 
 #include "fluidcast_types.h"
+#include "gpu_memory.h"
 
 typedef struct fc_particle_buffer {
     GLuint vertex_array;    /* attribute 0 = vec3 position */
@@ -21,6 +22,7 @@ typedef struct fc_particle_buffer {
     float *mapped;          /* the buffer's storage, mapped for writing as long as it lives */
     uint64_t capacity;      /* particles the buffer holds; it only ever grows */
     uint64_t count;         /* particles of the current frame */
+    uint32_t allocations;   /* times the GL buffer was (re)allocated */
     float lo[3], hi[3];     /* bounds of the current frame; a point at the origin when empty */
 } fc_particle_buffer;
 
@@ -36,5 +38,8 @@ fc_code fc_particle_buffer_upload(fc_particle_buffer *pb, const fc_frame *frame,
 /* Binds the vertex array with a position per vertex (point sprites) or per
  * instance (quads: instance i reads particle i from the base instance on). */
 void fc_particle_buffer_bind(const fc_particle_buffer *pb, bool per_instance);
+
+/* Adds the buffer's bytes (capacity x 12) and allocations to m's particles. */
+void fc_particle_buffer_tally(const fc_particle_buffer *pb, fc_gpu_memory *m);
 
 #endif

@@ -475,3 +475,19 @@ int fc_pipeline_pass_profile(const fc_pipeline *p, const fc_pass_sample **sample
     *samples = p->profile.samples;
     return p->profile.enabled ? p->profile.count : 0;
 }
+
+void fc_pipeline_gpu_memory(const fc_pipeline *p, fc_gpu_memory *out)
+{
+    *out = (fc_gpu_memory){0};
+    fc_particle_buffer_tally(&p->particles, out);
+    fc_particle_attributes_tally(&p->attributes, out);
+    fc_depth_pass_tally(&p->depth, out);
+    fc_thickness_pass_tally(&p->thickness, out);
+    fc_smoother_tally(&p->smoother, out);
+    fc_render_target_tally(&p->noise.target, out);
+    fc_render_target_tally(&p->normal.target, out);
+    fc_render_target_tally(&p->background.target, out);
+    fc_render_target_tally(&p->composite.srgb_target, out);
+    fc_render_target_tally(&p->composite.float_target, out);
+    fc_readback_tally(&p->readback, out);
+}

@@ -8,6 +8,7 @@
 
 #include "fluidcast_types.h"
 #include "../image.h"
+#include "gpu_memory.h"
 
 typedef struct fc_pipeline fc_pipeline;
 
@@ -73,6 +74,23 @@ fc_code fc_pipeline_set_amplitudes(fc_pipeline *p, const float *amplitude, uint6
 fc_code fc_pipeline_render_scene(fc_pipeline *p, const fc_camera *camera, const fc_settings *settings,
                                  const fc_scene_textures *scene, fc_aov aov, int want_u8, fc_image *out,
                                  float *stage_ms, fc_error *err);
+
+/* ---- GPU memory (see gpu_memory.h) ---- */
+
+/* The GPU memory the pipeline holds now, from the sizes and formats its
+ * resources were allocated with: particle buffers sized to the largest frame
+ * uploaded; render targets — the depth pass's raw depth, thickness and
+ * linear depth (R32F each), the compute splat's two R32UI images, the
+ * thickness splat and its blur (R32F x 3), the smoothing methods' ping-pong
+ * pairs (curvature flow R32F, bilateral R32F, narrow range RG32F, binomial
+ * RGBA32F), the reduced-resolution depth pair (R32F) and the silhouette blend
+ * (SRGB8_ALPHA8, RGBA32F), noise (R32F), normals (RGBA32F), background
+ * (RGBA16F) and the composite (SRGB8_ALPHA8 and RGBA32F, each with a
+ * DEPTH32F_STENCIL8 buffer) — each as large as the last image its stage ran
+ * for (a target is reallocated when the image size changes, never per frame
+ * otherwise); and the readback's pack buffer, sized to the largest image read
+ * back. Scene textures belong to the caller and are not counted. */
+void fc_pipeline_gpu_memory(const fc_pipeline *p, fc_gpu_memory *out);
 
 /* ---- Profiling, for the benchmark (see pass_profile.h) ---- */
 

@@ -26,11 +26,20 @@ fc_readback fc_readback_init(void)
     return (fc_readback){0};
 }
 
-void fc_readback_release(fc_readback *r)
+/* Drops the pack buffer, keeping the count of allocations. */
+static void release_pack_buffer(fc_readback *r)
 {
     if (r->mapped)
         glUnmapNamedBuffer(r->pack_buffer);
     glDeleteBuffers(1, &r->pack_buffer);
+    r->pack_buffer = 0;
+    r->mapped = NULL;
+    r->capacity = 0;
+}
+
+void fc_readback_release(fc_readback *r)
+{
+    release_pack_buffer(r);
     *r = fc_readback_init();
 }
 
@@ -39,7 +48,8 @@ static fc_code reserve_pack_buffer(fc_readback *r, size_t bytes, fc_error *err)
 {
     if (bytes <= r->capacity)
         return FC_OK;
-    fc_readback_release(r);
+    release_pack_buffer(r);
+    r->allocations++;
     GLbitfield flags = GL_MAP_READ_BIT | GL_MAP_PERSISTENT_BIT | GL_MAP_COHERENT_BIT;
     glCreateBuffers(1, &r->pack_buffer);
     glNamedBufferStorage(r->pack_buffer, (GLsizeiptr)bytes, NULL, flags);
@@ -47,7 +57,7 @@ static fc_code reserve_pack_buffer(fc_readback *r, size_t bytes, fc_error *err)
     if (code == FC_OK && !(r->mapped = glMapNamedBufferRange(r->pack_buffer, 0, (GLsizeiptr)bytes, flags)))
         code = fc_gl_failure("mapping the readback buffer", err);
     if (code != FC_OK) {
-        fc_readback_release(r);
+        release_pack_buffer(r);
         return code;
     }
     r->capacity = bytes;
@@ -90,4 +100,10 @@ fc_code fc_readback_run(fc_readback *r, const fc_render_target *target, uint32_t
     for (uint32_t y = 0; y < out->height; y++)
         memcpy(rows + (size_t)(out->height - 1 - y) * stride, r->mapped + (size_t)y * stride, stride);
     return FC_OK;
+}
+
+void fc_readback_tally(const fc_readback *r, fc_gpu_memory *m)
+{
+    m->readback_bytes += r->capacity;
+    m->allocations += r->allocations;
 }

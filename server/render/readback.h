@@ -16,12 +16,14 @@
 #include <stdint.h>
 
 #include "../image.h"
+#include "gpu_memory.h"
 #include "render_target.h"
 
 typedef struct fc_readback {
     GLuint pack_buffer;        /* persistently mapped for reading; 0 before the first readback */
     const unsigned char *mapped;
     size_t capacity;           /* its bytes; it only grows */
+    uint32_t allocations;      /* times the pack buffer was (re)allocated */
 } fc_readback;
 
 /* An empty readback: the buffer is made by the first fc_readback_run. */
@@ -34,5 +36,8 @@ void fc_readback_release(fc_readback *r);
  * FC_ERR_RENDER when the GPU has no room for the pack buffer. */
 fc_code fc_readback_run(fc_readback *r, const fc_render_target *target, uint32_t channels, fc_pixel_type type,
                         fc_image *out, fc_error *err);
+
+/* Adds the pack buffer's bytes and allocations to m's readback. */
+void fc_readback_tally(const fc_readback *r, fc_gpu_memory *m);
 
 #endif

@@ -16,6 +16,7 @@ static void delete_attachments(fc_render_target *t)
     glDeleteRenderbuffers(1, &t->depth);
     t->framebuffer = t->color = t->depth = 0;
     t->width = t->height = 0;
+    t->bytes = 0;
 }
 
 static fc_code attach_depth(fc_render_target *t, fc_error *err)
@@ -26,8 +27,17 @@ static fc_code attach_depth(fc_render_target *t, fc_error *err)
     return fc_gl_check("allocating a depth buffer", err);
 }
 
+static uint64_t attachment_bytes(const fc_render_target *t)
+{
+    uint64_t per_pixel = fc_gl_texel_bytes(t->color_format);
+    if (t->with_depth)
+        per_pixel += fc_gl_texel_bytes(GL_DEPTH32F_STENCIL8);
+    return per_pixel * t->width * t->height;
+}
+
 static fc_code allocate(fc_render_target *t, fc_error *err)
 {
+    t->allocations++;
     fc_code code = fc_gl_texture_create(t->color_format, t->width, t->height, t->linear, &t->color, err);
     if (code != FC_OK)
         return code;
@@ -52,6 +62,8 @@ fc_code fc_render_target_resize(fc_render_target *t, uint32_t width, uint32_t he
     fc_code code = allocate(t, err);
     if (code != FC_OK)
         delete_attachments(t);
+    else
+        t->bytes = attachment_bytes(t);
     return code;
 }
 
@@ -64,4 +76,10 @@ void fc_render_target_bind(const fc_render_target *t)
 void fc_render_target_release(fc_render_target *t)
 {
     delete_attachments(t);
+}
+
+void fc_render_target_tally(const fc_render_target *t, fc_gpu_memory *m)
+{
+    m->render_target_bytes += t->bytes;
+    m->allocations += t->allocations;
 }

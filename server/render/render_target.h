@@ -8,6 +8,7 @@
 #include <stdint.h>
 
 #include "fluidcast_types.h"
+#include "gpu_memory.h"
 
 typedef struct fc_render_target {
     GLuint framebuffer;
@@ -18,6 +19,8 @@ typedef struct fc_render_target {
     bool linear;            /* bilinear sampling of `color` */
     uint32_t width;
     uint32_t height;
+    uint64_t bytes;         /* GPU memory of the attachments, from their formats; 0 when not allocated */
+    uint32_t allocations;   /* times the attachments were (re)allocated */
 } fc_render_target;
 
 /* A target of `color_format` that is not allocated yet; zeroed memory is not
@@ -33,5 +36,8 @@ fc_code fc_render_target_resize(fc_render_target *t, uint32_t width, uint32_t he
 void fc_render_target_bind(const fc_render_target *t);
 
 void fc_render_target_release(fc_render_target *t);
+
+/* Adds the target's bytes and allocations to m's render targets. */
+void fc_render_target_tally(const fc_render_target *t, fc_gpu_memory *m);
 
 #endif

@@ -121,3 +121,17 @@ fc_code fc_smoother_blend_silhouettes(fc_smoother *s, const fc_render_target *sh
     return fc_silhouette_blend_run(&s->silhouette_blend, shaded, s->low_resolution, s->block, s->depth_jump, want_u8,
                                    result, err);
 }
+
+void fc_smoother_tally(const fc_smoother *s, fc_gpu_memory *m)
+{
+    const fc_render_target *ping_pongs[] = {s->curvature_flow.ping_pong, s->bilateral.ping_pong,
+                                            s->narrow_range.ping_pong, s->binomial.passes.ping_pong};
+    for (size_t i = 0; i < sizeof ping_pongs / sizeof ping_pongs[0]; i++) {
+        fc_render_target_tally(&ping_pongs[i][0], m);
+        fc_render_target_tally(&ping_pongs[i][1], m);
+    }
+    fc_render_target_tally(&s->resolution.low, m);
+    fc_render_target_tally(&s->resolution.full, m);
+    fc_render_target_tally(&s->silhouette_blend.srgb_target, m);
+    fc_render_target_tally(&s->silhouette_blend.float_target, m);
+}

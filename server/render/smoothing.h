@@ -45,4 +45,8 @@ fc_code fc_smoother_run(fc_smoother *s, const fc_render_target *depth, const fc_
 fc_code fc_smoother_blend_silhouettes(fc_smoother *s, const fc_render_target *shaded, bool want_u8,
                                       const fc_render_target **result, fc_error *err);
 
+/* Adds the targets of every method, the resolution change and the
+ * silhouette blend to m. */
+void fc_smoother_tally(const fc_smoother *s, fc_gpu_memory *m);
+
 #endif

@@ -80,3 +80,10 @@ fc_code fc_thickness_pass_run(fc_thickness_pass *pass, const fc_particle_buffer 
     fc_pass_profile_end(profile);
     return code;
 }
+
+void fc_thickness_pass_tally(const fc_thickness_pass *pass, fc_gpu_memory *m)
+{
+    fc_render_target_tally(&pass->splat, m);
+    fc_render_target_tally(&pass->filter.across, m);
+    fc_render_target_tally(&pass->filter.result, m);
+}

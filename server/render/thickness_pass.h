@@ -36,4 +36,7 @@ void fc_thickness_pass_destroy(fc_thickness_pass *pass);
 fc_code fc_thickness_pass_run(fc_thickness_pass *pass, const fc_particle_buffer *particles, const fc_view *view,
                               const fc_thickness_params *params, const fc_render_target **result, fc_error *err);
 
+/* Adds the splat target and the blur's two targets to m. */
+void fc_thickness_pass_tally(const fc_thickness_pass *pass, fc_gpu_memory *m);
+
 #endif

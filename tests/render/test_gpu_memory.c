@@ -1,0 +1,185 @@
+/* test_gpu_memory.c — fc_pipeline_gpu_memory: the particle buffers are sized
+ * exactly to the largest frame, the render targets to what their formats
+ * imply for the image (the list in pipeline.h), the readback to the largest
+ * image read back; and rendering again, or a smaller frame, allocates nothing. */
+#include <stdlib.h>
+
+#include "pipeline_internal.h"
+#include "render_fixture.h"
+#include "test_util.h"
+
+#define PARTICLES 1000
+#define WIDTH 96
+#define HEIGHT 64
+
+/* fc_particle_buffer positions (3 floats) + fc_particle_record (id, speed, amplitude, density). */
+#define PARTICLE_BYTES (12 + 16)
+
+/* Bytes per pixel of every target a full-resolution request can size to the
+ * image (smoothing and thickness at scale 1), from the formats in pipeline.h. */
+static const uint64_t FULL_RESOLUTION_PIXEL_BYTES =
+    3 * 4            /* depth pass: raw, thickness, linear depth, R32F */
+    + 2 * 4          /* compute splat: nearest depth and thickness sum, R32UI */
+    + 2 * 4          /* thickness blur: across and result, R32F */
+    + 2 * 4          /* curvature flow ping-pong, R32F */
+    + 2 * 4          /* bilateral ping-pong, R32F */
+    + 2 * 8          /* narrow range ping-pong, RG32F */
+    + 2 * 16         /* binomial ping-pong, RGBA32F */
+    + 4              /* noise, R32F */
+    + 16             /* normals, RGBA32F */
+    + 8              /* background, RGBA16F */
+    + (4 + 8)        /* 8-bit composite, SRGB8_ALPHA8 + DEPTH32F_STENCIL8 */
+    + (16 + 8);      /* float composite, RGBA32F + DEPTH32F_STENCIL8 */
+
+/* The pipeline's warm-up renders 8x8 images: what it leaves in targets this
+ * test does not resize is at most an 8x8 image's worth of every target. */
+#define WARM_UP_PIXELS (8 * 8)
+
+/* A cube of particles spaced two radii apart around the origin. */
+static float *particle_cube(uint64_t count)
+{
+    float *p = malloc(count * 3 * sizeof *p);
+    if (!p)
+        return NULL;
+    for (uint64_t i = 0; i < count; i++) {
+        p[3 * i + 0] = 0.1f * (float)(i % 10) - 0.45f;
+        p[3 * i + 1] = 0.1f * (float)(i / 10 % 10) - 0.45f;
+        p[3 * i + 2] = 0.1f * (float)(i / 100) - 0.45f;
+    }
+    return p;
+}
+
+static fc_code upload(render_fixture *f, const float *positions, uint64_t count)
+{
+    fc_frame frame = {.count = count, .positions = (float *)positions};
+    return fc_pipeline_upload(f->pipeline, &frame, NULL, NULL);
+}
+
+static fc_code render(render_fixture *f, const fc_camera *cam, const fc_settings *s, fc_aov aov, int want_u8,
+                      fc_image *img)
+{
+    fc_error err = {0};
+    fc_code code = fc_pipeline_render(f->pipeline, cam, s, aov, want_u8, img, NULL, &err);
+    if (code != FC_OK)
+        fprintf(stderr, "render failed: %s\n", err.message);
+    return code;
+}
+
+/* Every full-resolution target at the camera's size: each smoothing method,
+ * both composites, noise, normals, and the compute splat's images. */
+static void render_every_target(render_fixture *f, const fc_camera *cam)
+{
+    fc_settings s = test_settings(0.05f, FC_SMOOTHING_NONE, 2);
+    s.thickness_blur = 2;
+    fc_image img = {0};
+    const fc_smoothing methods[] = {FC_SMOOTHING_CURVATURE, FC_SMOOTHING_BILATERAL, FC_SMOOTHING_NARROW,
+                                    FC_SMOOTHING_BINOMIAL};
+    for (size_t i = 0; i < sizeof methods / sizeof methods[0]; i++) {
+        s.smoothing = methods[i];
+        CHECK_CODE(render(f, cam, &s, FC_AOV_COLOR, 1, &img), FC_OK);
+    }
+    CHECK_CODE(render(f, cam, &s, FC_AOV_COLOR, 0, &img), FC_OK);
+    s.noise = 1.0f;
+    CHECK_CODE(render(f, cam, &s, FC_AOV_NOISE, 0, &img), FC_OK);
+    CHECK_CODE(render(f, cam, &s, FC_AOV_NORMAL, 0, &img), FC_OK);
+    fc_pipeline_force_splat(f->pipeline, FC_SPLAT_COMPUTE);
+    CHECK_CODE(render(f, cam, &s, FC_AOV_DEPTH, 0, &img), FC_OK);
+    CHECK(fc_pipeline_last_splat(f->pipeline) == FC_SPLAT_COMPUTE);
+    fc_pipeline_force_splat(f->pipeline, FC_SPLAT_FRAGMENT);
+    CHECK_CODE(render(f, cam, &s, FC_AOV_DEPTH, 0, &img), FC_OK);
+    fc_image_free(&img);
+}
+
+static void check_same(const fc_gpu_memory *a, const fc_gpu_memory *b, const char *after)
+{
+    CHECK_MSG(a->particle_bytes == b->particle_bytes, "%s: particles %llu -> %llu bytes", after,
+              (unsigned long long)a->particle_bytes, (unsigned long long)b->particle_bytes);
+    CHECK_MSG(a->render_target_bytes == b->render_target_bytes, "%s: render targets %llu -> %llu bytes", after,
+              (unsigned long long)a->render_target_bytes, (unsigned long long)b->render_target_bytes);
+    CHECK_MSG(a->readback_bytes == b->readback_bytes, "%s: readback %llu -> %llu bytes", after,
+              (unsigned long long)a->readback_bytes, (unsigned long long)b->readback_bytes);
+    CHECK_MSG(a->allocations == b->allocations, "%s: %llu -> %llu allocations", after,
+              (unsigned long long)a->allocations, (unsigned long long)b->allocations);
+}
+
+static void test_sizes_and_reuse(render_fixture *f, const float *positions)
+{
+    CHECK_CODE(upload(f, positions, PARTICLES), FC_OK);
+    fc_gpu_memory uploaded;
+    fc_pipeline_gpu_memory(f->pipeline, &uploaded);
+    CHECK_MSG(uploaded.particle_bytes == (uint64_t)PARTICLES * PARTICLE_BYTES, "particles: %llu bytes",
+              (unsigned long long)uploaded.particle_bytes);
+
+    fc_camera cam = axis_camera(3.0, WIDTH, HEIGHT);
+    render_every_target(f, &cam);
+    fc_gpu_memory first;
+    fc_pipeline_gpu_memory(f->pipeline, &first);
+    CHECK(first.particle_bytes == uploaded.particle_bytes);
+    const uint64_t targets = FULL_RESOLUTION_PIXEL_BYTES * WIDTH * HEIGHT;
+    CHECK_MSG(first.render_target_bytes >= targets &&
+                  first.render_target_bytes <= targets + FULL_RESOLUTION_PIXEL_BYTES * WARM_UP_PIXELS,
+              "render targets: %llu bytes, the formats imply %llu", (unsigned long long)first.render_target_bytes,
+              (unsigned long long)targets);
+    /* The largest image read back: RGBA float colour. */
+    CHECK_MSG(first.readback_bytes == (uint64_t)WIDTH * HEIGHT * 16, "readback: %llu bytes",
+              (unsigned long long)first.readback_bytes);
+    CHECK(fc_gpu_memory_total(&first) == first.particle_bytes + first.render_target_bytes + first.readback_bytes);
+
+    render_every_target(f, &cam);
+    fc_gpu_memory again;
+    fc_pipeline_gpu_memory(f->pipeline, &again);
+    check_same(&first, &again, "the same requests again");
+
+    /* A smaller frame keeps the buffers of the larger one. */
+    CHECK_CODE(upload(f, positions, PARTICLES / 2), FC_OK);
+    render_every_target(f, &cam);
+    fc_gpu_memory smaller_frame;
+    fc_pipeline_gpu_memory(f->pipeline, &smaller_frame);
+    check_same(&first, &smaller_frame, "a smaller frame");
+}
+
+/* A different image size reallocates the targets its stages use, to that size;
+ * the readback buffer only grows, and the particles are not touched. */
+static void test_smaller_image(render_fixture *f, const float *positions)
+{
+    CHECK_CODE(upload(f, positions, PARTICLES), FC_OK);
+    fc_camera cam = axis_camera(3.0, WIDTH, HEIGHT);
+    fc_settings s = test_settings(0.05f, FC_SMOOTHING_NONE, 0);
+    fc_image img = {0};
+    CHECK_CODE(render(f, &cam, &s, FC_AOV_DEPTH, 0, &img), FC_OK);
+    fc_gpu_memory before;
+    fc_pipeline_gpu_memory(f->pipeline, &before);
+
+    /* The raw depth alone needs the depth pass's three R32F targets. */
+    fc_camera small = axis_camera(3.0, WIDTH / 2, HEIGHT / 2);
+    CHECK_CODE(render(f, &small, &s, FC_AOV_DEPTH, 0, &img), FC_OK);
+    fc_gpu_memory after;
+    fc_pipeline_gpu_memory(f->pipeline, &after);
+    const uint64_t shrunk = 3 * 4 * ((uint64_t)WIDTH * HEIGHT - (uint64_t)(WIDTH / 2) * (HEIGHT / 2));
+    CHECK_MSG(before.render_target_bytes - after.render_target_bytes == shrunk, "render targets %llu -> %llu",
+              (unsigned long long)before.render_target_bytes, (unsigned long long)after.render_target_bytes);
+    CHECK(after.allocations == before.allocations + 3);
+    CHECK(after.readback_bytes == before.readback_bytes && after.particle_bytes == before.particle_bytes);
+
+    CHECK_CODE(render(f, &small, &s, FC_AOV_DEPTH, 0, &img), FC_OK);
+    fc_gpu_memory repeated;
+    fc_pipeline_gpu_memory(f->pipeline, &repeated);
+    check_same(&after, &repeated, "the smaller image again");
+    fc_image_free(&img);
+}
+
+int main(void)
+{
+    render_fixture f;
+    if (!fixture_open(&f))
+        return 1;
+    float *positions = particle_cube(PARTICLES);
+    CHECK(positions != NULL);
+    if (positions) {
+        test_sizes_and_reuse(&f, positions);
+        test_smaller_image(&f, positions);
+    }
+    free(positions);
+    fixture_close(&f);
+    return test_result();
+}
