@@ -41,6 +41,10 @@ layout(location = 13) uniform float shininess;           // α of eq. 13
 layout(location = 14) uniform float foam;                // settings.foam: how fast foam turns opaque
 layout(location = 15) uniform bool use_environment_map;  // else the procedural scene is reflected
 layout(location = 18) uniform vec2 foam_noise_range;     // mean |N| where foam starts and where it is complete
+// Texture sizes, which may exceed the viewport (targets only grow): both
+// textures hold the image in use in their lower-left viewport-sized corner.
+layout(location = 43) uniform vec2 thickness_texture_size;
+layout(location = 44) uniform vec2 background_texture_size;
 
 // Refraction may shift the background by at most this fraction of the image,
 // so very thick fluid cannot sample far-away, unrelated parts of the scene.
@@ -76,7 +80,7 @@ vec3 shade_fluid(ivec2 p, float z, vec3 behind_here)
     surface_spans spans = spans_at(p, z);
     vec3 n = shading_normal(p, centre, z, spans);
     vec3 v = normalize(-centre);
-    float t = texture(thickness, gl_FragCoord.xy / viewport).r;
+    float t = texture(thickness, gl_FragCoord.xy / thickness_texture_size).r;
 
     float cos_view = clamp(dot(n, v), 0.0, 1.0);
     float fresnel = fresnel_f0 + (1.0 - fresnel_f0) * pow(1.0 - cos_view, 5.0);
@@ -85,7 +89,10 @@ vec3 shade_fluid(ivec2 p, float z, vec3 behind_here)
     // attenuated per channel by Beer-Lambert towards the fluid colour.
     vec2 max_shift = max_shift_fraction * viewport;
     vec2 shift = clamp(refraction * t * n.xy, -max_shift, max_shift);
-    vec3 behind = texture(background, (gl_FragCoord.xy + shift) / viewport).rgb;
+    // Clamped to the last texel centres of the image in use: beyond them the
+    // texture holds stale pixels where an edge texel used to be repeated.
+    vec2 shifted = clamp(gl_FragCoord.xy + shift, vec2(0.5), viewport - 0.5);
+    vec3 behind = texture(background, shifted / background_texture_size).rgb;
     vec3 refracted = mix(fluid_color, behind, exp(-absorption * t));
 
     vec3 reflected = reflected_radiance(to_world_point(centre), to_world_direction(reflect(-v, n)));

@@ -13,6 +13,7 @@ layout(binding = 0, r32f) uniform writeonly image2D depth_out;
 
 layout(location = 0) uniform vec2 pixel_scale;  // (Cx, Cy) = (2 / (Vx Fx), 2 / (Vy Fy))
 layout(location = 1) uniform float depth_jump;  // world units; larger steps separate two surfaces
+layout(location = 40) uniform ivec2 source_size;   // the image in use; the texture may be larger (stale texels)
 
 layout(local_size_x = 8, local_size_y = 8) in;
 // The pixels of an invocation (main spells out all 16).
@@ -112,7 +113,7 @@ void step_and_store(ivec2 origin, ivec2 size, ivec2 b)
 
 void main()
 {
-    ivec2 size = textureSize(depth_in, 0);
+    ivec2 size = source_size;
     ivec2 origin = ivec2(gl_GlobalInvocationID.xy) * ivec2(BLOCK_W, BLOCK_H);
     if (any(greaterThanEqual(origin, size)))
         return;

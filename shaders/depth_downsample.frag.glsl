@@ -9,13 +9,14 @@
 layout(binding = 0) uniform sampler2D depth_in;   // full resolution, 0 = background
 
 layout(location = 0) uniform int block;            // full-resolution pixels per texel along each axis
+layout(location = 40) uniform ivec2 source_size;   // the image in use; the texture may be larger (stale texels)
 
 layout(location = 0) out float depth_out;
 
 void main()
 {
     ivec2 origin = ivec2(gl_FragCoord.xy) * block;
-    ivec2 size = textureSize(depth_in, 0);
+    ivec2 size = source_size;
     float nearest = 0.0;
     for (int y = 0; y < block; y++)
         for (int x = 0; x < block; x++) {

@@ -14,6 +14,7 @@ layout(location = 2) uniform float particle_radius;   // world units
 layout(location = 3) uniform float depth_jump;        // world units; larger steps separate two surfaces
 layout(location = 4) uniform int fixed_radius;        // kernel half-width in pixels; 0 = from the depth
 layout(location = 5) uniform float radii_per_kernel;  // auto half-width in projected particle radii
+layout(location = 40) uniform ivec2 source_size;   // the image in use; the texture may be larger (stale texels)
 
 // The largest filter_radius a request may set; also bounds the automatic
 // kernel when a particle covers much of the screen.
@@ -21,12 +22,12 @@ const int MAX_KERNEL_RADIUS = 64;
 
 bool on_grid(ivec2 p)
 {
-    return all(greaterThanEqual(p, ivec2(0))) && all(lessThan(p, textureSize(depth_in, 0)));
+    return all(greaterThanEqual(p, ivec2(0))) && all(lessThan(p, source_size));
 }
 
 ivec2 nearest_on_grid(ivec2 p)
 {
-    return clamp(p, ivec2(0), textureSize(depth_in, 0) - 1);
+    return clamp(p, ivec2(0), source_size - 1);
 }
 
 // The whole texel (filters that carry a second channel read it too); callers check on_grid first.

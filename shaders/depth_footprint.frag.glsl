@@ -5,6 +5,7 @@
 
 layout(location = 0) uniform int block;           // full-resolution pixels per texel along each axis
 layout(location = 1) uniform float depth_jump;    // world units; larger steps separate two surfaces
+layout(location = 41) uniform ivec2 low_size;     // the low-resolution image in use, within its texture
 
 struct footprint {
     ivec2 texel[4];
@@ -17,7 +18,7 @@ footprint footprint_at(sampler2D low_depth, ivec2 p)
     vec2 u = (vec2(p) + 0.5) / float(block) - 0.5;
     ivec2 base = ivec2(floor(u));
     vec2 f = u - floor(u);
-    ivec2 last = textureSize(low_depth, 0) - 1;
+    ivec2 last = low_size - 1;
     footprint fp;
     for (int i = 0; i < 4; i++) {
         ivec2 corner = ivec2(i & 1, i >> 1);

@@ -33,6 +33,7 @@ layout(binding = 0) uniform sampler2D depth_in;
 layout(location = 0) uniform ivec2 axis;
 layout(location = 2) uniform float particle_radius;
 layout(location = 3) uniform float depth_jump;   // the paper's threshold, half-width of the range: the pipeline's depth jump
+layout(location = 40) uniform ivec2 source_size;   // the image in use; the texture may be larger (stale texels)
 
 layout(binding = 0, rg32f) uniform writeonly image2D filtered;   // filtered depth, unfiltered depth
 
@@ -125,7 +126,7 @@ void add_tap(inout pixel_state s, int i, float z_fwd, bool fwd_on_grid, float z_
 
 void main()
 {
-    ivec2 size = textureSize(depth_in, 0);
+    ivec2 size = source_size;
     int length = axis.x != 0 ? size.x : size.y;
     ivec2 first = ivec2(gl_GlobalInvocationID.xy) * (ivec2(1) + (RUN - 1) * axis);
     if (any(greaterThanEqual(first, size)))

@@ -18,6 +18,7 @@ layout(binding = 0) uniform sampler2D shaded;      // the composite at full reso
 layout(binding = 1) uniform sampler2D low_depth;   // the smoothed low-resolution depth
 
 layout(location = 0) uniform int block;
+layout(location = 40) uniform ivec2 shaded_size;   // the image in use, within the texture
 
 layout(location = 0) out vec4 color;
 
@@ -27,7 +28,7 @@ layout(location = 0) out vec4 color;
 // grazing normals into the blend as blobs a block apart.
 vec4 shaded_at_texel(ivec2 texel)
 {
-    ivec2 size = textureSize(shaded, 0);
+    ivec2 size = shaded_size;
     vec4 sum = vec4(0.0);
     int count = 0;
     for (int y = 0; y < block; y++)

@@ -13,10 +13,11 @@ layout(location = 0) uniform vec2 focal;               // P[0][0], P[1][1]
 layout(location = 5) uniform vec2 viewport;
 layout(location = 12) uniform float particle_radius;   // world units
 layout(location = 19) uniform bool has_noise;          // false: N is 0 everywhere and is not read
+layout(location = 42) uniform ivec2 surface_size;      // the image in use, within the texture
 
 float depth_at(ivec2 p)
 {
-    ivec2 size = textureSize(surface_depth, 0);
+    ivec2 size = surface_size;
     if (any(lessThan(p, ivec2(0))) || any(greaterThanEqual(p, size)))
         return 0.0;
     return texelFetch(surface_depth, p, 0).r;

@@ -7,6 +7,7 @@ layout(location = 0) uniform float chord_per_unit;   // world units per thicknes
 
 layout(binding = 0, r32ui) uniform readonly uimage2D nearest_depth;
 layout(binding = 1, r32ui) uniform readonly uimage2D thickness_sum;
+layout(location = 40) uniform ivec2 source_size;   // the image in use: the images may be larger
 layout(binding = 2, r32f) uniform writeonly image2D depth_out;
 layout(binding = 3, r32f) uniform writeonly image2D thickness_out;
 
@@ -15,7 +16,7 @@ layout(local_size_x = 8, local_size_y = 8) in;
 void main()
 {
     ivec2 p = ivec2(gl_GlobalInvocationID.xy);
-    if (any(greaterThanEqual(p, imageSize(depth_out))))
+    if (any(greaterThanEqual(p, source_size)))
         return;
     float z = uintBitsToFloat(imageLoad(nearest_depth, p).r);
     imageStore(depth_out, p, vec4(isinf(z) ? 0.0 : z));

@@ -93,7 +93,7 @@ void main()
     vec2 x_range = projected_interval(centre.x, depth, projection.x);
     vec2 y_range = projected_interval(centre.y, depth, projection.y);
     // The pixels whose centres the bounds may hold, clipped to the image.
-    ivec2 size = imageSize(nearest_depth);
+    ivec2 size = ivec2(viewport);   // the images may be larger than the image in use
     ivec2 lo = max(ivec2(floor((vec2(x_range.x, y_range.x) + 1.0) * 0.5 * viewport)), ivec2(0));
     ivec2 hi = min(ivec2(ceil((vec2(x_range.y, y_range.y) + 1.0) * 0.5 * viewport)), size - 1);
     for (int y = lo.y; y <= hi.y; y++) {

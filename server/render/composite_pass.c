@@ -20,7 +20,9 @@ enum {
     LOC_USE_ENVIRONMENT_MAP = 15,
     LOC_FLOOR_PLANE = 16,
     LOC_DEPTH_PROJECTION = 17,
-    LOC_FOAM_NOISE_RANGE = 18
+    LOC_FOAM_NOISE_RANGE = 18,
+    LOC_THICKNESS_TEXTURE_SIZE = 43,
+    LOC_BACKGROUND_TEXTURE_SIZE = 44
 };
 /* Texture units fixed by layout(binding) in the composite shaders (surface_normal.frag.glsl also has 3). */
 enum { UNIT_SURFACE_DEPTH = 0, UNIT_THICKNESS = 1, UNIT_BACKGROUND = 2, UNIT_ENVIRONMENT_MAP = 4 };
@@ -90,6 +92,10 @@ static void bind_inputs(const fc_composite_inputs *in, float radius)
     fc_surface_normal_bind(in->surface_depth, in->noise, radius);
     glBindTextureUnit(UNIT_THICKNESS, in->thickness->color);
     glBindTextureUnit(UNIT_BACKGROUND, in->background->color);
+    glUniform2f(LOC_THICKNESS_TEXTURE_SIZE, (float)in->thickness->texture_width,
+                (float)in->thickness->texture_height);
+    glUniform2f(LOC_BACKGROUND_TEXTURE_SIZE, (float)in->background->texture_width,
+                (float)in->background->texture_height);
     glUniform1i(LOC_USE_ENVIRONMENT_MAP, in->environment_map != 0);
     if (in->environment_map) {
         glBindTextureUnit(UNIT_ENVIRONMENT_MAP, in->environment_map);

@@ -18,7 +18,7 @@ enum {
     LOC_FLOOR_PLANE = 10
 };
 /* ... and in surface_resolve.comp.glsl. */
-enum { LOC_CHORD_PER_UNIT = 0 };
+enum { LOC_CHORD_PER_UNIT = 0, LOC_SOURCE_SIZE = 40 };
 enum { IMAGE_NEAREST_DEPTH = 0, IMAGE_THICKNESS_SUM = 1, IMAGE_DEPTH_OUT = 2, IMAGE_THICKNESS_OUT = 3 };
 enum { BINDING_POSITIONS = 0 };
 /* local_size of the two shaders. */
@@ -71,10 +71,13 @@ void fc_compute_splat_destroy(fc_compute_splat *s)
     *s = (fc_compute_splat){0};
 }
 
-static fc_code resize(fc_compute_splat *s, uint32_t width, uint32_t height, fc_error *err)
+/* Grows the images (per axis, never shrinking) until width x height fits, as render targets do. */
+static fc_code reserve(fc_compute_splat *s, uint32_t width, uint32_t height, fc_error *err)
 {
-    if (s->nearest_depth && s->width == width && s->height == height)
+    if (s->nearest_depth && width <= s->width && height <= s->height)
         return FC_OK;
+    width = width > s->width ? width : s->width;
+    height = height > s->height ? height : s->height;
     release_images(s);
     s->allocations++;
     fc_code code = fc_gl_texture_create(GL_R32UI, width, height, false, &s->nearest_depth, err);
@@ -112,17 +115,18 @@ static void splat(const fc_compute_splat *s, const fc_particle_buffer *particles
     glDispatchCompute(per_row, (groups + per_row - 1) / per_row, 1);
 }
 
-static void resolve(const fc_compute_splat *s, float radius, bool with_thickness, double units, GLuint depth,
-                    GLuint thickness)
+static void resolve(const fc_compute_splat *s, const fc_view *view, float radius, bool with_thickness,
+                    double units, GLuint depth, GLuint thickness)
 {
     glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
     float chord_per_unit = with_thickness ? (float)(2.0 * radius / units) : 0.0f;
     glProgramUniform1f(s->resolve_program, LOC_CHORD_PER_UNIT, chord_per_unit);
+    glProgramUniform2i(s->resolve_program, LOC_SOURCE_SIZE, (GLint)view->width, (GLint)view->height);
     glBindImageTexture(IMAGE_DEPTH_OUT, depth, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_R32F);
     glBindImageTexture(IMAGE_THICKNESS_OUT, thickness, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_R32F);
     glUseProgram(s->resolve_program);
-    glDispatchCompute((s->width + RESOLVE_TILE - 1) / RESOLVE_TILE, (s->height + RESOLVE_TILE - 1) / RESOLVE_TILE,
-                      1);
+    glDispatchCompute((view->width + RESOLVE_TILE - 1) / RESOLVE_TILE,
+                      (view->height + RESOLVE_TILE - 1) / RESOLVE_TILE, 1);
     /* Later passes sample the two images as textures, the readback reads them through a framebuffer. */
     glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_FRAMEBUFFER_BARRIER_BIT);
 }
@@ -131,7 +135,7 @@ fc_code fc_compute_splat_run(fc_compute_splat *s, const fc_particle_buffer *part
                              float radius, const float *floor_plane, GLuint depth, GLuint thickness,
                              fc_error *err)
 {
-    fc_code code = resize(s, view->width, view->height, err);
+    fc_code code = reserve(s, view->width, view->height, err);
     if (code != FC_OK)
         return code;
     const GLuint no_depth = 0x7f800000u, no_thickness = 0;   /* +inf bits, 0 */
@@ -141,7 +145,7 @@ fc_code fc_compute_splat_run(fc_compute_splat *s, const fc_particle_buffer *part
     double units = units_per_chord(particles->count);
     if (particles->count > 0)
         splat(s, particles, view, radius, floor_plane, units);
-    resolve(s, radius, floor_plane != NULL, units, depth, thickness);
+    resolve(s, view, radius, floor_plane != NULL, units, depth, thickness);
     return fc_gl_check("compute surface splat", err);
 }
 
@@ -149,4 +153,9 @@ void fc_compute_splat_tally(const fc_compute_splat *s, fc_gpu_memory *m)
 {
     m->render_target_bytes += 2ull * fc_gl_texel_bytes(GL_R32UI) * s->width * s->height;
     m->allocations += s->allocations;
+}
+
+void fc_compute_splat_trim(fc_compute_splat *s)
+{
+    release_images(s);
 }

@@ -17,7 +17,7 @@ typedef struct fc_compute_splat {
     GLuint resolve_program;
     GLuint nearest_depth;     /* R32UI: bits of the nearest depth, +inf where no sphere is */
     GLuint thickness_sum;     /* R32UI: thickness in fixed point */
-    uint32_t width, height;   /* of the two images; 0 before the first run */
+    uint32_t width, height;   /* of the two images, the largest image splatted so far; 0 before the first run */
     uint32_t allocations;     /* times the images were (re)allocated */
 } fc_compute_splat;
 
@@ -34,5 +34,8 @@ fc_code fc_compute_splat_run(fc_compute_splat *s, const fc_particle_buffer *part
 
 /* Adds the two images' bytes and allocations to m's render targets. */
 void fc_compute_splat_tally(const fc_compute_splat *s, fc_gpu_memory *m);
+
+/* Frees the two images; the next run allocates them at its size. */
+void fc_compute_splat_trim(fc_compute_splat *s);
 
 #endif

@@ -5,7 +5,7 @@
 #include "shader_program.h"
 
 /* Uniform locations fixed by layout(location) in curvature_flow.comp.glsl. */
-enum { LOC_PIXEL_SCALE = 0, LOC_DEPTH_JUMP = 1 };
+enum { LOC_PIXEL_SCALE = 0, LOC_DEPTH_JUMP = 1, LOC_SOURCE_SIZE = 40 };
 /* Pixels one invocation steps: BLOCK_W x BLOCK_H of curvature_flow.comp.glsl. */
 #define BLOCK_W 4u
 #define BLOCK_H 4u
@@ -36,6 +36,7 @@ static void dispatch_step(const fc_curvature_flow *cf, const fc_render_target *s
                           const fc_render_target *destination)
 {
     glBindTextureUnit(0, source->color);
+    fc_render_target_uniform_size(cf->program, LOC_SOURCE_SIZE, source);
     glBindImageTexture(0, destination->color, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_R32F);
     fc_gl_dispatch_over_image(destination->width, destination->height, (uint32_t)cf->group_size[0] * BLOCK_W,
                               (uint32_t)cf->group_size[1] * BLOCK_H);

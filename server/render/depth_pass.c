@@ -168,3 +168,11 @@ void fc_depth_pass_tally(const fc_depth_pass *pass, fc_gpu_memory *m)
     fc_render_target_tally(&pass->target, m);
     fc_compute_splat_tally(&pass->compute, m);
 }
+
+void fc_depth_pass_trim(fc_depth_pass *pass)
+{
+    fc_render_target_release(&pass->raw);
+    fc_render_target_release(&pass->thickness);
+    fc_render_target_release(&pass->target);
+    fc_compute_splat_trim(&pass->compute);
+}

@@ -48,4 +48,7 @@ fc_code fc_depth_pass_run(fc_depth_pass *pass, const fc_particle_buffer *particl
 /* Adds the pass's targets and compute-splat images to m. */
 void fc_depth_pass_tally(const fc_depth_pass *pass, fc_gpu_memory *m);
 
+/* Frees the pass's images (render targets and compute-splat images); the next run allocates them again. */
+void fc_depth_pass_trim(fc_depth_pass *pass);
+
 #endif

@@ -11,7 +11,8 @@ typedef struct fc_gpu_memory {
     uint64_t particle_bytes;       /* positions (12 B) and shading records (16 B) per particle of the
                                       largest frame uploaded: the buffers only grow */
     uint64_t render_target_bytes;  /* colour textures, depth/stencil buffers, ping-pong and compute-splat
-                                      images, each at the size of the last image its stage rendered */
+                                      images, each grown to the widest and highest image its stage rendered
+                                      (they only grow, until fc_pipeline_trim) */
     uint64_t readback_bytes;       /* pixel-pack buffer of the largest image read back: it only grows */
     uint64_t allocations;          /* times any of them was (re)allocated since the pipeline was created */
 } fc_gpu_memory;

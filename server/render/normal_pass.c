@@ -5,7 +5,7 @@
 #include "shader_program.h"
 
 /* Locations and units fixed by layout() in camera.frag.glsl and surface_normal.frag.glsl. */
-enum { LOC_FOCAL = 0, LOC_VIEWPORT = 5, LOC_PARTICLE_RADIUS = 12, LOC_HAS_NOISE = 19 };
+enum { LOC_FOCAL = 0, LOC_VIEWPORT = 5, LOC_PARTICLE_RADIUS = 12, LOC_HAS_NOISE = 19, LOC_SURFACE_SIZE = 42 };
 enum { UNIT_SURFACE_DEPTH = 0, UNIT_NOISE = 3 };
 
 fc_code fc_normal_pass_create(const char *shader_dir, fc_normal_pass *pass, fc_error *err)
@@ -29,6 +29,7 @@ void fc_surface_normal_bind(const fc_render_target *surface_depth, const fc_rend
 {
     glUniform1f(LOC_PARTICLE_RADIUS, radius);
     glUniform1i(LOC_HAS_NOISE, noise != NULL);
+    glUniform2i(LOC_SURFACE_SIZE, (GLint)surface_depth->width, (GLint)surface_depth->height);
     glBindTextureUnit(UNIT_SURFACE_DEPTH, surface_depth->color);
     if (noise)
         glBindTextureUnit(UNIT_NOISE, noise->color);

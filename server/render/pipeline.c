@@ -476,6 +476,18 @@ int fc_pipeline_pass_profile(const fc_pipeline *p, const fc_pass_sample **sample
     return p->profile.enabled ? p->profile.count : 0;
 }
 
+void fc_pipeline_trim(fc_pipeline *p)
+{
+    fc_depth_pass_trim(&p->depth);
+    fc_thickness_pass_trim(&p->thickness);
+    fc_smoother_trim(&p->smoother);
+    fc_render_target_release(&p->noise.target);
+    fc_render_target_release(&p->normal.target);
+    fc_render_target_release(&p->background.target);
+    fc_render_target_release(&p->composite.srgb_target);
+    fc_render_target_release(&p->composite.float_target);
+}
+
 void fc_pipeline_gpu_memory(const fc_pipeline *p, fc_gpu_memory *out)
 {
     *out = (fc_gpu_memory){0};

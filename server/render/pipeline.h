@@ -86,11 +86,18 @@ fc_code fc_pipeline_render_scene(fc_pipeline *p, const fc_camera *camera, const 
  * RGBA32F), the reduced-resolution depth pair (R32F) and the silhouette blend
  * (SRGB8_ALPHA8, RGBA32F), noise (R32F), normals (RGBA32F), background
  * (RGBA16F) and the composite (SRGB8_ALPHA8 and RGBA32F, each with a
- * DEPTH32F_STENCIL8 buffer) — each as large as the last image its stage ran
- * for (a target is reallocated when the image size changes, never per frame
- * otherwise); and the readback's pack buffer, sized to the largest image read
- * back. Scene textures belong to the caller and are not counted. */
+ * DEPTH32F_STENCIL8 buffer) — each as wide as the widest and as high as the
+ * highest image its stage ran for since it was allocated (targets only grow: a
+ * smaller image draws into their lower-left corner, so alternating image sizes
+ * allocate nothing); and the readback's pack buffer, sized to the largest
+ * image read back. Scene textures belong to the caller and are not counted. */
 void fc_pipeline_gpu_memory(const fc_pipeline *p, fc_gpu_memory *out);
+
+/* Gives the render targets' GPU memory back (not the particle buffers or the
+ * readback's pack buffer): the next render allocates what it uses at its
+ * image size. For a caller that knows large images are over; never needed
+ * for correctness, and no render calls it. */
+void fc_pipeline_trim(fc_pipeline *p);
 
 /* ---- Profiling, for the benchmark (see pass_profile.h) ---- */
 

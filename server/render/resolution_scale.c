@@ -6,6 +6,9 @@
 
 /* Uniform locations fixed by layout(location) in the shaders. */
 enum { LOC_BLOCK = 0, LOC_DEPTH_JUMP = 1 };
+/* The size of the image in use of the source: of depth_downsample.frag.glsl's
+ * full-resolution depth, of depth_footprint.frag.glsl's low-resolution one. */
+enum { LOC_DOWNSAMPLE_SOURCE_SIZE = 40, LOC_UPSAMPLE_LOW_SIZE = 41 };
 /* Texture unit of the unsmoothed depth in depth_upsample.frag.glsl (the source is on 0). */
 enum { UNIT_FULL_DEPTH = 1 };
 
@@ -44,8 +47,8 @@ uint32_t fc_resolution_scale_block(float smooth_scale)
 }
 
 /* Draws `program` into `target` with `source` on texture unit 0. */
-static void draw(const fc_resolution_scale *rs, GLuint program, const fc_render_target *target,
-                 const fc_render_target *source, uint32_t block)
+static void draw(const fc_resolution_scale *rs, GLuint program, GLint source_size_location,
+                 const fc_render_target *target, const fc_render_target *source, uint32_t block)
 {
     fc_render_target_bind(target);
     glDisable(GL_DEPTH_TEST);
@@ -53,6 +56,7 @@ static void draw(const fc_resolution_scale *rs, GLuint program, const fc_render_
     glDisable(GL_FRAMEBUFFER_SRGB);
     glUseProgram(program);
     glUniform1i(LOC_BLOCK, (GLint)block);
+    fc_render_target_uniform_size(program, source_size_location, source);
     glBindTextureUnit(0, source->color);
     fc_gl_draw_fullscreen(rs->empty_vertex_array);
 }
@@ -64,7 +68,7 @@ fc_code fc_resolution_scale_down(fc_resolution_scale *rs, const fc_render_target
     fc_code code = fc_render_target_resize(&rs->low, width, height, err);
     if (code != FC_OK)
         return code;
-    draw(rs, rs->downsample_program, &rs->low, depth, block);
+    draw(rs, rs->downsample_program, LOC_DOWNSAMPLE_SOURCE_SIZE, &rs->low, depth, block);
     *low = &rs->low;
     return fc_gl_check("depth downsampling", err);
 }
@@ -78,7 +82,7 @@ fc_code fc_resolution_scale_up(fc_resolution_scale *rs, const fc_render_target *
         return code;
     glProgramUniform1f(rs->upsample_program, LOC_DEPTH_JUMP, depth_jump);
     glBindTextureUnit(UNIT_FULL_DEPTH, depth->color);
-    draw(rs, rs->upsample_program, &rs->full, smoothed, block);
+    draw(rs, rs->upsample_program, LOC_UPSAMPLE_LOW_SIZE, &rs->full, smoothed, block);
     *full = &rs->full;
     return fc_gl_check("depth upsampling", err);
 }

@@ -7,9 +7,10 @@
 /* Uniforms of depth_filter_common.glsl, looked up by name: a filter that
  * does not use one (the binomial one has a single kernel size) lets the
  * linker drop it, and setting a dropped location would be an error. */
-enum { AXIS, PIXEL_SCALE, PARTICLE_RADIUS, DEPTH_JUMP, FIXED_RADIUS, RADII_PER_KERNEL };
+enum { AXIS, PIXEL_SCALE, PARTICLE_RADIUS, DEPTH_JUMP, FIXED_RADIUS, RADII_PER_KERNEL, SOURCE_SIZE };
 static const char *const UNIFORM_NAMES[FC_FILTER_UNIFORMS] = {"axis", "pixel_scale", "particle_radius",
-                                                              "depth_jump", "fixed_radius", "radii_per_kernel"};
+                                                              "depth_jump", "fixed_radius", "radii_per_kernel",
+                                                              "source_size"};
 /* MAX_KERNEL_RADIUS of depth_filter_common.glsl. */
 #define MAX_KERNEL_RADIUS 64u
 
@@ -87,6 +88,7 @@ const fc_render_target *fc_separable_filter_pass(fc_separable_filter *f, const f
 {
     const fc_render_target *destination = source == &f->ping_pong[0] ? &f->ping_pong[1] : &f->ping_pong[0];
     glUniform2i(f->uniform[AXIS], axis == 0, axis == 1);
+    glUniform2i(f->uniform[SOURCE_SIZE], (GLint)source->width, (GLint)source->height);
     glBindTextureUnit(0, source->color);
     if (f->group_size[0] > 0) {
         dispatch_pass(f, destination, axis);

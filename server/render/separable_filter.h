@@ -13,7 +13,7 @@
 #include "render_target.h"
 #include "smoothing_params.h"
 
-#define FC_FILTER_UNIFORMS 6
+#define FC_FILTER_UNIFORMS 7
 /* A compute filter's invocation filters this many consecutive pixels along
  * the axis (RUN of the *.comp.glsl filters). */
 #define FC_FILTER_RUN 8u

@@ -5,7 +5,7 @@
 #include "shader_program.h"
 
 /* Uniform locations and texture units fixed by the shaders. */
-enum { LOC_BLOCK = 0, LOC_DEPTH_JUMP = 1 };
+enum { LOC_BLOCK = 0, LOC_DEPTH_JUMP = 1, LOC_SHADED_SIZE = 40, LOC_LOW_SIZE = 41 };
 enum { UNIT_SHADED = 0, UNIT_LOW_DEPTH = 1 };
 
 fc_code fc_silhouette_blend_create(const char *shader_dir, fc_silhouette_blend *sb, fc_error *err)
@@ -47,6 +47,8 @@ fc_code fc_silhouette_blend_run(fc_silhouette_blend *sb, const fc_render_target 
     glUseProgram(sb->program);
     glUniform1i(LOC_BLOCK, (GLint)block);
     glUniform1f(LOC_DEPTH_JUMP, depth_jump);
+    glUniform2i(LOC_SHADED_SIZE, (GLint)shaded->width, (GLint)shaded->height);
+    glUniform2i(LOC_LOW_SIZE, (GLint)low_depth->width, (GLint)low_depth->height);
     glBindTextureUnit(UNIT_SHADED, shaded->color);
     glBindTextureUnit(UNIT_LOW_DEPTH, low_depth->color);
     fc_gl_draw_fullscreen(sb->empty_vertex_array);

@@ -135,3 +135,18 @@ void fc_smoother_tally(const fc_smoother *s, fc_gpu_memory *m)
     fc_render_target_tally(&s->silhouette_blend.srgb_target, m);
     fc_render_target_tally(&s->silhouette_blend.float_target, m);
 }
+
+void fc_smoother_trim(fc_smoother *s)
+{
+    fc_render_target *ping_pongs[] = {s->curvature_flow.ping_pong, s->bilateral.ping_pong, s->narrow_range.ping_pong,
+                                      s->binomial.passes.ping_pong};
+    for (size_t i = 0; i < sizeof ping_pongs / sizeof ping_pongs[0]; i++) {
+        fc_render_target_release(&ping_pongs[i][0]);
+        fc_render_target_release(&ping_pongs[i][1]);
+    }
+    fc_render_target_release(&s->resolution.low);
+    fc_render_target_release(&s->resolution.full);
+    fc_render_target_release(&s->silhouette_blend.srgb_target);
+    fc_render_target_release(&s->silhouette_blend.float_target);
+    s->low_resolution = NULL;
+}

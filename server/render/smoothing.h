@@ -49,4 +49,7 @@ fc_code fc_smoother_blend_silhouettes(fc_smoother *s, const fc_render_target *sh
  * silhouette blend to m. */
 void fc_smoother_tally(const fc_smoother *s, fc_gpu_memory *m);
 
+/* Frees every method's targets; the next run allocates those it uses again. */
+void fc_smoother_trim(fc_smoother *s);
+
 #endif

@@ -7,7 +7,14 @@
 #include "shader_program.h"
 
 /* Uniform locations fixed by layout(location) in thickness_blur.frag.glsl. */
-enum { LOC_TEXEL_STEP = 0, LOC_SIGMA = 1, LOC_TAPS = 2, LOC_TARGET_SIZE = 3 };
+enum {
+    LOC_AXIS = 0,
+    LOC_SIGMA = 1,
+    LOC_TAPS = 2,
+    LOC_TARGET_SIZE = 3,
+    LOC_SOURCE_SIZE = 4,
+    LOC_SOURCE_TEXTURE_SIZE = 5
+};
 /* The kernel is cut at this many standard deviations, where weights are about 1%. */
 #define KERNEL_SIGMAS 3.0f
 /* Bounds the loop of the shader whatever blur a client asks for. */
@@ -33,9 +40,9 @@ void fc_thickness_filter_destroy(fc_thickness_filter *f)
     f->program = f->empty_vertex_array = 0;
 }
 
-/* One axis of the blur from `source` into `target`; `step` is one source texel along it, in uv. */
+/* One axis of the blur from `source` into `target`; `axis` 0 is x, 1 is y. */
 static fc_code blur_axis(fc_thickness_filter *f, const fc_render_target *source, fc_render_target *target,
-                         float step_u, float step_v, float sigma, uint32_t width, uint32_t height, fc_error *err)
+                         int axis, float sigma, uint32_t width, uint32_t height, fc_error *err)
 {
     fc_code code = fc_render_target_resize(target, width, height, err);
     if (code != FC_OK)
@@ -44,10 +51,12 @@ static fc_code blur_axis(fc_thickness_filter *f, const fc_render_target *source,
     int taps = sigma > 0.0f ? (int)ceilf(KERNEL_SIGMAS * sigma - 1e-3f) : 0;
     fc_render_target_bind(target);
     glUseProgram(f->program);
-    glUniform2f(LOC_TEXEL_STEP, step_u, step_v);
+    glUniform2f(LOC_AXIS, axis == 0 ? 1.0f : 0.0f, axis == 1 ? 1.0f : 0.0f);
     glUniform1f(LOC_SIGMA, sigma);
     glUniform1i(LOC_TAPS, taps < MAX_TAPS ? taps : MAX_TAPS);
     glUniform2f(LOC_TARGET_SIZE, (float)width, (float)height);
+    glUniform2f(LOC_SOURCE_SIZE, (float)source->width, (float)source->height);
+    glUniform2f(LOC_SOURCE_TEXTURE_SIZE, (float)source->texture_width, (float)source->texture_height);
     glBindTextureUnit(0, source->color);
     fc_gl_draw_fullscreen(f->empty_vertex_array);
     return fc_gl_check("thickness blur", err);
@@ -62,13 +71,11 @@ fc_code fc_thickness_filter_run(fc_thickness_filter *f, const fc_render_target *
     const fc_render_target *vertical_source = source;
     fc_code code = FC_OK;
     if (sigma > 0.0f) {
-        code = blur_axis(f, source, &f->across, 1.0f / (float)source->width, 0.0f, sigma, source->width,
-                         source->height, err);
+        code = blur_axis(f, source, &f->across, 0, sigma, source->width, source->height, err);
         vertical_source = &f->across;
     }
     if (code == FC_OK)
-        code = blur_axis(f, vertical_source, &f->result, 0.0f, 1.0f / (float)source->height, sigma, width,
-                         height, err);
+        code = blur_axis(f, vertical_source, &f->result, 1, sigma, width, height, err);
     *result = &f->result;
     return code;
 }

@@ -87,3 +87,10 @@ void fc_thickness_pass_tally(const fc_thickness_pass *pass, fc_gpu_memory *m)
     fc_render_target_tally(&pass->filter.across, m);
     fc_render_target_tally(&pass->filter.result, m);
 }
+
+void fc_thickness_pass_trim(fc_thickness_pass *pass)
+{
+    fc_render_target_release(&pass->splat);
+    fc_render_target_release(&pass->filter.across);
+    fc_render_target_release(&pass->filter.result);
+}

@@ -39,4 +39,7 @@ fc_code fc_thickness_pass_run(fc_thickness_pass *pass, const fc_particle_buffer 
 /* Adds the splat target and the blur's two targets to m. */
 void fc_thickness_pass_tally(const fc_thickness_pass *pass, fc_gpu_memory *m);
 
+/* Frees the splat and blur targets; the next run allocates them again. */
+void fc_thickness_pass_trim(fc_thickness_pass *pass);
+
 #endif

@@ -1,7 +1,8 @@
 /* test_gpu_memory.c — fc_pipeline_gpu_memory: the particle buffers are sized
  * exactly to the largest frame, the render targets to what their formats
  * imply for the image (the list in pipeline.h), the readback to the largest
- * image read back; and rendering again, or a smaller frame, allocates nothing. */
+ * image read back; rendering again, a smaller frame or a smaller image
+ * allocates nothing; a larger image grows the targets; trim frees them. */
 #include <stdlib.h>
 
 #include "pipeline_internal.h"
@@ -138,9 +139,12 @@ static void test_sizes_and_reuse(render_fixture *f, const float *positions)
     check_same(&first, &smaller_frame, "a smaller frame");
 }
 
-/* A different image size reallocates the targets its stages use, to that size;
- * the readback buffer only grows, and the particles are not touched. */
-static void test_smaller_image(render_fixture *f, const float *positions)
+/* Targets only grow, per axis: a smaller image allocates nothing and keeps
+ * the bytes; one larger along an axis grows the targets its stages use to the
+ * larger of the two sizes on each axis; trim gives every target back, and the
+ * next render allocates only what it uses, at its size. The readback buffer
+ * and the particles are not touched. */
+static void test_image_sizes(render_fixture *f, const float *positions)
 {
     CHECK_CODE(upload(f, positions, PARTICLES), FC_OK);
     fc_camera cam = axis_camera(3.0, WIDTH, HEIGHT);
@@ -150,21 +154,45 @@ static void test_smaller_image(render_fixture *f, const float *positions)
     fc_gpu_memory before;
     fc_pipeline_gpu_memory(f->pipeline, &before);
 
-    /* The raw depth alone needs the depth pass's three R32F targets. */
     fc_camera small = axis_camera(3.0, WIDTH / 2, HEIGHT / 2);
     CHECK_CODE(render(f, &small, &s, FC_AOV_DEPTH, 0, &img), FC_OK);
-    fc_gpu_memory after;
-    fc_pipeline_gpu_memory(f->pipeline, &after);
-    const uint64_t shrunk = 3 * 4 * ((uint64_t)WIDTH * HEIGHT - (uint64_t)(WIDTH / 2) * (HEIGHT / 2));
-    CHECK_MSG(before.render_target_bytes - after.render_target_bytes == shrunk, "render targets %llu -> %llu",
-              (unsigned long long)before.render_target_bytes, (unsigned long long)after.render_target_bytes);
-    CHECK(after.allocations == before.allocations + 3);
-    CHECK(after.readback_bytes == before.readback_bytes && after.particle_bytes == before.particle_bytes);
+    CHECK(img.width == WIDTH / 2 && img.height == HEIGHT / 2);
+    fc_gpu_memory smaller;
+    fc_pipeline_gpu_memory(f->pipeline, &smaller);
+    check_same(&before, &smaller, "a smaller image");
+    CHECK_CODE(render(f, &cam, &s, FC_AOV_DEPTH, 0, &img), FC_OK);
+    fc_gpu_memory back;
+    fc_pipeline_gpu_memory(f->pipeline, &back);
+    check_same(&before, &back, "the larger image after the smaller one");
+
+    /* Narrower but taller: the raw depth needs the depth pass's three R32F
+     * targets, which grow to WIDTH x TALL (not WIDTH / 2 x TALL). */
+    const uint32_t tall = HEIGHT + 16;
+    fc_camera taller = axis_camera(3.0, WIDTH / 2, tall);
+    CHECK_CODE(render(f, &taller, &s, FC_AOV_DEPTH, 0, &img), FC_OK);
+    fc_gpu_memory grown;
+    fc_pipeline_gpu_memory(f->pipeline, &grown);
+    const uint64_t growth = 3 * 4 * (uint64_t)WIDTH * (tall - HEIGHT);
+    CHECK_MSG(grown.render_target_bytes - before.render_target_bytes == growth, "render targets %llu -> %llu",
+              (unsigned long long)before.render_target_bytes, (unsigned long long)grown.render_target_bytes);
+    CHECK(grown.allocations == before.allocations + 3);
+    CHECK(grown.readback_bytes == before.readback_bytes && grown.particle_bytes == before.particle_bytes);
+
+    fc_pipeline_trim(f->pipeline);
+    fc_gpu_memory trimmed;
+    fc_pipeline_gpu_memory(f->pipeline, &trimmed);
+    CHECK_MSG(trimmed.render_target_bytes == 0, "after trim: render targets %llu bytes",
+              (unsigned long long)trimmed.render_target_bytes);
+    CHECK(trimmed.allocations == grown.allocations);
+    CHECK(trimmed.readback_bytes == grown.readback_bytes && trimmed.particle_bytes == grown.particle_bytes);
 
     CHECK_CODE(render(f, &small, &s, FC_AOV_DEPTH, 0, &img), FC_OK);
-    fc_gpu_memory repeated;
-    fc_pipeline_gpu_memory(f->pipeline, &repeated);
-    check_same(&after, &repeated, "the smaller image again");
+    fc_gpu_memory after_trim;
+    fc_pipeline_gpu_memory(f->pipeline, &after_trim);
+    CHECK_MSG(after_trim.render_target_bytes == 3 * 4 * (uint64_t)(WIDTH / 2) * (HEIGHT / 2),
+              "after trim and a small image: render targets %llu bytes",
+              (unsigned long long)after_trim.render_target_bytes);
+    CHECK(after_trim.allocations == trimmed.allocations + 3);
     fc_image_free(&img);
 }
 
@@ -177,7 +205,7 @@ int main(void)
     CHECK(positions != NULL);
     if (positions) {
         test_sizes_and_reuse(&f, positions);
-        test_smaller_image(&f, positions);
+        test_image_sizes(&f, positions);
     }
     free(positions);
     fixture_close(&f);
