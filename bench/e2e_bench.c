@@ -7,7 +7,7 @@
 #include <time.h>
 #include <unistd.h>
 
-#include "e2e_daemon.h"
+#include "daemon_process.h"
 #include "e2e_options.h"
 #include "e2e_request.h"
 #include "e2e_stream.h"
@@ -205,19 +205,19 @@ static fc_code run_with_daemon(int argc, char **argv, run_plan *plan, fc_error *
         plan->address = o->server;
         return run_all(argc, argv, plan, err);
     }
-    char path[4096];
-    fc_code code = FC_OK;
-    if (o->daemon_path)
-        snprintf(path, sizeof path, "%s", o->daemon_path);
-    else
-        code = e2e_daemon_default_path(path, sizeof path, err);
-    e2e_daemon daemon;
-    if (code != FC_OK || (code = e2e_daemon_start(&daemon, path, o->gpu, err)) != FC_OK)
+    /* Warnings only: its per-connection info lines would bury the benchmark's progress. */
+    const char *const args[] = {"--gpu", o->gpu, "--log-level", "warn", NULL};
+    fc_test_daemon_setup setup = {.daemon_path = o->daemon_path, .extra_args = args};
+    fc_test_daemon daemon;
+    fc_code code = fc_test_daemon_start_with(&daemon, &setup, FC_TEST_DAEMON_START_TIMEOUT_MS, err);
+    if (code != FC_OK)
         return code;
-    plan->address = daemon.address;
+    char address[32];
+    snprintf(address, sizeof address, "127.0.0.1:%u", (unsigned)daemon.port);
+    plan->address = address;
     code = run_all(argc, argv, plan, err);
     fc_error stop_err;
-    fc_code stopped = e2e_daemon_stop(&daemon, &stop_err);
+    fc_code stopped = fc_test_daemon_stop(&daemon, FC_TEST_DAEMON_STOP_TIMEOUT_MS, &stop_err);
     if (code == FC_OK && stopped != FC_OK) {
         *err = stop_err;
         code = stopped;

@@ -27,7 +27,7 @@ void e2e_options_print_usage(void)
            "End-to-end loopback benchmark: particle upload -> image at the client, through a real fluidcastd.\n"
            "Prints markdown tables: request/response latency, the server's stage times, streaming throughput.\n"
            "  --server HOST:PORT     use a running daemon instead of starting one\n"
-           "  --daemon PATH          fluidcastd to start (default: the one next to this binary)\n"
+           "  --daemon PATH          fluidcastd to start (default: the one built with it)\n"
            "  --gpu software|auto    passed to the started daemon (default software)\n"
            "  --particles LIST       particle counts, k/m suffixes (default 16k,64k; the H200 target: 1m)\n"
            "  --size LIST            image sizes WxH (default 640x360,1280x720)\n"

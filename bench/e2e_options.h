@@ -9,7 +9,7 @@
 typedef struct e2e_options {
     int help;
     const char *server;           /* --server HOST:PORT; NULL: start a daemon */
-    const char *daemon_path;      /* --daemon; NULL: fluidcastd next to this binary */
+    const char *daemon_path;      /* --daemon; NULL: the fluidcastd built with it */
     const char *gpu;              /* --gpu software|auto, passed to the daemon */
     uint64_t particles[E2E_MAX_LIST];
     int n_particles;

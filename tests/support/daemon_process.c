@@ -66,7 +66,7 @@ static void apply_setup(const fc_test_daemon_setup *setup)
             _exit(127);
 }
 
-static void spawn(const fc_test_daemon *d, const fc_test_daemon_setup *setup, pid_t test_pid)
+static void spawn(const fc_test_daemon *d, const char *path, const fc_test_daemon_setup *setup, pid_t test_pid)
 {
     /* A test that crashes (or is aborted by a sanitizer) takes its daemon
      * along, instead of leaving it holding ctest's output pipe open until the
@@ -74,7 +74,7 @@ static void spawn(const fc_test_daemon *d, const fc_test_daemon_setup *setup, pi
     if (prctl(PR_SET_PDEATHSIG, SIGKILL) != 0 || getppid() != test_pid)
         _exit(127);
     apply_setup(setup);
-    const char *argv[8 + MAX_EXTRA_ARGS] = {fc_test_daemon_path(), "--listen", "127.0.0.1:0", "--port-file",
+    const char *argv[8 + MAX_EXTRA_ARGS] = {path, "--listen", "127.0.0.1:0", "--port-file",
                                             d->port_file, "--gpu", "software"};
     int argc = 7;
     for (int i = 0; setup->extra_args && setup->extra_args[i] && i < MAX_EXTRA_ARGS; i++)
@@ -98,7 +98,7 @@ static unsigned read_port_file(const char *path)
     return port;
 }
 
-static fc_code wait_for_port(fc_test_daemon *d, int timeout_ms, fc_error *err)
+static fc_code wait_for_port(fc_test_daemon *d, const char *path, int timeout_ms, fc_error *err)
 {
     for (int waited = 0; waited <= timeout_ms; waited += POLL_INTERVAL_MS) {
         unsigned port = read_port_file(d->port_file);
@@ -112,14 +112,14 @@ static fc_code wait_for_port(fc_test_daemon *d, int timeout_ms, fc_error *err)
             describe_status(status, how, sizeof how);
             d->pid = 0;
             d->early_exit = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
-            return fc_error_set(err, FC_ERR_IO, "%s %s before announcing its port", fc_test_daemon_path(), how);
+            return fc_error_set(err, FC_ERR_IO, "%s %s before announcing its port", path, how);
         }
         sleep_ms(POLL_INTERVAL_MS);
     }
     kill(d->pid, SIGKILL);
     waitpid(d->pid, NULL, 0);
     d->pid = 0;
-    return fc_error_set(err, FC_ERR_IO, "%s did not announce its port within %d ms", fc_test_daemon_path(),
+    return fc_error_set(err, FC_ERR_IO, "%s did not announce its port within %d ms", path,
                         timeout_ms);
 }
 
@@ -132,6 +132,7 @@ fc_code fc_test_daemon_start(fc_test_daemon *d, const char *const *extra_args, i
 fc_code fc_test_daemon_start_with(fc_test_daemon *d, const fc_test_daemon_setup *setup, int timeout_ms,
                                   fc_error *err)
 {
+    const char *path = setup->daemon_path ? setup->daemon_path : fc_test_daemon_path();
     memset(d, 0, sizeof *d);
     d->early_exit = -1;
     snprintf(d->dir, sizeof d->dir, "/tmp/fc-test-XXXXXX");
@@ -148,8 +149,8 @@ fc_code fc_test_daemon_start_with(fc_test_daemon *d, const fc_test_daemon_setup 
         return fc_error_set(err, FC_ERR_IO, "fork: %s", strerror(errno));
     }
     if (d->pid == 0)
-        spawn(d, setup, test_pid);
-    fc_code code = wait_for_port(d, timeout_ms, err);
+        spawn(d, path, setup, test_pid);
+    fc_code code = wait_for_port(d, path, timeout_ms, err);
     if (code != FC_OK)
         remove_temp_files(d);
     return code;

@@ -1,5 +1,6 @@
-/* daemon_process.h — runs the real fluidcastd for integration tests: on an
- * ephemeral port of 127.0.0.1 with software GL, stopped with SIGTERM. */
+/* daemon_process.h — runs the real fluidcastd for integration tests and the
+ * end-to-end benchmark: on an ephemeral port of 127.0.0.1 with software GL,
+ * stopped with SIGTERM. */
 #ifndef FC_TEST_DAEMON_PROCESS_H
 #define FC_TEST_DAEMON_PROCESS_H
 
@@ -32,12 +33,13 @@ fc_code fc_test_daemon_start(fc_test_daemon *d, const char *const *extra_args, i
 
 /* What a test may change about the daemon's process beyond its arguments. */
 typedef struct fc_test_daemon_setup {
+    const char *daemon_path;            /* the binary to run; NULL: fc_test_daemon_path() */
     const char *const *extra_args;      /* as for fc_test_daemon_start */
     uint64_t address_space_limit;       /* RLIMIT_AS set in the child before exec, bytes; 0 = inherited */
     const char *const *environment;     /* "NAME=VALUE" entries added to its environment, NULL-terminated; or NULL */
 } fc_test_daemon_setup;
 
-/* fc_test_daemon_start with the setup's limit and environment. */
+/* fc_test_daemon_start with the setup's binary, limit and environment. */
 fc_code fc_test_daemon_start_with(fc_test_daemon *d, const fc_test_daemon_setup *setup, int timeout_ms,
                                   fc_error *err);
 
