@@ -43,6 +43,44 @@ fc_code fc_frame_alloc(fc_frame *frame, uint64_t count, uint32_t attributes, fc_
     return FC_OK;
 }
 
+/* Bytes per particle of the arrays an attribute mask asks for. */
+static size_t particle_bytes(uint32_t attributes)
+{
+    size_t bytes = 3 * sizeof(float);
+    if (attributes & FC_ATTR_DENSITY)
+        bytes += sizeof(float);
+    if (attributes & FC_ATTR_VELOCITY)
+        bytes += 3 * sizeof(float);
+    if (attributes & FC_ATTR_IDS)
+        bytes += sizeof(uint32_t);
+    return bytes;
+}
+
+size_t fc_frame_block_size(uint64_t count, uint32_t attributes)
+{
+    size_t per_particle = particle_bytes(attributes);
+    return count > SIZE_MAX / per_particle ? 0 : (size_t)count * per_particle;
+}
+
+void fc_frame_point_into_block(fc_frame *frame, uint8_t *block, uint64_t count, uint32_t attributes)
+{
+    size_t n = (size_t)count;
+    memset(frame, 0, sizeof *frame);
+    frame->count = count;
+    frame->positions = (float *)block;
+    block += 3 * n * sizeof(float);
+    if (attributes & FC_ATTR_DENSITY) {
+        frame->density = (float *)block;
+        block += n * sizeof(float);
+    }
+    if (attributes & FC_ATTR_VELOCITY) {
+        frame->velocity = (float *)block;
+        block += 3 * n * sizeof(float);
+    }
+    if (attributes & FC_ATTR_IDS)
+        frame->ids = (uint32_t *)block;
+}
+
 void fc_frame_free(fc_frame *frame)
 {
     free(frame->positions);
@@ -75,6 +113,21 @@ static uint64_t first_non_finite(const float *values, uint64_t count, size_t per
     return count;
 }
 
+/* Whether all n floats are finite: a NaN's or an infinity's exponent bits are
+ * all ones. Branch-free, so the compiler vectorises the one pass over the
+ * frame that the common, valid case needs. */
+static bool all_finite(const float *values, size_t n)
+{
+    const uint32_t exponent = 0x7f800000u;
+    uint32_t bad = 0;
+    for (size_t i = 0; i < n; i++) {
+        uint32_t bits;
+        memcpy(&bits, values + i, sizeof bits);
+        bad |= (bits & exponent) == exponent;
+    }
+    return bad == 0;
+}
+
 fc_code fc_frame_validate(const fc_frame *frame, fc_error *err)
 {
     const struct {
@@ -90,6 +143,9 @@ fc_code fc_frame_validate(const fc_frame *frame, fc_error *err)
         return fc_error_set(err, FC_ERR_INVALID_VALUE, "the frame has no particles");
     for (size_t a = 0; a < sizeof arrays / sizeof arrays[0]; a++) {
         if (!arrays[a].values)
+            continue;
+        if (frame->count <= SIZE_MAX / arrays[a].per_particle &&
+            all_finite(arrays[a].values, (size_t)frame->count * arrays[a].per_particle))
             continue;
         uint64_t bad = first_non_finite(arrays[a].values, frame->count, arrays[a].per_particle);
         if (bad < frame->count)

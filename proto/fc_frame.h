@@ -23,6 +23,16 @@ enum {
  * left empty. */
 fc_code fc_frame_alloc(fc_frame *frame, uint64_t count, uint32_t attributes, fc_error *err);
 
+/* Bytes of one block that holds all of a frame's arrays back to back, in
+ * FRAME's order (positions, density, velocity, ids); 0 when that would not
+ * fit size_t. */
+size_t fc_frame_block_size(uint64_t count, uint32_t attributes);
+
+/* Points the frame's arrays into such a block (4-byte aligned, at least
+ * fc_frame_block_size bytes). The frame does not own the block: never
+ * fc_frame_free it. */
+void fc_frame_point_into_block(fc_frame *frame, uint8_t *block, uint64_t count, uint32_t attributes);
+
 /* Frees every array and zeroes the frame. Safe on a zeroed frame. */
 void fc_frame_free(fc_frame *frame);
 

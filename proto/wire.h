@@ -115,6 +115,29 @@ fc_code fc_wire_read_welcome(const uint8_t *p, size_t n, fc_welcome *m, fc_error
  * above max_particles with FC_ERR_LIMIT, non-finite values with
  * FC_ERR_INVALID_VALUE, size mismatches with FC_ERR_MALFORMED. */
 fc_code fc_wire_read_frame(const uint8_t *p, size_t n, uint64_t max_particles, fc_frame *m, fc_error *err);
+
+/* Storage for frames a server decodes: one block per frame holds all its
+ * arrays back to back in FRAME's order (positions, density, velocity, ids),
+ * so blocks can be recycled whole. */
+typedef struct fc_block_source {
+    uint8_t *(*take)(void *ctx, size_t size);   /* NULL when memory runs out */
+    void (*give)(void *ctx, uint8_t *block, size_t size);
+    void *ctx;
+} fc_block_source;
+
+/* A decoded frame whose arrays lie in one place: in `block` (block_size
+ * bytes, from the fc_block_source, handed back with its give) or, when block
+ * is NULL, in the payload it was decoded from, which must outlive it. */
+typedef struct fc_frame_view {
+    fc_frame frame;
+    uint8_t *block;
+    size_t block_size;
+} fc_frame_view;
+
+/* FRAME decoded in place, without copying: the view's arrays point into p,
+ * which must be 4-byte aligned (FC_ERR_USAGE otherwise); big-endian hosts
+ * byte-swap the values there. The same checks and codes as fc_wire_read_frame. */
+fc_code fc_wire_view_frame(uint8_t *p, size_t n, uint64_t max_particles, fc_frame *view, fc_error *err);
 fc_code fc_wire_read_camera(const uint8_t *p, size_t n, fc_camera *m, fc_error *err);
 /* Applies the entries onto *m atomically: on any error *m is unchanged. */
 fc_code fc_wire_read_settings(const uint8_t *p, size_t n, fc_settings *m, fc_error *err);

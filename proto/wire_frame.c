@@ -1,6 +1,8 @@
 /* wire_frame.c — the FRAME message: particle arrays, one after the other. */
 #include "wire.h"
 
+#include <string.h>
+
 #include "fc_error.h"
 #include "fc_frame.h"
 #include "wire_frame_io.h"
@@ -81,10 +83,37 @@ fc_code fc_wire_read_frame(const uint8_t *p, size_t n, uint64_t max_particles, f
         return code;
     /* The layout check proved count * stride == the bytes left, so count fits size_t. */
     wire_get_f32_array(&r, frame.positions, 3 * (size_t)count, "positions");
-    return wire_get_frame_attributes(&r, &frame, m, err);
+    code = wire_get_frame_attributes(&r, &frame, err);
+    if (code != FC_OK) {
+        fc_frame_free(&frame);
+        return code;
+    }
+    *m = frame;
+    return FC_OK;
 }
 
-fc_code wire_get_frame_attributes(wire_reader *r, fc_frame *frame, fc_frame *out, fc_error *err)
+fc_code fc_wire_view_frame(uint8_t *p, size_t n, uint64_t max_particles, fc_frame *view, fc_error *err)
+{
+    if ((uintptr_t)p % sizeof(float) != 0)
+        return fc_error_set(err, FC_ERR_USAGE, "FRAME: a payload viewed in place must be 4-byte aligned");
+    wire_reader r = wire_reader_start(p, n, "FRAME", err);
+    uint64_t count = wire_get_u64(&r, "count");
+    uint32_t attributes = wire_get_u32(&r, "attributes");
+    uint32_t reserved = wire_get_u32(&r, "reserved");
+    if (r.code != FC_OK || check_frame_layout(&r, count, attributes, reserved, max_particles) != FC_OK)
+        return r.code;
+    uint8_t *arrays = p + FRAME_FIXED_SIZE;
+    fc_frame frame;
+    fc_frame_point_into_block(&frame, arrays, count, attributes);
+    /* The layout check proved count * stride == the bytes left, so this fits size_t. */
+    wire_words_to_host(arrays, fc_frame_block_size(count, attributes) / 4);
+    fc_code code = fc_frame_validate(&frame, err);
+    if (code == FC_OK)
+        *view = frame;
+    return code;
+}
+
+fc_code wire_get_frame_attributes(wire_reader *r, const fc_frame *frame, fc_error *err)
 {
     /* Both layout checks proved the particles' bytes are in the payload, so count fits size_t. */
     size_t particles = (size_t)frame->count;
@@ -95,11 +124,23 @@ fc_code wire_get_frame_attributes(wire_reader *r, fc_frame *frame, fc_frame *out
     if (frame->ids)
         wire_get_u32_array(r, frame->ids, particles, "ids");
     wire_expect_end(r);
-    fc_code code = r->code != FC_OK ? r->code : fc_frame_validate(frame, err);
-    if (code != FC_OK) {
-        fc_frame_free(frame);
+    return r->code != FC_OK ? r->code : fc_frame_validate(frame, err);
+}
+
+fc_code wire_frame_from_view(const fc_frame *view, fc_frame *out, fc_error *err)
+{
+    fc_frame frame;
+    fc_code code = fc_frame_alloc(&frame, view->count, fc_frame_attributes(view), err);
+    if (code != FC_OK)
         return code;
-    }
-    *out = *frame;
+    size_t n = (size_t)view->count;
+    memcpy(frame.positions, view->positions, 3 * n * sizeof(float));
+    if (view->density)
+        memcpy(frame.density, view->density, n * sizeof(float));
+    if (view->velocity)
+        memcpy(frame.velocity, view->velocity, 3 * n * sizeof(float));
+    if (view->ids)
+        memcpy(frame.ids, view->ids, n * sizeof(uint32_t));
+    *out = frame;
     return FC_OK;
 }

@@ -5,9 +5,11 @@
 
 #include "wire_io.h"
 
-/* Reads the optional attribute arrays that follow the positions, requires the
- * payload to end there and the frame to be valid. On success *out takes
- * *frame; on failure *frame is freed, so the caller never frees it. */
-fc_code wire_get_frame_attributes(wire_reader *r, fc_frame *frame, fc_frame *out, fc_error *err);
+/* Reads the optional attribute arrays that follow the positions into the
+ * frame's arrays, requires the payload to end there and the frame to be valid. */
+fc_code wire_get_frame_attributes(wire_reader *r, const fc_frame *frame, fc_error *err);
+
+/* An owned copy of a view's arrays (fc_frame_free releases it). */
+fc_code wire_frame_from_view(const fc_frame *view, fc_frame *out, fc_error *err);
 
 #endif

@@ -210,6 +210,16 @@ static void get_words(wire_reader *r, void *out, size_t count, const char *field
     }
 }
 
+void wire_words_to_host(uint8_t *words, size_t count)
+{
+    if (HOST_IS_LITTLE_ENDIAN)
+        return;
+    for (size_t i = 0; i < count; i++) {
+        uint32_t w = (uint32_t)load_le(words + 4 * i, 4);
+        memcpy(words + 4 * i, &w, 4);
+    }
+}
+
 void wire_get_f32_array(wire_reader *r, float *out, size_t count, const char *field) { get_words(r, out, count, field); }
 void wire_get_u32_array(wire_reader *r, uint32_t *out, size_t count, const char *field) { get_words(r, out, count, field); }
 

@@ -55,6 +55,8 @@ void wire_get_u32_array(wire_reader *r, uint32_t *out, size_t count, const char 
 /* Copies a string into out[capacity], cut at a UTF-8 character boundary when
  * too long, always NUL-terminated; an embedded NUL is MALFORMED. */
 void wire_get_str(wire_reader *r, char *out, size_t capacity, const char *field);
+/* Turns `count` little-endian 32-bit words into host order in place (nothing to do on little-endian hosts). */
+void wire_words_to_host(uint8_t *words, size_t count);
 /* Returns a pointer to the next n bytes (inside the payload) and skips them. */
 const uint8_t *wire_get_bytes(wire_reader *r, size_t n, const char *field);
 /* MALFORMED when bytes are left over. */

@@ -109,7 +109,9 @@ static void get_quantized_positions(wire_reader *r, fc_frame *frame, const float
         wire_get_bytes(r, 2, "padding");
 }
 
-static fc_code read_quantized(const uint8_t *p, size_t n, uint64_t max_particles, fc_frame *out, fc_error *err)
+/* The quantised layout dequantised into a block from src, the attributes copied after the positions. */
+static fc_code view_quantized(const uint8_t *p, size_t n, uint64_t max_particles, const fc_block_source *src,
+                              fc_frame_view *out, fc_error *err)
 {
     float lo[3], hi[3];
     wire_reader r = wire_reader_start(p, n, "quantised frame", err);
@@ -122,12 +124,20 @@ static fc_code read_quantized(const uint8_t *p, size_t n, uint64_t max_particles
         check_quantized_layout(&r, count, attributes, reserved, lo, hi, max_particles);
     if (r.code != FC_OK)
         return r.code;
+    size_t size = fc_frame_block_size(count, attributes);
+    uint8_t *block = src->take(src->ctx, size);
+    if (!block)
+        return fc_error_set(err, FC_ERR_NOMEM, "no memory for a frame of %llu particles", (unsigned long long)count);
     fc_frame frame;
-    fc_code code = fc_frame_alloc(&frame, count, attributes, err);
-    if (code != FC_OK)
-        return code;
+    fc_frame_point_into_block(&frame, block, count, attributes);
     get_quantized_positions(&r, &frame, lo, hi);
-    return wire_get_frame_attributes(&r, &frame, out, err);
+    fc_code code = wire_get_frame_attributes(&r, &frame, err);
+    if (code != FC_OK) {
+        src->give(src->ctx, block, size);
+        return code;
+    }
+    *out = (fc_frame_view){frame, block, size};
+    return FC_OK;
 }
 
 /* ---- Packed body: encoding, reserved, raw_size, bytes ---- */
@@ -239,13 +249,15 @@ static uint64_t inner_size_limit(uint64_t max_particles)
     return INNER_FIXED_MAX + max_particles * MAX_PARTICLE_BYTES;
 }
 
-static fc_code decompress(const uint8_t *src, size_t n, uint64_t raw_size, uint8_t **out, fc_error *err)
+/* Decompresses into a block of raw_size bytes from src. */
+static fc_code decompress(const uint8_t *bytes, size_t n, uint64_t raw_size, const fc_block_source *src,
+                          uint8_t **out, fc_error *err)
 {
-    unsigned long long declared = ZSTD_getFrameContentSize(src, n);
+    unsigned long long declared = ZSTD_getFrameContentSize(bytes, n);
     if (declared == ZSTD_CONTENTSIZE_ERROR)
         return fc_error_set(err, FC_ERR_MALFORMED, "packed body: not a zstd frame");
     /* Exactly one frame: ZSTD_decompress would go on through frames after it. */
-    size_t frame_size = ZSTD_findFrameCompressedSize(src, n);
+    size_t frame_size = ZSTD_findFrameCompressedSize(bytes, n);
     if (ZSTD_isError(frame_size) || frame_size != n)
         return fc_error_set(err, FC_ERR_MALFORMED, "packed body: not exactly one zstd frame");
     if (declared != ZSTD_CONTENTSIZE_UNKNOWN && declared != raw_size)
@@ -254,12 +266,12 @@ static fc_code decompress(const uint8_t *src, size_t n, uint64_t raw_size, uint8
     if (raw_size > SIZE_MAX)
         return fc_error_set(err, FC_ERR_LIMIT, "packed body: %llu bytes do not fit in memory",
                             (unsigned long long)raw_size);
-    uint8_t *raw = malloc(raw_size ? (size_t)raw_size : 1);
+    uint8_t *raw = src->take(src->ctx, (size_t)raw_size);
     if (!raw)
         return fc_error_set(err, FC_ERR_NOMEM, "no memory for a %llu-byte frame", (unsigned long long)raw_size);
-    size_t got = ZSTD_decompress(raw, (size_t)raw_size, src, n);
+    size_t got = ZSTD_decompress(raw, (size_t)raw_size, bytes, n);
     if (ZSTD_isError(got) || got != raw_size) {
-        free(raw);
+        src->give(src->ctx, raw, (size_t)raw_size);
         return fc_error_set(err, FC_ERR_MALFORMED, "packed body: zstd: %s",
                             ZSTD_isError(got) ? ZSTD_getErrorName(got) : "fewer bytes than raw_size");
     }
@@ -267,15 +279,20 @@ static fc_code decompress(const uint8_t *src, size_t n, uint64_t raw_size, uint8
     return FC_OK;
 }
 
-static fc_code read_inner(const uint8_t *inner, size_t n, uint32_t encoding, uint64_t max_particles,
-                          fc_frame *frame, fc_error *err)
+static fc_code view_inner(uint8_t *inner, size_t n, uint32_t encoding, uint64_t max_particles,
+                          const fc_block_source *src, fc_frame_view *out, fc_error *err)
 {
     if (encoding & FC_PACK_QUANTIZE16)
-        return read_quantized(inner, n, max_particles, frame, err);
-    return fc_wire_read_frame(inner, n, max_particles, frame, err);
+        return view_quantized(inner, n, max_particles, src, out, err);
+    out->block = NULL;
+    out->block_size = 0;
+    return fc_wire_view_frame(inner, n, max_particles, &out->frame, err);
 }
 
-static fc_code read_packed_body(wire_reader *r, uint32_t allowed, uint64_t max_particles, fc_frame *frame)
+/* A plain inner layout stays where it is; a compressed one is decompressed
+ * into a block, which then holds the frame unless quantised values need another. */
+static fc_code view_packed_body(wire_reader *r, uint8_t *payload, uint32_t allowed, uint64_t max_particles,
+                                const fc_block_source *src, fc_frame_view *out)
 {
     uint32_t encoding = wire_get_u32(r, "encoding");
     uint32_t reserved = wire_get_u32(r, "reserved");
@@ -297,33 +314,96 @@ static fc_code read_packed_body(wire_reader *r, uint32_t allowed, uint64_t max_p
     if (r->code != FC_OK)
         return r->code;
     size_t n = wire_remaining(r);
-    const uint8_t *body = wire_get_bytes(r, n, "body");
+    uint8_t *body = payload + r->pos;
     if (!(encoding & FC_PACK_ZSTD))
-        return read_inner(body, n, encoding, max_particles, frame, r->err);
+        return view_inner(body, n, encoding, max_particles, src, out, r->err);
     uint8_t *raw = NULL;
-    fc_code code = decompress(body, n, raw_size, &raw, r->err);
+    fc_code code = decompress(body, n, raw_size, src, &raw, r->err);
+    if (code != FC_OK)
+        return code;
+    fc_frame_view inner;
+    code = view_inner(raw, (size_t)raw_size, encoding, max_particles, src, &inner, r->err);
+    if (code == FC_OK && !inner.block) {
+        inner.block = raw;
+        inner.block_size = (size_t)raw_size;
+    } else {
+        src->give(src->ctx, raw, (size_t)raw_size);
+    }
     if (code == FC_OK)
-        code = read_inner(raw, (size_t)raw_size, encoding, max_particles, frame, r->err);
-    free(raw);
+        *out = inner;
     return code;
 }
 
-fc_code fc_wire_read_frame_packed(const uint8_t *p, size_t n, uint32_t allowed_encoding, uint64_t max_particles,
-                                  fc_frame *frame, fc_error *err)
+fc_code fc_wire_view_frame_packed(uint8_t *p, size_t n, uint32_t allowed_encoding, uint64_t max_particles,
+                                  const fc_block_source *src, fc_frame_view *out, fc_error *err)
 {
     wire_reader r = wire_reader_start(p, n, "FRAME_PACKED", err);
-    return read_packed_body(&r, allowed_encoding, max_particles, frame);
+    return view_packed_body(&r, p, allowed_encoding, max_particles, src, out);
 }
 
-fc_code fc_wire_read_chunk(const uint8_t *p, size_t n, uint32_t allowed_encoding, uint64_t max_particles,
-                           fc_chunk_header *h, fc_frame *part, fc_error *err)
+fc_code fc_wire_view_chunk(uint8_t *p, size_t n, uint32_t allowed_encoding, uint64_t max_particles,
+                           const fc_block_source *src, fc_chunk_header *h, fc_frame_view *part, fc_error *err)
 {
     wire_reader r = wire_reader_start(p, n, "CHUNK", err);
     fc_chunk_header header;
     header.frame_number = wire_get_u64(&r, "frame_number");
     header.index = wire_get_u32(&r, "index");
     header.count = wire_get_u32(&r, "count");
-    fc_code code = read_packed_body(&r, allowed_encoding, max_particles, part);
+    if (r.code != FC_OK)
+        return r.code;
+    fc_code code = view_packed_body(&r, p, allowed_encoding, max_particles, src, part);
+    if (code == FC_OK)
+        *h = header;
+    return code;
+}
+
+/* ---- Copying readers (clients, tools): a private copy of the payload viewed, then owned arrays ---- */
+
+static uint8_t *take_malloc(void *ctx, size_t size)
+{
+    (void)ctx;
+    return malloc(size ? size : 1);
+}
+
+static void give_free(void *ctx, uint8_t *block, size_t size)
+{
+    (void)ctx;
+    (void)size;
+    free(block);
+}
+
+static const fc_block_source heap_blocks = {take_malloc, give_free, NULL};
+
+/* Views a private copy of p with `view` (NULL h: FRAME_PACKED) and returns owned arrays. */
+static fc_code read_copied(const uint8_t *p, size_t n, uint32_t allowed, uint64_t max_particles, fc_chunk_header *h,
+                           fc_frame *frame, fc_error *err)
+{
+    uint8_t *copy = malloc(n ? n : 1);
+    if (!copy)
+        return fc_error_set(err, FC_ERR_NOMEM, "no memory for a %zu-byte payload", n);
+    memcpy(copy, p, n);
+    fc_frame_view view;
+    fc_code code = h ? fc_wire_view_chunk(copy, n, allowed, max_particles, &heap_blocks, h, &view, err)
+                     : fc_wire_view_frame_packed(copy, n, allowed, max_particles, &heap_blocks, &view, err);
+    if (code == FC_OK) {
+        code = wire_frame_from_view(&view.frame, frame, err);
+        free(view.block);
+    }
+    free(copy);
+    return code;
+}
+
+fc_code fc_wire_read_frame_packed(const uint8_t *p, size_t n, uint32_t allowed_encoding, uint64_t max_particles,
+                                  fc_frame *frame, fc_error *err)
+{
+    return read_copied(p, n, allowed_encoding, max_particles, NULL, frame, err);
+}
+
+fc_code fc_wire_read_chunk(const uint8_t *p, size_t n, uint32_t allowed_encoding, uint64_t max_particles,
+                           fc_chunk_header *h, fc_frame *part, fc_error *err)
+{
+    fc_chunk_header header;
+    fc_code code = read_copied(p, n, allowed_encoding, max_particles, &header, part, err);
     if (code == FC_OK)
         *h = header;
     return code;

@@ -129,6 +129,13 @@ fc_code fc_wire_read_frame_packed(const uint8_t *p, size_t n, uint32_t allowed_e
 /* The header's values are checked by the caller (it knows the frame's other chunks). */
 fc_code fc_wire_read_chunk(const uint8_t *p, size_t n, uint32_t allowed_encoding, uint64_t max_particles,
                            fc_chunk_header *h, fc_frame *part, fc_error *err);
+/* The same decoded into a view: a plain inner layout in place in p (4-byte
+ * aligned; block NULL), a compressed or quantised one into a block from src
+ * (a zstd+quantised one also borrows src's block for the decompressed bytes). */
+fc_code fc_wire_view_frame_packed(uint8_t *p, size_t n, uint32_t allowed_encoding, uint64_t max_particles,
+                                  const fc_block_source *src, fc_frame_view *out, fc_error *err);
+fc_code fc_wire_view_chunk(uint8_t *p, size_t n, uint32_t allowed_encoding, uint64_t max_particles,
+                           const fc_block_source *src, fc_chunk_header *h, fc_frame_view *part, fc_error *err);
 
 /* Upper-case name of a session message type, e.g. "PUBLISH"; NULL for other types. */
 const char *fc_wire_session_type_name(uint16_t type);

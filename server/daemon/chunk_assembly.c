@@ -6,18 +6,20 @@
 
 #include "fc_error.h"
 #include "fc_frame.h"
+#include "frame_pool.h"
 #include "monotonic.h"
 
-void fc_chunk_assembly_init(fc_chunk_assembly *a)
+void fc_chunk_assembly_init(fc_chunk_assembly *a, fc_frame_pool *pool)
 {
     memset(a, 0, sizeof *a);
+    a->pool = pool;
 }
 
-static void release(fc_frame_assembly *fa)
+static void release(fc_frame_pool *pool, fc_frame_assembly *fa)
 {
     if (fa->parts)
         for (uint32_t i = 0; i < fa->count; i++)
-            fc_frame_free(&fa->parts[i]);
+            fc_frame_pool_give_view(pool, &fa->parts[i]);
     free(fa->parts);
     free(fa->origins);
     memset(fa, 0, sizeof *fa);
@@ -26,7 +28,7 @@ static void release(fc_frame_assembly *fa)
 void fc_chunk_assembly_free(fc_chunk_assembly *a)
 {
     for (int i = 0; i < FC_ASSEMBLY_MAX_FRAMES; i++)
-        release(&a->frames[i]);
+        release(a->pool, &a->frames[i]);
 }
 
 static fc_frame_assembly *find(fc_chunk_assembly *a, uint64_t frame_number)
@@ -58,13 +60,13 @@ static fc_code open_frame(fc_chunk_assembly *a, const fc_chunk *chunk, double de
     fa->parts = calloc(chunk->header.count, sizeof *fa->parts);
     fa->origins = calloc(chunk->header.count, sizeof *fa->origins);
     if (!fa->parts || !fa->origins) {
-        release(fa);
+        release(a->pool, fa);
         return fc_error_set(err, FC_ERR_INTERNAL, "CHUNK: no memory for %u chunks", chunk->header.count);
     }
     fa->used = true;
     fa->frame_number = number;
     fa->count = chunk->header.count;
-    fa->attributes = fc_frame_attributes(&chunk->part);
+    fa->attributes = fc_frame_attributes(&chunk->part.frame);
     fa->deadline_ms = deadline_ms;
     fa->first_byte_ms = chunk->first_byte_ms;
     fa->last_byte_ms = chunk->received_ms;
@@ -77,18 +79,18 @@ static fc_code check_fit(const fc_frame_assembly *fa, const fc_chunk *chunk, uin
                          fc_error *err)
 {
     const fc_chunk_header *h = &chunk->header;
-    uint32_t attributes = fc_frame_attributes(&chunk->part);
+    uint32_t attributes = fc_frame_attributes(&chunk->part.frame);
     if (h->count != fa->count)
         return fc_error_set(err, FC_ERR_INCONSISTENT, "CHUNK: frame %llu has K = %u chunks, this one says %u",
                             (unsigned long long)h->frame_number, fa->count, h->count);
-    if (fa->parts[h->index].count != 0)
+    if (fa->parts[h->index].frame.count != 0)
         return fc_error_set(err, FC_ERR_DUPLICATE, "CHUNK: chunk %u of frame %llu arrived already", h->index,
                             (unsigned long long)h->frame_number);
     if (attributes != fa->attributes)
         return fc_error_set(err, FC_ERR_INCONSISTENT,
                             "CHUNK: attributes 0x%x differ from 0x%x of frame %llu's other chunks", attributes,
                             fa->attributes, (unsigned long long)h->frame_number);
-    if (chunk->part.count > max_particles - fa->particles)
+    if (chunk->part.frame.count > max_particles - fa->particles)
         return fc_error_set(err, FC_ERR_LIMIT, "CHUNK: frame %llu would exceed the limit of %llu particles",
                             (unsigned long long)h->frame_number, (unsigned long long)max_particles);
     return FC_OK;
@@ -106,19 +108,26 @@ static void copy_part(fc_frame *whole, uint64_t at, const fc_frame *part)
         memcpy(whole->ids + at, part->ids, n * sizeof(uint32_t));
 }
 
-/* Concatenates the parts in index order into out and frees the slot. */
+/* Concatenates the parts in index order into a block of out and frees the slot. */
 static fc_code complete_frame(fc_chunk_assembly *a, fc_frame_assembly *fa, fc_assembled_frame *out, fc_error *err)
 {
     double start = fc_monotonic_ms();
-    fc_frame whole;
-    fc_code code = fc_frame_alloc(&whole, fa->particles, fa->attributes, err);
-    if (code == FC_OK) {
+    /* Every part passed check_fit, so the total is within max_particles and its block size fits. */
+    size_t size = fc_frame_block_size(fa->particles, fa->attributes);
+    uint8_t *block = fc_frame_pool_take(a->pool, size);
+    fc_code code = FC_OK;
+    if (!block) {
+        code = fc_error_set(err, FC_ERR_NOMEM, "CHUNK: no memory for a frame of %llu particles",
+                            (unsigned long long)fa->particles);
+    } else {
+        fc_frame whole;
+        fc_frame_point_into_block(&whole, block, fa->particles, fa->attributes);
         uint64_t at = 0;
         for (uint32_t i = 0; i < fa->count; i++) {
-            copy_part(&whole, at, &fa->parts[i]);
-            at += fa->parts[i].count;
+            copy_part(&whole, at, &fa->parts[i].frame);
+            at += fa->parts[i].frame.count;
         }
-        out->frame = whole;
+        out->frame = (fc_frame_view){whole, block, size};
         out->frame_number = fa->frame_number;
         out->receive_ms = (float)(fa->last_byte_ms - fa->first_byte_ms);
         out->decode_ms = fa->decode_ms + (float)(fc_monotonic_ms() - start);
@@ -126,7 +135,7 @@ static fc_code complete_frame(fc_chunk_assembly *a, fc_frame_assembly *fa, fc_as
             a->last_completed = fa->frame_number;
         a->any_completed = true;
     }
-    release(fa);
+    release(a->pool, fa);
     return code;
 }
 
@@ -151,13 +160,13 @@ fc_code fc_chunk_assembly_add(fc_chunk_assembly *a, fc_chunk *chunk, uint64_t ma
     fc_code code = check_fit(fa, chunk, max_particles, err);
     if (code != FC_OK) {
         if (opened)
-            release(fa);
+            release(a->pool, fa);
         return code;
     }
     fa->parts[h->index] = chunk->part;
     memset(&chunk->part, 0, sizeof chunk->part);
     fa->origins[h->index] = chunk->origin;
-    fa->particles += fa->parts[h->index].count;
+    fa->particles += fa->parts[h->index].frame.count;
     fa->received++;
     fa->decode_ms += chunk->decode_ms;
     if (chunk->first_byte_ms < fa->first_byte_ms)
@@ -188,7 +197,7 @@ static void report_incomplete(const fc_frame_assembly *fa,
     fc_error_set(&err, FC_ERR_INCOMPLETE, "frame %llu: only %u of its %u chunks arrived before the chunk timeout",
                  (unsigned long long)fa->frame_number, fa->received, fa->count);
     for (uint32_t i = 0; i < fa->count; i++)
-        if (fa->parts[i].count != 0 && fa->origins[i].session)
+        if (fa->parts[i].frame.count != 0 && fa->origins[i].session)
             report(&fa->origins[i], &err, data);
 }
 
@@ -201,7 +210,7 @@ void fc_chunk_assembly_expire(fc_chunk_assembly *a, double now_ms,
         if (!fa->used || fa->deadline_ms > now_ms)
             continue;
         report_incomplete(fa, report, data);
-        release(fa);
+        release(a->pool, fa);
     }
 }
 

@@ -15,6 +15,7 @@
 #define FC_ASSEMBLY_MAX_FRAMES 8
 
 struct fc_session;
+struct fc_frame_pool;
 
 /* Who sent a chunk, to be told when its frame fails. */
 typedef struct fc_chunk_origin {
@@ -25,7 +26,7 @@ typedef struct fc_chunk_origin {
 /* One received chunk: its particles (moved into the assembly) and timing. */
 typedef struct fc_chunk {
     fc_chunk_header header;
-    fc_frame part;
+    fc_frame_view part;           /* its block is moved into the assembly */
     fc_chunk_origin origin;
     double first_byte_ms;         /* when its message started to arrive */
     double received_ms;           /* when its last byte arrived */
@@ -39,7 +40,7 @@ typedef struct fc_frame_assembly {
     uint32_t received;
     uint32_t attributes;
     uint64_t particles;
-    fc_frame *parts;              /* K slots; count == 0 while missing */
+    fc_frame_view *parts;         /* K slots; frame.count == 0 while missing */
     fc_chunk_origin *origins;     /* K slots */
     double deadline_ms;
     double first_byte_ms, last_byte_ms;
@@ -47,6 +48,7 @@ typedef struct fc_frame_assembly {
 } fc_frame_assembly;
 
 typedef struct fc_chunk_assembly {
+    struct fc_frame_pool *pool;   /* the parts' and the whole frames' blocks */
     fc_frame_assembly frames[FC_ASSEMBLY_MAX_FRAMES];
     bool any_completed;
     uint64_t last_completed;      /* frame number of the newest completed frame */
@@ -54,13 +56,13 @@ typedef struct fc_chunk_assembly {
 
 /* A frame that just completed. */
 typedef struct fc_assembled_frame {
-    fc_frame frame;
+    fc_frame_view frame;          /* in a block from the pool */
     uint64_t frame_number;
     float receive_ms;             /* first byte of the first chunk -> last byte of the last */
     float decode_ms;              /* decoding every chunk plus concatenating them */
 } fc_assembled_frame;
 
-void fc_chunk_assembly_init(fc_chunk_assembly *a);
+void fc_chunk_assembly_init(fc_chunk_assembly *a, struct fc_frame_pool *pool);
 void fc_chunk_assembly_free(fc_chunk_assembly *a);
 
 /* Adds a chunk. Refused (chunk->part untouched, *complete false): INVALID_VALUE

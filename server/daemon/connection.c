@@ -11,6 +11,7 @@
 #include <unistd.h>
 
 #include "fc_error.h"
+#include "frame_pool.h"
 #include "monotonic.h"
 
 enum {
@@ -249,6 +250,12 @@ static void reset_message(fc_connection *c)
     fc_error_clear(&c->header_error);
 }
 
+static void forget_payload(fc_connection *c)
+{
+    c->payload = NULL;
+    c->payload_cap = 0;
+}
+
 /* A whole message is in: hand it to the session (or answer the header fault
  * found earlier) and start on the next one. */
 static void deliver(fc_connection *c, fc_daemon_context *ctx)
@@ -262,14 +269,16 @@ static void deliver(fc_connection *c, fc_daemon_context *ctx)
         verdict = fc_session_reply_error(ctx, c->peer, c->header.request_id, &reply, then, &c->out);
     } else {
         c->session.message_started_ms = c->started_ms;
-        verdict = fc_session_handle(&c->session, ctx, &c->header, c->payload, fc_monotonic_ms(), &c->out);
+        fc_payload payload = {c->payload, c->payload_cap};
+        verdict = fc_session_handle(&c->session, ctx, &c->header, &payload, fc_monotonic_ms(), &c->out);
+        if (!payload.bytes)
+            forget_payload(c);   /* a frame decoded in place kept it */
     }
     reset_message(c);
     c->last_message_ms = fc_monotonic_ms();
     if (c->payload_cap > KEEP_BUFFER_BYTES) {
-        free(c->payload);
-        c->payload = NULL;
-        c->payload_cap = 0;
+        fc_frame_pool_give(ctx->frames, c->payload, c->payload_cap);
+        forget_payload(c);
     }
     c->messages++;
     apply_verdict(c, verdict);
@@ -295,11 +304,28 @@ static void on_header(fc_connection *c, fc_daemon_context *ctx)
         deliver(c, ctx);
 }
 
-/* Room for the next bytes of the payload, grown step by step up to its length. */
-static bool reserve_payload(fc_connection *c)
+/* A pooled block that fits the payload, before any of it arrived: a
+ * producer's next frame lands in the block a frame it sent before gave back
+ * (up to an eighth larger: compressed payloads vary in size). */
+static bool adopt_recycled(fc_connection *c, fc_frame_pool *pool, size_t length)
+{
+    if (c->payload_got != 0 || length < FC_FRAME_POOL_MIN_BYTES)
+        return false;
+    size_t size;
+    uint8_t *block = fc_frame_pool_reuse_roomy(pool, length, &size);
+    if (!block)
+        return false;
+    fc_frame_pool_give(pool, c->payload, c->payload_cap);
+    c->payload = block;
+    c->payload_cap = size;
+    return true;
+}
+
+/* Room for the next bytes of the payload: a recycled block, or grown step by step up to its length. */
+static bool reserve_payload(fc_connection *c, fc_frame_pool *pool)
 {
     size_t length = c->header.length;
-    if (c->payload_cap >= length || c->payload_cap - c->payload_got > 0)
+    if (c->payload_cap >= length || adopt_recycled(c, pool, length) || c->payload_cap - c->payload_got > 0)
         return true;
     size_t cap = c->payload_cap * 2 > PAYLOAD_GROWTH_STEP ? c->payload_cap * 2 : PAYLOAD_GROWTH_STEP;
     if (cap > length)
@@ -309,6 +335,8 @@ static bool reserve_payload(fc_connection *c)
         return false;
     c->payload = grown;
     c->payload_cap = cap;
+    if (cap == length && length >= FC_FRAME_POOL_MIN_BYTES)
+        fc_frame_pool_note_allocation(pool);   /* a new block that may end up in the pool */
     return true;
 }
 
@@ -340,7 +368,7 @@ static read_result receive_header(fc_connection *c, fc_daemon_context *ctx)
 
 static read_result receive_payload(fc_connection *c, fc_daemon_context *ctx)
 {
-    if (!reserve_payload(c)) {
+    if (!reserve_payload(c, ctx->frames)) {
         fc_error err;
         fc_error_set(&err, FC_ERR_INTERNAL, "no memory for a %u-byte payload", (unsigned)c->header.length);
         close_with_error(c, ctx, c->header.request_id, &err);

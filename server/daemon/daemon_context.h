@@ -17,6 +17,7 @@ typedef struct fc_daemon_context {
     fc_welcome welcome;            /* sent to every client (capabilities: as granted to it); its limits are enforced */
     fc_render_service *render;
     fc_session_registry *sessions;
+    struct fc_frame_pool *frames;  /* the blocks frames live in, recycled (frame_pool.h) */
     double chunk_timeout_ms;       /* how long a multi-rank frame may wait for its last chunk */
     double refresh_ms;             /* quiet time after a lossy stream image before a lossless refresh; 0 = never */
     uint64_t last_frame_id;        /* frame ids handed out so far (see fc_shared_frame.id) */

@@ -5,6 +5,7 @@
 #include <string.h>
 
 #include "fc_error.h"
+#include "frame_pool.h"
 
 fc_code fc_foam_track_create(fc_foam_track **out, fc_error *err)
 {
@@ -42,14 +43,13 @@ void fc_foam_track_unref(fc_foam_track *t)
 static fc_code advance(fc_shared_frame *frame, fc_pipeline *p, const fc_settings *settings, fc_error *err)
 {
     uint64_t count = frame->frame.count;
-    /* At least one entry: a non-NULL copy is what marks the frame as advanced. */
-    float *kept = malloc((count > 0 ? count : 1) * sizeof *kept);
+    float *kept = (float *)fc_frame_pool_take(frame->pool, fc_shared_frame_amplitude_bytes(frame));
     if (!kept)
         return fc_error_set(err, FC_ERR_NOMEM, "no memory for the foam amplitudes of %llu particles",
                             (unsigned long long)count);
     fc_code code = fc_foam_state_advance(frame->foam->state, p, &frame->frame, settings, err);
     if (code != FC_OK) {
-        free(kept);
+        fc_frame_pool_give(frame->pool, (uint8_t *)kept, fc_shared_frame_amplitude_bytes(frame));
         return code;
     }
     if (count > 0)

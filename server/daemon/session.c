@@ -105,18 +105,18 @@ static fc_session_verdict handle_hello(fc_session *s, fc_daemon_context *ctx, co
 /* A new frame replaces the old one only once it decoded completely; on a
  * producer it is published to the named session. */
 static fc_session_verdict handle_frame(fc_session *s, fc_daemon_context *ctx, const fc_msg_header *h,
-                                       const uint8_t *payload, double received_ms, fc_buf *out)
+                                       fc_payload *payload, double received_ms, fc_buf *out)
 {
-    fc_frame frame = {0};
+    fc_frame_view view = {0};
     fc_error err;
     double start = fc_monotonic_ms();
-    fc_code code = fc_wire_read_frame(payload, h->length, ctx->welcome.limits.max_particles, &frame, &err);
+    /* Decoded in place: the payload's block becomes the frame's. */
+    fc_code code = fc_wire_view_frame(payload->bytes, h->length, ctx->welcome.limits.max_particles, &view.frame, &err);
     if (code == FC_OK) {
         fc_log_write(ctx->log, FC_LOG_DEBUG, "%s: FRAME of %llu particles", s->peer,
-                     (unsigned long long)frame.count);
-        code = fc_session_take_frame(s, &frame, received_ms, fc_monotonic_ms() - start, &err);
+                     (unsigned long long)view.frame.count);
+        code = fc_session_take_frame(s, &view, payload, received_ms, fc_monotonic_ms() - start, &err);
     }
-    fc_frame_free(&frame);
     if (code != FC_OK)
         return reply_error(s, ctx, h, &err, FC_SESSION_CONTINUE, out);
     return FC_SESSION_CONTINUE;
@@ -272,15 +272,16 @@ static fc_session_verdict refuse_after_hello(fc_session *s, fc_daemon_context *c
 }
 
 fc_session_verdict fc_session_handle(fc_session *s, fc_daemon_context *ctx, const fc_msg_header *header,
-                                     const uint8_t *payload, double received_ms, fc_buf *out)
+                                     fc_payload *message, double received_ms, fc_buf *out)
 {
+    const uint8_t *payload = message->bytes;
     if (fc_session_unauthenticated(s))
         return authenticate_hello(s, ctx, header, payload, out);
     if (s->state == FC_SESSION_AWAIT_HELLO)
         return handle_before_hello(s, ctx, header, payload, out);
     switch (header->type) {
     case FC_MSG_FRAME:
-        return handle_frame(s, ctx, header, payload, received_ms, out);
+        return handle_frame(s, ctx, header, message, received_ms, out);
     case FC_MSG_CAMERA:
         return handle_camera(s, ctx, header, payload, out);
     case FC_MSG_SETTINGS:
@@ -294,7 +295,7 @@ fc_session_verdict fc_session_handle(fc_session *s, fc_daemon_context *ctx, cons
         return handle_scene_image(s, ctx, header, payload, out);
     default:
         if (fc_session_is_stream_message(header->type))
-            return fc_session_handle_stream(s, ctx, header, payload, received_ms, out);
+            return fc_session_handle_stream(s, ctx, header, message, received_ms, out);
         return refuse_after_hello(s, ctx, header, out);
     }
 }

@@ -55,11 +55,19 @@ void fc_session_init(fc_session *s, const char *peer, fc_daemon_context *ctx, ui
 /* Leaves its named session (a producer's leaving may end it) and frees everything. */
 void fc_session_free(fc_session *s);
 
-/* Handles one complete message (payload is header->length bytes), appending
+/* A received payload in a block of `capacity` bytes (malloc'd, 4-byte
+ * aligned), which a frame decoded in place may keep: then the session takes
+ * it and sets bytes to NULL. */
+typedef struct fc_payload {
+    uint8_t *bytes;
+    size_t capacity;
+} fc_payload;
+
+/* Handles one complete message (payload holds header->length bytes), appending
  * any immediate reply (WELCOME, ERROR, SESSION_STATE, ...) to out; a RENDER's
  * IMAGE follows through fc_session_job_done. received_ms: when it arrived. */
 fc_session_verdict fc_session_handle(fc_session *s, fc_daemon_context *ctx, const fc_msg_header *header,
-                                     const uint8_t *payload, double received_ms, fc_buf *out);
+                                     fc_payload *payload, double received_ms, fc_buf *out);
 
 /* Appends an ERROR answering request_id; local codes become the nearest wire
  * code. Used for framing errors too, which the connection detects. */

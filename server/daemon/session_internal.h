@@ -38,16 +38,24 @@ typedef struct fc_render_order {
 fc_code fc_session_submit_render(fc_session *s, fc_shared_frame *frame, const fc_render_order *order,
                                  fc_error *err);
 
-/* A decoded frame (its arrays are taken) becomes the connection's current
- * frame or, on a producer, the session's newest frame. received_ms: when its
- * last byte arrived; decode_ms: how long decoding took. */
-fc_code fc_session_take_frame(fc_session *s, fc_frame *frame, double received_ms, double decode_ms,
-                              fc_error *err);
+/* Gives a view that lies in the payload (no block) a block of its own: the
+ * payload's, which it takes, when that is barely larger than the frame's
+ * arrays (so what the frame holds stays what session_memory.h counts), else
+ * a copy in a block from the pool. A view with a block is left as it is. */
+fc_code fc_session_keep_payload(fc_session *s, fc_frame_view *view, fc_payload *payload, fc_error *err);
+
+/* A decoded frame becomes the connection's current frame or, on a producer,
+ * the session's newest frame. Its block is taken either way (given back to
+ * the pool on failure); a view without one first gets one with
+ * fc_session_keep_payload. received_ms: when its last byte arrived;
+ * decode_ms: how long decoding took. */
+fc_code fc_session_take_frame(fc_session *s, fc_frame_view *view, fc_payload *payload, double received_ms,
+                              double decode_ms, fc_error *err);
 
 /* Session and packed-upload messages (types 16..24, wire_session.h). */
 bool fc_session_is_stream_message(uint16_t type);
 fc_session_verdict fc_session_handle_stream(fc_session *s, fc_daemon_context *ctx, const fc_msg_header *h,
-                                            const uint8_t *payload, double received_ms, fc_buf *out);
+                                            fc_payload *payload, double received_ms, fc_buf *out);
 
 /* Leaves the named session without a word to this client (it has gone, or the caller answers). */
 void fc_session_leave_stream(fc_session *s);

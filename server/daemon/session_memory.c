@@ -36,7 +36,7 @@ static uint64_t memory_of_assembly(const fc_chunk_assembly *a)
     uint64_t bytes = 0;
     for (int i = 0; i < FC_ASSEMBLY_MAX_FRAMES; i++)
         for (uint32_t k = 0; a->frames[i].used && k < a->frames[i].count; k++)
-            bytes += fc_memory_of_frame(&a->frames[i].parts[k]);
+            bytes += fc_memory_of_frame(&a->frames[i].parts[k].frame);
     return bytes;
 }
 

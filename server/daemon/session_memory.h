@@ -13,8 +13,12 @@
  * A frame counts its particle arrays plus the noise amplitude the GL thread
  * keeps per particle once it renders it; a chunk counts likewise, as its share
  * of the frame it will form. Not counted: the message being received (bounded
- * by max_message), the one render a connection has in flight, and what the
- * GL thread keeps (the foam history, copies on the GPU). Event-loop thread only. */
+ * by max_message), the one render a connection has in flight, what the GL
+ * thread keeps (the foam history, copies on the GPU), the blocks the frame
+ * pool keeps for reuse (daemon memory, bounded there: frame_pool.h), and
+ * what a frame or chunk decoded in place keeps beyond its arrays with its
+ * message's buffer: at most 64 bytes and an eighth (fc_session_keep_payload).
+ * Event-loop thread only. */
 #ifndef FC_DAEMON_SESSION_MEMORY_H
 #define FC_DAEMON_SESSION_MEMORY_H
 

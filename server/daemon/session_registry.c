@@ -5,6 +5,7 @@
 #include <string.h>
 
 #include "fc_error.h"
+#include "frame_pool.h"
 #include "session_events.h"
 
 struct fc_session_registry {
@@ -12,14 +13,16 @@ struct fc_session_registry {
     size_t count;
     size_t capacity;
     uint32_t max_sessions;
+    fc_frame_pool *pool;
 };
 
-fc_code fc_registry_create(uint32_t max_sessions, fc_session_registry **out, fc_error *err)
+fc_code fc_registry_create(uint32_t max_sessions, fc_frame_pool *pool, fc_session_registry **out, fc_error *err)
 {
     fc_session_registry *reg = calloc(1, sizeof *reg);
     if (!reg)
         return fc_error_set(err, FC_ERR_NOMEM, "session registry: out of memory");
     reg->max_sessions = max_sessions;
+    reg->pool = pool;
     *out = reg;
     return FC_OK;
 }
@@ -64,7 +67,7 @@ fc_code fc_registry_open(fc_session_registry *reg, const char *name, fc_stream_s
     if (reg->count >= reg->max_sessions)
         return fc_error_set(err, FC_ERR_LIMIT, "this server holds %u sessions already", reg->max_sessions);
     fc_stream_session *s;
-    fc_code code = fc_stream_session_create(name, &s, err);
+    fc_code code = fc_stream_session_create(name, reg->pool, &s, err);
     if (code == FC_OK && (code = add(reg, s, err)) != FC_OK)
         fc_stream_session_destroy(s);
     if (code == FC_OK)

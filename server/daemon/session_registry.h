@@ -11,7 +11,11 @@
 
 typedef struct fc_session_registry fc_session_registry;
 
-fc_code fc_registry_create(uint32_t max_sessions, fc_session_registry **out, fc_error *err);
+struct fc_frame_pool;
+
+/* pool: where the sessions' chunk blocks come from and go back to. */
+fc_code fc_registry_create(uint32_t max_sessions, struct fc_frame_pool *pool, fc_session_registry **out,
+                           fc_error *err);
 /* Frees every session. The connections in them must be gone already. */
 void fc_registry_destroy(fc_session_registry *reg);
 

@@ -6,9 +6,16 @@
 #include <string.h>
 
 #include "fc_error.h"
+#include "fc_frame.h"
+#include "frame_pool.h"
 #include "monotonic.h"
 #include "session_memory.h"
 #include "stream_session.h"
+
+/* What a frame decoded in place may keep beyond its arrays: the fixed part
+ * of its message (16 bytes for FRAME, 48 for CHUNK) and the slack of a
+ * recycled buffer (up to an eighth). */
+#define PAYLOAD_SLACK_BYTES 64
 
 void fc_session_send_error(fc_session *s, uint32_t request_id, const fc_error *err)
 {
@@ -61,10 +68,10 @@ fc_code fc_session_submit_render(fc_session *s, fc_shared_frame *frame, const fc
     return FC_OK;
 }
 
-static fc_code share_frame(fc_session *s, fc_frame *frame, fc_foam_track *foam, uint64_t number, double received_ms,
-                           double decode_ms, fc_shared_frame **out, fc_error *err)
+static fc_code share_frame(fc_session *s, fc_frame_view *view, fc_foam_track *foam, uint64_t number,
+                           double received_ms, double decode_ms, fc_shared_frame **out, fc_error *err)
 {
-    fc_code code = fc_shared_frame_create(frame, ++s->ctx->last_frame_id, foam, out, err);
+    fc_code code = fc_shared_frame_create(view, s->ctx->frames, ++s->ctx->last_frame_id, foam, out, err);
     if (code != FC_OK)
         return code;
     (*out)->number = number;
@@ -97,20 +104,50 @@ static fc_code admit_frame(const fc_session *s, bool publishes, const fc_frame *
                                    what, err);
 }
 
-fc_code fc_session_take_frame(fc_session *s, fc_frame *frame, double received_ms, double decode_ms,
-                              fc_error *err)
+fc_code fc_session_keep_payload(fc_session *s, fc_frame_view *view, fc_payload *payload, fc_error *err)
 {
+    if (view->block)
+        return FC_OK;
+    /* In place, the arrays lie back to back from the positions on. */
+    size_t arrays = fc_frame_block_size(view->frame.count, fc_frame_attributes(&view->frame));
+    if (payload->capacity - arrays <= PAYLOAD_SLACK_BYTES + arrays / 8) {
+        *view = (fc_frame_view){view->frame, payload->bytes, payload->capacity};
+        *payload = (fc_payload){NULL, 0};
+        return FC_OK;
+    }
+    /* A buffer kept from a bigger message: the frame must not hold more than it counts. */
+    uint8_t *block = fc_frame_pool_take(s->ctx->frames, arrays);
+    if (!block)
+        return fc_error_set(err, FC_ERR_NOMEM, "no memory for a frame of %llu particles",
+                            (unsigned long long)view->frame.count);
+    memcpy(block, view->frame.positions, arrays);
+    fc_frame frame;
+    fc_frame_point_into_block(&frame, block, view->frame.count, fc_frame_attributes(&view->frame));
+    *view = (fc_frame_view){frame, block, arrays};
+    return FC_OK;
+}
+
+fc_code fc_session_take_frame(fc_session *s, fc_frame_view *view, fc_payload *payload, double received_ms,
+                              double decode_ms, fc_error *err)
+{
+    fc_code code = fc_session_keep_payload(s, view, payload, err);
+    if (code != FC_OK)
+        return code;
     if (s->role == FC_ROLE_VIEWER)
-        return fc_error_set(err, FC_ERR_BAD_STATE, "a viewer of session '%s' does not send frames", s->stream->name);
+        code = fc_error_set(err, FC_ERR_BAD_STATE, "a viewer of session '%s' does not send frames", s->stream->name);
     bool publishes = s->role == FC_ROLE_PRODUCER;
-    uint64_t number = publishes && s->stream->latest ? s->stream->latest->number + 1 : 1;
-    fc_foam_track *foam;
+    fc_foam_track *foam = NULL;
     fc_shared_frame *shared;
-    fc_code code = admit_frame(s, publishes, frame, err);
+    if (code == FC_OK)
+        code = admit_frame(s, publishes, &view->frame, err);
     if (code == FC_OK)
         code = foam_history(s, publishes, &foam, err);
-    if (code == FC_OK)
-        code = share_frame(s, frame, foam, publishes ? number : 0, received_ms, decode_ms, &shared, err);
+    if (code != FC_OK) {
+        fc_frame_pool_give_view(s->ctx->frames, view);
+        return code;
+    }
+    uint64_t number = publishes && s->stream->latest ? s->stream->latest->number + 1 : 1;
+    code = share_frame(s, view, foam, publishes ? number : 0, received_ms, decode_ms, &shared, err);
     if (code != FC_OK)
         return code;
     if (publishes) {

@@ -7,7 +7,7 @@
 #include <string.h>
 
 #include "fc_error.h"
-#include "fc_frame.h"
+#include "frame_pool.h"
 #include "monotonic.h"
 #include "session_events.h"
 #include "session_memory.h"
@@ -131,17 +131,17 @@ static fc_session_verdict handle_session_end(fc_session *s, const fc_msg_header 
 
 /* ---- Frames: FRAME_PACKED and CHUNK ---- */
 
-static fc_session_verdict handle_frame_packed(fc_session *s, const fc_msg_header *h, const uint8_t *payload,
+static fc_session_verdict handle_frame_packed(fc_session *s, const fc_msg_header *h, fc_payload *payload,
                                               double received_ms, fc_buf *out)
 {
-    fc_frame frame = {0};
+    fc_frame_view view = {0};
     fc_error err;
     double start = fc_monotonic_ms();
-    fc_code code = fc_wire_read_frame_packed(payload, h->length, fc_pack_allowed(s->capabilities),
-                                             s->ctx->welcome.limits.max_particles, &frame, &err);
+    fc_block_source blocks = fc_frame_pool_source(s->ctx->frames);
+    fc_code code = fc_wire_view_frame_packed(payload->bytes, h->length, fc_pack_allowed(s->capabilities),
+                                             s->ctx->welcome.limits.max_particles, &blocks, &view, &err);
     if (code == FC_OK)
-        code = fc_session_take_frame(s, &frame, received_ms, fc_monotonic_ms() - start, &err);
-    fc_frame_free(&frame);
+        code = fc_session_take_frame(s, &view, payload, received_ms, fc_monotonic_ms() - start, &err);
     return code == FC_OK ? FC_SESSION_CONTINUE : reply_error(s, h, &err, out);
 }
 
@@ -153,10 +153,12 @@ static fc_code publish_assembled(fc_session *s, fc_assembled_frame *done, fc_err
     if (stream->latest && done->frame_number <= stream->latest->number) {
         fc_log_write(s->ctx->log, FC_LOG_DEBUG, "%s: frame %llu completed after frame %llu: dropped", s->peer,
                      (unsigned long long)done->frame_number, (unsigned long long)stream->latest->number);
+        fc_frame_pool_give_view(s->ctx->frames, &done->frame);
         return FC_OK;
     }
     fc_shared_frame *shared;
-    fc_code code = fc_shared_frame_create(&done->frame, ++s->ctx->last_frame_id, stream->foam, &shared, err);
+    fc_code code =
+        fc_shared_frame_create(&done->frame, s->ctx->frames, ++s->ctx->last_frame_id, stream->foam, &shared, err);
     if (code != FC_OK)
         return code;
     shared->number = done->frame_number;
@@ -172,11 +174,11 @@ static fc_code admit_chunk(const fc_session *s, const fc_chunk *chunk, fc_error 
 {
     char what[96];
     snprintf(what, sizeof what, "chunk %u of frame %llu (%llu particles)", chunk->header.index,
-             (unsigned long long)chunk->header.frame_number, (unsigned long long)chunk->part.count);
-    return fc_session_memory_admit(s, 0, fc_memory_of_frame(&chunk->part), what, err);
+             (unsigned long long)chunk->header.frame_number, (unsigned long long)chunk->part.frame.count);
+    return fc_session_memory_admit(s, 0, fc_memory_of_frame(&chunk->part.frame), what, err);
 }
 
-static fc_session_verdict handle_chunk(fc_session *s, const fc_msg_header *h, const uint8_t *payload,
+static fc_session_verdict handle_chunk(fc_session *s, const fc_msg_header *h, fc_payload *payload,
                                        double received_ms, fc_buf *out)
 {
     fc_error err;
@@ -184,14 +186,18 @@ static fc_session_verdict handle_chunk(fc_session *s, const fc_msg_header *h, co
         fc_error_set(&err, FC_ERR_BAD_STATE, "CHUNK needs PUBLISH first");
         return reply_error(s, h, &err, out);
     }
+    fc_frame_pool *pool = s->ctx->frames;
+    fc_block_source blocks = fc_frame_pool_source(pool);
     fc_chunk chunk = {0};
     double start = fc_monotonic_ms();
-    fc_code code = fc_wire_read_chunk(payload, h->length, fc_pack_allowed(s->capabilities),
-                                      s->ctx->welcome.limits.max_particles, &chunk.header, &chunk.part, &err);
+    fc_code code = fc_wire_view_chunk(payload->bytes, h->length, fc_pack_allowed(s->capabilities),
+                                      s->ctx->welcome.limits.max_particles, &blocks, &chunk.header, &chunk.part, &err);
+    if (code == FC_OK)
+        code = fc_session_keep_payload(s, &chunk.part, payload, &err);
     if (code == FC_OK)
         code = admit_chunk(s, &chunk, &err);
     if (code != FC_OK) {
-        fc_frame_free(&chunk.part);
+        fc_frame_pool_give_view(pool, &chunk.part);
         return reply_error(s, h, &err, out);
     }
     double now = fc_monotonic_ms();
@@ -203,10 +209,9 @@ static fc_session_verdict handle_chunk(fc_session *s, const fc_msg_header *h, co
     fc_assembled_frame done = {0};
     code = fc_chunk_assembly_add(&s->stream->chunks, &chunk, s->ctx->welcome.limits.max_particles, now,
                                  s->ctx->chunk_timeout_ms, &complete, &done, &err);
-    fc_frame_free(&chunk.part);
+    fc_frame_pool_give_view(pool, &chunk.part);
     if (code == FC_OK && complete)
         code = publish_assembled(s, &done, &err);
-    fc_frame_free(&done.frame);
     return code == FC_OK ? FC_SESSION_CONTINUE : reply_error(s, h, &err, out);
 }
 
@@ -236,8 +241,9 @@ static uint32_t required_capabilities(uint16_t type)
 }
 
 fc_session_verdict fc_session_handle_stream(fc_session *s, fc_daemon_context *ctx, const fc_msg_header *h,
-                                            const uint8_t *payload, double received_ms, fc_buf *out)
+                                            fc_payload *message, double received_ms, fc_buf *out)
 {
+    const uint8_t *payload = message->bytes;
     (void)ctx;
     fc_error err;
     if (!(s->capabilities & required_capabilities(h->type))) {
@@ -249,8 +255,8 @@ fc_session_verdict fc_session_handle_stream(fc_session *s, fc_daemon_context *ct
     case FC_MSG_PUBLISH: return handle_publish(s, h, payload, out);
     case FC_MSG_SUBSCRIBE: return handle_subscribe(s, h, payload, out);
     case FC_MSG_SESSION_END: return handle_session_end(s, h, payload, out);
-    case FC_MSG_CHUNK: return handle_chunk(s, h, payload, received_ms, out);
-    case FC_MSG_FRAME_PACKED: return handle_frame_packed(s, h, payload, received_ms, out);
+    case FC_MSG_CHUNK: return handle_chunk(s, h, message, received_ms, out);
+    case FC_MSG_FRAME_PACKED: return handle_frame_packed(s, h, message, received_ms, out);
     case FC_MSG_LIST_SESSIONS: return handle_list_sessions(s, h, payload, out);
     default:
         fc_error_set(&err, FC_ERR_BAD_STATE, "%s is sent by servers, not clients", fc_wire_session_type_name(h->type));

@@ -6,9 +6,10 @@
 #include <string.h>
 
 #include "fc_error.h"
+#include "frame_pool.h"
 #include "session_events.h"
 
-fc_code fc_stream_session_create(const char *name, fc_stream_session **out, fc_error *err)
+fc_code fc_stream_session_create(const char *name, fc_frame_pool *pool, fc_stream_session **out, fc_error *err)
 {
     fc_stream_session *s = calloc(1, sizeof *s);
     if (!s)
@@ -19,7 +20,7 @@ fc_code fc_stream_session_create(const char *name, fc_stream_session **out, fc_e
         return code;
     }
     snprintf(s->name, sizeof s->name, "%s", name);
-    fc_chunk_assembly_init(&s->chunks);
+    fc_chunk_assembly_init(&s->chunks, pool);
     *out = s;
     return FC_OK;
 }
@@ -61,7 +62,7 @@ static void end_session(fc_stream_session *s)
     s->ended = true;
     /* Frames still waiting for chunks can never complete now. */
     fc_chunk_assembly_free(&s->chunks);
-    fc_chunk_assembly_init(&s->chunks);
+    fc_chunk_assembly_init(&s->chunks, s->chunks.pool);
     /* Backwards: a viewer told at once removes itself, shifting only the ones already told. */
     for (size_t i = s->viewer_count; i-- > 0;)
         fc_session_on_stream_ended(s->viewers[i]);

@@ -30,7 +30,10 @@ typedef struct fc_stream_session {
     fc_chunk_assembly chunks;
 } fc_stream_session;
 
-fc_code fc_stream_session_create(const char *name, fc_stream_session **out, fc_error *err);
+struct fc_frame_pool;
+
+fc_code fc_stream_session_create(const char *name, struct fc_frame_pool *pool, fc_stream_session **out,
+                                 fc_error *err);
 void fc_stream_session_destroy(fc_stream_session *s);
 
 void fc_stream_session_describe(const fc_stream_session *s, fc_session_info *out);
