@@ -2,11 +2,16 @@
 // The scene without fluid, rendered first so the composite pass can sample it
 // at refracted positions (van der Laan et al. 2009, §3.5, S in eq. 14): the
 // client's background image when it sent one, else the built-in floor and sky.
+// The same pass lays down the composite's target where the fluid is not:
+// colour and the floor's depth, else the far plane (fluid_mask.frag.glsl then
+// writes the fluid's depth), saving the composite a full-screen pass of its own.
 
 vec3 view_ray(vec2 window);
 vec3 to_world_point(vec3 view_point);
 vec3 to_world_direction(vec3 view_direction);
 vec3 scene_radiance(vec3 origin, vec3 dir);
+float floor_depth(vec3 ray);
+float window_depth(float z);
 
 layout(binding = 0) uniform sampler2D client_image;   // linear RGB(A), rows bottom to top as uploaded top-down
 
@@ -14,16 +19,22 @@ layout(location = 5) uniform vec2 viewport;
 layout(location = 30) uniform bool use_client_image;
 layout(location = 31) uniform vec2 image_scale;       // viewport uv -> image uv around the centre (cover fit)
 
-layout(location = 0) out vec4 radiance;
+layout(location = 0) out vec4 radiance;      // the background texture (RGBA16F)
+layout(location = 1) out vec4 scene_color;   // the composite's target
 
-void main()
+vec3 background_radiance()
 {
     if (use_client_image) {
         vec2 uv = 0.5 + (gl_FragCoord.xy / viewport - 0.5) * image_scale;
         // The image's first row is its top, uploaded as the texture's first (bottom) row.
-        radiance = vec4(texture(client_image, vec2(uv.x, 1.0 - uv.y)).rgb, 1.0);
-        return;
+        return texture(client_image, vec2(uv.x, 1.0 - uv.y)).rgb;
     }
     vec3 dir = normalize(to_world_direction(view_ray(gl_FragCoord.xy)));
-    radiance = vec4(scene_radiance(to_world_point(vec3(0.0)), dir), 1.0);
+    return scene_radiance(to_world_point(vec3(0.0)), dir);
+}
+
+void main()
+{
+    radiance = scene_color = vec4(background_radiance(), 1.0);
+    gl_FragDepth = window_depth(floor_depth(view_ray(gl_FragCoord.xy)));
 }

@@ -3,7 +3,7 @@
 // the refracted background and the reflected environment, Phong specular,
 // grey foam where the surface noise is strong. The last of three passes
 // (composite_pass.c): it runs only where fluid_mask.frag.glsl set the
-// stencil, over the background and depth of composite_base.frag.glsl.
+// stencil, over the colour and depth background.frag.glsl wrote.
 
 layout(early_fragment_tests) in;
 
@@ -24,7 +24,7 @@ vec3 shading_normal(ivec2 p, vec3 centre, float z, surface_spans spans);
 bool inside_surface(surface_spans spans);
 bool fluid_here(out float z, out float z_floor);
 
-layout(binding = 1) uniform sampler2D thickness;         // world units, any resolution (bilinear)
+layout(binding = 1) uniform sampler2D thickness;         // world units, any resolution (bilinear filtering)
 layout(binding = 2) uniform sampler2D background;        // the scene without fluid, linear RGB
 layout(binding = 4) uniform samplerCube environment_map; // world directions, linear RGB
 
@@ -41,10 +41,13 @@ layout(location = 13) uniform float shininess;           // α of eq. 13
 layout(location = 14) uniform float foam;                // settings.foam: how fast foam turns opaque
 layout(location = 15) uniform bool use_environment_map;  // else the procedural scene is reflected
 layout(location = 18) uniform vec2 foam_noise_range;     // mean |N| where foam starts and where it is complete
-// Texture sizes, which may exceed the viewport (targets only grow): both
-// textures hold the image in use in their lower-left viewport-sized corner.
-layout(location = 43) uniform vec2 thickness_texture_size;
+// Texture sizes, which may exceed the image in use (targets only grow): the
+// background holds a viewport-sized image in its lower-left corner, the
+// thickness one of thickness_size (half the viewport or less when blurred).
+layout(location = 43) uniform vec2 thickness_texel_uv;         // 1 / the thickness texture's size
 layout(location = 44) uniform vec2 background_texture_size;
+layout(location = 45) uniform vec2 thickness_per_pixel;        // thickness texels per viewport pixel
+layout(location = 46) uniform vec2 thickness_size;             // texels of the thickness image in use
 
 // Refraction may shift the background by at most this fraction of the image,
 // so very thick fluid cannot sample far-away, unrelated parts of the scene.
@@ -80,7 +83,10 @@ vec3 shade_fluid(ivec2 p, float z, vec3 behind_here)
     surface_spans spans = spans_at(p, z);
     vec3 n = shading_normal(p, centre, z, spans);
     vec3 v = normalize(-centre);
-    float t = texture(thickness, gl_FragCoord.xy / thickness_texture_size).r;
+    // Bilinear upsampling, clamped to the last texel centres in use as for
+    // the background below.
+    vec2 thickness_texel = clamp(gl_FragCoord.xy * thickness_per_pixel, vec2(0.5), thickness_size - 0.5);
+    float t = texture(thickness, thickness_texel * thickness_texel_uv).r;
 
     float cos_view = clamp(dot(n, v), 0.0, 1.0);
     float fresnel = fresnel_f0 + (1.0 - fresnel_f0) * pow(1.0 - cos_view, 5.0);

@@ -1,7 +1,8 @@
 #version 450 core
-// Which pixels the composite shades as fluid, and the depth it writes for
-// them: linked into the three composite programs (composite_pass.c), which
-// must agree on both.
+// Which pixels the composite shades as fluid, and the depths written for
+// them and for the floor: linked into the background program
+// (background.frag.glsl: the floor's depth) and the two composite programs
+// (composite_pass.c), which must agree on all of it.
 
 vec3 view_ray(vec2 window);
 

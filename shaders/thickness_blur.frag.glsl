@@ -1,30 +1,36 @@
 #version 450 core
-// One axis of a separable, normalised Gaussian blur of the thickness (Janisz
-// 2012, §4.1.3), sampling the source bilinearly at this target's pixel
-// centres: the same pass upsamples thickness computed at reduced resolution.
+// One axis of the separable, normalised Gaussian blur of the thickness
+// (Janisz 2012, §4.1.3) as a weighted sum of bilinear taps whose offsets and
+// weights thickness_filter.c finds once per frame: a software rasterizer pays
+// for every tap and every exp() of every pixel. Where the target is smaller
+// than the source, a tap lands between source texels and averages them, so
+// the downsampling to half resolution costs no pass of its own; at equal
+// sizes two neighbouring Gaussian weights share one tap between their texels.
 
 layout(binding = 0) uniform sampler2D source;
 
-layout(location = 0) uniform vec2 axis;                  // (1, 0) or (0, 1): the blur axis, in source texels
-layout(location = 1) uniform float sigma;                // source texels; 0 = plain resampling
-layout(location = 2) uniform int taps;                   // half-width of the kernel in source texels
-layout(location = 3) uniform vec2 target_size;           // pixels of the image in use
-layout(location = 4) uniform vec2 source_size;           // texels of the source image in use
-layout(location = 5) uniform vec2 source_texture_size;   // texels of the source texture, >= source_size
+const int max_taps = 64;   // MAX_TAPS in thickness_filter.c
+
+layout(location = 0) uniform vec2 axis;                  // (1, 0) or (0, 1): the blur axis
+layout(location = 1) uniform int tap_count;              // <= max_taps
+layout(location = 2) uniform vec2 source_per_target;     // source texels per target pixel, per axis
+layout(location = 3) uniform vec2 source_size;           // texels of the source image in use
+layout(location = 4) uniform vec2 source_texel_uv;       // 1 / the source texture's size (>= source_size)
+layout(location = 8) uniform vec2 taps[max_taps];        // (offset along axis in source texels, weight); weights sum to 1
 
 layout(location = 0) out float thickness;
 
 void main()
 {
-    vec2 centre = gl_FragCoord.xy / target_size * source_size;
-    float sum = 0.0, total = 0.0;
-    for (int i = -taps; i <= taps; i++) {
-        float w = sigma > 0.0 ? exp(-0.5 * float(i * i) / (sigma * sigma)) : 1.0;
+    vec2 centre = gl_FragCoord.xy * source_per_target;
+    float sum = 0.0;
+    for (int i = 0; i < tap_count; i++) {
         // Clamped to the last texel centres of the image in use, as the
-        // texture's edge would clamp it: past them lie stale texels.
-        vec2 texel = clamp(centre + float(i) * axis, vec2(0.5), source_size - 0.5);
-        sum += w * texture(source, texel / source_texture_size).r;
-        total += w;
+        // texture's edge would clamp it: past them lie stale texels. A merged
+        // tap past the edge then reads the edge texel with both weights,
+        // exactly what the two clamped taps would read.
+        vec2 texel = clamp(centre + taps[i].x * axis, vec2(0.5), source_size - 0.5);
+        sum += taps[i].y * texture(source, texel * source_texel_uv).r;
     }
-    thickness = sum / total;
+    thickness = sum;
 }

@@ -1,19 +1,23 @@
 /* background_pass.c — the scene behind the fluid. */
 #include "background_pass.h"
 
+#include "fc_error.h"
 #include "gl_util.h"
 #include "shader_program.h"
 
-/* Locations and units fixed by layout() in background.frag.glsl. */
-enum { LOC_USE_CLIENT_IMAGE = 30, LOC_IMAGE_SCALE = 31 };
+/* Locations and units fixed by layout() in background.frag.glsl and fluid_pixel.frag.glsl. */
+enum { LOC_FLOOR_PLANE = 16, LOC_DEPTH_PROJECTION = 17, LOC_USE_CLIENT_IMAGE = 30, LOC_IMAGE_SCALE = 31 };
 enum { UNIT_CLIENT_IMAGE = 0 };
 
 fc_code fc_background_pass_create(const char *shader_dir, fc_background_pass *pass, fc_error *err)
 {
     *pass = (fc_background_pass){.target = fc_render_target_init(GL_RGBA16F, false, true)};
     glCreateVertexArrays(1, &pass->empty_vertex_array);
+    glCreateFramebuffers(1, &pass->framebuffer);
+    const GLenum outputs[] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1};
+    glNamedFramebufferDrawBuffers(pass->framebuffer, 2, outputs);
     const char *files[] = {"fullscreen.vert.glsl", "camera.frag.glsl", "environment.frag.glsl",
-                           "background.frag.glsl"};
+                           "fluid_pixel.frag.glsl", "background.frag.glsl"};
     return fc_program_build(shader_dir, files, sizeof files / sizeof files[0], &pass->program, err);
 }
 
@@ -21,8 +25,9 @@ void fc_background_pass_destroy(fc_background_pass *pass)
 {
     glDeleteProgram(pass->program);
     glDeleteVertexArrays(1, &pass->empty_vertex_array);
+    glDeleteFramebuffers(1, &pass->framebuffer);
     fc_render_target_release(&pass->target);
-    pass->program = pass->empty_vertex_array = 0;
+    pass->program = pass->empty_vertex_array = pass->framebuffer = 0;
 }
 
 /* The part of the image's uv square the view shows: all of one axis, the
@@ -39,19 +44,43 @@ static void apply_client_image(const fc_scene_textures *scene, const fc_view *vi
     glBindTextureUnit(UNIT_CLIENT_IMAGE, scene->background);
 }
 
+/* The background texture and the composite's colour and depth as one
+ * framebuffer; attachments of different sizes are fine, the view fits both. */
+static fc_code bind_outputs(const fc_background_pass *pass, const fc_render_target *composite, const fc_view *view,
+                            fc_error *err)
+{
+    glNamedFramebufferTexture(pass->framebuffer, GL_COLOR_ATTACHMENT0, pass->target.color, 0);
+    glNamedFramebufferTexture(pass->framebuffer, GL_COLOR_ATTACHMENT1, composite->color, 0);
+    glNamedFramebufferRenderbuffer(pass->framebuffer, GL_DEPTH_STENCIL_ATTACHMENT, GL_RENDERBUFFER, composite->depth);
+    if (glCheckNamedFramebufferStatus(pass->framebuffer, GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
+        return fc_error_set(err, FC_ERR_GL, "background pass: framebuffer incomplete");
+    glBindFramebuffer(GL_FRAMEBUFFER, pass->framebuffer);
+    glViewport(0, 0, (GLsizei)view->width, (GLsizei)view->height);
+    return FC_OK;
+}
+
 fc_code fc_background_pass_run(fc_background_pass *pass, const fc_view *view, const fc_environment *env,
-                               const fc_scene_textures *scene, fc_error *err)
+                               const fc_scene_textures *scene, const fc_render_target *composite, fc_error *err)
 {
     fc_code code = fc_render_target_resize(&pass->target, view->width, view->height, err);
+    if (code == FC_OK)
+        code = bind_outputs(pass, composite, view, err);
     if (code != FC_OK)
         return code;
-    fc_render_target_bind(&pass->target);
-    glDisable(GL_DEPTH_TEST);
+    glEnable(GL_DEPTH_TEST);
+    glDepthFunc(GL_ALWAYS);
+    glDepthMask(GL_TRUE);
+    glDisable(GL_STENCIL_TEST);
     glDisable(GL_BLEND);
-    glDisable(GL_FRAMEBUFFER_SRGB);
+    /* Only an sRGB composite target encodes: the background texture is linear RGBA16F. */
+    glEnable(GL_FRAMEBUFFER_SRGB);
     glUseProgram(pass->program);
     fc_environment_apply(env, view);
     apply_client_image(scene, view);
+    glUniform4fv(LOC_FLOOR_PLANE, 1, env->floor_plane);
+    glUniform2f(LOC_DEPTH_PROJECTION, view->p22, view->p32);
     fc_gl_draw_fullscreen(pass->empty_vertex_array);
+    glDisable(GL_FRAMEBUFFER_SRGB);
+    glDisable(GL_DEPTH_TEST);
     return fc_gl_check("background pass", err);
 }

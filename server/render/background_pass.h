@@ -1,7 +1,8 @@
 /* background_pass.h — the scene without fluid (the client's background image,
  * else the built-in sky and floor), rendered into its own texture first so the
  * composite pass can sample it at refracted positions (van der Laan et al.
- * 2009, S in eq. 14). */
+ * 2009, S in eq. 14). The same draw fills the composite's target where there
+ * is no fluid (colour and the floor's depth): one full-screen pass, not two. */
 #ifndef FC_BACKGROUND_PASS_H
 #define FC_BACKGROUND_PASS_H
 
@@ -15,14 +16,18 @@ typedef struct fc_background_pass {
     GLuint program;
     GLuint empty_vertex_array;
     fc_render_target target;   /* RGBA16F linear radiance, bilinear so refraction samples smoothly */
+    GLuint framebuffer;        /* target's colour and the composite target's colour and depth */
 } fc_background_pass;
 
 fc_code fc_background_pass_create(const char *shader_dir, fc_background_pass *pass, fc_error *err);
 void fc_background_pass_destroy(fc_background_pass *pass);
 
 /* `scene` may be NULL (built-in scene); a background image is scaled to cover
- * the view, keeping its aspect ratio and cropping what overhangs evenly. */
+ * the view, keeping its aspect ratio and cropping what overhangs evenly.
+ * Draws into pass->target and into `composite` (a target with depth, at
+ * least the view's size): the background colour, and the depth of the floor,
+ * else of the far plane. */
 fc_code fc_background_pass_run(fc_background_pass *pass, const fc_view *view, const fc_environment *env,
-                               const fc_scene_textures *scene, fc_error *err);
+                               const fc_scene_textures *scene, const fc_render_target *composite, fc_error *err);
 
 #endif

@@ -21,8 +21,10 @@ enum {
     LOC_FLOOR_PLANE = 16,
     LOC_DEPTH_PROJECTION = 17,
     LOC_FOAM_NOISE_RANGE = 18,
-    LOC_THICKNESS_TEXTURE_SIZE = 43,
-    LOC_BACKGROUND_TEXTURE_SIZE = 44
+    LOC_THICKNESS_TEXEL_UV = 43,
+    LOC_BACKGROUND_TEXTURE_SIZE = 44,
+    LOC_THICKNESS_PER_PIXEL = 45,
+    LOC_THICKNESS_SIZE = 46
 };
 /* Texture units fixed by layout(binding) in the composite shaders (surface_normal.frag.glsl also has 3). */
 enum { UNIT_SURFACE_DEPTH = 0, UNIT_THICKNESS = 1, UNIT_BACKGROUND = 2, UNIT_ENVIRONMENT_MAP = 4 };
@@ -40,15 +42,11 @@ fc_code fc_composite_pass_create(const char *shader_dir, fc_composite_pass *pass
         .float_target = fc_render_target_init(GL_RGBA32F, true, false),
     };
     glCreateVertexArrays(1, &pass->empty_vertex_array);
-    const char *base[] = {"fullscreen.vert.glsl", "camera.frag.glsl", "fluid_pixel.frag.glsl",
-                          "composite_base.frag.glsl"};
     const char *mask[] = {"fullscreen.vert.glsl", "camera.frag.glsl", "fluid_pixel.frag.glsl",
                           "fluid_mask.frag.glsl"};
     const char *shade[] = {"fullscreen.vert.glsl", "camera.frag.glsl", "environment.frag.glsl",
                            "surface_normal.frag.glsl", "fluid_pixel.frag.glsl", "composite.frag.glsl"};
-    fc_code code = fc_program_build(shader_dir, base, sizeof base / sizeof base[0], &pass->base_program, err);
-    if (code == FC_OK)
-        code = fc_program_build(shader_dir, mask, sizeof mask / sizeof mask[0], &pass->mask_program, err);
+    fc_code code = fc_program_build(shader_dir, mask, sizeof mask / sizeof mask[0], &pass->mask_program, err);
     if (code == FC_OK)
         code = fc_program_build(shader_dir, shade, sizeof shade / sizeof shade[0], &pass->program, err);
     return code;
@@ -56,13 +54,12 @@ fc_code fc_composite_pass_create(const char *shader_dir, fc_composite_pass *pass
 
 void fc_composite_pass_destroy(fc_composite_pass *pass)
 {
-    glDeleteProgram(pass->base_program);
     glDeleteProgram(pass->mask_program);
     glDeleteProgram(pass->program);
     glDeleteVertexArrays(1, &pass->empty_vertex_array);
     fc_render_target_release(&pass->srgb_target);
     fc_render_target_release(&pass->float_target);
-    pass->base_program = pass->mask_program = pass->program = pass->empty_vertex_array = 0;
+    pass->mask_program = pass->program = pass->empty_vertex_array = 0;
 }
 
 /* Schlick's reflectance at normal incidence for a fluid of index `ior` in air. */
@@ -87,13 +84,22 @@ static void apply_material(const fc_settings *settings)
     glUniform2f(LOC_FOAM_NOISE_RANGE, FOAM_START * noise, FOAM_FULL * noise);
 }
 
-static void bind_inputs(const fc_composite_inputs *in, float radius)
+/* The thickness may have any resolution: the shader maps pixels to its texels. */
+static void bind_thickness(const fc_render_target *thickness, const fc_view *view)
+{
+    glBindTextureUnit(UNIT_THICKNESS, thickness->color);
+    glUniform2f(LOC_THICKNESS_TEXEL_UV, 1.0f / (float)thickness->texture_width,
+                1.0f / (float)thickness->texture_height);
+    glUniform2f(LOC_THICKNESS_PER_PIXEL, (float)thickness->width / (float)view->width,
+                (float)thickness->height / (float)view->height);
+    glUniform2f(LOC_THICKNESS_SIZE, (float)thickness->width, (float)thickness->height);
+}
+
+static void bind_inputs(const fc_composite_inputs *in, const fc_view *view, float radius)
 {
     fc_surface_normal_bind(in->surface_depth, in->noise, radius);
-    glBindTextureUnit(UNIT_THICKNESS, in->thickness->color);
+    bind_thickness(in->thickness, view);
     glBindTextureUnit(UNIT_BACKGROUND, in->background->color);
-    glUniform2f(LOC_THICKNESS_TEXTURE_SIZE, (float)in->thickness->texture_width,
-                (float)in->thickness->texture_height);
     glUniform2f(LOC_BACKGROUND_TEXTURE_SIZE, (float)in->background->texture_width,
                 (float)in->background->texture_height);
     glUniform1i(LOC_USE_ENVIRONMENT_MAP, in->environment_map != 0);
@@ -111,42 +117,42 @@ static void apply_fluid_pixel(GLuint program, const fc_view *view, const fc_envi
     glProgramUniform4fv(program, LOC_FLOOR_PLANE, 1, env->floor_plane);
 }
 
-/* Background colour and the scene's depth on every pixel. */
-static void draw_base(const fc_composite_pass *pass, const fc_composite_inputs *in)
-{
-    glEnable(GL_DEPTH_TEST);
-    glDepthFunc(GL_ALWAYS);
-    glDepthMask(GL_TRUE);
-    glUseProgram(pass->base_program);
-    glBindTextureUnit(UNIT_SURFACE_DEPTH, in->surface_depth->color);
-    glBindTextureUnit(UNIT_BACKGROUND, in->background->color);
-    fc_gl_draw_fullscreen(pass->empty_vertex_array);
-    glDepthMask(GL_FALSE);
-    glDisable(GL_DEPTH_TEST);
-}
-
-/* Stencil 1 on the fluid pixels, 0 elsewhere; no colour. */
-static void draw_mask(const fc_composite_pass *pass, const fc_render_target *target)
+/* Stencil 1 on the fluid pixels, 0 elsewhere, and the fluid's depth; no colour. */
+static void draw_mask(const fc_composite_pass *pass, const fc_composite_inputs *in, const fc_render_target *target)
 {
     const GLint clear = 0;
     glClearNamedFramebufferiv(target->framebuffer, GL_STENCIL, 0, &clear);
+    glEnable(GL_DEPTH_TEST);
+    glDepthFunc(GL_ALWAYS);
+    glDepthMask(GL_TRUE);
     glEnable(GL_STENCIL_TEST);
     glStencilFunc(GL_ALWAYS, 1, 0xff);
     glStencilOp(GL_KEEP, GL_KEEP, GL_REPLACE);
     glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
     glUseProgram(pass->mask_program);
+    glBindTextureUnit(UNIT_SURFACE_DEPTH, in->surface_depth->color);
     fc_gl_draw_fullscreen(pass->empty_vertex_array);
     glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+    glDepthMask(GL_FALSE);
+    glDisable(GL_DEPTH_TEST);
     glStencilFunc(GL_EQUAL, 1, 0xff);
     glStencilOp(GL_KEEP, GL_KEEP, GL_KEEP);
+}
+
+fc_code fc_composite_pass_target(fc_composite_pass *pass, const fc_view *view, bool want_u8,
+                                 const fc_render_target **target, fc_error *err)
+{
+    fc_render_target *t = want_u8 ? &pass->srgb_target : &pass->float_target;
+    *target = t;
+    return fc_render_target_resize(t, view->width, view->height, err);
 }
 
 fc_code fc_composite_pass_run(fc_composite_pass *pass, const fc_composite_inputs *in, const fc_view *view,
                               const fc_environment *env, const fc_settings *settings, bool want_u8,
                               const fc_render_target **result, fc_error *err)
 {
-    fc_render_target *target = want_u8 ? &pass->srgb_target : &pass->float_target;
-    fc_code code = fc_render_target_resize(target, view->width, view->height, err);
+    const fc_render_target *target = NULL;
+    fc_code code = fc_composite_pass_target(pass, view, want_u8, &target, err);
     if (code != FC_OK)
         return code;
     fc_render_target_bind(target);
@@ -156,17 +162,15 @@ fc_code fc_composite_pass_run(fc_composite_pass *pass, const fc_composite_inputs
         glEnable(GL_FRAMEBUFFER_SRGB);
     else
         glDisable(GL_FRAMEBUFFER_SRGB);
-    apply_fluid_pixel(pass->base_program, view, env);
-    glProgramUniform2f(pass->base_program, LOC_DEPTH_PROJECTION, view->p22, view->p32);   /* only it writes depth */
     apply_fluid_pixel(pass->mask_program, view, env);
-    draw_base(pass, in);
-    draw_mask(pass, target);
+    glProgramUniform2f(pass->mask_program, LOC_DEPTH_PROJECTION, view->p22, view->p32);   /* it writes the fluid's depth */
+    draw_mask(pass, in, target);
     glUseProgram(pass->program);
     fc_environment_apply(env, view);
     glUniform3fv(LOC_LIGHT_VIEW, 1, env->light_view);
     glUniform4fv(LOC_FLOOR_PLANE, 1, env->floor_plane);
     apply_material(settings);
-    bind_inputs(in, settings->radius);
+    bind_inputs(in, view, settings->radius);
     fc_gl_draw_fullscreen(pass->empty_vertex_array);   /* the stencil keeps it to the fluid */
     glDisable(GL_STENCIL_TEST);
     glDisable(GL_FRAMEBUFFER_SRGB);

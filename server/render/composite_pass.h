@@ -1,6 +1,7 @@
 /* composite_pass.h — shading (van der Laan et al. 2009, §3.5, eqs. 13-15):
  * smoothed depth, thickness, noise and background become the final colour,
- * and the fluid's depth the depth buffer's content. */
+ * and the fluid's depth the depth buffer's content. The background pass has
+ * filled the target where there is no fluid (fc_composite_pass_target). */
 #ifndef FC_COMPOSITE_PASS_H
 #define FC_COMPOSITE_PASS_H
 
@@ -11,8 +12,7 @@
 #include "render_target.h"
 
 typedef struct fc_composite_pass {
-    GLuint base_program;    /* background and depth everywhere (composite_base.frag.glsl) */
-    GLuint mask_program;    /* stencil on fluid pixels (fluid_mask.frag.glsl) */
+    GLuint mask_program;    /* stencil and depth on fluid pixels (fluid_mask.frag.glsl) */
     GLuint program;         /* the fluid's shading, on the stencil (composite.frag.glsl) */
     GLuint empty_vertex_array;
     fc_render_target srgb_target;    /* GL_SRGB8_ALPHA8: display-ready 8-bit output, with depth */
@@ -31,9 +31,15 @@ typedef struct fc_composite_inputs {
 fc_code fc_composite_pass_create(const char *shader_dir, fc_composite_pass *pass, fc_error *err);
 void fc_composite_pass_destroy(fc_composite_pass *pass);
 
-/* Shades the fluid over the background into the sRGB target (want_u8) or the
- * float target, writing the depth of the fluid, else of the floor, else the
- * far plane, into its depth buffer; sets *result to it. */
+/* The target the next run with want_u8 draws into, the sRGB target or the
+ * float one, sized to the view: the background pass draws it first. */
+fc_code fc_composite_pass_target(fc_composite_pass *pass, const fc_view *view, bool want_u8,
+                                 const fc_render_target **target, fc_error *err);
+
+/* Shades the fluid over the background in the target of
+ * fc_composite_pass_target, writing the fluid's depth into its depth buffer
+ * (the background pass wrote the floor's, else the far plane's, elsewhere);
+ * sets *result to it. */
 fc_code fc_composite_pass_run(fc_composite_pass *pass, const fc_composite_inputs *in, const fc_view *view,
                               const fc_environment *env, const fc_settings *settings, bool want_u8,
                               const fc_render_target **result, fc_error *err);

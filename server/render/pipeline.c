@@ -118,8 +118,9 @@ static fc_code depth_stage(fc_pipeline *p, const render_job *job, fc_aov aov, fc
 }
 
 /* The thickness: splatted here at reduced resolution, else by the depth
- * stage, which must have run first; blurred and resampled here. */
-static fc_code thickness_stage(fc_pipeline *p, const render_job *job, const fc_render_target **result,
+ * stage, which must have run first; blurred and resampled here, to the
+ * view's size for the thickness AOV. */
+static fc_code thickness_stage(fc_pipeline *p, const render_job *job, fc_aov aov, const fc_render_target **result,
                                fc_error *err)
 {
     const fc_settings *s = job->settings;
@@ -130,6 +131,7 @@ static fc_code thickness_stage(fc_pipeline *p, const render_job *job, const fc_r
         .floor_plane = job->env.floor_plane,
         .profile = &p->profile,
         .full_splat = &p->depth.thickness,
+        .at_view_size = aov == FC_AOV_THICKNESS,
     };
     fc_stage_timer_begin(&p->timer, FC_STAGE_THICKNESS);
     fc_code code = fc_thickness_pass_run(&p->thickness, &job->surface, job->view, &params, result, err);
@@ -193,9 +195,12 @@ static fc_code composite_stage(fc_pipeline *p, const render_job *job, const fc_r
     fc_stage_timer_begin(&p->timer, FC_STAGE_COMPOSITE);
     fc_code code = shading_noise(p, job, surface, &inputs.noise, err);
     fc_pass_profile *profile = &p->profile;
+    const fc_render_target *target = NULL;
+    if (code == FC_OK)
+        code = fc_composite_pass_target(&p->composite, job->view, want_u8, &target, err);
     if (code == FC_OK) {
         fc_pass_profile_begin(profile, "background");
-        code = fc_background_pass_run(&p->background, job->view, &job->env, job->scene, err);
+        code = fc_background_pass_run(&p->background, job->view, &job->env, job->scene, target, err);
         fc_pass_profile_end(profile);
     }
     if (code == FC_OK) {
@@ -245,7 +250,7 @@ static fc_code render_stages(fc_pipeline *p, const render_job *job, fc_aov aov, 
 {
     if (aov == FC_AOV_THICKNESS) {
         fc_code code = splats_thickness(job, aov) ? depth_stage(p, job, aov, err) : FC_OK;
-        return code == FC_OK ? thickness_stage(p, job, result, err) : code;
+        return code == FC_OK ? thickness_stage(p, job, aov, result, err) : code;
     }
     fc_code code = depth_stage(p, job, aov, err);
     *result = &p->depth.target;
@@ -259,7 +264,7 @@ static fc_code render_stages(fc_pipeline *p, const render_job *job, fc_aov aov, 
     if (aov == FC_AOV_NOISE || aov == FC_AOV_NORMAL)
         return shading_aov_stage(p, job, surface, aov, result, err);
     const fc_render_target *thickness = NULL;
-    code = thickness_stage(p, job, &thickness, err);
+    code = thickness_stage(p, job, aov, &thickness, err);
     if (code != FC_OK)
         return code;
     return composite_stage(p, job, surface, thickness, result, err);

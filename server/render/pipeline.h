@@ -81,7 +81,9 @@ fc_code fc_pipeline_render_scene(fc_pipeline *p, const fc_camera *camera, const 
  * resources were allocated with: particle buffers sized to the largest frame
  * uploaded; render targets — the depth pass's raw depth, thickness and
  * linear depth (R32F each), the compute splat's two R32UI images, the
- * thickness splat and its blur (R32F x 3), the smoothing methods' ping-pong
+ * thickness splat and its blur (R32F x 3: the blur's two at half the
+ * image's resolution, or the splat's where lower) and the thickness AOV's
+ * upsampled copy (R32F), the smoothing methods' ping-pong
  * pairs (curvature flow R32F, bilateral R32F, narrow range RG32F, binomial
  * RGBA32F), the reduced-resolution depth pair (R32F) and the silhouette blend
  * (SRGB8_ALPHA8, RGBA32F), noise (R32F), normals (RGBA32F), background

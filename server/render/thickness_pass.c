@@ -7,6 +7,9 @@
 
 /* Uniform location fixed by layout(location) in thickness_chord.glsl. */
 enum { LOC_FLOOR_PLANE = 10 };
+/* The blur runs at this fraction of the image's resolution (or the splat's,
+ * where lower): thickness is a low-frequency quantity (Janisz 2012, §4.1.3). */
+#define BLUR_SCALE 0.5f
 
 fc_code fc_thickness_pass_create(const char *shader_dir, fc_thickness_pass *pass, fc_error *err)
 {
@@ -51,6 +54,45 @@ static fc_code splat(fc_thickness_pass *pass, const fc_particle_buffer *particle
     return fc_gl_check("thickness pass", err);
 }
 
+/* Variance, in squared image pixels, that the resampling alone blurs the
+ * thickness by: averaging k x k splat texels into a blur texel (a box of k
+ * samples) and the composite's bilinear lookup of the blur texels (a tent
+ * one blur texel wide each side). */
+static float resampling_variance(float splat_scale, float blur_scale)
+{
+    float splat_texel = 1.0f / splat_scale, blur_texel = 1.0f / blur_scale;
+    float k = splat_scale / blur_scale;
+    return (k * k - 1.0f) / 12.0f * splat_texel * splat_texel + blur_texel * blur_texel / 6.0f;
+}
+
+/* The Gaussian's standard deviation in blur texels: what the blur radius
+ * asks for, less what the resampling already blurs. */
+static float residual_sigma(uint32_t blur, float splat_scale, float blur_scale)
+{
+    /* The blur radius is where the filter cuts the Gaussian off, three
+     * standard deviations out. */
+    float sigma = (float)blur / 3.0f;
+    float variance = sigma * sigma - resampling_variance(splat_scale, blur_scale);
+    return variance > 0.0f ? sqrtf(variance) * blur_scale : 0.0f;
+}
+
+static fc_code blur(fc_thickness_pass *pass, const fc_render_target *splatted, const fc_view *view,
+                    const fc_thickness_params *params, const fc_render_target **result, fc_error *err)
+{
+    *result = splatted;
+    fc_code code = FC_OK;
+    if (params->blur > 0) {
+        float blur_scale = fminf(params->scale, BLUR_SCALE);
+        float sigma = residual_sigma(params->blur, params->scale, blur_scale);
+        code = fc_thickness_filter_run(&pass->filter, splatted, sigma, scaled(view->width, blur_scale),
+                                       scaled(view->height, blur_scale), result, err);
+    }
+    bool reduced = (*result)->width != view->width || (*result)->height != view->height;
+    if (code == FC_OK && params->at_view_size && reduced)
+        code = fc_thickness_filter_upsample(&pass->filter, *result, view->width, view->height, result, err);
+    return code;
+}
+
 fc_code fc_thickness_pass_run(fc_thickness_pass *pass, const fc_particle_buffer *particles, const fc_view *view,
                               const fc_thickness_params *params, const fc_render_target **result, fc_error *err)
 {
@@ -70,13 +112,10 @@ fc_code fc_thickness_pass_run(fc_thickness_pass *pass, const fc_particle_buffer 
         splatted = &pass->splat;
     }
     *result = splatted;
-    if (code != FC_OK || (scale == 1.0f && params->blur == 0))
+    if (code != FC_OK)
         return code;
-    /* The blur radius is where the filter cuts the Gaussian off, three
-     * standard deviations out; the filter works in splat texels. */
-    float sigma = (float)params->blur * scale / 3.0f;
     fc_pass_profile_begin(profile, "thickness blur");
-    code = fc_thickness_filter_run(&pass->filter, splatted, sigma, view->width, view->height, result, err);
+    code = blur(pass, splatted, view, params, result, err);
     fc_pass_profile_end(profile);
     return code;
 }
@@ -86,6 +125,7 @@ void fc_thickness_pass_tally(const fc_thickness_pass *pass, fc_gpu_memory *m)
     fc_render_target_tally(&pass->splat, m);
     fc_render_target_tally(&pass->filter.across, m);
     fc_render_target_tally(&pass->filter.result, m);
+    fc_render_target_tally(&pass->filter.upsampled, m);
 }
 
 void fc_thickness_pass_trim(fc_thickness_pass *pass)
@@ -93,4 +133,5 @@ void fc_thickness_pass_trim(fc_thickness_pass *pass)
     fc_render_target_release(&pass->splat);
     fc_render_target_release(&pass->filter.across);
     fc_render_target_release(&pass->filter.result);
+    fc_render_target_release(&pass->filter.upsampled);
 }

@@ -1,9 +1,14 @@
 /* thickness_pass.h — fluid thickness (van der Laan et al. 2009, §3.3): the
  * summed length of the view ray inside every sphere above the floor, in world
- * units, optionally at reduced resolution and blurred (Janisz 2012, §4.1.3). */
+ * units, optionally splatted at reduced resolution. Blurred, it is kept at
+ * half the image's resolution (or the splat's, where lower) and the composite
+ * samples it bilinearly: thickness is a low-frequency quantity (Janisz 2012,
+ * §4.1.3), and a quarter of the pixels makes the blur about four times
+ * cheaper. */
 #ifndef FC_THICKNESS_PASS_H
 #define FC_THICKNESS_PASS_H
 
+#include <stdbool.h>
 #include <stdint.h>
 
 #include "pass_profile.h"
@@ -20,23 +25,26 @@ typedef struct fc_thickness_pass {
 typedef struct fc_thickness_params {
     float radius;                 /* sphere radius, world units */
     float scale;                  /* resolution relative to the view, in (0, 1] */
-    uint32_t blur;                /* Gaussian blur radius in image pixels; 0 = none */
+    uint32_t blur;                /* blur radius in image pixels (three standard deviations, resampling
+                                     included); 0 = none, and the splat is the result */
     const float *floor_plane;     /* view space, see fc_environment.floor_plane */
     fc_pass_profile *profile;     /* records the splat and the filter; NULL: none */
     const fc_render_target *full_splat;   /* the thickness already splatted at the view's size (the depth
                                              pass does), used at scale 1; NULL: the pass splats */
+    bool at_view_size;            /* the result resampled to the view's size (the thickness AOV) */
 } fc_thickness_params;
 
 fc_code fc_thickness_pass_create(const char *shader_dir, fc_thickness_pass *pass, fc_error *err);
 void fc_thickness_pass_destroy(fc_thickness_pass *pass);
 
-/* Accumulates the particles' thickness and sets *result to a target of the
- * view's size holding it (sampled bilinearly). Fluid below the floor is cut
- * off; the fluid does not hide itself (every sphere adds). */
+/* Accumulates the particles' thickness and sets *result to a target holding
+ * it, at the view's size where params->at_view_size, else at any resolution
+ * (to be sampled bilinearly). Fluid below the floor is cut off; the fluid
+ * does not hide itself (every sphere adds). */
 fc_code fc_thickness_pass_run(fc_thickness_pass *pass, const fc_particle_buffer *particles, const fc_view *view,
                               const fc_thickness_params *params, const fc_render_target **result, fc_error *err);
 
-/* Adds the splat target and the blur's two targets to m. */
+/* Adds the splat target and the filter's targets to m. */
 void fc_thickness_pass_tally(const fc_thickness_pass *pass, fc_gpu_memory *m);
 
 /* Frees the splat and blur targets; the next run allocates them again. */

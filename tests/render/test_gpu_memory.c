@@ -21,7 +21,8 @@
 static const uint64_t FULL_RESOLUTION_PIXEL_BYTES =
     3 * 4            /* depth pass: raw, thickness, linear depth, R32F */
     + 2 * 4          /* compute splat: nearest depth and thickness sum, R32UI */
-    + 2 * 4          /* thickness blur: across and result, R32F */
+    + 4 / 4          /* thickness blur result, R32F at half the resolution per axis (blur 2 is the
+                        resampling alone: no Gaussian pass, so no "across" target) */
     + 2 * 4          /* curvature flow ping-pong, R32F */
     + 2 * 4          /* bilateral ping-pong, R32F */
     + 2 * 8          /* narrow range ping-pong, RG32F */
