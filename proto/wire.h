@@ -100,6 +100,22 @@ typedef struct fc_image_reply {
 fc_code fc_wire_write_hello(fc_buf *out, uint32_t request_id, const fc_hello *m, fc_error *err);
 fc_code fc_wire_write_welcome(fc_buf *out, uint32_t request_id, const fc_welcome *m, fc_error *err);
 fc_code fc_wire_write_frame(fc_buf *out, uint32_t request_id, const fc_frame *m, fc_error *err);
+
+/* A part of a message that stays where its owner keeps it. */
+typedef struct fc_wire_span {
+    const void *data;
+    size_t size;
+} fc_wire_span;
+/* At most this many particle arrays follow FRAME's fixed fields. */
+#define FC_WIRE_FRAME_ARRAYS 4
+/* FRAME for a sender that hands the particle arrays to the socket where they
+ * lie (sendmsg) instead of copying them into the message: appends the header
+ * and fixed fields to `out` and lists the arrays, to be sent right after out's
+ * bytes, in `arrays` (*array_count of them). On a little-endian host the arrays
+ * already are the wire's bytes; on others they are encoded into `out` as
+ * fc_wire_write_frame does, and *array_count is 0. */
+fc_code fc_wire_write_frame_parts(fc_buf *out, uint32_t request_id, const fc_frame *m,
+                                  fc_wire_span arrays[FC_WIRE_FRAME_ARRAYS], size_t *array_count, fc_error *err);
 fc_code fc_wire_write_camera(fc_buf *out, uint32_t request_id, const fc_camera *m, fc_error *err);
 /* Writes every field of *m as key/value entries. */
 fc_code fc_wire_write_settings(fc_buf *out, uint32_t request_id, const fc_settings *m, fc_error *err);

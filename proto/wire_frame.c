@@ -23,8 +23,24 @@ static uint64_t frame_stride(uint32_t attributes)
     return stride;
 }
 
-fc_code fc_wire_write_frame(fc_buf *out, uint32_t request_id, const fc_frame *m, fc_error *err)
+/* The particle arrays of m in wire order. */
+static size_t frame_arrays(const fc_frame *m, size_t count, fc_wire_span arrays[FC_WIRE_FRAME_ARRAYS])
 {
+    size_t n = 0;
+    arrays[n++] = (fc_wire_span){m->positions, 3 * count * sizeof(float)};
+    if (m->density)
+        arrays[n++] = (fc_wire_span){m->density, count * sizeof(float)};
+    if (m->velocity)
+        arrays[n++] = (fc_wire_span){m->velocity, 3 * count * sizeof(float)};
+    if (m->ids)
+        arrays[n++] = (fc_wire_span){m->ids, count * sizeof(uint32_t)};
+    return n;
+}
+
+fc_code fc_wire_write_frame_parts(fc_buf *out, uint32_t request_id, const fc_frame *m,
+                                  fc_wire_span arrays[FC_WIRE_FRAME_ARRAYS], size_t *array_count, fc_error *err)
+{
+    *array_count = 0;
     if (m->count == 0 || !m->positions)
         return fc_error_set(err, FC_ERR_USAGE, "a FRAME needs at least one particle");
     uint32_t attributes = fc_frame_attributes(m);
@@ -34,17 +50,40 @@ fc_code fc_wire_write_frame(fc_buf *out, uint32_t request_id, const fc_frame *m,
         return code;
     /* The check above bounds count below 2^32 / 12, so every size_t product fits. */
     size_t count = (size_t)m->count;
-    size_t start = wire_begin_message(out, FC_MSG_FRAME, request_id, (uint32_t)(FRAME_FIXED_SIZE + count * stride));
+    uint32_t length = (uint32_t)(FRAME_FIXED_SIZE + count * stride);
+    size_t start = wire_begin_message_part(out, FC_MSG_FRAME, request_id, length,
+                                           WIRE_HOST_IS_LITTLE_ENDIAN ? FRAME_FIXED_SIZE : length);
     wire_put_u64(out, m->count);
     wire_put_u32(out, attributes);
     wire_put_u32(out, 0); /* reserved */
-    wire_put_f32_array(out, m->positions, 3 * count);
-    if (m->density)
-        wire_put_f32_array(out, m->density, count);
-    if (m->velocity)
-        wire_put_f32_array(out, m->velocity, 3 * count);
-    if (m->ids)
-        wire_put_u32_array(out, m->ids, count);
+    fc_wire_span spans[FC_WIRE_FRAME_ARRAYS];
+    size_t n = frame_arrays(m, count, spans);
+    for (size_t i = 0; i < n; i++) {
+        if (WIRE_HOST_IS_LITTLE_ENDIAN)
+            arrays[i] = spans[i];
+        else
+            wire_put_u32_array(out, spans[i].data, spans[i].size / 4);
+    }
+    code = wire_end_message(out, start, err);
+    if (code == FC_OK && WIRE_HOST_IS_LITTLE_ENDIAN)
+        *array_count = n;
+    return code;
+}
+
+fc_code fc_wire_write_frame(fc_buf *out, uint32_t request_id, const fc_frame *m, fc_error *err)
+{
+    fc_wire_span arrays[FC_WIRE_FRAME_ARRAYS];
+    size_t n, start = out->len;
+    fc_code code = fc_wire_write_frame_parts(out, request_id, m, arrays, &n, err);
+    if (code != FC_OK)
+        return code;
+    /* One reservation for the arrays, so they are not regrown piecemeal. */
+    size_t bytes = 0;
+    for (size_t i = 0; i < n; i++)
+        bytes += arrays[i].size;
+    fc_buf_reserve(out, bytes);
+    for (size_t i = 0; i < n; i++)
+        wire_put_bytes(out, arrays[i].data, arrays[i].size);
     return wire_end_message(out, start, err);
 }
 

@@ -8,11 +8,7 @@
 #include "fc_error.h"
 
 /* Arrays are copied wholesale when the host already stores them little-endian. */
-#if defined(__BYTE_ORDER__) && __BYTE_ORDER__ == __ORDER_LITTLE_ENDIAN__
-#define HOST_IS_LITTLE_ENDIAN 1
-#else
-#define HOST_IS_LITTLE_ENDIAN 0
-#endif
+#define HOST_IS_LITTLE_ENDIAN WIRE_HOST_IS_LITTLE_ENDIAN
 
 #define UTF8_CONTINUATION_MASK 0xC0u
 #define UTF8_CONTINUATION_BITS 0x80u
@@ -105,16 +101,22 @@ void wire_put_str(fc_buf *b, const char *text, size_t capacity)
     wire_put_bytes(b, text, len);
 }
 
-size_t wire_begin_message(fc_buf *b, fc_msg_type type, uint32_t request_id, uint32_t length)
+size_t wire_begin_message_part(fc_buf *b, fc_msg_type type, uint32_t request_id, uint32_t length,
+                               size_t part_bytes)
 {
     size_t start = b->len;
     uint8_t header[FC_WIRE_HEADER_SIZE];
     fc_msg_header h = {.type = (uint16_t)type, .flags = 0, .request_id = request_id, .length = length};
     fc_wire_encode_header(header, &h);
-    /* One reservation for the whole message, so large payloads are not regrown piecemeal. */
-    if (fc_buf_reserve(b, FC_WIRE_HEADER_SIZE + (size_t)length))
+    /* One reservation for all that goes into b, so large payloads are not regrown piecemeal. */
+    if (fc_buf_reserve(b, FC_WIRE_HEADER_SIZE + part_bytes))
         wire_put_bytes(b, header, sizeof header);
     return start;
+}
+
+size_t wire_begin_message(fc_buf *b, fc_msg_type type, uint32_t request_id, uint32_t length)
+{
+    return wire_begin_message_part(b, type, request_id, length, length);
 }
 
 fc_code wire_end_message(fc_buf *b, size_t start, fc_error *err)

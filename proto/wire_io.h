@@ -5,6 +5,13 @@
 
 #include "wire.h"
 
+/* 1 where the host stores words as the wire does (least significant byte first). */
+#if defined(__BYTE_ORDER__) && __BYTE_ORDER__ == __ORDER_LITTLE_ENDIAN__
+#define WIRE_HOST_IS_LITTLE_ENDIAN 1
+#else
+#define WIRE_HOST_IS_LITTLE_ENDIAN 0
+#endif
+
 /* Writes the low `bytes` bytes of v, least significant first. */
 void wire_store_le(uint8_t *out, uint64_t v, size_t bytes);
 
@@ -23,6 +30,10 @@ size_t wire_str_size(const char *text, size_t capacity);
 
 /* Starts a message of `length` payload bytes; returns where it begins in b. */
 size_t wire_begin_message(fc_buf *b, fc_msg_type type, uint32_t request_id, uint32_t length);
+/* The same for a message of which only the header and the first part_bytes of
+ * the payload go into b (the rest is sent from where it lies). */
+size_t wire_begin_message_part(fc_buf *b, fc_msg_type type, uint32_t request_id, uint32_t length,
+                               size_t part_bytes);
 /* FC_OK, or FC_ERR_NOMEM after taking the incomplete message back out of b. */
 fc_code wire_end_message(fc_buf *b, size_t start, fc_error *err);
 /* FC_ERR_TOO_LARGE unless a payload of fixed + count * unit bytes (fixed below

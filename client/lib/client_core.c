@@ -22,13 +22,18 @@ uint32_t fc_client_next_request_id(fc_client *c)
     return c->last_request_id;
 }
 
+static fc_code check_payload_size(const fc_client *c, uint64_t payload, const char *what, fc_error *err)
+{
+    if (payload > c->info.max_message)
+        return fc_error_set(err, FC_ERR_TOO_LARGE,
+                            "%s of %llu bytes exceeds the server's message limit of %u bytes", what,
+                            (unsigned long long)payload, (unsigned)c->info.max_message);
+    return FC_OK;
+}
+
 fc_code fc_client_check_message_size(const fc_client *c, const char *what, fc_error *err)
 {
-    size_t payload = c->tx.len - FC_WIRE_HEADER_SIZE;
-    if (payload > c->info.max_message)
-        return fc_error_set(err, FC_ERR_TOO_LARGE, "%s of %zu bytes exceeds the server's message limit of %u bytes",
-                            what, payload, (unsigned)c->info.max_message);
-    return FC_OK;
+    return check_payload_size(c, c->tx.len - FC_WIRE_HEADER_SIZE, what, err);
 }
 
 fc_code fc_client_send_tx(fc_client *c, fc_error *err)
@@ -36,6 +41,31 @@ fc_code fc_client_send_tx(fc_client *c, fc_error *err)
     fc_code code = fc_socket_send_all(c->fd, c->tx.data, c->tx.len, err);
     if (code != FC_OK)
         c->broken = true;
+    return code;
+}
+
+fc_code fc_client_send_frame_message(fc_client *c, const fc_frame *frame, uint64_t *wire_bytes, fc_error *err)
+{
+    fc_buf_reset(&c->tx);
+    fc_wire_span arrays[FC_WIRE_FRAME_ARRAYS];
+    size_t count = 0;
+    fc_code code = fc_wire_write_frame_parts(&c->tx, fc_client_next_request_id(c), frame, arrays, &count, err);
+    if (code != FC_OK)
+        return code;
+    struct iovec parts[1 + FC_WIRE_FRAME_ARRAYS] = {{.iov_base = c->tx.data, .iov_len = c->tx.len}};
+    uint64_t total = c->tx.len;
+    for (size_t i = 0; i < count; i++) {
+        parts[1 + i] = (struct iovec){.iov_base = (void *)arrays[i].data, .iov_len = arrays[i].size};
+        total += arrays[i].size;
+    }
+    code = check_payload_size(c, total - FC_WIRE_HEADER_SIZE, "the frame", err);
+    if (code != FC_OK)
+        return code;
+    code = fc_socket_send_parts(c->fd, parts, 1 + count, err);
+    if (code != FC_OK)
+        c->broken = true;
+    else if (wire_bytes)
+        *wire_bytes = total;
     return code;
 }
 

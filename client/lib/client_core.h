@@ -39,6 +39,12 @@ fc_code fc_client_check_message_size(const fc_client *c, const char *what, fc_er
 /* Sends c->tx. A failure marks the client broken. */
 fc_code fc_client_send_tx(fc_client *c, fc_error *err);
 
+/* A FRAME without copying its particles: encodes the message's head into c->tx
+ * and sends it followed by the frame's arrays from where the caller keeps them
+ * (fc_wire_write_frame_parts), after fc_client_check_message_size's check of
+ * the whole message. *wire_bytes (may be NULL) receives the bytes sent. */
+fc_code fc_client_send_frame_message(fc_client *c, const fc_frame *frame, uint64_t *wire_bytes, fc_error *err);
+
 /* Receives one message into *header and c->rx. A failure marks the client broken. */
 fc_code fc_client_receive(fc_client *c, fc_msg_header *header, fc_error *err);
 

@@ -12,11 +12,7 @@ fc_code fc_client_send_frame(fc_client *client, const fc_frame *frame, fc_error 
         return code;
     if (!frame || frame->count == 0 || !frame->positions)
         return fc_error_set(err, FC_ERR_USAGE, "a frame needs at least one particle position");
-    fc_buf_reset(&client->tx);
-    code = fc_wire_write_frame(&client->tx, fc_client_next_request_id(client), frame, err);
-    if (code == FC_OK)
-        code = fc_client_check_message_size(client, "the frame", err);
-    return code != FC_OK ? code : fc_client_send_tx(client, err);
+    return fc_client_send_frame_message(client, frame, NULL, err);
 }
 
 fc_code fc_client_set_camera(fc_client *client, const fc_camera *camera, fc_error *err)

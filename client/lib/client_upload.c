@@ -58,13 +58,17 @@ fc_code fc_client_upload_frame(fc_client *client, const fc_frame *frame, const f
     fc_code code = check_upload(client, frame, o, err);
     if (code != FC_OK)
         return code;
+    /* Plain frames go as FRAME, which every server reads, straight from the caller's arrays. */
+    if (o->encoding == 0) {
+        uint64_t sent = 0;
+        code = fc_client_send_frame_message(client, frame, &sent, err);
+        if (code == FC_OK && stats)
+            *stats = (fc_upload_stats){.raw_bytes = plain_size(frame), .wire_bytes = sent};
+        return code;
+    }
     fc_buf_reset(&client->tx);
-    uint32_t id = fc_client_next_request_id(client);
-    /* Plain frames go as FRAME, which every server reads. */
-    if (o->encoding == 0)
-        code = fc_wire_write_frame(&client->tx, id, frame, err);
-    else
-        code = fc_wire_write_frame_packed(&client->tx, id, frame, o->encoding, o->zstd_level, err);
+    code = fc_wire_write_frame_packed(&client->tx, fc_client_next_request_id(client), frame, o->encoding,
+                                      o->zstd_level, err);
     return code != FC_OK ? code : send_counted(client, frame, "the frame", stats, err);
 }
 

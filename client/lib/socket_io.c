@@ -166,6 +166,30 @@ fc_code fc_socket_send_all(int fd, const uint8_t *data, size_t n, fc_error *err)
     return FC_OK;
 }
 
+fc_code fc_socket_send_parts(int fd, struct iovec *parts, size_t count, fc_error *err)
+{
+    while (count > 0) {
+        struct msghdr message = {.msg_iov = parts, .msg_iovlen = count};
+        ssize_t sent = sendmsg(fd, &message, MSG_NOSIGNAL);
+        if (sent < 0 && errno == EINTR)
+            continue;
+        if (sent < 0)
+            return transfer_failure(errno, "sending to", err);
+        /* Skip what went out: whole parts, then the front of a partly sent one. */
+        size_t left = (size_t)sent;
+        while (count > 0 && left >= parts->iov_len) {
+            left -= parts->iov_len;
+            parts++;
+            count--;
+        }
+        if (count > 0) {
+            parts->iov_base = (uint8_t *)parts->iov_base + left;
+            parts->iov_len -= left;
+        }
+    }
+    return FC_OK;
+}
+
 fc_code fc_socket_recv_exact(int fd, uint8_t *data, size_t n, fc_error *err)
 {
     while (n > 0) {

@@ -6,6 +6,7 @@
 
 #include <stddef.h>
 #include <stdint.h>
+#include <sys/uio.h>
 #include "fluidcast_types.h"
 
 /* Resolves host/port (IPv4 or IPv6) and connects to the first address that
@@ -27,6 +28,12 @@ fc_code fc_socket_set_timeout(int fd, uint32_t timeout_ms, fc_error *err);
 /* Sends all n bytes. FC_ERR_CLOSED when the peer has gone, FC_ERR_IO on a timeout
  * or another socket failure. Never raises SIGPIPE. */
 fc_code fc_socket_send_all(int fd, const uint8_t *data, size_t n, fc_error *err);
+
+/* Sends the count buffers of parts (a handful: at most the system's IOV_MAX) one
+ * after the other, as fc_socket_send_all would their concatenation, without
+ * concatenating them: large arrays go to the socket from where their owner keeps
+ * them. Advances through parts (the array is changed). */
+fc_code fc_socket_send_parts(int fd, struct iovec *parts, size_t count, fc_error *err);
 
 /* Receives exactly n bytes. FC_ERR_CLOSED when the peer closes first,
  * FC_ERR_IO on a timeout or another socket failure. */

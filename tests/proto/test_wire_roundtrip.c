@@ -69,6 +69,42 @@ static void test_frame_bytes(void)
     fc_buf_free(&b);
 }
 
+/* The same FRAME as test_frame_bytes as parts: the head in the buffer, the
+ * arrays left where the frame keeps them, together the same bytes. */
+static void test_frame_parts(void)
+{
+    float positions[6] = {1, 2, 3, -1, 0.5f, 0};
+    float density[2] = {1000, 0.25f};
+    fc_frame frame = {.count = 2, .positions = positions, .density = density};
+    fc_buf head, whole;
+    fc_buf_init(&head);
+    fc_buf_init(&whole);
+    fc_error err;
+    fc_wire_span arrays[FC_WIRE_FRAME_ARRAYS];
+    size_t count = 99;
+    CHECK_CODE(fc_wire_write_frame_parts(&head, 7, &frame, arrays, &count, &err), FC_OK);
+    CHECK_CODE(fc_wire_write_frame(&whole, 7, &frame, &err), FC_OK);
+#if defined(__BYTE_ORDER__) && __BYTE_ORDER__ == __ORDER_LITTLE_ENDIAN__
+    CHECK_MSG(count == 2 && head.len == FC_WIRE_HEADER_SIZE + 16, "%zu arrays after %zu bytes", count, head.len);
+    CHECK(count == 2 && arrays[0].data == positions && arrays[0].size == sizeof positions);
+    CHECK(count == 2 && arrays[1].data == density && arrays[1].size == sizeof density);
+#endif
+    for (size_t i = 0; i < count && count <= FC_WIRE_FRAME_ARRAYS; i++) {
+        CHECK(fc_buf_reserve(&head, arrays[i].size));
+        memcpy(head.data + head.len, arrays[i].data, arrays[i].size);
+        head.len += arrays[i].size;
+    }
+    CHECK(head.len == whole.len && memcmp(head.data, whole.data, whole.len) == 0);
+
+    /* Refused like fc_wire_write_frame, leaving nothing behind. */
+    fc_buf_reset(&head);
+    fc_frame empty = {.count = 0, .positions = positions};
+    CHECK_CODE(fc_wire_write_frame_parts(&head, 1, &empty, arrays, &count, &err), FC_ERR_USAGE);
+    CHECK(head.len == 0 && count == 0);
+    fc_buf_free(&head);
+    fc_buf_free(&whole);
+}
+
 static void test_hello_bytes(void)
 {
     const uint8_t expected_payload[] = {
@@ -452,6 +488,7 @@ int main(void)
 {
     test_header_bytes();
     test_frame_bytes();
+    test_frame_parts();
     test_hello_bytes();
     test_hello_roundtrip();
     test_welcome_roundtrip();
