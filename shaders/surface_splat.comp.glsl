@@ -8,6 +8,8 @@
 // The nearest depth wins by imageAtomicMin on the float's bits, which order
 // like the floats because depths are positive; thickness is summed by
 // imageAtomicAdd in fixed point (llvmpipe's GL has no float image atomics).
+// Atomics on storage buffers instead of images measured no faster on
+// llvmpipe (bench/RESULTS.md, fifth round).
 // surface_resolve.comp.glsl turns both into the fragment splat's images.
 // Faster on llvmpipe for small sprites, where a point sprite's set-up costs
 // more than its few pixels (bench/RESULTS.md, third round); depth_pass.c
@@ -24,13 +26,16 @@ layout(location = 3) uniform float radius;           // world units
 layout(location = 6) uniform uint particle_count;
 layout(location = 7) uniform float units_per_chord;  // thickness steps per diameter; 0 = no thickness
 
-layout(std430, binding = 0) readonly buffer particle_positions {
-    float position[];   // xyz per particle, world space
-};
+// A buffer texture, not a storage buffer: llvmpipe gathers a texel fetch
+// for all lanes at once but loads from a storage buffer lane by lane.
+layout(binding = 0) uniform samplerBuffer particle_positions;   // RGB32F: xyz per particle, world space
 layout(binding = 0, r32ui) uniform uimage2D nearest_depth;   // float bits; +inf where no sphere is
 layout(binding = 1, r32ui) uniform uimage2D thickness_sum;   // fixed point, units_per_chord per diameter
 
 layout(local_size_x = 64) in;
+
+// As sphere.vert.glsl's quads: rounding loses no pixel centre on the bounds.
+const float MARGIN_PIXELS = 0.25;
 
 void splat_pixel(ivec2 p, vec3 centre)
 {
@@ -61,9 +66,10 @@ void splat_pixel(ivec2 p, vec3 centre)
 // k (r² (1 + v²) - (c.y + v c.z)²), free of the cancellation the textbook
 // form suffers. It lies between its roots when it opens downwards (qa < 0),
 // as it does unless the eye is inside the sphere's tangent cylinder along x.
-// A row the sphere only grazes keeps the column where it would touch, and a
-// pixel of margin on each side absorbs rounding: the ray cast decides each
-// pixel, the span must only hold every one it could accept.
+// A row the sphere only grazes keeps the column where it would touch, and
+// the quarter pixel of margin on each side absorbs rounding (a few hundredths
+// of a pixel even at the widest sprites): the ray cast decides each pixel,
+// the span must only hold every one it could accept.
 ivec2 row_span(int y, vec3 centre, ivec2 lo, ivec2 hi)
 {
     float v = ((float(y) + 0.5) / viewport.y * 2.0 - 1.0) / projection.y;
@@ -77,7 +83,7 @@ ivec2 row_span(int y, vec3 centre, ivec2 lo, ivec2 hi)
     float root = sqrt(k * max(r2 * (1.0 + v * v) - across * across, 0.0));
     vec2 a = vec2(-qb + root, -qb - root) / qa;   // ascending: qa < 0
     vec2 x = (a * projection.x + 1.0) * 0.5 * viewport.x - 0.5;
-    return ivec2(max(lo.x, int(floor(x.x)) - 1), min(hi.x, int(ceil(x.y)) + 1));
+    return ivec2(max(lo.x, int(ceil(x.x - MARGIN_PIXELS))), min(hi.x, int(floor(x.y + MARGIN_PIXELS))));
 }
 
 void main()
@@ -85,17 +91,21 @@ void main()
     uint i = gl_GlobalInvocationID.y * gl_NumWorkGroups.x * gl_WorkGroupSize.x + gl_GlobalInvocationID.x;
     if (i >= particle_count)
         return;
-    vec3 centre = (view_matrix * vec4(position[3 * i], position[3 * i + 1], position[3 * i + 2], 1.0)).xyz;
+    vec3 centre = (view_matrix * vec4(texelFetch(particle_positions, int(i)).xyz, 1.0)).xyz;
     float depth = -centre.z;
     // A centre behind the eye: the fragment splat culls its sprite too.
     if (depth <= 0.0)
         return;
     vec2 x_range = projected_interval(centre.x, depth, projection.x);
     vec2 y_range = projected_interval(centre.y, depth, projection.y);
-    // The pixels whose centres the bounds may hold, clipped to the image.
-    ivec2 size = ivec2(viewport);   // the images may be larger than the image in use
-    ivec2 lo = max(ivec2(floor((vec2(x_range.x, y_range.x) + 1.0) * 0.5 * viewport)), ivec2(0));
-    ivec2 hi = min(ivec2(ceil((vec2(x_range.y, y_range.y) + 1.0) * 0.5 * viewport)), size - 1);
+    // The pixels whose centres lie within the bounds, grown by the fragment
+    // splat's margin (sphere.vert.glsl), clipped to the image. Walking one
+    // more pixel per side and axis, as a plain floor and ceil of the bounds
+    // would, quadruples the pixels of a one-pixel sphere.
+    vec2 first = (vec2(x_range.x, y_range.x) + 1.0) * 0.5 * viewport - 0.5 - MARGIN_PIXELS;
+    vec2 last = (vec2(x_range.y, y_range.y) + 1.0) * 0.5 * viewport - 0.5 + MARGIN_PIXELS;
+    ivec2 lo = max(ivec2(ceil(first)), ivec2(0));
+    ivec2 hi = min(ivec2(floor(last)), ivec2(viewport) - 1);
     for (int y = lo.y; y <= hi.y; y++) {
         ivec2 span = row_span(y, centre, lo, hi);
         for (int x = span.x; x <= span.y; x++)

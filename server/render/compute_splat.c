@@ -20,9 +20,11 @@ enum {
 /* ... and in surface_resolve.comp.glsl. */
 enum { LOC_CHORD_PER_UNIT = 0, LOC_SOURCE_SIZE = 40 };
 enum { IMAGE_NEAREST_DEPTH = 0, IMAGE_THICKNESS_SUM = 1, IMAGE_DEPTH_OUT = 2, IMAGE_THICKNESS_OUT = 3 };
-enum { BINDING_POSITIONS = 0 };
+enum { UNIT_POSITIONS = 0 };
 /* local_size of the two shaders. */
 enum { SPLAT_GROUP = 64, RESOLVE_TILE = 8 };
+/* Bytes per particle position: xyz as float32. */
+enum { POSITION_BYTES = 3 * sizeof(float) };
 /* Workgroups along x per row of the dispatch: below the 65535 GL guarantees. */
 #define SPLAT_GROUPS_PER_ROW 32768u
 
@@ -43,6 +45,27 @@ static double units_per_chord(uint64_t particles)
     return fit < MAX_UNITS_PER_CHORD ? fit : MAX_UNITS_PER_CHORD;
 }
 
+static uint64_t gcd(uint64_t a, uint64_t b)
+{
+    while (b) {
+        uint64_t r = a % b;
+        a = b;
+        b = r;
+    }
+    return a;
+}
+
+/* The most particles one dispatch may read through a buffer texture of at
+ * most max_texels texels, such that the next dispatch's first position sits
+ * at an offset the driver accepts: a multiple of `alignment` bytes. */
+static uint64_t dispatch_limit(GLint max_texels, GLint alignment)
+{
+    uint64_t align = alignment > 0 ? (uint64_t)alignment : 1;
+    uint64_t step = align / gcd(align, POSITION_BYTES);   /* particles per aligned offset */
+    uint64_t limit = (uint64_t)(max_texels > 0 ? max_texels : 0) / step * step;
+    return limit > 0 ? limit : step;
+}
+
 fc_code fc_compute_splat_create(const char *shader_dir, fc_compute_splat *s, fc_error *err)
 {
     *s = (fc_compute_splat){0};
@@ -52,7 +75,14 @@ fc_code fc_compute_splat_create(const char *shader_dir, fc_compute_splat *s, fc_
     fc_code code = fc_program_build(shader_dir, splat, sizeof splat / sizeof splat[0], &s->splat_program, err);
     if (code == FC_OK)
         code = fc_program_build(shader_dir, resolve, 1, &s->resolve_program, err);
-    return code;
+    if (code != FC_OK)
+        return code;
+    glCreateTextures(GL_TEXTURE_BUFFER, 1, &s->positions);
+    GLint max_texels = 0, alignment = 1;
+    glGetIntegerv(GL_MAX_TEXTURE_BUFFER_SIZE, &max_texels);
+    glGetIntegerv(GL_TEXTURE_BUFFER_OFFSET_ALIGNMENT, &alignment);
+    s->particles_per_dispatch = dispatch_limit(max_texels, alignment);
+    return fc_gl_check("creating the compute splat's position texture", err);
 }
 
 static void release_images(fc_compute_splat *s)
@@ -67,6 +97,7 @@ void fc_compute_splat_destroy(fc_compute_splat *s)
 {
     glDeleteProgram(s->splat_program);
     glDeleteProgram(s->resolve_program);
+    glDeleteTextures(1, &s->positions);
     release_images(s);
     *s = (fc_compute_splat){0};
 }
@@ -92,6 +123,20 @@ static fc_code reserve(fc_compute_splat *s, uint32_t width, uint32_t height, fc_
     return FC_OK;
 }
 
+/* Particles [first, first + count) in one dispatch, read through the buffer
+ * texture: llvmpipe gathers a texel fetch for all lanes at once, where it
+ * loads from a storage buffer lane by lane (bench/RESULTS.md, fifth round). */
+static void dispatch(const fc_compute_splat *s, const fc_particle_buffer *particles, uint64_t first,
+                     uint64_t count)
+{
+    glTextureBufferRange(s->positions, GL_RGB32F, particles->buffer, (GLintptr)(first * POSITION_BYTES),
+                         (GLsizeiptr)(count * POSITION_BYTES));
+    glProgramUniform1ui(s->splat_program, LOC_PARTICLE_COUNT, (GLuint)count);
+    GLuint groups = (GLuint)((count + SPLAT_GROUP - 1) / SPLAT_GROUP);
+    GLuint per_row = groups < SPLAT_GROUPS_PER_ROW ? groups : SPLAT_GROUPS_PER_ROW;
+    glDispatchCompute(per_row, (groups + per_row - 1) / per_row, 1);
+}
+
 static void splat(const fc_compute_splat *s, const fc_particle_buffer *particles, const fc_view *view,
                   float radius, const float *floor_plane, double units)
 {
@@ -100,19 +145,22 @@ static void splat(const fc_compute_splat *s, const fc_particle_buffer *particles
     glProgramUniform4f(program, LOC_PROJECTION, view->fx, view->fy, view->p22, view->p32);
     glProgramUniform2f(program, LOC_VIEWPORT, (float)view->width, (float)view->height);
     glProgramUniform1f(program, LOC_RADIUS, radius);
-    glProgramUniform1ui(program, LOC_PARTICLE_COUNT, (GLuint)particles->count);
     glProgramUniform1f(program, LOC_UNITS_PER_CHORD, floor_plane ? (float)units : 0.0f);
     if (floor_plane)
         glProgramUniform4fv(program, LOC_FLOOR_PLANE, 1, floor_plane);
-    glBindBufferRange(GL_SHADER_STORAGE_BUFFER, BINDING_POSITIONS, particles->buffer, 0,
-                      (GLsizeiptr)(particles->count * 3 * sizeof(float)));
     glBindImageTexture(IMAGE_NEAREST_DEPTH, s->nearest_depth, 0, GL_FALSE, 0, GL_READ_WRITE, GL_R32UI);
     glBindImageTexture(IMAGE_THICKNESS_SUM, s->thickness_sum, 0, GL_FALSE, 0, GL_READ_WRITE, GL_R32UI);
     glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_UPDATE_BARRIER_BIT);
     glUseProgram(program);
-    GLuint groups = (GLuint)((particles->count + SPLAT_GROUP - 1) / SPLAT_GROUP);
-    GLuint per_row = groups < SPLAT_GROUPS_PER_ROW ? groups : SPLAT_GROUPS_PER_ROW;
-    glDispatchCompute(per_row, (groups + per_row - 1) / per_row, 1);
+    glBindTextureUnit(UNIT_POSITIONS, s->positions);
+    for (uint64_t first = 0; first < particles->count; first += s->particles_per_dispatch) {
+        uint64_t left = particles->count - first;
+        dispatch(s, particles, first, left < s->particles_per_dispatch ? left : s->particles_per_dispatch);
+    }
+    /* Detached, the texture does not keep a particle buffer alive once that
+     * is reallocated. */
+    glTextureBuffer(s->positions, GL_RGB32F, 0);
+    glBindTextureUnit(UNIT_POSITIONS, 0);
 }
 
 static void resolve(const fc_compute_splat *s, const fc_view *view, float radius, bool with_thickness,

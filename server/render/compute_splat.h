@@ -15,6 +15,8 @@
 typedef struct fc_compute_splat {
     GLuint splat_program;
     GLuint resolve_program;
+    GLuint positions;                  /* buffer texture (RGB32F) over the particle buffer, during a run */
+    uint64_t particles_per_dispatch;   /* the most particles the buffer texture may show at once */
     GLuint nearest_depth;     /* R32UI: bits of the nearest depth, +inf where no sphere is */
     GLuint thickness_sum;     /* R32UI: thickness in fixed point */
     uint32_t width, height;   /* of the two images, the largest image splatted so far; 0 before the first run */

@@ -13,8 +13,10 @@ enum { UNIT_SPLAT_DEPTH = 0 };
 
 /* The compute splat wins while a typical sprite (at the depth of the
  * particles' centre) is at most this many pixels across: measured crossover
- * on llvmpipe, bench/RESULTS.md third round. */
-#define COMPUTE_SPLAT_MAX_TYPICAL_PX 11.0f
+ * on llvmpipe, where both splats take equal time, 14-17 px from 64k to 256k
+ * particles (bench/RESULTS.md fifth round; 11 px in the third round, before
+ * the compute splat's bounding box and position reads got cheaper). */
+#define COMPUTE_SPLAT_MAX_TYPICAL_PX 14.0f
 /* The compute splat is used only while no sprite can be wider than this.
  * One invocation walks a whole sprite, and llvmpipe ends every invocation's
  * loops after 65535 iterations in all (gallivm's loop limiter): a sprite of
