@@ -43,8 +43,7 @@ fc_code fc_frame_alloc(fc_frame *frame, uint64_t count, uint32_t attributes, fc_
     return FC_OK;
 }
 
-/* Bytes per particle of the arrays an attribute mask asks for. */
-static size_t particle_bytes(uint32_t attributes)
+size_t fc_frame_particle_bytes(uint32_t attributes)
 {
     size_t bytes = 3 * sizeof(float);
     if (attributes & FC_ATTR_DENSITY)
@@ -58,7 +57,7 @@ static size_t particle_bytes(uint32_t attributes)
 
 size_t fc_frame_block_size(uint64_t count, uint32_t attributes)
 {
-    size_t per_particle = particle_bytes(attributes);
+    size_t per_particle = fc_frame_particle_bytes(attributes);
     return count > SIZE_MAX / per_particle ? 0 : (size_t)count * per_particle;
 }
 

@@ -23,6 +23,10 @@ enum {
  * left empty. */
 fc_code fc_frame_alloc(fc_frame *frame, uint64_t count, uint32_t attributes, fc_error *err);
 
+/* Bytes per particle of the arrays an attribute mask asks for: 12 (positions)
+ * to 32; FRAME's S (PROTOCOL.md 7.3). Unknown bits add nothing. */
+size_t fc_frame_particle_bytes(uint32_t attributes);
+
 /* Bytes of one block that holds all of a frame's arrays back to back, in
  * FRAME's order (positions, density, velocity, ids); 0 when that would not
  * fit size_t. */

@@ -10,19 +10,6 @@
 #define FRAME_FIXED_SIZE 16u
 #define FRAME_ATTR_ALL (FC_ATTR_DENSITY | FC_ATTR_VELOCITY | FC_ATTR_IDS)
 
-/* Bytes per particle for an attribute mask. */
-static uint64_t frame_stride(uint32_t attributes)
-{
-    uint64_t stride = 3 * sizeof(float);
-    if (attributes & FC_ATTR_DENSITY)
-        stride += sizeof(float);
-    if (attributes & FC_ATTR_VELOCITY)
-        stride += 3 * sizeof(float);
-    if (attributes & FC_ATTR_IDS)
-        stride += sizeof(uint32_t);
-    return stride;
-}
-
 /* The particle arrays of m in wire order. */
 static size_t frame_arrays(const fc_frame *m, size_t count, fc_wire_span arrays[FC_WIRE_FRAME_ARRAYS])
 {
@@ -44,7 +31,7 @@ fc_code fc_wire_write_frame_parts(fc_buf *out, uint32_t request_id, const fc_fra
     if (m->count == 0 || !m->positions)
         return fc_error_set(err, FC_ERR_USAGE, "a FRAME needs at least one particle");
     uint32_t attributes = fc_frame_attributes(m);
-    uint64_t stride = frame_stride(attributes);
+    uint64_t stride = fc_frame_particle_bytes(attributes);
     fc_code code = wire_check_length(FRAME_FIXED_SIZE, m->count, stride, "FRAME", err);
     if (code != FC_OK)
         return code;
@@ -100,20 +87,30 @@ static fc_code check_frame_layout(wire_reader *r, uint64_t count, uint32_t attri
     else if (count > max_particles)
         wire_fail(r, FC_ERR_LIMIT, "%llu particles exceed the limit of %llu", (unsigned long long)count,
                   (unsigned long long)max_particles);
-    else if (count > wire_remaining(r) / frame_stride(attributes) ||
-             count * frame_stride(attributes) != wire_remaining(r))
+    else if (count > wire_remaining(r) / fc_frame_particle_bytes(attributes) ||
+             count * fc_frame_particle_bytes(attributes) != wire_remaining(r))
         wire_fail(r, FC_ERR_MALFORMED, "%llu particles of %llu bytes do not match the %zu bytes that follow",
-                  (unsigned long long)count, (unsigned long long)frame_stride(attributes), wire_remaining(r));
+                  (unsigned long long)count, (unsigned long long)fc_frame_particle_bytes(attributes), wire_remaining(r));
+    return r->code;
+}
+
+/* Reads and checks the fixed fields; the particles' bytes follow at the reader. */
+static fc_code read_frame_head(wire_reader *r, uint64_t max_particles, uint64_t *count, uint32_t *attributes)
+{
+    *count = wire_get_u64(r, "count");
+    *attributes = wire_get_u32(r, "attributes");
+    uint32_t reserved = wire_get_u32(r, "reserved");
+    if (r->code == FC_OK)
+        check_frame_layout(r, *count, *attributes, reserved, max_particles);
     return r->code;
 }
 
 fc_code fc_wire_read_frame(const uint8_t *p, size_t n, uint64_t max_particles, fc_frame *m, fc_error *err)
 {
     wire_reader r = wire_reader_start(p, n, "FRAME", err);
-    uint64_t count = wire_get_u64(&r, "count");
-    uint32_t attributes = wire_get_u32(&r, "attributes");
-    uint32_t reserved = wire_get_u32(&r, "reserved");
-    if (r.code != FC_OK || check_frame_layout(&r, count, attributes, reserved, max_particles) != FC_OK)
+    uint64_t count;
+    uint32_t attributes;
+    if (read_frame_head(&r, max_particles, &count, &attributes) != FC_OK)
         return r.code;
 
     fc_frame frame;
@@ -136,10 +133,9 @@ fc_code fc_wire_view_frame(uint8_t *p, size_t n, uint64_t max_particles, fc_fram
     if ((uintptr_t)p % sizeof(float) != 0)
         return fc_error_set(err, FC_ERR_USAGE, "FRAME: a payload viewed in place must be 4-byte aligned");
     wire_reader r = wire_reader_start(p, n, "FRAME", err);
-    uint64_t count = wire_get_u64(&r, "count");
-    uint32_t attributes = wire_get_u32(&r, "attributes");
-    uint32_t reserved = wire_get_u32(&r, "reserved");
-    if (r.code != FC_OK || check_frame_layout(&r, count, attributes, reserved, max_particles) != FC_OK)
+    uint64_t count;
+    uint32_t attributes;
+    if (read_frame_head(&r, max_particles, &count, &attributes) != FC_OK)
         return r.code;
     uint8_t *arrays = p + FRAME_FIXED_SIZE;
     fc_frame frame;

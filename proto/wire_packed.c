@@ -64,10 +64,10 @@ static void put_quantized(fc_buf *b, const fc_frame *frame)
         wire_put_u32_array(b, frame->ids, count);
 }
 
+/* Bytes per particle of the arrays after the positions. */
 static uint64_t attribute_bytes(uint32_t attributes)
 {
-    return (attributes & FC_ATTR_DENSITY ? 4u : 0u) + (attributes & FC_ATTR_VELOCITY ? 12u : 0u) +
-           (attributes & FC_ATTR_IDS ? 4u : 0u);
+    return fc_frame_particle_bytes(attributes) - 3 * sizeof(float);
 }
 
 /* Checks the fixed part in the order PROTOCOL.md gives, before allocating. */

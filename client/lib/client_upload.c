@@ -15,10 +15,7 @@ _Static_assert(FC_UPLOAD_ZSTD == FC_PACK_ZSTD && FC_UPLOAD_QUANTIZE16 == FC_PACK
 /* Bytes of the frame as a plain FRAME message: header, fixed fields, arrays. */
 static uint64_t plain_size(const fc_frame *frame)
 {
-    uint32_t attributes = fc_frame_attributes(frame);
-    uint64_t stride = 12u + (attributes & FC_ATTR_DENSITY ? 4u : 0u) + (attributes & FC_ATTR_VELOCITY ? 12u : 0u) +
-                      (attributes & FC_ATTR_IDS ? 4u : 0u);
-    return FC_WIRE_HEADER_SIZE + FRAME_FIXED_SIZE + frame->count * stride;
+    return FC_WIRE_HEADER_SIZE + FRAME_FIXED_SIZE + frame->count * fc_frame_particle_bytes(fc_frame_attributes(frame));
 }
 
 static fc_code check_upload(const fc_client *c, const fc_frame *frame, const fc_upload_options *o, fc_error *err)
