@@ -3,8 +3,9 @@
  * For every combination of particle count, image size, smoothing method,
  * iteration count and smoothing resolution it renders a warm-up frame and then
  * --frames measured ones, and prints one markdown table row with the median GPU
- * time of each stage (timer queries), the encode time, the wall time per frame and
- * the GPU memory the pipeline holds afterwards (bench_memory.h).
+ * time of each stage (timer queries; the upload by the clock), the encode time,
+ * the wall time per frame and the GPU memory the pipeline holds afterwards
+ * (bench_memory.h).
  * --write-scene exports the particles instead, for the peer benchmark (bench/peer/). */
 #include <stdio.h>
 #include <stdlib.h>

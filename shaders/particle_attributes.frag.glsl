@@ -6,12 +6,15 @@
 struct particle_record {
     uint id;          // persistent id (or frame index): chooses the noise pattern
     float speed;      // |velocity|, 0 without velocities
-    float amplitude;  // noise amplitude multiplier from the foam state, 1 when calm
-    float density;
 };
 
 layout(std430, binding = 0) readonly buffer particle_records {
     particle_record records[];
+};
+
+// Apart from the records: the foam state replaces them after the upload.
+layout(std430, binding = 1) readonly buffer particle_amplitudes {
+    float amplitudes[];   // noise amplitude multiplier from the foam state, 1 when calm
 };
 
 layout(location = 1) flat in int particle_slot;
@@ -28,5 +31,5 @@ float particle_speed()
 
 float particle_amplitude()
 {
-    return records[particle_slot].amplitude;
+    return amplitudes[particle_slot];
 }

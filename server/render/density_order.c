@@ -72,7 +72,8 @@ fc_code fc_density_order_sort(fc_density_order *o, const float *density, uint64_
         o->index_scratch[i] = (uint32_t)i;
     }
     /* Ping-pong between the two buffer pairs; an odd number of passes ends in
-     * (key_scratch, order), which is where the result belongs. */
+     * (key_scratch, order), which is where the result belongs (the sorted
+     * keys stay in key_scratch for fc_density_order_count_at_least). */
     uint32_t *keys_in = o->keys, *index_in = o->index_scratch;
     uint32_t *keys_out = o->key_scratch, *index_out = o->order;
     for (unsigned pass = 0; pass < RADIX_PASSES; pass++) {
@@ -84,6 +85,21 @@ fc_code fc_density_order_sort(fc_density_order *o, const float *density, uint64_
         index_out = x;
     }
     return FC_OK;
+}
+
+uint64_t fc_density_order_count_at_least(const fc_density_order *o, uint64_t count, float threshold)
+{
+    /* density >= threshold exactly when its key is <= the threshold's. */
+    uint32_t limit = descending_key(threshold);
+    uint64_t lo = 0, hi = count;
+    while (lo < hi) {
+        uint64_t mid = lo + (hi - lo) / 2;
+        if (o->key_scratch[mid] <= limit)
+            lo = mid + 1;
+        else
+            hi = mid;
+    }
+    return lo;
 }
 
 void fc_density_order_free(fc_density_order *o)

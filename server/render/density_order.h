@@ -9,6 +9,11 @@
 
 #include "fluidcast_types.h"
 
+/* Gathers in this order read the frame at random: fetching the particle this
+ * many slots ahead overlaps the cache misses instead of waiting on each
+ * (1M-particle frames gather about twice as fast). */
+#define FC_DRAW_ORDER_PREFETCH 16
+
 typedef struct fc_density_order {
     uint32_t *order;           /* draw slot -> frame index, `count` entries */
     uint32_t *keys;            /* scratch of the sort, reused across frames */
@@ -22,6 +27,11 @@ typedef struct fc_density_order {
  * allocation once the arrays are large enough. FC_ERR_NOMEM when they cannot
  * grow; FC_ERR_LIMIT beyond 2^31 - 1 particles (the most one draw call takes). */
 fc_code fc_density_order_sort(fc_density_order *o, const float *density, uint64_t count, fc_error *err);
+
+/* How many of the `count` particles the last sort ordered have a density >=
+ * threshold: the length of the order's prefix they fill, found in the sort's
+ * keys, so the densities need no copy in draw order. */
+uint64_t fc_density_order_count_at_least(const fc_density_order *o, uint64_t count, float threshold);
 
 void fc_density_order_free(fc_density_order *o);
 

@@ -1,4 +1,4 @@
-/* particle_attributes.c — per-particle records for the shading passes. */
+/* particle_attributes.c — per-particle records and noise amplitudes for the shading passes. */
 #include "particle_attributes.h"
 
 #include <math.h>
@@ -7,63 +7,70 @@
 #include "fc_error.h"
 #include "gl_util.h"
 
-/* A zero-sized buffer cannot be bound; an empty frame keeps this one. */
-#define MIN_GPU_RECORDS 1
+/* A zero-sized buffer cannot be bound; an empty frame keeps these. */
+#define MIN_GPU_PARTICLES 1
+#define MAPPED_FLAGS (GL_MAP_WRITE_BIT | GL_MAP_PERSISTENT_BIT | GL_MAP_COHERENT_BIT)
 
+static void release_buffer(GLuint *buffer, void **mapped)
+{
+    if (*mapped)
+        glUnmapNamedBuffer(*buffer);
+    glDeleteBuffers(1, buffer);
+    *buffer = 0;
+    *mapped = NULL;
+}
+
+static void release_gpu(fc_particle_attributes *a)
+{
+    release_buffer(&a->records, (void **)&a->mapped_records);
+    release_buffer(&a->amplitudes, (void **)&a->mapped_amplitudes);
+    a->gpu_capacity = 0;
+    a->plain_records = 0;
+    a->calm_amplitudes = 0;
+}
+
+/* A coherent persistently mapped buffer: writes need no flush. */
+static fc_code map_new_buffer(fc_particle_attributes *a, GLsizeiptr bytes, GLuint *buffer, void **mapped,
+                              fc_error *err)
+{
+    a->gpu_allocations++;
+    glCreateBuffers(1, buffer);
+    glNamedBufferStorage(*buffer, bytes, NULL, MAPPED_FLAGS);
+    fc_code code = fc_gl_check("allocating the particle attributes", err);
+    if (code == FC_OK && !(*mapped = glMapNamedBufferRange(*buffer, 0, bytes, MAPPED_FLAGS)))
+        code = fc_gl_failure("mapping the particle attributes", err);
+    return code;
+}
+
+/* Both buffers for `count` particles; the old ones are dropped first so the
+ * two generations never occupy GPU memory at once. */
 static fc_code grow_gpu(fc_particle_attributes *a, uint64_t count, fc_error *err)
 {
-    glDeleteBuffers(1, &a->buffer);
-    a->buffer = 0;
-    a->gpu_capacity = 0;
-    a->gpu_allocations++;
-    glCreateBuffers(1, &a->buffer);
-    glNamedBufferStorage(a->buffer, (GLsizeiptr)(count * sizeof(fc_particle_record)), NULL,
-                         GL_DYNAMIC_STORAGE_BIT);
-    fc_code code = fc_gl_check("allocating the particle records", err);
+    release_gpu(a);
+    fc_code code = map_new_buffer(a, (GLsizeiptr)(count * sizeof(fc_particle_record)), &a->records,
+                                  (void **)&a->mapped_records, err);
     if (code == FC_OK)
-        a->gpu_capacity = count;
-    return code;
+        code = map_new_buffer(a, (GLsizeiptr)(count * sizeof(float)), &a->amplitudes,
+                              (void **)&a->mapped_amplitudes, err);
+    if (code != FC_OK) {
+        release_gpu(a);
+        return code;
+    }
+    a->gpu_capacity = count;
+    return FC_OK;
 }
 
 fc_code fc_particle_attributes_create(fc_particle_attributes *a, fc_error *err)
 {
     *a = (fc_particle_attributes){0};
-    return grow_gpu(a, MIN_GPU_RECORDS, err);
+    return grow_gpu(a, MIN_GPU_PARTICLES, err);
 }
 
 void fc_particle_attributes_destroy(fc_particle_attributes *a)
 {
-    glDeleteBuffers(1, &a->buffer);
-    free(a->records);
-    free(a->positions);
+    release_gpu(a);
     fc_density_order_free(&a->order);
     *a = (fc_particle_attributes){0};
-}
-
-static fc_code out_of_memory(uint64_t count, fc_error *err)
-{
-    return fc_error_set(err, FC_ERR_NOMEM, "out of memory for the attributes of %llu particles",
-                        (unsigned long long)count);
-}
-
-/* Room for `count` records, and positions when the draw order differs from the frame's. */
-static fc_code reserve(fc_particle_attributes *a, uint64_t count, bool reordered, fc_error *err)
-{
-    if (count > a->record_capacity) {
-        fc_particle_record *records = realloc(a->records, count * sizeof *records);
-        if (!records)
-            return out_of_memory(count, err);
-        a->records = records;
-        a->record_capacity = count;
-    }
-    if (reordered && count > a->position_capacity) {
-        float *positions = realloc(a->positions, count * 3 * sizeof *positions);
-        if (!positions)
-            return out_of_memory(count, err);
-        a->positions = positions;
-        a->position_capacity = count;
-    }
-    return FC_OK;
 }
 
 static uint32_t frame_index(const fc_particle_attributes *a, uint64_t slot)
@@ -71,92 +78,108 @@ static uint32_t frame_index(const fc_particle_attributes *a, uint64_t slot)
     return a->by_density ? a->order.order[slot] : (uint32_t)slot;
 }
 
-static void fill_records(fc_particle_attributes *a, const fc_frame *frame)
+static float speed_of(const float *v)
 {
+    return sqrtf(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
+}
+
+/* A frame of positions alone in its own order: records (slot, 0), which the
+ * buffer may already hold from an earlier frame. */
+static void write_plain_records(fc_particle_attributes *a, uint64_t count)
+{
+    for (uint64_t slot = a->plain_records; slot < count; slot++)
+        a->mapped_records[slot] = (fc_particle_record){.id = (uint32_t)slot, .speed = 0.0f};
+    if (count > a->plain_records)
+        a->plain_records = count;
+}
+
+static void prefetch_particle(const fc_frame *frame, uint32_t i)
+{
+    if (frame->ids)
+        __builtin_prefetch(frame->ids + i);
+    if (frame->velocity)
+        __builtin_prefetch(frame->velocity + 3 * (size_t)i);
+}
+
+static void write_records(fc_particle_attributes *a, const fc_frame *frame)
+{
+    if (!frame->ids && !frame->velocity && !a->by_density) {
+        write_plain_records(a, frame->count);
+        return;
+    }
     for (uint64_t slot = 0; slot < frame->count; slot++) {
+        if (a->by_density && slot + FC_DRAW_ORDER_PREFETCH < frame->count)
+            prefetch_particle(frame, a->order.order[slot + FC_DRAW_ORDER_PREFETCH]);
         uint32_t i = frame_index(a, slot);
-        fc_particle_record *r = &a->records[slot];
-        r->id = frame->ids ? frame->ids[i] : i;
-        const float *v = frame->velocity ? frame->velocity + 3 * (size_t)i : NULL;
-        r->speed = v ? sqrtf(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]) : 0.0f;
-        r->amplitude = 1.0f;
-        r->density = frame->density ? frame->density[i] : 0.0f;
+        a->mapped_records[slot] = (fc_particle_record){
+            .id = frame->ids ? frame->ids[i] : i,
+            .speed = frame->velocity ? speed_of(frame->velocity + 3 * (size_t)i) : 0.0f,
+        };
     }
+    a->plain_records = 0;
 }
 
-static void reorder_positions(fc_particle_attributes *a, const fc_frame *frame)
-{
-    for (uint64_t slot = 0; slot < frame->count; slot++) {
-        const float *from = frame->positions + 3 * (size_t)a->order.order[slot];
-        float *to = a->positions + 3 * slot;
-        to[0] = from[0];
-        to[1] = from[1];
-        to[2] = from[2];
-    }
-}
-
-static fc_code send_records(fc_particle_attributes *a, fc_error *err)
-{
-    if (a->count > a->gpu_capacity) {
-        fc_code code = grow_gpu(a, a->count, err);
-        if (code != FC_OK)
-            return code;
-    }
-    if (a->count > 0)
-        glNamedBufferSubData(a->buffer, 0, (GLsizeiptr)(a->count * sizeof(fc_particle_record)), a->records);
-    return fc_gl_check("uploading the particle records", err);
-}
-
-fc_code fc_particle_attributes_upload(fc_particle_attributes *a, const fc_frame *frame, const float **positions,
-                                      fc_error *err)
+fc_code fc_particle_attributes_upload(fc_particle_attributes *a, const fc_frame *frame, fc_error *err)
 {
     a->count = 0;
     a->by_density = frame->density != NULL && frame->count > 0;
-    fc_code code = reserve(a, frame->count, a->by_density, err);
-    if (code == FC_OK && a->by_density)
-        code = fc_density_order_sort(&a->order, frame->density, frame->count, err);
+    fc_code code = a->by_density ? fc_density_order_sort(&a->order, frame->density, frame->count, err) : FC_OK;
+    if (code == FC_OK && frame->count > a->gpu_capacity)
+        code = grow_gpu(a, frame->count, err);
     if (code != FC_OK)
         return code;
-    fill_records(a, frame);
-    *positions = frame->positions;
-    if (a->by_density) {
-        reorder_positions(a, frame);
-        *positions = a->positions;
-    }
+    write_records(a, frame);
     a->count = frame->count;
-    return send_records(a, err);
+    a->amplitudes_set = false;
+    return FC_OK;
+}
+
+const uint32_t *fc_particle_attributes_draw_order(const fc_particle_attributes *a)
+{
+    return a->by_density ? a->order.order : NULL;
 }
 
 uint64_t fc_particle_attributes_surface_count(const fc_particle_attributes *a, float density_threshold)
 {
     if (!a->by_density || !(density_threshold > 0.0f))
         return a->count;
-    /* Densities descend along the draw order: find the first below the threshold. */
-    uint64_t lo = 0, hi = a->count;
-    while (lo < hi) {
-        uint64_t mid = lo + (hi - lo) / 2;
-        if (a->records[mid].density >= density_threshold)
-            lo = mid + 1;
-        else
-            hi = mid;
-    }
-    return lo;
+    return fc_density_order_count_at_least(&a->order, a->count, density_threshold);
 }
 
 fc_code fc_particle_attributes_set_amplitudes(fc_particle_attributes *a, const float *amplitude, fc_error *err)
 {
-    for (uint64_t slot = 0; slot < a->count; slot++)
-        a->records[slot].amplitude = amplitude[frame_index(a, slot)];
-    return send_records(a, err);
+    fc_code code = fc_gl_wait_until_done("waiting for the draws reading the amplitudes", err);
+    if (code != FC_OK)
+        return code;
+    for (uint64_t slot = 0; slot < a->count; slot++) {
+        if (a->by_density && slot + FC_DRAW_ORDER_PREFETCH < a->count)
+            __builtin_prefetch(amplitude + a->order.order[slot + FC_DRAW_ORDER_PREFETCH]);
+        a->mapped_amplitudes[slot] = amplitude[frame_index(a, slot)];
+    }
+    a->calm_amplitudes = 0;
+    a->amplitudes_set = true;
+    return FC_OK;
+}
+
+void fc_particle_attributes_settle(fc_particle_attributes *a)
+{
+    if (a->amplitudes_set)
+        return;
+    for (uint64_t slot = a->calm_amplitudes; slot < a->count; slot++)
+        a->mapped_amplitudes[slot] = 1.0f;
+    if (a->count > a->calm_amplitudes)
+        a->calm_amplitudes = a->count;
+    a->amplitudes_set = true;
 }
 
 void fc_particle_attributes_bind(const fc_particle_attributes *a)
 {
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, FC_PARTICLE_RECORDS_BINDING, a->buffer);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, FC_PARTICLE_RECORDS_BINDING, a->records);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, FC_PARTICLE_AMPLITUDES_BINDING, a->amplitudes);
 }
 
 void fc_particle_attributes_tally(const fc_particle_attributes *a, fc_gpu_memory *m)
 {
-    m->particle_bytes += a->gpu_capacity * sizeof(fc_particle_record);
+    m->particle_bytes += a->gpu_capacity * (sizeof(fc_particle_record) + sizeof(float));
     m->allocations += a->gpu_allocations;
 }

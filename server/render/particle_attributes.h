@@ -1,7 +1,13 @@
 /* particle_attributes.h — what the shading passes know of each particle beyond
- * its position (id, speed, density, noise amplitude), in a shader storage
- * buffer read by particle_attributes.frag.glsl, and the draw order that puts
- * the surface particles before the spray. */
+ * its position (id, speed, noise amplitude), in shader storage buffers read by
+ * particle_attributes.frag.glsl, and the draw order that puts the surface
+ * particles before the spray.
+ *
+ * Both buffers are persistently mapped, like the positions (particle_buffer.h):
+ * a frame's attributes are written once, straight into memory the GPU reads.
+ * The amplitudes have a buffer of their own because the foam state sets them
+ * after the upload: replacing them rewrites 4 bytes per particle, not the
+ * records. Densities stay on the CPU, which alone reads them. */
 #ifndef FC_PARTICLE_ATTRIBUTES_H
 #define FC_PARTICLE_ATTRIBUTES_H
 
@@ -13,27 +19,32 @@
 #include "fluidcast_types.h"
 #include "gpu_memory.h"
 
-/* One particle as the shaders see it (std430: four 4-byte members). */
+/* One particle as the shaders see it (std430: two 4-byte members). */
 typedef struct fc_particle_record {
     uint32_t id;        /* persistent id, or the frame index when the frame has none */
     float speed;        /* |velocity|, 0 without velocities */
-    float amplitude;    /* noise amplitude multiplier (foam state), 1 when calm */
-    float density;      /* 0 without densities */
 } fc_particle_record;
 
-/* Binding point of the record buffer in the shaders. */
+/* Binding points in the shaders: the records, and the noise amplitude
+ * multipliers (one float per particle, 1 when calm). */
 #define FC_PARTICLE_RECORDS_BINDING 0
+#define FC_PARTICLE_AMPLITUDES_BINDING 1
 
 typedef struct fc_particle_attributes {
-    GLuint buffer;                 /* the records in draw order, on the GPU */
-    uint64_t gpu_capacity;         /* records `buffer` holds; it only grows */
-    uint32_t gpu_allocations;      /* times `buffer` was (re)allocated */
-    fc_particle_record *records;   /* CPU copy in draw order */
-    uint64_t record_capacity;
-    float *positions;              /* positions in draw order, when that differs from the frame's */
-    uint64_t position_capacity;    /* particles `positions` holds */
+    GLuint records;                     /* fc_particle_record per particle, draw order */
+    GLuint amplitudes;                  /* float per particle, draw order */
+    fc_particle_record *mapped_records; /* both mapped for writing as long as they live */
+    float *mapped_amplitudes;
+    uint64_t gpu_capacity;              /* particles both buffers hold; they only grow */
+    uint32_t gpu_allocations;           /* times a buffer was (re)allocated */
+    /* Leading records known to hold (draw slot, speed 0) and leading amplitudes
+     * known to be 1: what a frame of positions alone needs, kept from earlier
+     * frames instead of being written again. */
+    uint64_t plain_records;
+    uint64_t calm_amplitudes;
+    bool amplitudes_set;                /* the uploaded frame's amplitudes were given */
     uint64_t count;
-    bool by_density;               /* draw order is order.order (densest first), else the frame's */
+    bool by_density;                    /* draw order is order.order (densest first), else the frame's */
     fc_density_order order;
 } fc_particle_attributes;
 
@@ -41,11 +52,12 @@ fc_code fc_particle_attributes_create(fc_particle_attributes *a, fc_error *err);
 void fc_particle_attributes_destroy(fc_particle_attributes *a);
 
 /* Takes the frame's attributes in draw order: densest first when the frame has
- * densities, else the frame's order. *positions receives the positions in
- * that order (the frame's own array when it is unchanged) for the position
- * buffer, then the records go to the GPU. */
-fc_code fc_particle_attributes_upload(fc_particle_attributes *a, const fc_frame *frame, const float **positions,
-                                      fc_error *err);
+ * densities, else the frame's order. The caller has waited for the GPU to
+ * finish the draws that read the last frame (fc_particle_buffer_reserve). */
+fc_code fc_particle_attributes_upload(fc_particle_attributes *a, const fc_frame *frame, fc_error *err);
+
+/* Draw slot -> frame index of the uploaded frame; NULL when the draw order is the frame's. */
+const uint32_t *fc_particle_attributes_draw_order(const fc_particle_attributes *a);
 
 /* How many particles, from the start of the draw order, make up the surface:
  * those with density >= threshold; all of them when the threshold is <= 0 or
@@ -53,13 +65,19 @@ fc_code fc_particle_attributes_upload(fc_particle_attributes *a, const fc_frame 
 uint64_t fc_particle_attributes_surface_count(const fc_particle_attributes *a, float density_threshold);
 
 /* Replaces every particle's noise amplitude; `amplitude` is in frame order
- * and has one entry per particle of the uploaded frame. */
+ * and has one entry per particle of the uploaded frame. Waits for the draws
+ * still reading the amplitudes before. */
 fc_code fc_particle_attributes_set_amplitudes(fc_particle_attributes *a, const float *amplitude, fc_error *err);
 
-/* Binds the record buffer for the next draws. */
+/* Gives every particle the calm amplitude 1 unless its frame's amplitudes
+ * were set since the upload: called before the first draw of a frame, so an
+ * upload followed by set_amplitudes writes the amplitudes once. */
+void fc_particle_attributes_settle(fc_particle_attributes *a);
+
+/* Binds the record and amplitude buffers for the next draws. */
 void fc_particle_attributes_bind(const fc_particle_attributes *a);
 
-/* Adds the GPU records' bytes (gpu_capacity x 16) and allocations to m's particles. */
+/* Adds the GPU buffers' bytes (gpu_capacity x 12) and allocations to m's particles. */
 void fc_particle_attributes_tally(const fc_particle_attributes *a, fc_gpu_memory *m);
 
 #endif

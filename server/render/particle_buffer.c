@@ -3,8 +3,8 @@
 
 #include <string.h>
 
+#include "density_order.h"
 #include "fc_error.h"
-#include "fc_frame.h"
 #include "gl_util.h"
 
 #define POSITION_STRIDE (3 * sizeof(float))
@@ -62,24 +62,80 @@ static fc_code grow(fc_particle_buffer *pb, uint64_t count, fc_error *err)
     return FC_OK;
 }
 
-fc_code fc_particle_buffer_upload(fc_particle_buffer *pb, const fc_frame *frame, fc_error *err)
+fc_code fc_particle_buffer_reserve(fc_particle_buffer *pb, uint64_t count, fc_error *err)
 {
     pb->count = 0;
-    /* Waiting for every command so far covers the draws that read the frame about to be overwritten. */
-    fc_code code = frame->count > pb->capacity ? grow(pb, frame->count, err)
-                                               : fc_gl_wait_until_done("waiting for the last frame's draws", err);
-    if (code != FC_OK)
-        return code;
-    if (frame->count > 0) {
-        memcpy(pb->mapped, frame->positions, frame->count * POSITION_STRIDE);
-        fc_frame_bounds(frame, pb->lo, pb->hi);
-    } else {
-        for (int i = 0; i < 3; i++)
-            pb->lo[i] = pb->hi[i] = 0.0f;
+    /* Waiting for every command so far covers the draws that read the frame
+     * about to be overwritten, here and in the other mapped buffers, also
+     * when this one is replaced. */
+    fc_code code = fc_gl_wait_until_done("waiting for the last frame's draws", err);
+    if (code == FC_OK && count > pb->capacity)
+        code = grow(pb, count, err);
+    return code;
+}
+
+/* Bounds kept in locals while copying: through pb they could alias the
+ * mapped floats, and the compiler would store and reload them per point. */
+typedef struct bounds {
+    float lo[3], hi[3];
+} bounds;
+
+static bounds bounds_of_point(const float p[3])
+{
+    return (bounds){{p[0], p[1], p[2]}, {p[0], p[1], p[2]}};
+}
+
+static void include_point(bounds *b, const float p[3])
+{
+    for (int k = 0; k < 3; k++) {
+        b->lo[k] = p[k] < b->lo[k] ? p[k] : b->lo[k];
+        b->hi[k] = p[k] > b->hi[k] ? p[k] : b->hi[k];
     }
-    code = fc_gl_check("uploading particles", err);
+}
+
+static bounds copy_in_frame_order(float *to, const float *positions, uint64_t count)
+{
+    bounds b = bounds_of_point(positions);
+    for (uint64_t i = 0; i < 3 * count; i += 3) {
+        float p[3] = {positions[i], positions[i + 1], positions[i + 2]};
+        memcpy(to + i, p, sizeof p);
+        include_point(&b, p);
+    }
+    return b;
+}
+
+static bounds copy_in_draw_order(float *to, const float *positions, const uint32_t *order, uint64_t count)
+{
+    bounds b = bounds_of_point(positions + 3 * (size_t)order[0]);
+    for (uint64_t slot = 0; slot < count; slot++) {
+        if (slot + FC_DRAW_ORDER_PREFETCH < count)
+            __builtin_prefetch(positions + 3 * (size_t)order[slot + FC_DRAW_ORDER_PREFETCH]);
+        const float *from = positions + 3 * (size_t)order[slot];
+        float p[3] = {from[0], from[1], from[2]};
+        memcpy(to + 3 * slot, p, sizeof p);
+        include_point(&b, p);
+    }
+    return b;
+}
+
+/* One pass: each position is read once, written once into the mapped
+ * buffer and bounded on the way. */
+void fc_particle_buffer_fill(fc_particle_buffer *pb, const fc_frame *frame, const uint32_t *order)
+{
+    bounds b = {{0.0f, 0.0f, 0.0f}, {0.0f, 0.0f, 0.0f}};
+    if (frame->count > 0)
+        b = order ? copy_in_draw_order(pb->mapped, frame->positions, order, frame->count)
+                  : copy_in_frame_order(pb->mapped, frame->positions, frame->count);
+    memcpy(pb->lo, b.lo, sizeof b.lo);
+    memcpy(pb->hi, b.hi, sizeof b.hi);
+    pb->count = frame->count;
+}
+
+fc_code fc_particle_buffer_upload(fc_particle_buffer *pb, const fc_frame *frame, fc_error *err)
+{
+    fc_code code = fc_particle_buffer_reserve(pb, frame->count, err);
     if (code == FC_OK)
-        pb->count = frame->count;
+        fc_particle_buffer_fill(pb, frame, NULL);
     return code;
 }
 

@@ -29,10 +29,19 @@ typedef struct fc_particle_buffer {
 fc_code fc_particle_buffer_create(fc_particle_buffer *pb, fc_error *err);
 void fc_particle_buffer_destroy(fc_particle_buffer *pb);
 
-/* Replaces the particles with the frame's positions, reallocating the GPU
- * buffer only when the frame is larger than any before, after the GPU is done
- * with every draw issued so far. FC_ERR_RENDER when the GPU has no room for
- * the frame or does not finish those draws. */
+/* Makes room for a frame of `count` particles and empties the buffer,
+ * reallocating it only when the frame is larger than any before, after the
+ * GPU is done with every draw issued so far (so any buffer those draws read
+ * may be overwritten then). FC_ERR_RENDER when the GPU has no room for the
+ * frame or does not finish those draws. */
+fc_code fc_particle_buffer_reserve(fc_particle_buffer *pb, uint64_t count, fc_error *err);
+
+/* Copies the frame's positions into the reserved buffer in draw order
+ * (order[slot] = frame index; NULL: the frame's order) and bounds them in
+ * the same pass. */
+void fc_particle_buffer_fill(fc_particle_buffer *pb, const fc_frame *frame, const uint32_t *order);
+
+/* Reserve, then fill in the frame's order. */
 fc_code fc_particle_buffer_upload(fc_particle_buffer *pb, const fc_frame *frame, fc_error *err);
 
 /* Binds the vertex array with a position per vertex (point sprites) or per

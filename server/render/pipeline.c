@@ -5,6 +5,7 @@
 #include <epoxy/gl.h>
 #include <stdbool.h>
 #include <stdlib.h>
+#include <time.h>
 
 #include "background_pass.h"
 #include "composite_pass.h"
@@ -59,6 +60,13 @@ typedef struct render_job {
     fc_particle_buffer surface;       /* the pipeline's particles without the spray (a prefix of them) */
     bool want_u8;
 } render_job;
+
+static double now_ms(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return (double)ts.tv_sec * 1e3 + (double)ts.tv_nsec * 1e-6;
+}
 
 static GLint query_max_image_size(void)
 {
@@ -282,15 +290,17 @@ static void plan_job(const fc_pipeline *p, const fc_view *view, const fc_camera 
     fc_environment_for_view(view, camera, p->particles.lo, p->particles.hi, settings->radius, has_floor, &job->env);
 }
 
-/* Positions go to the GPU in draw order (densest first), with their records. */
+/* Positions go to the GPU in draw order (densest first), with their
+ * records: each written once, straight into the mapped buffers, once the GPU
+ * is done with the last frame's. */
 static fc_code upload_frame(fc_pipeline *p, const fc_frame *frame, fc_error *err)
 {
-    const float *positions = NULL;
-    fc_code code = fc_particle_attributes_upload(&p->attributes, frame, &positions, err);
-    if (code != FC_OK)
-        return code;
-    fc_frame ordered = {.count = frame->count, .positions = (float *)positions};
-    return fc_particle_buffer_upload(&p->particles, &ordered, err);
+    fc_code code = fc_particle_buffer_reserve(&p->particles, frame->count, err);
+    if (code == FC_OK)
+        code = fc_particle_attributes_upload(&p->attributes, frame, err);
+    if (code == FC_OK)
+        fc_particle_buffer_fill(&p->particles, frame, fc_particle_attributes_draw_order(&p->attributes));
+    return code;
 }
 
 /* Renders a particle and a spray droplet into tiny images through every
@@ -310,6 +320,7 @@ static fc_code warm_up(fc_pipeline *p, fc_error *err)
                             .thickness_blur = 1, .noise = 1.0f, .foam = 1.0f, .foam_tau = 1.0f,
                             .density_threshold = 0.5f};
     fc_code code = upload_frame(p, &frame, err);
+    fc_particle_attributes_settle(&p->attributes);
     fc_view view;
     fc_view_from_camera(&camera, p->particles.lo, p->particles.hi, settings.radius, &view);
     const fc_aov images[] = {FC_AOV_COLOR, FC_AOV_NORMAL};
@@ -370,13 +381,14 @@ fc_code fc_pipeline_upload(fc_pipeline *p, const fc_frame *frame, float *stage_m
 {
     if (!p || !frame || (frame->count > 0 && !frame->positions))
         return fc_error_set(err, FC_ERR_USAGE, "fc_pipeline_upload: missing pipeline or positions");
-    fc_stage_timer_reset(&p->timer);
-    fc_stage_timer_begin(&p->timer, FC_STAGE_UPLOAD);
+    /* The upload is the GL thread's copying into mapped buffers, which a GPU
+     * timer does not see (and reading one would wait for the GPU): timed by
+     * the clock instead. */
+    double start = now_ms();
     fc_code code = upload_frame(p, frame, err);
-    fc_stage_timer_end(&p->timer, FC_STAGE_UPLOAD);
     p->uploaded = code == FC_OK;
     if (stage_ms)
-        *stage_ms = code == FC_OK ? fc_stage_timer_ms(&p->timer, FC_STAGE_UPLOAD) : -1.0f;
+        *stage_ms = code == FC_OK ? (float)(now_ms() - start) : -1.0f;
     return code;
 }
 
@@ -427,6 +439,8 @@ fc_code fc_pipeline_render_scene(fc_pipeline *p, const fc_camera *camera, const 
     fc_code code = check_request(p, camera, settings, aov, err);
     if (code != FC_OK)
         return code;
+    /* The frame's amplitudes were given after the upload, or are calm. */
+    fc_particle_attributes_settle(&p->attributes);
 
     fc_view view;
     fc_view_from_camera(camera, p->particles.lo, p->particles.hi, settings->radius, &view);

@@ -13,8 +13,8 @@
 #define WIDTH 96
 #define HEIGHT 64
 
-/* fc_particle_buffer positions (3 floats) + fc_particle_record (id, speed, amplitude, density). */
-#define PARTICLE_BYTES (12 + 16)
+/* fc_particle_buffer positions (3 floats) + fc_particle_record (id, speed) + the noise amplitude. */
+#define PARTICLE_BYTES (12 + 8 + 4)
 
 /* Bytes per pixel of every target a full-resolution request can size to the
  * image (smoothing and thickness at scale 1), from the formats in pipeline.h. */

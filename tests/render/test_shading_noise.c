@@ -3,7 +3,8 @@
  * belongs to the particles (moving frame and camera together, or reordering
  * the particles with their ids, leaves it unchanged; other ids change it);
  * a particle whose velocity jumps by more than foam_tau gets a raised
- * amplitude that decays by foam_decay per frame, and its noise scales with it. */
+ * amplitude that decays by foam_decay per frame, and its noise scales with it;
+ * records and amplitudes follow the particles into each frame's draw order. */
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -251,6 +252,75 @@ static void test_foam_scales_noise(render_fixture *f)
     fc_foam_state_destroy(foam);
 }
 
+/* Pixels of `image` that differ from `calm` scaled by each side's amplitude
+ * (left half: the particle at -0.6, right half: the one at +0.6), out of
+ * those the calm noise covers. */
+static void count_unscaled(const fc_image *calm, const fc_image *image, const float scale[2], int compared[2],
+                           int wrong[2])
+{
+    compared[0] = compared[1] = wrong[0] = wrong[1] = 0;
+    for (uint32_t row = 0; row < calm->height; row++)
+        for (uint32_t x = 0; x < calm->width; x++) {
+            float c = pixel_f32(calm, x, row), v = pixel_f32(image, x, row);
+            int right = x >= calm->width / 2;
+            compared[right] += c != 0.0f;
+            wrong[right] += fabsf(v - scale[right] * c) > 1e-5f * scale[right];
+        }
+}
+
+/* Uploads `frame`, gives it `amplitude` (frame order; NULL: none, so calm)
+ * and renders its noise; then checks it against `calm` scaled per side. */
+static void check_amplitudes(render_fixture *f, const fc_frame *frame, const float *amplitude, const fc_image *calm,
+                             const float scale[2], const char *what)
+{
+    fc_settings settings = noise_settings(1.0f);
+    fc_camera cam = axis_camera(3.0, 48, 32);
+    fc_image image = {0};
+    CHECK_CODE(fc_pipeline_upload(f->pipeline, frame, NULL, NULL), FC_OK);
+    if (amplitude)
+        CHECK_CODE(fc_pipeline_set_amplitudes(f->pipeline, amplitude, frame->count, NULL), FC_OK);
+    CHECK_CODE(fc_pipeline_render(f->pipeline, &cam, &settings, FC_AOV_NOISE, 0, &image, NULL, NULL), FC_OK);
+    int compared[2], wrong[2];
+    count_unscaled(calm, &image, scale, compared, wrong);
+    CHECK_MSG(compared[0] > 20 && compared[1] > 20 && wrong[0] == 0 && wrong[1] == 0,
+              "%s: %d of %d left, %d of %d right pixels not scaled by %g, %g", what, wrong[0], compared[0], wrong[1],
+              compared[1], (double)scale[0], (double)scale[1]);
+    fc_image_free(&image);
+}
+
+/* Records and amplitudes are written in draw order, densest first: a second
+ * frame whose densities reverse that order must move both with the
+ * particles, an upload without amplitudes must be calm again, and a frame of
+ * positions alone must get its own records back after frames with ids. */
+static void test_attributes_follow_a_new_order(render_fixture *f)
+{
+    float positions[6] = {-0.6f, 0.0f, 0.0f, 0.6f, 0.0f, 0.0f};
+    float right_first[2] = {1.0f, 2.0f}, left_first[2] = {2.0f, 1.0f};
+    uint32_t ids[2] = {5, 6};
+    fc_frame frame = {.count = 2, .positions = positions, .density = right_first, .ids = ids};
+    fc_settings settings = noise_settings(1.0f);
+    fc_camera cam = axis_camera(3.0, 48, 32);
+    fc_image calm = {0};
+    CHECK_CODE(render_frame(f, &frame, &cam, &settings, NULL, FC_AOV_NOISE, 0, &calm), FC_OK);
+    const float raised_left[2] = {3.0f, 1.0f}, raised_right[2] = {1.0f, 2.0f}, unscaled[2] = {1.0f, 1.0f};
+    check_amplitudes(f, &frame, raised_left, &calm, raised_left, "right first, left raised");
+    frame.density = left_first;
+    check_amplitudes(f, &frame, raised_right, &calm, raised_right, "left first, right raised");
+    check_amplitudes(f, &frame, NULL, &calm, unscaled, "left first, no amplitudes");
+    frame.density = NULL;
+    check_amplitudes(f, &frame, raised_left, &calm, raised_left, "frame order, left raised");
+
+    fc_frame plain = {.count = 2, .positions = positions};
+    fc_image plain_calm = {0};
+    CHECK_CODE(render_frame(f, &plain, &cam, &settings, NULL, FC_AOV_NOISE, 0, &plain_calm), FC_OK);
+    CHECK_MSG(max_difference(&plain_calm, &calm) > 0.1 * max_abs(&calm), "ids 0, 1 noise like ids 5, 6");
+    check_amplitudes(f, &plain, raised_right, &plain_calm, raised_right, "positions alone, right raised");
+    check_amplitudes(f, &frame, NULL, &calm, unscaled, "ids again");
+    check_amplitudes(f, &plain, NULL, &plain_calm, unscaled, "positions alone again");
+    fc_image_free(&plain_calm);
+    fc_image_free(&calm);
+}
+
 /* Thousands of strided ids grow the tables; every third particle jumps. */
 static void test_foam_many_particles(render_fixture *f)
 {
@@ -307,6 +377,7 @@ int main(void)
     test_pattern_follows_ids(&f);
     test_foam_raise_and_decay(&f);
     test_foam_scales_noise(&f);
+    test_attributes_follow_a_new_order(&f);
     test_foam_many_particles(&f);
     test_foam_usage_errors(&f);
     fixture_close(&f);
