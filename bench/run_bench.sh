@@ -52,14 +52,7 @@ WORK=$(mktemp -d)
 trap 'rm -rf "$WORK"' EXIT
 
 log() { echo "run_bench: $*" >&2; }
-
-build() {
-    log "building fluidcast-bench in $BUILD_DIR"
-    cmake -S "$ROOT" -B "$BUILD_DIR" -DCMAKE_BUILD_TYPE=Release >"$WORK/cmake.log" 2>&1 ||
-        { cat "$WORK/cmake.log" >&2; exit 1; }
-    cmake --build "$BUILD_DIR" --target fluidcast-bench -j2 >>"$WORK/cmake.log" 2>&1 ||
-        { cat "$WORK/cmake.log" >&2; exit 1; }
-}
+. "$ROOT/bench/bench_lib.sh"
 
 check_peer() {
     "$VTK_PYTHON" -c 'import numpy, vtkmodules.vtkRenderingOpenGL2' 2>/dev/null ||
@@ -168,24 +161,22 @@ print_tables() {
 }
 
 machine() {
-    local logs=$1 cpu
-    cpu=$(awk -F': ' '/^model name/ { print $2; exit }' /proc/cpuinfo)
-    echo "- machine: $cpu, $(nproc) cores, $(awk '/MemTotal/ { printf "%.0f GiB", $2 / 1048576 }' /proc/meminfo)," \
-         "$(. /etc/os-release && echo "$PRETTY_NAME")"
+    local logs=$1
+    machine_line
     echo "- fluidcast: $(head -n1 "$logs/fluidcast.log")"
     echo "- VTK $("$VTK_PYTHON" -c 'import vtkmodules; print(vtkmodules.__version__)'): $(head -n1 "$logs/vtk.log")"
-    echo "- date: $(date -u '+%Y-%m-%d %H:%M UTC'); git: $(git -C "$ROOT" rev-parse --short HEAD 2>/dev/null || echo '?')"
+    echo "- date: $(date -u '+%Y-%m-%d %H:%M UTC'); git: $(git_revision)"
     echo "- load average (1/5/15 min): before the build $LOAD_BEFORE_BUILD; start $LOAD_START;" \
-         "end $(cut -d' ' -f1-3 /proc/loadavg) (the benchmark itself keeps 2 cores busy)"
+         "end $(load_average) (the benchmark itself keeps 2 cores busy)"
     echo "- command: FRAMES=$FRAMES PARTICLES=$PARTICLES SIZES=$SIZES PAPER=$PAPER bench/run_bench.sh" \
          "(fluidcast --gpu $GPU; VTK on ${DISPLAY:-xvfb-run + LIBGL_ALWAYS_SOFTWARE=1})"
 }
 
 main() {
     check_peer
-    LOAD_BEFORE_BUILD=$(cut -d' ' -f1-3 /proc/loadavg)
-    build
-    LOAD_START=$(cut -d' ' -f1-3 /proc/loadavg)
+    LOAD_BEFORE_BUILD=$(load_average)
+    build_targets fluidcast-bench
+    LOAD_START=$(load_average)
     log "load average $LOAD_START"
     local peer=$WORK/peer paper=$WORK/paper last_particles=${PARTICLES##*,} last_size=${SIZES##*,}
     mkdir -p "$peer" "$paper"

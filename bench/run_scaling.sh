@@ -57,25 +57,7 @@ WORK=$(mktemp -d)
 trap 'rm -rf "$WORK"' EXIT
 
 log() { echo "run_scaling: $*" >&2; }
-load_average() { cut -d' ' -f1-3 /proc/loadavg; }
-
-build() {
-    log "building fluidcast-bench in $BUILD_DIR"
-    cmake -S "$ROOT" -B "$BUILD_DIR" -DCMAKE_BUILD_TYPE=Release >"$WORK/cmake.log" 2>&1 ||
-        { cat "$WORK/cmake.log" >&2; exit 1; }
-    cmake --build "$BUILD_DIR" --target fluidcast-bench -j2 >>"$WORK/cmake.log" 2>&1 ||
-        { cat "$WORK/cmake.log" >&2; exit 1; }
-}
-
-# A particle count as fluidcast-bench reads it (16k, 1m, 4096) in particles.
-particle_count() {
-    local value=${1%[kKmM]}
-    case $1 in
-        *[kK]) echo $((value * 1024)) ;;
-        *[mM]) echo $((value * 1024 * 1024)) ;;
-        *) echo "$value" ;;
-    esac
-}
+. "$ROOT/bench/bench_lib.sh"
 
 available_bytes() { awk '/^MemAvailable/ { printf "%.0f\n", $2 * 1024 }' /proc/meminfo; }
 
@@ -158,12 +140,9 @@ print_sweep() {
 }
 
 machine() {
-    local cpu
-    cpu=$(awk -F': ' '/^model name/ { print $2; exit }' /proc/cpuinfo)
-    echo "- machine: $cpu, $(nproc) cores, $(awk '/MemTotal/ { printf "%.0f GiB", $2 / 1048576 }' /proc/meminfo)," \
-         "$(. /etc/os-release && echo "$PRETTY_NAME")"
+    machine_line
     echo "- fluidcast: $(cat "$WORK/renderer")"
-    echo "- date: $LOAD_DATE; git: $(git -C "$ROOT" rev-parse --short HEAD 2>/dev/null || echo '?')"
+    echo "- date: $LOAD_DATE; git: $(git_revision)"
     echo "- load average (1/5/15 min): before the build $LOAD_BEFORE_BUILD; start $LOAD_START;" \
          "end $(load_average) (the benchmark itself keeps the cores busy)"
     echo "- command: GPU=$GPU FRAMES=$FRAMES LARGE_FRAMES=$LARGE_FRAMES LARGE_PARTICLES=$LARGE_PARTICLES" \
@@ -176,7 +155,7 @@ machine() {
 
 main() {
     LOAD_BEFORE_BUILD=$(load_average)
-    build
+    build_targets fluidcast-bench
     LOAD_START=$(load_average)
     LOAD_DATE=$(date -u '+%Y-%m-%d %H:%M UTC')
     log "load average $LOAD_START"

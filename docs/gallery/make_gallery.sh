@@ -8,9 +8,10 @@ cd "$(dirname "$0")/../.."
 out=docs/gallery
 bin=build/bin
 portfile=$(mktemp)
-$bin/fluidcastd --listen 127.0.0.1:0 --port-file "$portfile" 2> "$out/.daemon.log" &
+log=$(mktemp)
+$bin/fluidcastd --listen 127.0.0.1:0 --port-file "$portfile" 2> "$log" &
 daemon=$!
-trap 'kill -TERM $daemon; wait $daemon 2>/dev/null; rm -f "$portfile"' EXIT
+trap 'kill -TERM $daemon; wait $daemon 2>/dev/null; rm -f "$portfile" "$log"' EXIT
 for _ in $(seq 100); do [ -s "$portfile" ] && break; sleep 0.1; done
 
 snap() { # NAME ARGS...: one image through the CLI
