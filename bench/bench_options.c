@@ -32,7 +32,7 @@ void bench_options_print_usage(void)
     printf("usage: fluidcast-bench [--gpu auto|software|N] [--particles 16k,64k,...]\n"
            "         [--size 1280x720,...] [--smoothing curvature,none,...] [--iterations 15,40,default,...]\n"
            "         [--scale 1,0.5,0.25] [--frames N] [--encode png|jpeg|exr|none] [--image PATH.png]\n"
-           "         [--profile] [--shader-dir DIR] [--splat auto|fragment|compute]\n"
+           "         [--profile] [--shader-dir DIR] [--splat auto|fragment|compute] [--filter-radius PX]\n"
            "       fluidcast-bench --particles N --write-scene PATH.f32\n"
            "Prints a markdown table: median GPU ms per stage (timer queries; upload: the GL thread's\n"
            "wall time copying the frame), encode ms, wall ms, and\n"
@@ -48,6 +48,8 @@ void bench_options_print_usage(void)
            "queue drained around it, its fragment shader invocations, the sprites' sizes, and the GPU\n"
            "memory split into particle buffers, render targets and the readback buffer.\n"
            "--shader-dir loads the *.glsl files from DIR, to time shader changes without rebuilding.\n"
+           "--filter-radius sets the kernel half-width in pixels of the bilateral, binomial and\n"
+           "narrow-range filters (default 0: from the projected particle size).\n"
            "--splat forces the surface splat: sprites through the rasterizer or the compute splat\n"
            "(default auto: the pipeline's choice by sprite size).\n"
            "--write-scene writes the drop scene as raw little-endian float32 xyz and prints\n"
@@ -157,6 +159,16 @@ static fc_code parse_frames(const char *value, bench_options *o, fc_error *err)
     return FC_OK;
 }
 
+static fc_code parse_filter_radius(const char *value, bench_options *o, fc_error *err)
+{
+    char *end;
+    const long n = strtol(value, &end, 10);
+    if (end == value || *end != '\0' || n < 0 || n > 64)
+        return fc_error_set(err, FC_ERR_USAGE, "--filter-radius must be 0..64 pixels, not '%s'", value);
+    o->filter_radius = (uint32_t)n;
+    return FC_OK;
+}
+
 static fc_code parse_encoding(const char *value, bench_options *o, fc_error *err)
 {
     static const struct { const char *name; fc_image_format format; } formats[] = {
@@ -207,6 +219,8 @@ static fc_code parse_valued(const char *option, const char *value, bench_options
     }
     if (!strcmp(option, "--splat"))
         return parse_splat(value, o, err);
+    if (!strcmp(option, "--filter-radius"))
+        return parse_filter_radius(value, o, err);
     if (!strcmp(option, "--image")) {
         o->image_path = value;
         return FC_OK;

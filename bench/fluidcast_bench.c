@@ -144,10 +144,11 @@ static void print_row(uint64_t particles, uint32_t w, uint32_t h, const fc_setti
 
 /* fluidcast's defaults but for the quantities the benchmark varies. */
 static void config_settings(fc_smoothing method, uint32_t iterations, float smooth_scale, float radius,
-                            fc_settings *settings)
+                            uint32_t filter_radius, fc_settings *settings)
 {
     fc_settings_default(settings);
     settings->radius = radius;
+    settings->filter_radius = filter_radius;
     settings->smoothing = method;
     settings->iterations =
         iterations == BENCH_DEFAULT_ITERATIONS ? fc_smoothing_default_iterations(method) : iterations;
@@ -170,7 +171,7 @@ static fc_code bench_size(fc_pipeline *pipe, const bench_options *o, const bench
             for (int ri = 0; ri < (smooths ? o->n_smooth_scales : 1); ri++) {
                 fc_settings settings;
                 config_settings(method, smooths ? o->iterations[ii] : 0, smooths ? o->smooth_scales[ri] : 1.0f,
-                                radius, &settings);
+                                radius, o->filter_radius, &settings);
                 bench_row row;
                 fc_code rc = bench_config(pipe, o, w, h, &settings, &row, err);
                 if (rc != FC_OK)

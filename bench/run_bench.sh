@@ -8,7 +8,7 @@
 # count's drop scene as .f32 so both renderers read identical data, times both, and
 # prints a markdown report: machine, GL renderers, load, the raw tables and the ratio
 # fluidcast fps / VTK fps per configuration. fluidcast runs without smoothing, with
-# curvature flow (40 iterations) and with its narrow-range filter at VTK's 3 passes.
+# curvature flow (40 iterations) and with its narrow-range filter at VTK's 3 passes and filter radius.
 # Then the paper's configurations (van der Laan et al. 2009, Table 1: 64K particles,
 # 1024x768): curvature flow at 1/4 resolution 15 iterations, 1/2 resolution 40, full
 # resolution 100, and the bilateral filter (fluidcast's default passes), next to VTK.
@@ -41,6 +41,7 @@ PEER_DIR=$ROOT/bench/peer
 IMAGE_DIR=${IMAGE_DIR:-$PEER_DIR}
 VTK_PYTHON=/usr/bin/python3   # Debian's: python3-vtk9 is not in other interpreters
 VTK_ITERATIONS=3              # VTK 9.1's narrow-range default; Python cannot change it
+VTK_FILTER_RADIUS=5           # likewise its filter radius in pixels
 PEER_ITERATIONS=40            # curvature flow in the peer comparison
 PAPER_PARTICLES=64k
 PAPER_SIZE=1024x768
@@ -97,7 +98,8 @@ bench_fluidcast() {
 bench_fluidcast_peer() {
     local out=$1 particles=$2 sizes=$3 image=${4:-}
     local args=(--particles "$particles" --size "$sizes")
-    bench_fluidcast "$out" "${args[@]}" --smoothing narrow --iterations "$VTK_ITERATIONS"
+    bench_fluidcast "$out" "${args[@]}" --smoothing narrow --iterations "$VTK_ITERATIONS" \
+        --filter-radius "$VTK_FILTER_RADIUS"
     [ -n "$image" ] && args+=(--image "$image")
     bench_fluidcast "$out" "${args[@]}" --smoothing none,curvature --iterations "$PEER_ITERATIONS"
 }
@@ -109,7 +111,8 @@ bench_fluidcast_paper() {
         bench_fluidcast "$out" "${args[@]}" --smoothing curvature --scale "$scale" --iterations "$iterations"
     done
     bench_fluidcast "$out" "${args[@]}" --smoothing bilateral --iterations default
-    bench_fluidcast "$out" "${args[@]}" --smoothing narrow --iterations "$VTK_ITERATIONS"
+    bench_fluidcast "$out" "${args[@]}" --smoothing narrow --iterations "$VTK_ITERATIONS" \
+        --filter-radius "$VTK_FILTER_RADIUS"
 }
 
 # VTK at every size for one particle count: rows appended to $out/vtk.md; the
@@ -126,7 +129,7 @@ bench_vtk() {
 
 # Joins fluidcast rows with the VTK row of the same particles and size.
 ratio_table() {
-    echo "| particles | size | fluidcast smoothing | iter | scale | fluidcast ms | fluidcast fps | VTK ms (narrow-range, $VTK_ITERATIONS iter) | VTK fps | fluidcast fps / VTK fps |"
+    echo "| particles | size | fluidcast smoothing | iter | scale | fluidcast ms | fluidcast fps | VTK ms (narrow-range, $VTK_ITERATIONS iter, radius $VTK_FILTER_RADIUS) | VTK fps | fluidcast fps / VTK fps |"
     echo "|---|---|---|---|---|---|---|---|---|---|"
     awk -F'|' '
         function trim(s) { gsub(/^ +| +$/, "", s); return s }
