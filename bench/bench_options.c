@@ -149,24 +149,34 @@ static fc_code parse_list(const char *option, const char *value, int *count,
     return *count ? FC_OK : fc_error_set(err, FC_ERR_USAGE, "%s: empty list", option);
 }
 
-static fc_code parse_frames(const char *value, bench_options *o, fc_error *err)
+/* A whole number lo..hi for `option`. */
+static fc_code parse_bounded(const char *option, const char *value, long lo, long hi, long *out, fc_error *err)
 {
     char *end;
     const long n = strtol(value, &end, 10);
-    if (end == value || *end != '\0' || n < 1 || n > 10000)
-        return fc_error_set(err, FC_ERR_USAGE, "--frames must be 1..10000, not '%s'", value);
-    o->frames = (int)n;
+    if (end == value || *end != '\0' || n < lo || n > hi)
+        return fc_error_set(err, FC_ERR_USAGE, "%s must be %ld..%ld, not '%s'", option, lo, hi, value);
+    *out = n;
     return FC_OK;
 }
 
+static fc_code parse_frames(const char *value, bench_options *o, fc_error *err)
+{
+    long n = 0;
+    fc_code code = parse_bounded("--frames", value, 1, 10000, &n, err);
+    if (code == FC_OK)
+        o->frames = (int)n;
+    return code;
+}
+
+/* fc_settings_validate allows kernels up to 64 pixels. */
 static fc_code parse_filter_radius(const char *value, bench_options *o, fc_error *err)
 {
-    char *end;
-    const long n = strtol(value, &end, 10);
-    if (end == value || *end != '\0' || n < 0 || n > 64)
-        return fc_error_set(err, FC_ERR_USAGE, "--filter-radius must be 0..64 pixels, not '%s'", value);
-    o->filter_radius = (uint32_t)n;
-    return FC_OK;
+    long n = 0;
+    fc_code code = parse_bounded("--filter-radius", value, 0, 64, &n, err);
+    if (code == FC_OK)
+        o->filter_radius = (uint32_t)n;
+    return code;
 }
 
 static fc_code parse_encoding(const char *value, bench_options *o, fc_error *err)
