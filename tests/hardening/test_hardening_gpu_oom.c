@@ -29,6 +29,9 @@
 #define UNDER_ASAN 1
 #endif
 #endif
+#ifndef UNDER_ASAN
+#define UNDER_ASAN 0
+#endif
 
 enum {
     SKIP_CODE = 77,          /* SKIP_RETURN_CODE in CMakeLists.txt */
@@ -134,13 +137,12 @@ static void run_limited(long long peak_kib)
 
 int main(void)
 {
-#ifdef UNDER_ASAN
-    printf("skipped: AddressSanitizer reserves terabytes of address space, so RLIMIT_AS cannot be set\n");
-    return SKIP_CODE;
-#else
+    if (UNDER_ASAN) {
+        printf("skipped: AddressSanitizer reserves terabytes of address space, so RLIMIT_AS cannot be set\n");
+        return SKIP_CODE;
+    }
     long long peak_kib = measure_peak_kib();
     if (peak_kib > 0)
         run_limited(peak_kib);
     return hx_exit_status(0);
-#endif
 }
