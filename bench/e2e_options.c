@@ -36,6 +36,7 @@ void e2e_options_print_usage(void)
            "  --requests N           timed requests per configuration, 0 = skip (default 20)\n"
            "  --stream-seconds S     producer run per configuration, 0 = skip (default 10)\n"
            "  --push-fps F           producer rate, 0 = as fast as the server accepts (default 0)\n"
+           "  --density              frames carry a density per particle too, as SPH codes send them\n"
            "  --help                 this text\n"
            "A value may follow the option or an '='. Every configuration is particles x size x format.\n");
 }
@@ -163,6 +164,10 @@ fc_code e2e_options_parse(int argc, char **argv, e2e_options *o, fc_error *err)
     for (int i = 1; i < argc; i++) {
         if (strcmp(argv[i], "--help") == 0 || strcmp(argv[i], "-h") == 0) {
             o->help = 1;
+            continue;
+        }
+        if (strcmp(argv[i], "--density") == 0) {
+            o->density = 1;
             continue;
         }
         char name[64];

@@ -21,6 +21,7 @@ typedef struct e2e_options {
     int requests;                 /* timed requests per configuration; 0 = no request/response part */
     double stream_seconds;        /* producer run per configuration; 0 = no streaming part */
     double push_fps;              /* producer rate; 0 = as fast as the server accepts */
+    int density;                  /* --density: frames carry a density per particle, as SPH codes send */
 } e2e_options;
 
 /* Defaults: 16k,64k particles, 640x360,1280x720, JPEG q90 and PNG, 20

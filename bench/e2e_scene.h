@@ -9,6 +9,7 @@ typedef struct e2e_config {
     uint64_t particles;
     uint32_t width, height;
     fc_render_request request;
+    int density;             /* the frame carries densities */
 } e2e_config;
 
 typedef struct e2e_scene {

@@ -205,7 +205,7 @@ int main(int argc, char **argv)
 
     snprintf(command, sizeof command,
              "%s --daemon %s --particles 2k --size 64x48 --format jpeg --requests 0 --stream-seconds %g "
-             "--push-fps %d",
+             "--push-fps %d --density",
              argv[1], argv[2], STREAM_SECONDS, FIXED_PUSH_FPS);
     out = run_capture(command, &status);
     CHECK_MSG(out && status == 0, "'%s' exited with %d", command, status);
