@@ -57,7 +57,9 @@ static float resolve_radius(fc_render_job *job)
 }
 
 /* The pipeline holds the noise amplitudes of the uploaded frame only: every
- * upload gives the frame its own, from its stream's foam history. */
+ * upload gives the frame its own, from its stream's foam history. A render
+ * with a density threshold reads the uploaded frame again (to sort it): it
+ * is always this job's frame, which the job keeps referenced. */
 static fc_code ensure_uploaded(fc_gpu_state *gpu, fc_shared_frame *frame, const fc_settings *settings,
                                float *upload_ms, fc_error *err)
 {

@@ -3,6 +3,7 @@
 
 #include <math.h>
 #include <stdlib.h>
+#include <string.h>
 
 #include "fc_error.h"
 #include "gl_util.h"
@@ -70,6 +71,7 @@ void fc_particle_attributes_destroy(fc_particle_attributes *a)
 {
     release_gpu(a);
     fc_density_order_free(&a->order);
+    free(a->frame_amplitudes);
     *a = (fc_particle_attributes){0};
 }
 
@@ -122,15 +124,46 @@ static void write_records(fc_particle_attributes *a, const fc_frame *frame)
 fc_code fc_particle_attributes_upload(fc_particle_attributes *a, const fc_frame *frame, fc_error *err)
 {
     a->count = 0;
-    a->by_density = frame->density != NULL && frame->count > 0;
-    fc_code code = a->by_density ? fc_density_order_sort(&a->order, frame->density, frame->count, err) : FC_OK;
-    if (code == FC_OK && frame->count > a->gpu_capacity)
-        code = grow_gpu(a, frame->count, err);
-    if (code != FC_OK)
-        return code;
+    a->by_density = false;
+    a->reorderable = frame->density != NULL && frame->count > 0;
+    a->frame_amplitudes_set = false;
+    if (frame->count > a->gpu_capacity) {
+        fc_code code = grow_gpu(a, frame->count, err);
+        if (code != FC_OK)
+            return code;
+    }
     write_records(a, frame);
     a->count = frame->count;
     a->amplitudes_set = false;
+    return FC_OK;
+}
+
+/* Amplitudes (frame order) into the mapped buffer, in draw order. */
+static void write_amplitudes(fc_particle_attributes *a, const float *amplitude)
+{
+    for (uint64_t slot = 0; slot < a->count; slot++) {
+        if (a->by_density && slot + FC_DRAW_ORDER_PREFETCH < a->count)
+            __builtin_prefetch(amplitude + a->order.order[slot + FC_DRAW_ORDER_PREFETCH]);
+        a->mapped_amplitudes[slot] = amplitude[frame_index(a, slot)];
+    }
+    a->calm_amplitudes = 0;
+}
+
+fc_code fc_particle_attributes_order_by_density(fc_particle_attributes *a, const fc_frame *frame, fc_error *err)
+{
+    if (!a->reorderable || a->by_density)
+        return FC_OK;
+    fc_code code = fc_density_order_sort(&a->order, frame->density, frame->count, err);
+    if (code == FC_OK)
+        code = fc_gl_wait_until_done("waiting for the draws reading the particles in frame order", err);
+    if (code != FC_OK)
+        return code;
+    a->density_sorts++;
+    a->by_density = true;
+    write_records(a, frame);
+    /* Calm amplitudes (all 1, or still to be settled) read the same in any order. */
+    if (a->frame_amplitudes_set)
+        write_amplitudes(a, a->frame_amplitudes);
     return FC_OK;
 }
 
@@ -146,17 +179,34 @@ uint64_t fc_particle_attributes_surface_count(const fc_particle_attributes *a, f
     return fc_density_order_count_at_least(&a->order, a->count, density_threshold);
 }
 
+/* Keeps a frame-order copy of the amplitudes of a frame a render may still
+ * put in density order. */
+static fc_code keep_for_reorder(fc_particle_attributes *a, const float *amplitude, fc_error *err)
+{
+    a->frame_amplitudes_set = false;
+    if (!a->reorderable || a->by_density)
+        return FC_OK;
+    if (a->count > a->frame_amplitude_capacity) {
+        float *grown = realloc(a->frame_amplitudes, a->count * sizeof *grown);
+        if (!grown)
+            return fc_error_set(err, FC_ERR_NOMEM, "no memory to keep the amplitudes of %llu particles",
+                                (unsigned long long)a->count);
+        a->frame_amplitudes = grown;
+        a->frame_amplitude_capacity = a->count;
+    }
+    memcpy(a->frame_amplitudes, amplitude, a->count * sizeof *amplitude);
+    a->frame_amplitudes_set = true;
+    return FC_OK;
+}
+
 fc_code fc_particle_attributes_set_amplitudes(fc_particle_attributes *a, const float *amplitude, fc_error *err)
 {
-    fc_code code = fc_gl_wait_until_done("waiting for the draws reading the amplitudes", err);
+    fc_code code = keep_for_reorder(a, amplitude, err);
+    if (code == FC_OK)
+        code = fc_gl_wait_until_done("waiting for the draws reading the amplitudes", err);
     if (code != FC_OK)
         return code;
-    for (uint64_t slot = 0; slot < a->count; slot++) {
-        if (a->by_density && slot + FC_DRAW_ORDER_PREFETCH < a->count)
-            __builtin_prefetch(amplitude + a->order.order[slot + FC_DRAW_ORDER_PREFETCH]);
-        a->mapped_amplitudes[slot] = amplitude[frame_index(a, slot)];
-    }
-    a->calm_amplitudes = 0;
+    write_amplitudes(a, amplitude);
     a->amplitudes_set = true;
     return FC_OK;
 }

@@ -7,7 +7,12 @@
  * a frame's attributes are written once, straight into memory the GPU reads.
  * The amplitudes have a buffer of their own because the foam state sets them
  * after the upload: replacing them rewrites 4 bytes per particle, not the
- * records. Densities stay on the CPU, which alone reads them. */
+ * records. Densities stay on the CPU, which alone reads them.
+ *
+ * An upload keeps the frame's order: sorting by density (and gathering every
+ * attribute into that order) costs about ten times the upload of a
+ * 1M-particle frame, and only renders with a density threshold need it. Such
+ * a render reorders the uploaded frame once (fc_particle_attributes_order_by_density). */
 #ifndef FC_PARTICLE_ATTRIBUTES_H
 #define FC_PARTICLE_ATTRIBUTES_H
 
@@ -44,24 +49,41 @@ typedef struct fc_particle_attributes {
     uint64_t calm_amplitudes;
     bool amplitudes_set;                /* the uploaded frame's amplitudes were given */
     uint64_t count;
+    bool reorderable;                   /* the uploaded frame has densities: it may be sorted later */
     bool by_density;                    /* draw order is order.order (densest first), else the frame's */
     fc_density_order order;
+    /* The amplitudes set while a reorderable frame is in its own order, kept
+     * in frame order so a reorder can gather them (the mapped buffer is
+     * write-only); `frame_amplitudes_set` says they belong to this frame. */
+    float *frame_amplitudes;
+    uint64_t frame_amplitude_capacity;
+    bool frame_amplitudes_set;
+    uint64_t density_sorts;             /* times a frame was sorted by density, for tests and benchmarks */
 } fc_particle_attributes;
 
 fc_code fc_particle_attributes_create(fc_particle_attributes *a, fc_error *err);
 void fc_particle_attributes_destroy(fc_particle_attributes *a);
 
-/* Takes the frame's attributes in draw order: densest first when the frame has
- * densities, else the frame's order. The caller has waited for the GPU to
- * finish the draws that read the last frame (fc_particle_buffer_reserve). */
+/* Takes the frame's attributes in the frame's order. The caller has waited
+ * for the GPU to finish the draws that read the last frame
+ * (fc_particle_buffer_reserve). */
 fc_code fc_particle_attributes_upload(fc_particle_attributes *a, const fc_frame *frame, fc_error *err);
+
+/* Puts the uploaded frame (the same `frame`, unchanged since the upload) in
+ * density order, densest first, amplitudes included, once the GPU is done
+ * with every draw issued so far — so the caller may then rewrite the
+ * positions in the new order too. Does nothing when the frame has no
+ * densities or is in density order already. On failure the frame stays in
+ * its own order. */
+fc_code fc_particle_attributes_order_by_density(fc_particle_attributes *a, const fc_frame *frame, fc_error *err);
 
 /* Draw slot -> frame index of the uploaded frame; NULL when the draw order is the frame's. */
 const uint32_t *fc_particle_attributes_draw_order(const fc_particle_attributes *a);
 
 /* How many particles, from the start of the draw order, make up the surface:
  * those with density >= threshold; all of them when the threshold is <= 0 or
- * the frame has no densities. */
+ * the frame is not in density order (the caller orders a frame with
+ * densities first when it asks with a threshold). */
 uint64_t fc_particle_attributes_surface_count(const fc_particle_attributes *a, float density_threshold);
 
 /* Replaces every particle's noise amplitude; `amplitude` is in frame order

@@ -34,9 +34,10 @@
 #define DEPTH_JUMP_RADII 4.0f
 
 struct fc_pipeline {
-    fc_particle_buffer particles;         /* in draw order: surface particles first, then spray */
+    fc_particle_buffer particles;         /* in draw order: the frame's, or surface particles first, then spray */
     fc_particle_attributes attributes;
     bool uploaded;
+    fc_frame frame;                       /* the uploaded frame's arrays, which the caller keeps (pipeline.h) */
     fc_depth_pass depth;
     fc_thickness_pass thickness;
     fc_smoother smoother;
@@ -290,16 +291,34 @@ static void plan_job(const fc_pipeline *p, const fc_view *view, const fc_camera 
     fc_environment_for_view(view, camera, p->particles.lo, p->particles.hi, settings->radius, has_floor, &job->env);
 }
 
-/* Positions go to the GPU in draw order (densest first), with their
- * records: each written once, straight into the mapped buffers, once the GPU
- * is done with the last frame's. */
+/* Positions go to the GPU in the frame's order, with their records: each
+ * written once, straight into the mapped buffers, once the GPU is done with
+ * the last frame's. */
 static fc_code upload_frame(fc_pipeline *p, const fc_frame *frame, fc_error *err)
 {
     fc_code code = fc_particle_buffer_reserve(&p->particles, frame->count, err);
     if (code == FC_OK)
         code = fc_particle_attributes_upload(&p->attributes, frame, err);
+    if (code == FC_OK) {
+        fc_particle_buffer_fill(&p->particles, frame, NULL);
+        p->frame = *frame;
+    }
+    return code;
+}
+
+/* A density threshold splits the surface from the spray at a prefix of the
+ * density order: the uploaded frame is put in that order at the first render
+ * that asks for one, and stays in it: without a threshold the order changes
+ * an image only by the rounding of the thickness sums (depth is a minimum,
+ * and ids and amplitudes travel with their particles). */
+static fc_code order_for(fc_pipeline *p, const fc_settings *settings, fc_error *err)
+{
+    if (!(settings->density_threshold > 0.0f) || !p->attributes.reorderable || p->attributes.by_density)
+        return FC_OK;
+    /* Waits for the draws still reading the positions, as well as the records. */
+    fc_code code = fc_particle_attributes_order_by_density(&p->attributes, &p->frame, err);
     if (code == FC_OK)
-        fc_particle_buffer_fill(&p->particles, frame, fc_particle_attributes_draw_order(&p->attributes));
+        fc_particle_buffer_fill(&p->particles, &p->frame, fc_particle_attributes_draw_order(&p->attributes));
     return code;
 }
 
@@ -320,6 +339,8 @@ static fc_code warm_up(fc_pipeline *p, fc_error *err)
                             .thickness_blur = 1, .noise = 1.0f, .foam = 1.0f, .foam_tau = 1.0f,
                             .density_threshold = 0.5f};
     fc_code code = upload_frame(p, &frame, err);
+    if (code == FC_OK)
+        code = order_for(p, &settings, err);
     fc_particle_attributes_settle(&p->attributes);
     fc_view view;
     fc_view_from_camera(&camera, p->particles.lo, p->particles.hi, settings.radius, &view);
@@ -334,6 +355,8 @@ static fc_code warm_up(fc_pipeline *p, fc_error *err)
         fc_stage_timer_ms(&p->timer, (fc_stage)s);   /* waits until the GPU is done */
     p->particles.count = 0;
     p->attributes.count = 0;
+    p->attributes.reorderable = false;
+    p->frame = (fc_frame){0};   /* the warm-up's frame dies here */
     return code;
 }
 
@@ -437,6 +460,8 @@ fc_code fc_pipeline_render_scene(fc_pipeline *p, const fc_camera *camera, const 
     fc_pass_profile_reset(&p->profile);
     report_stages(&p->timer, stage_ms);
     fc_code code = check_request(p, camera, settings, aov, err);
+    if (code == FC_OK)
+        code = order_for(p, settings, err);
     if (code != FC_OK)
         return code;
     /* The frame's amplitudes were given after the upload, or are calm. */

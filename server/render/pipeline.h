@@ -22,7 +22,13 @@ void fc_pipeline_destroy(fc_pipeline *p);
 
 /* Uploads a frame's particles to the GPU; they stay until the next upload, so
  * several cameras/settings can render the same frame. stage_ms (may be NULL)
- * receives FC_STAGE_UPLOAD. The frame must be validated (finite) already. */
+ * receives FC_STAGE_UPLOAD. The frame must be validated (finite) already.
+ * The particles go up in the frame's order: the first render with a
+ * density_threshold > 0 sorts a frame with densities (densest first) and
+ * rewrites them in that order, reading the frame again. So the frame's
+ * arrays (not the fc_frame struct itself, which is copied) must stay valid
+ * and unchanged until the next upload or fc_pipeline_destroy, or at least
+ * until the last render of the frame. */
 fc_code fc_pipeline_upload(fc_pipeline *p, const fc_frame *frame, float *stage_ms, fc_error *err);
 
 /* Renders the uploaded frame and reads back the image the request asks for:

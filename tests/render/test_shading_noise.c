@@ -10,6 +10,7 @@
 #include <string.h>
 
 #include "foam_state.h"
+#include "pipeline_internal.h"
 #include "shading_fixture.h"
 #include "test_util.h"
 
@@ -321,6 +322,39 @@ static void test_attributes_follow_a_new_order(render_fixture *f)
     fc_image_free(&calm);
 }
 
+/* An upload keeps the frame's order; amplitudes set then must move with
+ * their particles when the first render with a density threshold sorts the
+ * frame (densest first: the right particle), and only that render sorts. */
+static void test_amplitudes_follow_a_later_sort(render_fixture *f)
+{
+    float positions[6] = {-0.6f, 0.0f, 0.0f, 0.6f, 0.0f, 0.0f};
+    float right_first[2] = {1.0f, 2.0f};
+    uint32_t ids[2] = {5, 6};
+    fc_frame frame = {.count = 2, .positions = positions, .density = right_first, .ids = ids};
+    fc_settings settings = noise_settings(1.0f);
+    fc_camera cam = axis_camera(3.0, 48, 32);
+    fc_image calm = {0}, raised = {0};
+    const uint64_t *sorts = &fc_pipeline_particle_attributes(f->pipeline)->density_sorts;
+    uint64_t sorts_before = *sorts;
+    CHECK_CODE(render_frame(f, &frame, &cam, &settings, NULL, FC_AOV_NOISE, 0, &calm), FC_OK);
+    const float raised_left[2] = {3.0f, 1.0f};
+    CHECK_CODE(fc_pipeline_set_amplitudes(f->pipeline, raised_left, 2, NULL), FC_OK);
+    CHECK(*sorts == sorts_before);
+    settings.density_threshold = 0.5f;   /* below both densities: no spray, only the order changes */
+    for (int render = 0; render < 2; render++) {
+        CHECK_CODE(fc_pipeline_render(f->pipeline, &cam, &settings, FC_AOV_NOISE, 0, &raised, NULL, NULL), FC_OK);
+        CHECK_MSG(*sorts == sorts_before + 1, "render %d: %llu sorts, expected 1", render,
+                  (unsigned long long)(*sorts - sorts_before));
+        int compared[2], wrong[2];
+        count_unscaled(&calm, &raised, raised_left, compared, wrong);
+        CHECK_MSG(compared[0] > 20 && compared[1] > 20 && wrong[0] == 0 && wrong[1] == 0,
+                  "render %d: %d of %d left, %d of %d right pixels not scaled by 3, 1", render, wrong[0],
+                  compared[0], wrong[1], compared[1]);
+    }
+    fc_image_free(&raised);
+    fc_image_free(&calm);
+}
+
 /* Thousands of strided ids grow the tables; every third particle jumps. */
 static void test_foam_many_particles(render_fixture *f)
 {
@@ -378,6 +412,7 @@ int main(void)
     test_foam_raise_and_decay(&f);
     test_foam_scales_noise(&f);
     test_attributes_follow_a_new_order(&f);
+    test_amplitudes_follow_a_later_sort(&f);
     test_foam_many_particles(&f);
     test_foam_usage_errors(&f);
     fixture_close(&f);

@@ -1,13 +1,15 @@
 /* test_shading_spray.c — spray: the densest-first order that splits surface
  * from spray for any threshold; particles below density_threshold are absent
  * from the depth and thickness images, appear in the colour image as
- * light droplets, whiter the faster they move, and are hidden behind fluid. */
+ * light droplets, whiter the faster they move, and are hidden behind fluid;
+ * the order is sorted only when a render asks for a threshold. */
 #include <math.h>
 #include <stdbool.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "density_order.h"
+#include "pipeline_internal.h"
 #include "shading_fixture.h"
 #include "test_util.h"
 
@@ -105,6 +107,53 @@ static void test_spray_leaves_surface(render_fixture *f)
     fc_image_free(&img);
 }
 
+static double max_difference(const fc_image *a, const fc_image *b)
+{
+    double most = 0.0;
+    size_t floats = fc_image_size(a) / sizeof(float);
+    for (size_t i = 0; i < floats; i++)
+        most = fmax(most, fabs((double)((const float *)a->pixels)[i] - ((const float *)b->pixels)[i]));
+    return most;
+}
+
+/* A frame with densities is sorted only for a render with a threshold, once:
+ * rendered without one it equals the frame without densities, before the
+ * sort exactly (same order), after it up to the rounding of the thickness
+ * sums in the other order. */
+static void test_sorted_only_for_a_threshold(render_fixture *f)
+{
+    static spray_frame with_density, without_density;
+    make_frame(&with_density, BESIDE, 0.0f);
+    make_frame(&without_density, BESIDE, 0.0f);
+    without_density.frame.density = NULL;
+    fc_camera cam = axis_camera(4.0, WIDTH, HEIGHT);
+    uint32_t x, row;
+    pixel_of(&cam, BESIDE, &x, &row);
+    fc_settings off = spray_settings(0.0f), on = spray_settings(THRESHOLD);
+    const uint64_t *sorts = &fc_pipeline_particle_attributes(f->pipeline)->density_sorts;
+    uint64_t start = *sorts;
+    fc_image reference = {0}, image = {0};
+    CHECK_CODE(render_frame(f, &without_density.frame, &cam, &off, NULL, FC_AOV_COLOR, 0, &reference), FC_OK);
+    CHECK_CODE(render_frame(f, &with_density.frame, &cam, &off, NULL, FC_AOV_COLOR, 0, &image), FC_OK);
+    CHECK(memcmp(image.pixels, reference.pixels, fc_image_size(&reference)) == 0);
+    CHECK_CODE(fc_pipeline_render(f->pipeline, &cam, &off, FC_AOV_DEPTH, 0, &image, NULL, NULL), FC_OK);
+    CHECK_MSG(*sorts == start, "%llu sorts without a threshold", (unsigned long long)(*sorts - start));
+    for (int render = 0; render < 2; render++) {
+        CHECK_CODE(fc_pipeline_render(f->pipeline, &cam, &on, FC_AOV_DEPTH, 0, &image, NULL, NULL), FC_OK);
+        CHECK_MSG(pixel_f32(&image, x, row) == 0.0f, "render %d: depth %g where the spray is", render,
+                  pixel_f32(&image, x, row));
+        CHECK(pixel_f32(&image, WIDTH / 2, HEIGHT / 2) > 0.0f);
+        CHECK_MSG(*sorts == start + 1, "render %d: %llu sorts, expected 1", render,
+                  (unsigned long long)(*sorts - start));
+    }
+    CHECK_CODE(fc_pipeline_render(f->pipeline, &cam, &off, FC_AOV_COLOR, 0, &image, NULL, NULL), FC_OK);
+    CHECK_MSG(max_difference(&image, &reference) <= 1e-4, "threshold 0 after the sort: differs by %g",
+              max_difference(&image, &reference));
+    CHECK(*sorts == start + 1);
+    fc_image_free(&reference);
+    fc_image_free(&image);
+}
+
 static float luminance(const fc_image *img, uint32_t x, uint32_t row)
 {
     return (channel_f32(img, x, row, 0) + channel_f32(img, x, row, 1) + channel_f32(img, x, row, 2)) / 3.0f;
@@ -181,6 +230,7 @@ int main(void)
     test_spray_leaves_surface(&f);
     test_spray_drawn_and_whitened(&f);
     test_spray_hidden_behind_fluid(&f);
+    test_sorted_only_for_a_threshold(&f);
     fixture_close(&f);
     return test_result();
 }
