@@ -1,21 +1,32 @@
 /* test_egl_context.c — headless context creation: the software path works and
- * reports llvmpipe with GL 4.5; a device number that does not exist fails with
- * FC_ERR_GL and a message; gpu choices parse strictly. */
+ * reports llvmpipe with GL 4.5; it is robust where the driver allows (llvmpipe
+ * does), so a GPU reset can be noticed through glGetGraphicsResetStatus, which
+ * the daemon asks after every render; a device number that does not exist
+ * fails with FC_ERR_GL and a message; gpu choices parse strictly. */
+#include <epoxy/gl.h>
 #include <string.h>
 
 #include "egl_context.h"
 #include "test_util.h"
 
-static void test_software_context(void)
+/* A software context, made current; NULL (the failure checked and told) when there is none. */
+static fc_gl_context *software_context(void)
 {
     fc_gpu_choice software = {FC_GPU_SOFTWARE, 0};
     fc_gl_context *ctx = NULL;
     fc_error err = {0};
     CHECK_CODE(fc_gl_context_create(&software, &ctx, &err), FC_OK);
-    if (!ctx) {
+    if (!ctx)
         fprintf(stderr, "software context: %s\n", err.message);
+    return ctx;
+}
+
+static void test_software_context(void)
+{
+    fc_gl_context *ctx = software_context();
+    if (!ctx)
         return;
-    }
+    fc_error err = {0};
     CHECK_MSG(strstr(fc_gl_context_renderer(ctx), "llvmpipe") != NULL, "renderer %s", fc_gl_context_renderer(ctx));
     CHECK_MSG(strncmp(fc_gl_context_version(ctx), "4.5", 3) == 0 || fc_gl_context_version(ctx)[0] > '4',
               "version %s", fc_gl_context_version(ctx));
@@ -23,6 +34,26 @@ static void test_software_context(void)
     CHECK(strlen(fc_gl_context_egl_vendor(ctx)) > 0);
     CHECK_CODE(fc_gl_context_make_current(ctx, &err), FC_OK);
     fc_gl_context_destroy(ctx);
+}
+
+/* A fresh context reports no reset, and GL itself confirms the robust flags. */
+static void test_robust_context(void)
+{
+    fc_gl_context *ctx = software_context();
+    if (!ctx)
+        return;
+    CHECK(fc_gl_context_robust(ctx));
+    GLint flags = 0, strategy = 0;
+    glGetIntegerv(GL_CONTEXT_FLAGS, &flags);
+    glGetIntegerv(GL_RESET_NOTIFICATION_STRATEGY, &strategy);
+    CHECK_MSG(flags & GL_CONTEXT_FLAG_ROBUST_ACCESS_BIT, "GL_CONTEXT_FLAGS 0x%x", (unsigned)flags);
+    CHECK_MSG(strategy == GL_LOSE_CONTEXT_ON_RESET, "GL_RESET_NOTIFICATION_STRATEGY 0x%x", (unsigned)strategy);
+    CHECK_CODE(fc_gl_context_reset_status(ctx), FC_GL_NO_RESET);
+    fc_gl_context_destroy(ctx);
+
+    CHECK(strcmp(fc_gl_reset_name(FC_GL_RESET_GUILTY), "guilty") == 0);
+    CHECK(strcmp(fc_gl_reset_name(FC_GL_RESET_INNOCENT), "innocent") == 0);
+    CHECK(strcmp(fc_gl_reset_name(FC_GL_RESET_UNKNOWN), "unknown") == 0);
 }
 
 /* AUTO takes a hardware device when there is one and software otherwise:
@@ -82,6 +113,7 @@ static void test_choice_parsing(void)
 int main(void)
 {
     test_software_context();
+    test_robust_context();
     test_auto_context();
     test_two_contexts();
     test_missing_device();
