@@ -93,24 +93,15 @@ static void include_point(bounds *b, const float p[3])
     }
 }
 
-static bounds copy_in_frame_order(float *to, const float *positions, uint64_t count)
+/* Positions into `to`, slot by slot: from order[slot] when there is an order,
+ * else from the slot itself. */
+static bounds copy_positions(float *to, const float *positions, const uint32_t *order, uint64_t count)
 {
-    bounds b = bounds_of_point(positions);
-    for (uint64_t i = 0; i < 3 * count; i += 3) {
-        float p[3] = {positions[i], positions[i + 1], positions[i + 2]};
-        memcpy(to + i, p, sizeof p);
-        include_point(&b, p);
-    }
-    return b;
-}
-
-static bounds copy_in_draw_order(float *to, const float *positions, const uint32_t *order, uint64_t count)
-{
-    bounds b = bounds_of_point(positions + 3 * (size_t)order[0]);
+    bounds b = bounds_of_point(positions + 3 * (size_t)(order ? order[0] : 0));
     for (uint64_t slot = 0; slot < count; slot++) {
-        if (slot + FC_DRAW_ORDER_PREFETCH < count)
+        if (order && slot + FC_DRAW_ORDER_PREFETCH < count)
             __builtin_prefetch(positions + 3 * (size_t)order[slot + FC_DRAW_ORDER_PREFETCH]);
-        const float *from = positions + 3 * (size_t)order[slot];
+        const float *from = positions + 3 * (size_t)(order ? order[slot] : slot);
         float p[3] = {from[0], from[1], from[2]};
         memcpy(to + 3 * slot, p, sizeof p);
         include_point(&b, p);
@@ -124,8 +115,7 @@ void fc_particle_buffer_fill(fc_particle_buffer *pb, const fc_frame *frame, cons
 {
     bounds b = {{0.0f, 0.0f, 0.0f}, {0.0f, 0.0f, 0.0f}};
     if (frame->count > 0)
-        b = order ? copy_in_draw_order(pb->mapped, frame->positions, order, frame->count)
-                  : copy_in_frame_order(pb->mapped, frame->positions, frame->count);
+        b = copy_positions(pb->mapped, frame->positions, order, frame->count);
     memcpy(pb->lo, b.lo, sizeof b.lo);
     memcpy(pb->hi, b.hi, sizeof b.hi);
     pb->count = frame->count;
@@ -144,7 +134,6 @@ void fc_particle_buffer_bind(const fc_particle_buffer *pb, bool per_instance)
     glVertexArrayBindingDivisor(pb->vertex_array, 0, per_instance ? 1 : 0);
     glBindVertexArray(pb->vertex_array);
 }
-
 
 void fc_particle_buffer_tally(const fc_particle_buffer *pb, fc_gpu_memory *m)
 {
