@@ -99,7 +99,8 @@ void fc_client_server_info(const fc_client *client, fc_server_info *out);
 /* Sends a particle frame; it replaces the previous one on the server. The server
  * answers only when it rejects the frame (non-finite values, too many particles,
  * more memory than the server lets one connection hold): that ERROR is reported
- * by the next fc_client_render. The frame is not retained.
+ * by the next fc_client_render. The frame is not retained: its arrays go to the
+ * socket from where the caller keeps them, without a copy, before this returns.
  * Errors: FC_ERR_TOO_LARGE (without sending) when the encoded frame exceeds the
  * server's message limit, FC_ERR_USAGE for an empty or NULL frame, plus the
  * connection errors. */
