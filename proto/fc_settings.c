@@ -18,6 +18,7 @@
 #define MAX_THICKNESS_BLUR 32u
 #define MAX_NOISE 10.0f
 #define MAX_FOAM 10.0f
+#define MAX_EXPOSURE 16.0f
 
 uint32_t fc_smoothing_default_iterations(fc_smoothing method)
 {
@@ -42,9 +43,9 @@ void fc_settings_default(fc_settings *s)
         .filter_radius = 0,
         .smooth_scale = 1.0f,
         .fluid_color = {0.05f, 0.30f, 0.45f},
-        .absorption = {2.5f, 0.9f, 0.45f},
+        .absorption = {0.12f, 0.045f, 0.022f},
         .ior = 1.33f,
-        .refraction = 40.0f,
+        .refraction = 1.0f,
         .specular = 0.6f,
         .shininess = 60.0f,
         .thickness_scale = 1.0f,
@@ -54,6 +55,9 @@ void fc_settings_default(fc_settings *s)
         .foam_tau = 0.5f,
         .foam_decay = 0.85f,
         .density_threshold = 0.0f,
+        .kernel = FC_KERNEL_SPHERE,
+        .shadow = 1,
+        .exposure = 0.0f,
     };
 }
 
@@ -82,6 +86,8 @@ static fc_code out_of_range(fc_error *err, const char *name, float v, float lo, 
 
 static fc_code validate_shape(const fc_settings *s, fc_error *err)
 {
+    if ((unsigned)s->kernel > FC_KERNEL_ANISOTROPIC)
+        return fc_error_set(err, FC_ERR_INVALID_VALUE, "unknown kernel %u", (unsigned)s->kernel);
     if (!in_range(s->radius, 0.0f, MAX_RADIUS))
         return out_of_range(err, "radius", s->radius, 0.0f, MAX_RADIUS);
     if (!is_known_smoothing(s->smoothing))
@@ -121,6 +127,10 @@ static fc_code validate_shading(const fc_settings *s, fc_error *err)
         return out_of_range(err, "specular", s->specular, 0.0f, MAX_SPECULAR);
     if (!in_range(s->shininess, MIN_SHININESS, MAX_SHININESS))
         return out_of_range(err, "shininess", s->shininess, MIN_SHININESS, MAX_SHININESS);
+    if (s->shadow > 1)
+        return fc_error_set(err, FC_ERR_INVALID_VALUE, "shadow %u is not 0 (off) or 1 (on)", s->shadow);
+    if (!in_range(s->exposure, -MAX_EXPOSURE, MAX_EXPOSURE))
+        return out_of_range(err, "exposure", s->exposure, -MAX_EXPOSURE, MAX_EXPOSURE);
     return FC_OK;
 }
 

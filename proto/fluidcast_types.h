@@ -88,6 +88,13 @@ typedef enum fc_smoothing {
     FC_SMOOTHING_NARROW = 4      /* narrow-range filter (Truong & Yuksel 2018) */
 } fc_smoothing;
 
+/* The shape each particle is splatted as. */
+typedef enum fc_kernel {
+    FC_KERNEL_SPHERE = 0,        /* a sphere of the settings' radius */
+    FC_KERNEL_ANISOTROPIC = 1    /* an ellipsoid stretched along its neighbours (Yu & Turk 2013): flat on
+                                    sheets and surfaces, long on jets, a sphere where it has few neighbours */
+} fc_kernel;
+
 /* Every parameter a user may tune. fc_settings_default() gives convincing water;
  * zero is "off" for the optional effects. */
 typedef struct fc_settings {
@@ -98,9 +105,11 @@ typedef struct fc_settings {
                                   projected particle size */
     float smooth_scale;        /* resolution of depth smoothing: 1, 0.5 or 0.25 */
     float fluid_color[3];      /* linear RGB of the fluid seen through a thick layer */
-    float absorption[3];       /* Beer-Lambert absorption per unit of thickness, per channel */
+    float absorption[3];       /* Beer-Lambert absorption per particle radius of thickness, per channel: the
+                                  same scene in millimetres and in metres looks the same */
     float ior;                 /* index of refraction (Fresnel F0 = ((ior-1)/(ior+1))^2) */
-    float refraction;          /* gamma: background offset beta = gamma * thickness (pixels per world unit) */
+    float refraction;          /* gamma: background offset beta = gamma * thickness (pixels per particle
+                                  radius of thickness) */
     float specular;            /* Phong specular intensity, >= 0 */
     float shininess;           /* Phong exponent, >= 1 */
     float thickness_scale;     /* resolution of the thickness pass: 1, 0.5 or 0.25 */
@@ -110,6 +119,9 @@ typedef struct fc_settings {
     float foam_tau;            /* velocity change (world units per frame) that raises a particle's noise */
     float foam_decay;          /* per-frame factor in [0,1) by which a raised amplitude decays */
     float density_threshold;   /* particles with density below this are spray, not surface; 0 = off */
+    fc_kernel kernel;          /* particle shape: spheres or anisotropic ellipsoids */
+    uint32_t shadow;           /* 1: the fluid casts a soft shadow on the built-in floor, 0: none */
+    float exposure;            /* stops of exposure before the filmic tone map (0 = as lit) */
 } fc_settings;
 
 /* ---- Image request and reply -------------------------------------------*/

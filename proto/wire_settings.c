@@ -28,6 +28,9 @@ typedef enum setting_key {
     KEY_FOAM_TAU = 16,
     KEY_FOAM_DECAY = 17,
     KEY_DENSITY_THRESHOLD = 18,
+    KEY_KERNEL = 19,
+    KEY_SHADOW = 20,
+    KEY_EXPOSURE = 21,
     KEY_END
 } setting_key;
 
@@ -39,7 +42,7 @@ typedef enum setting_key {
 typedef enum value_kind {
     VALUE_F32 = 1,      /* `words` floats */
     VALUE_U32,          /* one unsigned integer */
-    VALUE_SMOOTHING     /* one u32 that must name an fc_smoothing */
+    VALUE_ENUM          /* one u32 that must name a value of the field's enum: 0..enum_max */
 } value_kind;
 
 typedef struct key_spec {
@@ -47,13 +50,18 @@ typedef struct key_spec {
     uint16_t words;     /* 4-byte words of the value */
     value_kind kind;
     size_t offset;      /* of the field in fc_settings */
+    uint32_t enum_max;  /* VALUE_ENUM: the largest value */
 } key_spec;
 
-#define FIELD(key, field, words, kind) [key] = {#field, words, kind, offsetof(fc_settings, field)}
+_Static_assert(sizeof(fc_smoothing) == sizeof(int) && sizeof(fc_kernel) == sizeof(int),
+               "VALUE_ENUM fields are accessed as int");
+
+#define FIELD(key, field, words, kind) [key] = {#field, words, kind, offsetof(fc_settings, field), 0}
+#define ENUM_FIELD(key, field, max) [key] = {#field, 1, VALUE_ENUM, offsetof(fc_settings, field), max}
 
 static const key_spec settings_keys[KEY_END] = {
     FIELD(KEY_RADIUS, radius, 1, VALUE_F32),
-    FIELD(KEY_SMOOTHING, smoothing, 1, VALUE_SMOOTHING),
+    ENUM_FIELD(KEY_SMOOTHING, smoothing, FC_SMOOTHING_NARROW),
     FIELD(KEY_ITERATIONS, iterations, 1, VALUE_U32),
     FIELD(KEY_FLUID_COLOR, fluid_color, 3, VALUE_F32),
     FIELD(KEY_ABSORPTION, absorption, 3, VALUE_F32),
@@ -70,6 +78,9 @@ static const key_spec settings_keys[KEY_END] = {
     FIELD(KEY_FOAM_TAU, foam_tau, 1, VALUE_F32),
     FIELD(KEY_FOAM_DECAY, foam_decay, 1, VALUE_F32),
     FIELD(KEY_DENSITY_THRESHOLD, density_threshold, 1, VALUE_F32),
+    ENUM_FIELD(KEY_KERNEL, kernel, FC_KERNEL_ANISOTROPIC),
+    FIELD(KEY_SHADOW, shadow, 1, VALUE_U32),
+    FIELD(KEY_EXPOSURE, exposure, 1, VALUE_F32),
 };
 
 /* The field a key names, for reading (writer) and for filling in (reader). */
@@ -91,7 +102,8 @@ static void put_entry(fc_buf *out, setting_key key, const fc_settings *m)
     switch (spec->kind) {
     case VALUE_F32: wire_put_f32_array(out, field_in(m, spec), spec->words); break;
     case VALUE_U32: wire_put_u32(out, *(const uint32_t *)field_in(m, spec)); break;
-    case VALUE_SMOOTHING: wire_put_u32(out, (uint32_t)m->smoothing); break;
+    /* Enums are stored as the compiler's int-sized enum type, written as u32. */
+    case VALUE_ENUM: wire_put_u32(out, (uint32_t)*(const int *)field_in(m, spec)); break;
     }
 }
 
@@ -114,13 +126,13 @@ static void read_value(wire_reader *r, setting_key key, fc_settings *s)
     switch (spec->kind) {
     case VALUE_F32: wire_get_f32_array(r, field_at(s, spec), spec->words, spec->name); break;
     case VALUE_U32: *(uint32_t *)field_at(s, spec) = wire_get_u32(r, spec->name); break;
-    case VALUE_SMOOTHING: {
-        uint32_t smoothing = wire_get_u32(r, spec->name);
+    case VALUE_ENUM: {
+        uint32_t value = wire_get_u32(r, spec->name);
         /* Checked here, before the value becomes an enum it may not fit. */
-        if (smoothing > FC_SMOOTHING_NARROW)
-            wire_fail(r, FC_ERR_INVALID_VALUE, "unknown smoothing %u", smoothing);
+        if (r->code == FC_OK && value > spec->enum_max)
+            wire_fail(r, FC_ERR_INVALID_VALUE, "unknown %s %u", spec->name, value);
         else
-            s->smoothing = (fc_smoothing)smoothing;
+            *(int *)field_at(s, spec) = (int)value;
         break;
     }
     }

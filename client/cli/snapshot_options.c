@@ -126,6 +126,27 @@ static fc_code set_smoothing(fc_snapshot_options *o, const option_spec *spec, co
     return code;
 }
 
+static fc_code set_kernel(fc_snapshot_options *o, const option_spec *spec, const char *value, fc_error *err)
+{
+    static const char *const names[] = {"sphere", "anisotropic", NULL};
+    static const fc_kernel values[] = {FC_KERNEL_SPHERE, FC_KERNEL_ANISOTROPIC};
+    int index;
+    fc_code code = fc_cli_parse_choice(spec->name, value, names, &index, err);
+    if (code == FC_OK)
+        o->settings.kernel = values[index];
+    return code;
+}
+
+static fc_code set_shadow(fc_snapshot_options *o, const option_spec *spec, const char *value, fc_error *err)
+{
+    static const char *const names[] = {"off", "on", NULL};
+    int index;
+    fc_code code = fc_cli_parse_choice(spec->name, value, names, &index, err);
+    if (code == FC_OK)
+        o->settings.shadow = (uint32_t)index;
+    return code;
+}
+
 static fc_code set_iterations(fc_snapshot_options *o, const option_spec *spec, const char *value, fc_error *err)
 {
     o->has_iterations = true;
@@ -182,6 +203,7 @@ static const option_spec options[] = {
     {"--radius", set_radius, 0},
     {"--smoothing", set_smoothing, 0},
     {"--iterations", set_iterations, 0},
+    {"--kernel", set_kernel, 0},
     SETTING("--filter-radius", set_uint_setting, filter_radius),
     SETTING("--smooth-scale", set_float_setting, smooth_scale),
     SETTING("--color", set_rgb_setting, fluid_color),
@@ -192,6 +214,8 @@ static const option_spec options[] = {
     SETTING("--shininess", set_float_setting, shininess),
     SETTING("--thickness-scale", set_float_setting, thickness_scale),
     SETTING("--thickness-blur", set_uint_setting, thickness_blur),
+    {"--shadow", set_shadow, 0},
+    SETTING("--exposure", set_float_setting, exposure),
     SETTING("--noise", set_float_setting, noise),
     SETTING("--foam", set_float_setting, foam),
     SETTING("--foam-tau", set_float_setting, foam_tau),
@@ -331,6 +355,10 @@ static void print_surface_help(FILE *to, const fc_settings *d)
             "                          the radius is estimated from the particle spacing\n"
             "                          (0.9 x the median nearest-neighbour distance) and\n"
             "                          the radius used is printed\n"
+            "  --kernel sphere|anisotropic\n"
+            "                          particle shape: spheres, or ellipsoids stretched\n"
+            "                          along each particle's neighbours (flat sheets,\n"
+            "                          long jets; default %s)\n"
             "  --smoothing MODE        depth smoothing: narrow (narrow-range filter,\n"
             "                          default), curvature (curvature flow), bilateral,\n"
             "                          binomial or none\n"
@@ -350,6 +378,7 @@ static void print_surface_help(FILE *to, const fc_settings *d)
             "  --density-threshold D   particles with density below D are spray; 0 = off\n"
             "                          (default %g)\n"
             "\n",
+            d->kernel == FC_KERNEL_ANISOTROPIC ? "anisotropic" : "sphere",
             fc_smoothing_default_iterations(FC_SMOOTHING_NARROW),
             fc_smoothing_default_iterations(FC_SMOOTHING_CURVATURE),
             fc_smoothing_default_iterations(FC_SMOOTHING_BILATERAL),
@@ -363,17 +392,21 @@ static void print_shading_help(FILE *to, const fc_settings *d)
             "shading:\n"
             "  --color R,G,B           linear colour of a thick layer, each 0..1\n"
             "                          (default %g,%g,%g)\n"
-            "  --absorption R,G,B      Beer-Lambert absorption per unit thickness, >= 0\n"
-            "                          (default %g,%g,%g)\n"
+            "  --absorption R,G,B      Beer-Lambert absorption per particle radius of\n"
+            "                          thickness, >= 0 (default %g,%g,%g)\n"
             "  --ior N                 index of refraction, 1..3 (default %g)\n"
-            "  --refraction G          background offset in pixels per unit thickness,\n"
-            "                          0..1000 (default %g)\n"
+            "  --refraction G          background offset in pixels per particle radius\n"
+            "                          of thickness, 0..1000 (default %g)\n"
             "  --specular S            specular intensity, 0..10 (default %g)\n"
             "  --shininess E           specular exponent, 1..10000 (default %g)\n"
             "  --thickness-scale S     resolution of the thickness pass: 1, 0.5 or 0.25\n"
             "                          (default %g)\n"
             "  --thickness-blur PX     blur radius of the thickness, 0..32 pixels\n"
             "                          (default %u)\n"
+            "  --shadow on|off         the fluid's soft shadow on the built-in floor\n"
+            "                          (default %s)\n"
+            "  --exposure EV           stops of exposure before the filmic tone map,\n"
+            "                          -16..16 (default %g)\n"
             "  --background IMAGE      PNG, JPEG or EXR image behind the fluid (and seen\n"
             "                          through it) instead of the built-in floor and sky\n"
             "  --cubemap PX,NX,PY,NY,PZ,NZ\n"
@@ -386,7 +419,7 @@ static void print_shading_help(FILE *to, const fc_settings *d)
             (double)d->fluid_color[0], (double)d->fluid_color[1], (double)d->fluid_color[2],
             (double)d->absorption[0], (double)d->absorption[1], (double)d->absorption[2], (double)d->ior,
             (double)d->refraction, (double)d->specular, (double)d->shininess, (double)d->thickness_scale,
-            (unsigned)d->thickness_blur);
+            (unsigned)d->thickness_blur, d->shadow ? "on" : "off", (double)d->exposure);
 }
 
 void fc_snapshot_print_help(FILE *to)

@@ -69,12 +69,16 @@ static float fresnel_f0(float ior)
     return r * r;
 }
 
+/* Absorption and refraction are given per particle radius of thickness (so a
+ * scene looks the same in any unit) and applied per world unit. */
 static void apply_material(const fc_settings *settings)
 {
+    const float per_radius = 1.0f / settings->radius;
     glUniform3fv(LOC_FLUID_COLOR, 1, settings->fluid_color);
-    glUniform3fv(LOC_ABSORPTION, 1, settings->absorption);
+    glUniform3f(LOC_ABSORPTION, settings->absorption[0] * per_radius, settings->absorption[1] * per_radius,
+                settings->absorption[2] * per_radius);
     glUniform1f(LOC_FRESNEL_F0, fresnel_f0(settings->ior));
-    glUniform1f(LOC_REFRACTION, settings->refraction);
+    glUniform1f(LOC_REFRACTION, settings->refraction * per_radius);
     glUniform1f(LOC_SPECULAR, settings->specular);
     glUniform1f(LOC_SHININESS, settings->shininess);
     /* No noise, no foam; the range must stay non-empty even then (smoothstep). */

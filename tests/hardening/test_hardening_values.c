@@ -115,7 +115,8 @@ static void run_frame_rows(hx_env *env)
 
 enum { KEY_RADIUS = 1, KEY_SMOOTHING, KEY_ITERATIONS, KEY_COLOR, KEY_ABSORPTION, KEY_IOR, KEY_FILTER_RADIUS,
        KEY_SMOOTH_SCALE, KEY_REFRACTION, KEY_SPECULAR, KEY_SHININESS, KEY_THICKNESS_SCALE, KEY_THICKNESS_BLUR,
-       KEY_NOISE, KEY_FOAM, KEY_FOAM_TAU, KEY_FOAM_DECAY, KEY_DENSITY_THRESHOLD };
+       KEY_NOISE, KEY_FOAM, KEY_FOAM_TAU, KEY_FOAM_DECAY, KEY_DENSITY_THRESHOLD,
+       KEY_KERNEL, KEY_SHADOW, KEY_EXPOSURE };
 
 typedef struct settings_row {
     const char *name;
@@ -162,7 +163,12 @@ static const settings_row settings_rows[] = {
     {"density_threshold -1", KEY_DENSITY_THRESHOLD, 1, {0xbf800000u}, FC_ERR_INVALID_VALUE},
     {"density_threshold +Inf", KEY_DENSITY_THRESHOLD, 1, {PLUS_INF}, FC_ERR_INVALID_VALUE},
     {"unknown setting key 0", 0, 1, {0}, FC_ERR_INVALID_VALUE},
-    {"unknown setting key 19", 19, 1, {0}, FC_ERR_INVALID_VALUE},
+    {"kernel 2", KEY_KERNEL, 1, {2}, FC_ERR_INVALID_VALUE},
+    {"kernel 2^32-1", KEY_KERNEL, 1, {UINT32_MAX}, FC_ERR_INVALID_VALUE},
+    {"shadow 2", KEY_SHADOW, 1, {2}, FC_ERR_INVALID_VALUE},
+    {"exposure +Inf", KEY_EXPOSURE, 1, {PLUS_INF}, FC_ERR_INVALID_VALUE},
+    {"exposure NaN", KEY_EXPOSURE, 1, {QUIET_NAN}, FC_ERR_INVALID_VALUE},
+    {"unknown setting key 22", 22, 1, {0}, FC_ERR_INVALID_VALUE},
     {"unknown setting key 65535", 0xffff, 1, {0}, FC_ERR_INVALID_VALUE},
     {"ior with 2 words", KEY_IOR, 2, {0x3fa00000u, 0}, FC_ERR_MALFORMED},
     {"fluid_color with 1 word", KEY_COLOR, 1, {0}, FC_ERR_MALFORMED},

@@ -66,6 +66,7 @@ static void test_defaults(void)
     CHECK(s.thickness_scale == 1.0f && s.thickness_blur == 2);
     CHECK(s.noise == 0.0f && s.foam == 0.0f && s.foam_tau == 0.5f && s.foam_decay == 0.85f);
     CHECK(s.density_threshold == 0.0f);
+    CHECK(s.kernel == FC_KERNEL_SPHERE && s.shadow == 1 && s.exposure == 0.0f);
 }
 
 /* ---- every key, one at a time ---- */
@@ -95,6 +96,9 @@ static void expect_foam(fc_settings *s) { s->foam = 3.0f; }
 static void expect_foam_tau(fc_settings *s) { s->foam_tau = 0.02f; }
 static void expect_foam_decay(fc_settings *s) { s->foam_decay = 0.5f; }
 static void expect_density_threshold(fc_settings *s) { s->density_threshold = 600.0f; }
+static void expect_kernel(fc_settings *s) { s->kernel = FC_KERNEL_ANISOTROPIC; }
+static void expect_shadow(fc_settings *s) { s->shadow = 0; }
+static void expect_exposure(fc_settings *s) { s->exposure = -1.5f; }
 
 static const key_case key_cases[] = {
     {1, 1, {0x3E000000u}, expect_radius},                             /* 0.125f */
@@ -115,6 +119,9 @@ static const key_case key_cases[] = {
     {16, 1, {0x3CA3D70Au}, expect_foam_tau},                          /* 0.02f */
     {17, 1, {0x3F000000u}, expect_foam_decay},                        /* 0.5f */
     {18, 1, {0x44160000u}, expect_density_threshold},                 /* 600f */
+    {19, 1, {1}, expect_kernel},
+    {20, 1, {0}, expect_shadow},
+    {21, 1, {0xBFC00000u}, expect_exposure},                          /* -1.5f */
 };
 #define KEY_COUNT (sizeof key_cases / sizeof key_cases[0])
 
@@ -146,7 +153,7 @@ static void test_encoder_layout(void)
     fc_buf_init(&b);
     fc_error err;
     CHECK_CODE(fc_wire_write_settings(&b, 9, &s, &err), FC_OK);
-    const size_t payload_size = 4 + KEY_COUNT * 4 + 4 * 22;   /* 22 words: two colours of 3, sixteen of 1 */
+    const size_t payload_size = 4 + KEY_COUNT * 4 + 4 * 25;   /* 25 words: two colours of 3, nineteen of 1 */
     CHECK_MSG(b.len == FC_WIRE_HEADER_SIZE + payload_size, "%zu bytes", b.len);
     if (b.len != FC_WIRE_HEADER_SIZE + payload_size) {
         fc_buf_free(&b);
@@ -221,6 +228,11 @@ static const domain_case rejected[] = {
     {17, 0xBDCCCCCDu, "foam_decay"},         /* -0.1 */
     {18, 0xBF800000u, "density_threshold"},  /* -1 */
     {18, 0x7F800000u, "density_threshold"},  /* +inf */
+    {19, 2, "kernel"},
+    {20, 2, "shadow"},
+    {21, 0x41880000u, "exposure"},           /* 17 */
+    {21, 0xC1880000u, "exposure"},           /* -17 */
+    {21, 0x7FC00000u, "exposure"},           /* NaN */
 };
 
 /* The entry for case c: colours carry the value in their first word. */
@@ -289,6 +301,8 @@ static void test_domain_edges_accepted(void)
         {16, 0x00000001u}, {16, 0x7F7FFFFFu},                                            /* tiniest, largest */
         {17, 0},          {17, 0x3F7FFFFFu},                                             /* 0, just below 1 */
         {18, 0},          {18, 0x7F7FFFFFu},
+        {19, 0},          {19, 1},          {20, 0},          {20, 1},                   /* sphere, anisotropic, off, on */
+        {21, 0x41800000u}, {21, 0xC1800000u},                                            /* 16, -16 */
     };
     for (size_t i = 0; i < sizeof edges / sizeof edges[0]; i++) {
         fc_settings s;
@@ -302,12 +316,12 @@ static void test_domain_edges_accepted(void)
 static void test_unknown_key_after_the_table(void)
 {
     const uint32_t zero = 0;
-    payload p = one_entry(19, &zero, 1);
+    payload p = one_entry(22, &zero, 1);
     fc_settings s;
     fc_settings_default(&s);
     fc_error err;
     CHECK_CODE(read_payload(&p, &s, &err), FC_ERR_INVALID_VALUE);
-    CHECK_MSG(strstr(err.message, "19") != NULL, "\"%s\" does not name key 19", err.message);
+    CHECK_MSG(strstr(err.message, "22") != NULL, "\"%s\" does not name key 22", err.message);
     /* A scale is one word: two is a layout error, not a domain error. */
     const uint32_t two_words[2] = {f32_bits(1.0f), f32_bits(1.0f)};
     p = one_entry(8, two_words, 2);

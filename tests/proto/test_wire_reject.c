@@ -327,9 +327,9 @@ static void test_settings_rules(void)
     CHECK(s.iterations == 7);
     s = before;
 
-    const uint32_t unknown_key[] = {1, 19, 1, 0};
+    const uint32_t unknown_key[] = {1, 22, 1, 0};
     CHECK_CODE(read_settings_built("whhw", unknown_key, &s, &err), FC_ERR_INVALID_VALUE);
-    CHECK_MSG(strstr(err.message, "19") != NULL, "\"%s\" does not name key 19", err.message);
+    CHECK_MSG(strstr(err.message, "22") != NULL, "\"%s\" does not name key 22", err.message);
     const uint32_t key_zero[] = {1, 0, 1, 0};
     CHECK_CODE(read_settings_built("whhw", key_zero, &s, &err), FC_ERR_INVALID_VALUE);
     const uint32_t wrong_words[] = {1, 1, 2, f32_bits(1), f32_bits(1)};
