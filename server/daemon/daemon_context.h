@@ -7,9 +7,9 @@
 #include <stdint.h>
 
 #include "auth_token.h"
+#include "gpu/render_service.h"
 #include "log.h"
-#include "render_service.h"
-#include "session_registry.h"
+#include "sessions/session_registry.h"
 #include "wire.h"
 
 typedef struct fc_daemon_context {

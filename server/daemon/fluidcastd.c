@@ -13,12 +13,12 @@
 
 #include "auth_token.h"
 #include "daemon_context.h"
-#include "encoder_pool.h"
-#include "event_loop.h"
 #include "fc_error.h"
-#include "frame_pool.h"
-#include "listener.h"
+#include "gpu/encoder_pool.h"
+#include "net/event_loop.h"
+#include "net/listener.h"
 #include "options.h"
+#include "uploads/frame_pool.h"
 
 #define SERVER_VERSION "fluidcastd 0.1.0"
 

@@ -8,8 +8,8 @@
 #include <string.h>
 
 #include "fc_error.h"
-#include "frame_pool.h"
 #include "test_util.h"
+#include "uploads/frame_pool.h"
 
 enum { MIB = 1 << 20 };
 

@@ -1,0 +1,65 @@
+/* session_memory.c — see session_memory.h. */
+#include "clients/session_memory.h"
+
+#include "fc_error.h"
+#include "sessions/stream_session.h"
+
+uint64_t fc_memory_of_frame(const fc_frame *frame)
+{
+    /* Positions always; the optional arrays as present; one float of noise
+     * amplitude per particle, kept by the GL thread once it renders the frame. */
+    uint64_t per_particle = 3 * sizeof(float) + sizeof(float);
+    if (frame->density)
+        per_particle += sizeof(float);
+    if (frame->velocity)
+        per_particle += 3 * sizeof(float);
+    if (frame->ids)
+        per_particle += sizeof(uint32_t);
+    return frame->count * per_particle;
+}
+
+uint64_t fc_memory_of_scene_part(const fc_scene_part *part)
+{
+    uint64_t bytes = 0;
+    for (uint32_t i = 0; part && i < part->count; i++)
+        bytes += fc_image_size(&part->images[i]);
+    return bytes;
+}
+
+static uint64_t memory_of_shared(const fc_shared_frame *frame)
+{
+    return frame ? fc_memory_of_frame(&frame->frame) : 0;
+}
+
+static uint64_t memory_of_assembly(const fc_chunk_assembly *a)
+{
+    uint64_t bytes = 0;
+    for (int i = 0; i < FC_ASSEMBLY_MAX_FRAMES; i++)
+        for (uint32_t k = 0; a->frames[i].used && k < a->frames[i].count; k++)
+            bytes += fc_memory_of_frame(&a->frames[i].parts[k].frame);
+    return bytes;
+}
+
+uint64_t fc_session_memory_held(const fc_session *s)
+{
+    uint64_t bytes = memory_of_shared(s->frame) + fc_memory_of_scene_part(s->scene.background) +
+                     fc_memory_of_scene_part(s->scene.environment) + s->out->len;
+    if (s->role == FC_ROLE_PRODUCER)
+        bytes += memory_of_shared(s->stream->latest) + memory_of_assembly(&s->stream->chunks);
+    return bytes;
+}
+
+fc_code fc_session_memory_admit(const fc_session *s, uint64_t released, uint64_t added, const char *what,
+                                fc_error *err)
+{
+    uint64_t limit = s->ctx->max_session_memory;
+    uint64_t held = fc_session_memory_held(s);
+    uint64_t kept = held > released ? held - released : 0;
+    if (added <= limit && kept <= limit - added)
+        return FC_OK;
+    return fc_error_set(err, FC_ERR_LIMIT,
+                        "%s takes %llu bytes: this connection would hold %llu, beyond its limit of %llu bytes "
+                        "(max_session_memory)",
+                        what, (unsigned long long)added, (unsigned long long)(kept + added),
+                        (unsigned long long)limit);
+}

@@ -1,0 +1,55 @@
+/* viewer.h — the streaming side of a connection subscribed to a named session.
+ * A viewer has at most one image in flight (rendering, encoding, or waiting in
+ * the connection's output queue); while it has, newer frames simply replace
+ * the one it would get next (latest wins) and are counted as missed. So a
+ * slow viewer costs the GL thread one render per image it actually takes, and
+ * never slows the producer or the other viewers. */
+#ifndef FC_DAEMON_VIEWER_H
+#define FC_DAEMON_VIEWER_H
+
+#include <stdbool.h>
+#include <stdint.h>
+
+#include "gpu/render_job.h"
+#include "wire_session.h"
+
+struct fc_session;
+
+typedef struct fc_viewer {
+    uint32_t subscribe_id;         /* request id of the SUBSCRIBE: stream images and the end echo it */
+    fc_render_request request;     /* format of the stream images */
+    uint32_t auto_width;           /* size of the automatic camera (until a CAMERA arrives) */
+    uint32_t auto_height;
+    uint64_t last_sequence;        /* session sequence number of the last frame sent */
+    bool busy;                     /* an image is being made or still waits in the output queue */
+    bool queued;                   /* ...and it has reached the output queue */
+    size_t queued_bytes;           /* the size of that image's message */
+    bool view_changed;             /* CAMERA or SETTINGS since the last image */
+    double view_changed_ms;
+    double refresh_due_ms;         /* when a lossless refresh of the shown frame is due; 0 = none */
+    bool ending;                   /* SESSION_END goes out once nothing more is due */
+    bool deliver_last;             /* ...after the newest frame (the session ended), not when the viewer left */
+    uint32_t end_request_id;
+} fc_viewer;
+
+/* Subscribes the session's connection (already added to s->stream) with
+ * request id `subscribe_id`; a frame the session has already is sent at once. */
+void fc_viewer_start(struct fc_session *s, uint32_t subscribe_id, const fc_subscribe *sub, uint32_t auto_width,
+                     uint32_t auto_height);
+/* CAMERA or SETTINGS changed: the current frame is rendered again for this viewer. */
+void fc_viewer_view_changed(struct fc_session *s, double now_ms);
+/* The client sent SESSION_END: no more images; SESSION_END answers request_id
+ * once the image in flight (if any) has gone out. */
+void fc_viewer_leave(struct fc_session *s, uint32_t request_id);
+/* A stream job of this viewer finished: queue its image (or its ERROR). */
+void fc_viewer_job_done(struct fc_session *s, const fc_render_job *job);
+/* The connection's output queue is empty. */
+void fc_viewer_drained(struct fc_session *s);
+/* How much of its output the kernel may still hold before the viewer's next
+ * image starts: about one image (so a link stays busy), SIZE_MAX when no image waits. */
+size_t fc_viewer_backlog_allowance(const struct fc_session *s);
+/* When the viewer next needs fc_viewer_tick without I/O; negative for never. */
+double fc_viewer_deadline_ms(const struct fc_session *s);
+void fc_viewer_tick(struct fc_session *s, double now_ms);
+
+#endif

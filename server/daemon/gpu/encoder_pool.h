@@ -1,0 +1,22 @@
+/* encoder_pool.h — the threads that encode rendered images (OpenImageIO) and
+ * build the reply messages, so encoding one frame overlaps rendering the next. */
+#ifndef FC_DAEMON_ENCODER_POOL_H
+#define FC_DAEMON_ENCODER_POOL_H
+
+#include "gpu/job_queue.h"
+
+typedef struct fc_encoder_pool fc_encoder_pool;
+
+/* Starts `threads` encoders; each finished job (message built, or error set)
+ * goes to `done`, which must outlive the pool. */
+fc_code fc_encoder_pool_create(unsigned threads, fc_job_queue *done, fc_encoder_pool **out, fc_error *err);
+/* Stops the threads after the jobs already submitted, and frees the pool. */
+void fc_encoder_pool_destroy(fc_encoder_pool *pool);
+
+/* Hands over a rendered job (job->image filled). */
+void fc_encoder_pool_submit(fc_encoder_pool *pool, fc_render_job *job);
+
+/* min(4, online cores), at least 1: the default thread count. */
+unsigned fc_encoder_pool_default_threads(void);
+
+#endif

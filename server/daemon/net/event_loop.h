@@ -1,0 +1,28 @@
+/* event_loop.h — the daemon's single-threaded poll() loop over the stop
+ * signal, the render service's results, the listening sockets and every
+ * client connection, plus the timers of sessions and multi-rank frames. */
+#ifndef FC_DAEMON_EVENT_LOOP_H
+#define FC_DAEMON_EVENT_LOOP_H
+
+#include <stddef.h>
+
+#include "daemon_context.h"
+#include "net/listener.h"
+
+typedef struct fc_event_loop fc_event_loop;
+
+/* listeners: `count` open listening sockets (TCP and/or Unix); stop_fd becomes
+ * readable when the daemon must stop (a signalfd). Neither is owned by the
+ * loop; the listener array must outlive it. */
+fc_code fc_event_loop_create(const fc_listener *listeners, size_t count, int stop_fd, fc_daemon_context *ctx,
+                             fc_event_loop **out, fc_error *err);
+
+/* Serves clients until stop_fd is readable (FC_OK) or poll() fails (FC_ERR_IO).
+ * On the stop signal it accepts and reads nothing more, but first answers the
+ * RENDERs already in flight and sends queued replies (for at most 5 s). */
+fc_code fc_event_loop_run(fc_event_loop *loop, fc_error *err);
+
+/* Closes every client connection and frees the loop. */
+void fc_event_loop_destroy(fc_event_loop *loop);
+
+#endif
