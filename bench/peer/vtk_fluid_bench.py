@@ -17,17 +17,15 @@ waits for the GPU like glFinish and matches fluidcast-bench, whose frames
 also end with the readback of the image.
 """
 import argparse
+import os
 import statistics
 import sys
 import time
 
-import numpy as np
-from vtkmodules.util.numpy_support import numpy_to_vtk
-from vtkmodules.vtkCommonCore import vtkPoints, vtkUnsignedCharArray
-from vtkmodules.vtkCommonDataModel import vtkPolyData
-from vtkmodules.vtkIOImage import vtkPNGWriter
-from vtkmodules.vtkRenderingCore import vtkRenderer, vtkRenderWindow, vtkVolume, vtkWindowToImageFilter
-from vtkmodules.vtkRenderingOpenGL2 import vtkOpenGLFluidMapper
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import vtk_scene  # noqa: E402  (particles, the fluid mapper, window, PNG: shared with vtk_fluid_image.py)
+from vtkmodules.vtkCommonCore import vtkUnsignedCharArray  # noqa: E402
+from vtkmodules.vtkRenderingCore import vtkRenderer  # noqa: E402
 
 # The drop scene's camera (bench/scene.c, bench_scene_drop_camera).
 EYE = (2.0, -2.9, 1.9)
@@ -42,7 +40,7 @@ VTK_DEFAULT_FILTER_ITERATIONS = 3
 
 def parse_args():
     p = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
-    p.add_argument("--scene", required=True, help="particles as .f32 (little-endian float32 xyz)")
+    p.add_argument("--scene", required=True, help="particles as .f32 (little-endian float32 xyz) or binary .ply")
     p.add_argument("--radius", required=True, type=float, help="sphere radius, world units")
     p.add_argument("--size", default="1280x720", help="WIDTHxHEIGHT")
     p.add_argument("--frames", default=5, type=int, help="timed frames after one warm-up frame")
@@ -57,50 +55,13 @@ def parse_args():
     return args
 
 
-def load_points(path):
-    xyz = np.fromfile(path, dtype="<f4")
-    if xyz.size == 0 or xyz.size % 3:
-        sys.exit(f"vtk_fluid_bench: {path}: not a .f32 particle file ({xyz.size} floats)")
-    points = vtkPoints()
-    points.SetData(numpy_to_vtk(xyz.reshape(-1, 3), deep=True))
-    poly = vtkPolyData()
-    poly.SetPoints(points)
-    return poly
-
-
-def make_mapper(poly, radius):
-    mapper = vtkOpenGLFluidMapper()
-    mapper.SetInputData(poly)
-    mapper.SetParticleRadius(radius)
-    mapper.SetSurfaceFilterMethod(vtkOpenGLFluidMapper.NarrowRange)
-    mapper.SetDisplayMode(vtkOpenGLFluidMapper.TransparentFluidVolume)
-    # VTK's own "blue water" example values
-    mapper.SetAttenuationColor(0.8, 0.2, 0.15)
-    mapper.SetAttenuationScale(1.0)
-    mapper.SetRefractiveIndex(1.33)
-    return mapper
-
-
-def make_window(mapper, width, height):
+def make_window(poly, radius, width, height):
     renderer = vtkRenderer()
     renderer.SetBackground(0.55, 0.62, 0.70)
-    # VTK's fluid test removes the frustum culler too: it culls the volume otherwise.
-    renderer.RemoveCuller(renderer.GetCullers().GetLastItem())
-    volume = vtkVolume()
-    volume.SetMapper(mapper)
-    renderer.AddVolume(volume)
-    camera = renderer.GetActiveCamera()
-    camera.SetPosition(*EYE)
-    camera.SetFocalPoint(*TARGET)
-    camera.SetViewUp(*UP)
-    camera.SetViewAngle(FOV_Y_DEG)
-    renderer.ResetCameraClippingRange()
-    window = vtkRenderWindow()
-    window.SetOffScreenRendering(1)
-    window.SetMultiSamples(0)
-    window.SetSize(width, height)
-    window.AddRenderer(renderer)
-    return window, renderer
+    vtk_scene.remove_frustum_culler(renderer)
+    renderer.AddVolume(vtk_scene.fluid_volume(vtk_scene.make_fluid_mapper(poly, radius)))
+    vtk_scene.set_camera(renderer, EYE, TARGET, UP, FOV_Y_DEG)
+    return vtk_scene.make_window(renderer, width, height), renderer
 
 
 def render_frame_ms(window, renderer, pixels):
@@ -113,34 +74,16 @@ def render_frame_ms(window, renderer, pixels):
     return (time.perf_counter() - t0) * 1e3
 
 
-def gl_renderer(window):
-    for line in window.ReportCapabilities().splitlines():
-        if line.startswith("OpenGL renderer string:"):
-            return line.split(":", 1)[1].strip()
-    return "unknown"
-
-
-def save_png(window, path):
-    grab = vtkWindowToImageFilter()
-    grab.SetInput(window)
-    grab.ReadFrontBufferOff()
-    grab.Update()
-    writer = vtkPNGWriter()
-    writer.SetFileName(path)
-    writer.SetInputConnection(grab.GetOutputPort())
-    writer.Write()
-
-
 def main():
     args = parse_args()
-    poly = load_points(args.scene)
-    window, renderer = make_window(make_mapper(poly, args.radius), args.width, args.height)
+    poly = vtk_scene.points_polydata(vtk_scene.load_particles_or_exit(args.scene, "vtk_fluid_bench"))
+    window, renderer = make_window(poly, args.radius, args.width, args.height)
     pixels = vtkUnsignedCharArray()
     first_ms = render_frame_ms(window, renderer, pixels)  # shader compilation, buffers
-    print(f"GL_RENDERER: {gl_renderer(window)}")
+    print(f"GL_RENDERER: {vtk_scene.gl_renderer(window)}")
     wall = statistics.median(render_frame_ms(window, renderer, pixels) for _ in range(args.frames))
     if args.image:
-        save_png(window, args.image)
+        vtk_scene.write_png(args.image, vtk_scene.window_rgb(window))
     print(f"| {poly.GetNumberOfPoints()} | {args.width}x{args.height} | vtk narrow-range |"
           f" {VTK_DEFAULT_FILTER_ITERATIONS} | {first_ms:.2f} | {wall:.2f} | {1000.0 / wall:.2f} |")
     return 0
