@@ -76,6 +76,29 @@ fc_code fc_cli_parse_vec3(const char *option, const char *text, float out[3], fc
     return FC_OK;
 }
 
+/* "x", "+x", "-x", ... as a unit vector; false for anything else. */
+static bool scan_signed_axis(const char *text, float out[3])
+{
+    float sign = 1.0f;
+    if (*text == '+' || *text == '-')
+        sign = *text++ == '-' ? -1.0f : 1.0f;
+    if (text[0] < 'x' || text[0] > 'z' || text[1] != '\0')
+        return false;
+    for (int k = 0; k < 3; k++)
+        out[k] = k == text[0] - 'x' ? sign : 0.0f;
+    return true;
+}
+
+fc_code fc_cli_parse_up(const char *option, const char *text, float out[3], fc_error *err)
+{
+    if (scan_signed_axis(text, out))
+        return FC_OK;
+    fc_error why;
+    if (fc_cli_parse_vec3(option, text, out, &why) != FC_OK)
+        return fc_error_set(err, FC_ERR_USAGE, "%s needs x, y, z, -x, -y, -z or X,Y,Z, not \"%s\"", option, text);
+    return FC_OK;
+}
+
 fc_code fc_cli_parse_size(const char *option, const char *text, uint32_t *width, uint32_t *height,
                           fc_error *err)
 {

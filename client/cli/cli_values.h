@@ -17,6 +17,10 @@ fc_code fc_cli_parse_uint(const char *option, const char *text, uint32_t min, ui
 /* "X,Y,Z": three finite floats. */
 fc_code fc_cli_parse_vec3(const char *option, const char *text, float out[3], fc_error *err);
 
+/* An up direction: "x", "y", "z", "-x", "-y", "-z" (also "+x" ...) for the
+ * unit vectors, or "X,Y,Z". */
+fc_code fc_cli_parse_up(const char *option, const char *text, float out[3], fc_error *err);
+
 /* "WxH": two integers >= 1. */
 fc_code fc_cli_parse_size(const char *option, const char *text, uint32_t *width, uint32_t *height,
                           fc_error *err);

@@ -14,6 +14,7 @@
 #include "snapshot_camera.h"
 #include "snapshot_options.h"
 #include "snapshot_scene.h"
+#include "up_choice.h"
 
 /* The options' settings (checked while parsing), with the radius resolved so it can be reported. */
 static void choose_settings(const fc_snapshot_options *o, const fc_frame *frame, fc_settings *s)
@@ -74,7 +75,9 @@ static int render_remotely(const fc_snapshot_options *o, const fc_snapshot_scene
     return status;
 }
 
-static int write_image(const fc_snapshot_options *o, const fc_image_result *image, const fc_settings *settings)
+/* The up direction is reported like the radius: only when the CLI chose it. */
+static int write_image(const fc_snapshot_options *o, const fc_image_result *image, const fc_settings *settings,
+                       const fc_up_choice *up)
 {
     fc_error err;
     if (fc_output_write(o->output, image->data, image->size, &err) != FC_OK)
@@ -83,6 +86,8 @@ static int write_image(const fc_snapshot_options *o, const fc_image_result *imag
            (unsigned)image->height, fc_output_format_name(image->format), image->size,
            (double)image->stage_ms[FC_STAGE_TOTAL], (double)settings->radius,
            o->settings.radius > 0.0f ? "" : " (estimated from particle spacing)");
+    if (!up->given)
+        printf("up %s\n", up->note);
     return FC_EXIT_OK;
 }
 
@@ -94,16 +99,19 @@ static int snapshot(const fc_snapshot_options *o, fc_frame *frame)
         status = fc_cli_load_particles(o->input, frame);
     if (status != FC_EXIT_OK)
         return status;
+    fc_up_choice up;
     fc_camera cam;
     fc_error err;
-    if (fc_snapshot_camera(o, frame, &cam, &err) != FC_OK)
+    if (fc_up_choose(o->has_up, o->up, frame, &up, &err) != FC_OK)
+        return fc_cli_fail(FC_EXIT_INPUT, "%s", err.message);
+    if (fc_snapshot_camera(o, frame, &up, &cam, &err) != FC_OK)
         return fc_cli_fail(FC_EXIT_USAGE, "%s", err.message);
     fc_settings settings;
     choose_settings(o, frame, &settings);
     fc_image_result image = { 0 };
     status = render_remotely(o, &scene, frame, &cam, &settings, &image);
     if (status == FC_EXIT_OK)
-        status = write_image(o, &image, &settings);
+        status = write_image(o, &image, &settings, &up);
     fc_image_result_free(&image);
     return status;
 }

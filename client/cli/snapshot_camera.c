@@ -6,6 +6,7 @@
 
 #include "fc_error.h"
 #include "fc_frame.h"
+#include "upright_framing.h"
 
 #define DEG_TO_RAD 0.017453292519943295
 
@@ -29,7 +30,7 @@ static void refit_to_fov(fc_camera *cam, float fov_deg)
     cam->fov_y_deg = fov_deg;
 }
 
-fc_code fc_snapshot_camera(const fc_snapshot_options *o, const fc_frame *frame, fc_camera *cam,
+fc_code fc_snapshot_camera(const fc_snapshot_options *o, const fc_frame *frame, fc_up_choice *up, fc_camera *cam,
                            fc_error *err)
 {
     if (o->has_eye) {
@@ -38,13 +39,13 @@ fc_code fc_snapshot_camera(const fc_snapshot_options *o, const fc_frame *frame, 
         cam->fov_y_deg = o->fov_deg;
         cam->width = o->width;
         cam->height = o->height;
+        fc_up_choice_fit_view(up, o->eye, o->target);
+        memcpy(cam->up, up->up, sizeof cam->up);
     } else {
-        fc_camera_frame_bounds(frame, o->width, o->height, cam);
+        fc_frame_upright(frame, o->width, o->height, up->up, cam);
         if (o->has_fov)
             refit_to_fov(cam, o->fov_deg);
     }
-    if (o->has_eye || o->has_up)
-        memcpy(cam->up, o->up, sizeof cam->up);
     fc_error why;
     if (fc_camera_validate(cam, &why) != FC_OK)
         return fc_error_set(err, FC_ERR_USAGE, "bad camera: %s", why.message);

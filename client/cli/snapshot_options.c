@@ -1,6 +1,7 @@
 /* snapshot_options.c — see snapshot_options.h. */
 #include "snapshot_options.h"
 
+#include <math.h>
 #include <stddef.h>
 #include <string.h>
 
@@ -56,7 +57,7 @@ static fc_code set_target(fc_snapshot_options *o, const option_spec *spec, const
 static fc_code set_up(fc_snapshot_options *o, const option_spec *spec, const char *value, fc_error *err)
 {
     o->has_up = true;
-    return fc_cli_parse_vec3(spec->name, value, o->up, err);
+    return fc_cli_parse_up(spec->name, value, o->up, err);
 }
 
 static fc_code set_fov(fc_snapshot_options *o, const option_spec *spec, const char *value, fc_error *err)
@@ -249,11 +250,23 @@ static void set_defaults(fc_snapshot_options *o)
     o->server = FC_SNAPSHOT_DEFAULT_SERVER;
     o->width = 1280;
     o->height = 720;
-    o->up[2] = 1.0f;
     o->fov_deg = FC_SNAPSHOT_DEFAULT_FOV;
     fc_settings_default(&o->settings);
     o->aov = FC_AOV_COLOR;
     o->quality = FC_SNAPSHOT_DEFAULT_QUALITY;
+}
+
+/* Without --up the up direction is only known once the particles are read:
+ * until then a unit axis across the view stands in, so that eye, target, fov
+ * and size are checked now. */
+static void stand_in_up(const fc_snapshot_options *o, float up[3])
+{
+    int across = 0;
+    for (int k = 1; k < 3; k++)
+        if (fabsf(o->target[k] - o->eye[k]) < fabsf(o->target[across] - o->eye[across]))
+            across = k;
+    for (int k = 0; k < 3; k++)
+        up[k] = k == across ? 1.0f : 0.0f;
 }
 
 /* An explicit camera is checked before any file is read, so a mistyped vector
@@ -267,7 +280,10 @@ static fc_code check_explicit_camera(const fc_snapshot_options *o, fc_error *err
     fc_camera cam;
     memcpy(cam.eye, o->eye, sizeof cam.eye);
     memcpy(cam.target, o->target, sizeof cam.target);
-    memcpy(cam.up, o->up, sizeof cam.up);
+    if (o->has_up)
+        memcpy(cam.up, o->up, sizeof cam.up);
+    else
+        stand_in_up(o, cam.up);
     cam.fov_y_deg = o->fov_deg;
     cam.width = o->width;
     cam.height = o->height;
@@ -335,7 +351,14 @@ static void print_camera_help(FILE *to)
           "  --target X,Y,Z          point the camera looks at; needs --eye\n"
           "                          (without both, the camera frames the particles'\n"
           "                          bounding box)\n"
-          "  --up X,Y,Z              camera up direction (default 0,0,1)\n"
+          "  --up X,Y,Z|x|y|z|-x|-y|-z\n"
+          "                          world direction shown as up in the picture (the\n"
+          "                          letters are the unit axes); default: guessed from\n"
+          "                          the particles as the axis whose one end is a flat,\n"
+          "                          dense floor and the other a free surface thinning\n"
+          "                          out, +z when none stands out; the guess is printed.\n"
+          "                          Without --eye the camera frames the particles from\n"
+          "                          above, above meaning along this up direction\n"
           "  --fov DEG               vertical field of view in degrees (default 40)\n"
           "  --aov NAME              write an arbitrary output variable instead of the\n"
           "                          colour, as float channels; needs .exr:\n"

@@ -21,7 +21,7 @@ typedef struct fc_snapshot_options {
     const char *server;            /* HOST:PORT */
     uint32_t width, height;
     bool has_eye, has_target, has_up;
-    float eye[3], target[3], up[3];   /* up is 0,0,1 unless given */
+    float eye[3], target[3], up[3];   /* up only when has_up: otherwise it is guessed from the particles */
     bool has_fov;
     float fov_deg;
     fc_settings settings;          /* fc_settings_default plus the flags; radius 0: estimate from the spacing */

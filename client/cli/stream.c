@@ -16,21 +16,32 @@
 #include "output_file.h"
 #include "progress.h"
 #include "stream_options.h"
+#include "up_choice.h"
+#include "upright_framing.h"
 
 static int client_failure(const fc_stream_options *o, const fc_error *err)
 {
     return fc_cli_fail(fc_cli_exit_for_client_error(err->code), "%s: %s", o->server, err->message);
 }
 
-/* Camera and settings for the whole sequence, from its first frame. */
+/* Camera and settings for the whole sequence, from its first frame. A
+ * guessed up is printed before the first frame's line (or progress bar). */
 static int set_up_view(fc_client *c, const fc_stream_options *o, const fc_frame *first)
 {
+    fc_up_choice up;
+    fc_error err;
+    if (fc_up_choose(o->has_up, o->up, first, &up, &err) != FC_OK)
+        return fc_cli_fail(FC_EXIT_INPUT, "%s", err.message);
+    if (!up.given)
+        printf("up %s\n", up.note);
     fc_camera cam;
-    fc_camera_frame_bounds(first, o->width, o->height, &cam);
+    fc_frame_upright(first, o->width, o->height, up.up, &cam);
+    fc_error why;
+    if (fc_camera_validate(&cam, &why) != FC_OK)
+        return fc_cli_fail(FC_EXIT_USAGE, "bad camera: %s", why.message);
     fc_settings settings;
     fc_settings_default(&settings);
     settings.radius = o->radius > 0.0f ? o->radius : fc_frame_estimate_radius(first);
-    fc_error err;
     if (fc_client_set_camera(c, &cam, &err) != FC_OK || fc_client_set_settings(c, &settings, &err) != FC_OK)
         return client_failure(o, &err);
     return FC_EXIT_OK;

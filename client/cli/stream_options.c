@@ -61,6 +61,13 @@ static fc_code set_radius(void *o, const char *name, const char *value, fc_error
     return code;
 }
 
+static fc_code set_up(void *o, const char *name, const char *value, fc_error *err)
+{
+    fc_stream_options *s = o;
+    s->has_up = true;
+    return fc_cli_parse_up(name, value, s->up, err);
+}
+
 static fc_code set_zstd(void *o, const char *name, const char *value, fc_error *err)
 {
     (void)name, (void)value, (void)err;
@@ -91,7 +98,8 @@ static fc_code add_file(void *o, const char *arg, fc_error *err)
 static const fc_cli_option options[] = {
     {"--server", true, set_server},   {"--session", true, set_session}, {"--out-dir", true, set_out_dir},
     {"--format", true, set_format},   {"--quality", true, set_quality}, {"--size", true, set_size},
-    {"--radius", true, set_radius},   {"--zstd", false, set_zstd},      {"--quantize", false, set_quantize},
+    {"--radius", true, set_radius},   {"--up", true, set_up},           {"--zstd", false, set_zstd},
+    {"--quantize", false, set_quantize},
 };
 
 static const fc_cli_command command = {"stream", options, sizeof options / sizeof options[0], add_file};
@@ -139,6 +147,10 @@ void fc_stream_print_help(FILE *to)
           "  --quality Q             JPEG quality 1..100 (default 90)\n"
           "  --size WxH              image size (default 640x360)\n"
           "  --radius R              particle radius; default: estimated from the first file\n"
+          "  --up X,Y,Z|x|y|z|-x|-y|-z\n"
+          "                          world direction shown as up; default: guessed from the\n"
+          "                          first file's particles (the axis with a flat, dense\n"
+          "                          floor at one end), +z when none stands out; printed\n"
           "  --zstd                  compress the particle data with zstd (lossless)\n"
           "  --quantize              send positions as 16-bit offsets in each frame's bounding\n"
           "                          box: error at most box extent / 131070 per axis\n"

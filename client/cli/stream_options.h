@@ -22,6 +22,8 @@ typedef struct fc_stream_options {
     uint32_t quality;
     uint32_t width, height;
     float radius;                  /* 0: estimated from the first frame */
+    bool has_up;
+    float up[3];                   /* only when has_up: otherwise guessed from the first frame */
     fc_upload_options upload;
 } fc_stream_options;
 

@@ -130,9 +130,13 @@ static void test_png_shows_ball_over_background(test_env *env)
     memcpy(empty_args + 4, common, sizeof common);
     run(env, &r, ball_args);
     CHECK_MSG(r.status == 0, "exit %d: %s", r.status, r.err);
-    CHECK_MSG(strstr(r.out, "wrote ") && strstr(r.out, "160x120 PNG") && strstr(r.out, "radius 0.05\n"),
+    /* Two lines: what was written, then the up direction it chose without
+     * --up (a ball has no floor to guess from). */
+    CHECK_MSG(strncmp(r.out, "wrote ", 6) == 0 && strstr(r.out, "160x120 PNG") &&
+                  strstr(r.out, "radius 0.05\nup +z (default: no floor among the particles; --up to override)\n"),
               "stdout: %s", r.out);
-    CHECK(strchr(r.out, '\n') == r.out + strlen(r.out) - 1);   /* exactly one line */
+    const char *first_end = strchr(r.out, '\n');
+    CHECK(first_end && strchr(first_end + 1, '\n') == r.out + strlen(r.out) - 1);
     run(env, &r, empty_args);
     CHECK_MSG(r.status == 0, "exit %d: %s", r.status, r.err);
 
