@@ -1,7 +1,8 @@
 #version 450 core
-// Particles as sprites, and the fragment shaders ray-cast the sphere inside
-// each one (sphere_ray.glsl), so depth and silhouette are the sphere's
-// own. Every draw comes in two parts over the same particles
+// Particles as sprites, and the fragment shaders ray-cast the sphere (or the
+// anisotropic ellipsoid, anisotropy.h) inside each one (sphere_ray.glsl,
+// ellipsoid_ray.glsl), so depth and silhouette are the shape's own; an
+// ellipsoid's sprite bounds its bounding sphere. Every draw comes in two parts over the same particles
 // (sphere_sprites.c), and each particle is drawn by exactly one:
 //  - points: a point sprite covering the projected sphere. Cheapest on a
 //    software rasterizer (one primitive, not two triangles), but a point is
@@ -19,7 +20,6 @@ layout(location = 0) in vec3 position;              // world space (per vertex f
 layout(location = 0) uniform mat4 view_matrix;      // world -> view (camera looks down -z)
 layout(location = 1) uniform vec4 projection;       // P[0][0], P[1][1], P[2][2], P[3][2]
 layout(location = 2) uniform vec2 viewport;         // pixels
-layout(location = 3) uniform float radius;          // world units
 layout(location = 4) uniform float max_point_size;  // GL_POINT_SIZE_RANGE upper bound
 layout(location = 5) uniform bool as_quads;         // which part of the draw this is
 layout(location = 9) uniform int first_particle;    // quads: draw slot of the first instance
@@ -33,17 +33,22 @@ const float MARGIN_PIXELS = 0.25;
 // A clip-space position every primitive is culled at.
 const vec4 CULLED = vec4(2.0, 2.0, 2.0, 1.0);
 
-vec2 projected_interval(float lateral, float depth, float focal);   // sphere_bounds.glsl
+vec2 projected_interval(float lateral, float depth, float focal, float radius);   // sphere_bounds.glsl
+// The particle's bounding sphere: world centre, radius (sphere_shape.vert.glsl,
+// ellipsoid_shape.vert.glsl, which also passes the ellipsoid on to the fragments).
+vec4 particle_bounds(int slot, vec3 position);
 
 void main()
 {
-    vec4 centre = view_matrix * vec4(position, 1.0);
-    sphere_centre = centre.xyz;
     particle_slot = as_quads ? first_particle + gl_InstanceID : gl_VertexID;
+    vec4 bounds = particle_bounds(particle_slot, position);
+    float reach = bounds.w;
+    vec4 centre = view_matrix * vec4(bounds.xyz, 1.0);
+    sphere_centre = centre.xyz;
     float depth = -centre.z;
 
-    vec2 x_range = projected_interval(centre.x, depth, projection.x);
-    vec2 y_range = projected_interval(centre.y, depth, projection.y);
+    vec2 x_range = projected_interval(centre.x, depth, projection.x, reach);
+    vec2 y_range = projected_interval(centre.y, depth, projection.y, reach);
     vec2 ndc_centre = projection.xy * centre.xy / depth;
     vec2 half_extent = 0.5 * viewport * vec2(max(x_range.y - ndc_centre.x, ndc_centre.x - x_range.x),
                                              max(y_range.y - ndc_centre.y, ndc_centre.y - y_range.x));
@@ -62,7 +67,7 @@ void main()
     // only move away from it. A sprite reaching in front of the near plane is
     // held at it instead of being clipped; the fragments in front of it are
     // discarded there.
-    float front = depth - radius;
+    float front = depth - reach;
     float ndc_front = front > 0.0 ? (projection.w - projection.z * front) / front : -1.0;
     vec2 ndc = as_quads ? quad_corner : ndc_centre;
     gl_Position = vec4(ndc * depth, max(ndc_front, -1.0) * depth, depth);

@@ -3,7 +3,9 @@
 // droplets over the composited fluid and whitened by their speed (Cords &
 // Staadt, Instant Liquids, §4: the velocity map shifts the colour to white).
 
-bool cast_sphere_ray(vec2 pixel, vec3 centre, out float depth, out float chord);
+// The particle's shape, sphere or ellipsoid: sphere_shape.frag.glsl, ellipsoid_shape.frag.glsl.
+bool cast_particle_ray(vec2 pixel, vec3 centre, out float depth, out float chord);
+vec3 particle_normal(vec3 hit, vec3 centre);
 float particle_speed();
 
 layout(location = 1) uniform vec4 projection;        // P[0][0], P[1][1], P[2][2], P[3][2]
@@ -24,10 +26,10 @@ const float opacity = 0.85;
 void main()
 {
     float depth, chord;
-    if (!cast_sphere_ray(gl_FragCoord.xy, sphere_centre, depth, chord))
+    if (!cast_particle_ray(gl_FragCoord.xy, sphere_centre, depth, chord))
         discard;
     vec3 dir = vec3((gl_FragCoord.xy / viewport * 2.0 - 1.0) / projection.xy, -1.0);
-    vec3 n = (depth * dir - sphere_centre) / radius;
+    vec3 n = particle_normal(depth * dir, sphere_centre);
     float speed = particle_speed();
     float white = clamp(whitening * speed / (speed + speed_reference), 0.0, 1.0);
     vec3 albedo = mix(mix(vec3(1.0), fluid_color, tint), vec3(1.0), white);

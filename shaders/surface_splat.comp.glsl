@@ -1,5 +1,6 @@
 #version 450 core
-// Depth and thickness of the spheres in one splat, like surface_splat.frag.glsl
+// Depth and thickness of the spheres (or ellipsoids, walked over their
+// bounding spheres) in one splat, like surface_splat.frag.glsl
 // but without the rasterizer: one invocation per particle walks the pixels of
 // its sphere's projected bounding box (sphere_bounds.glsl), row by row over
 // the columns the silhouette can reach, and ray-casts each (sphere_ray.glsl,
@@ -15,22 +16,22 @@
 // more than its few pixels (bench/RESULTS.md, third round); depth_pass.c
 // chooses.
 
-bool cast_sphere_ray(vec2 pixel, vec3 centre, out float depth, out float chord);
+// The particle's shape, sphere or ellipsoid (sphere_shape.comp.glsl,
+// ellipsoid_shape.comp.glsl): its view-space centre and bounding radius, and
+// the ray cast.
+vec4 load_particle(uint i);
+bool cast_particle_ray(vec2 pixel, vec3 centre, out float depth, out float chord);
 float thickness_above_floor(vec2 pixel, float depth, float chord);
-vec2 projected_interval(float lateral, float depth, float focal);
+vec2 projected_interval(float lateral, float depth, float focal, float radius);
 
-layout(location = 0) uniform mat4 view_matrix;       // world -> view (camera looks down -z)
 layout(location = 1) uniform vec4 projection;        // P[0][0], P[1][1], P[2][2], P[3][2]
 layout(location = 2) uniform vec2 viewport;          // pixels
-layout(location = 3) uniform float radius;           // world units
 layout(location = 6) uniform uint particle_count;
-layout(location = 7) uniform float units_per_chord;  // thickness steps per diameter; 0 = no thickness
+layout(location = 7) uniform float units_per_chord;  // thickness steps per longest chord; 0 = no thickness
+layout(location = 8) uniform float max_chord;        // the longest chord a particle can have (world units)
 
-// A buffer texture, not a storage buffer: llvmpipe gathers a texel fetch
-// for all lanes at once but loads from a storage buffer lane by lane.
-layout(binding = 0) uniform samplerBuffer particle_positions;   // RGB32F: xyz per particle, world space
 layout(binding = 0, r32ui) uniform uimage2D nearest_depth;   // float bits; +inf where no sphere is
-layout(binding = 1, r32ui) uniform uimage2D thickness_sum;   // fixed point, units_per_chord per diameter
+layout(binding = 1, r32ui) uniform uimage2D thickness_sum;   // fixed point, units_per_chord per longest chord
 
 layout(local_size_x = 64) in;
 
@@ -41,7 +42,7 @@ void splat_pixel(ivec2 p, vec3 centre)
 {
     vec2 pixel = vec2(p) + 0.5;
     float depth, chord;
-    if (!cast_sphere_ray(pixel, centre, depth, chord))
+    if (!cast_particle_ray(pixel, centre, depth, chord))
         return;
     float ndc_z = (projection.w - projection.z * depth) / depth;
     // In front of the near plane no depth is seen, but the fluid there still
@@ -53,7 +54,7 @@ void splat_pixel(ivec2 p, vec3 centre)
     if (ndc_z >= -1.0 && bits < imageLoad(nearest_depth, p).r)
         imageAtomicMin(nearest_depth, p, bits);
     if (units_per_chord > 0.0) {
-        float share = min(thickness_above_floor(pixel, depth, chord) / (2.0 * radius), 1.0);
+        float share = min(thickness_above_floor(pixel, depth, chord) / max_chord, 1.0);
         imageAtomicAdd(thickness_sum, p, uint(share * units_per_chord + 0.5));
     }
 }
@@ -70,7 +71,7 @@ void splat_pixel(ivec2 p, vec3 centre)
 // the quarter pixel of margin on each side absorbs rounding (a few hundredths
 // of a pixel even at the widest sprites): the ray cast decides each pixel,
 // the span must only hold every one it could accept.
-ivec2 row_span(int y, vec3 centre, ivec2 lo, ivec2 hi)
+ivec2 row_span(int y, vec3 centre, float radius, ivec2 lo, ivec2 hi)
 {
     float v = ((float(y) + 0.5) / viewport.y * 2.0 - 1.0) / projection.y;
     float r2 = radius * radius;
@@ -91,13 +92,15 @@ void main()
     uint i = gl_GlobalInvocationID.y * gl_NumWorkGroups.x * gl_WorkGroupSize.x + gl_GlobalInvocationID.x;
     if (i >= particle_count)
         return;
-    vec3 centre = (view_matrix * vec4(texelFetch(particle_positions, int(i)).xyz, 1.0)).xyz;
+    vec4 particle = load_particle(i);
+    vec3 centre = particle.xyz;
+    float reach = particle.w;   // the bounding sphere's radius
     float depth = -centre.z;
     // A centre behind the eye: the fragment splat culls its sprite too.
     if (depth <= 0.0)
         return;
-    vec2 x_range = projected_interval(centre.x, depth, projection.x);
-    vec2 y_range = projected_interval(centre.y, depth, projection.y);
+    vec2 x_range = projected_interval(centre.x, depth, projection.x, reach);
+    vec2 y_range = projected_interval(centre.y, depth, projection.y, reach);
     // The pixels whose centres lie within the bounds, grown by the fragment
     // splat's margin (sphere.vert.glsl), clipped to the image. Walking one
     // more pixel per side and axis, as a plain floor and ceil of the bounds
@@ -107,7 +110,7 @@ void main()
     ivec2 lo = max(ivec2(ceil(first)), ivec2(0));
     ivec2 hi = min(ivec2(floor(last)), ivec2(viewport) - 1);
     for (int y = lo.y; y <= hi.y; y++) {
-        ivec2 span = row_span(y, centre, lo, hi);
+        ivec2 span = row_span(y, centre, reach, lo, hi);
         for (int x = span.x; x <= span.y; x++)
             splat_pixel(ivec2(x, y), centre);
     }

@@ -8,7 +8,8 @@
 // gl_FragDepth nothing waits on a depth test. Background stays at the clear
 // value +inf in attachment 0 until depth_resolve.frag.glsl turns it into 0.
 
-bool cast_sphere_ray(vec2 pixel, vec3 centre, out float depth, out float chord);
+// The particle's shape, sphere or ellipsoid: sphere_shape.frag.glsl, ellipsoid_shape.frag.glsl.
+bool cast_particle_ray(vec2 pixel, vec3 centre, out float depth, out float chord);
 float thickness_above_floor(vec2 pixel, float depth, float chord);
 
 layout(location = 1) uniform vec4 projection;   // P[0][0], P[1][1], P[2][2], P[3][2]
@@ -20,7 +21,7 @@ layout(location = 1) out float thickness;
 void main()
 {
     float depth, chord;
-    if (!cast_sphere_ray(gl_FragCoord.xy, sphere_centre, depth, chord))
+    if (!cast_particle_ray(gl_FragCoord.xy, sphere_centre, depth, chord))
         discard;
     float ndc_z = (projection.w - projection.z * depth) / depth;
     // In front of the near plane no depth is seen (+inf leaves the minimum

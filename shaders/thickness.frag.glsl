@@ -5,7 +5,8 @@
 // is splatted on its own, at reduced resolution; at full resolution
 // surface_splat.frag.glsl writes it with the depth.
 
-bool cast_sphere_ray(vec2 pixel, vec3 centre, out float depth, out float chord);
+// The particle's shape, sphere or ellipsoid: sphere_shape.frag.glsl, ellipsoid_shape.frag.glsl.
+bool cast_particle_ray(vec2 pixel, vec3 centre, out float depth, out float chord);
 float thickness_above_floor(vec2 pixel, float depth, float chord);
 
 layout(location = 0) flat in vec3 sphere_centre;
@@ -14,7 +15,7 @@ layout(location = 0) out float thickness;
 void main()
 {
     float depth, chord;
-    if (!cast_sphere_ray(gl_FragCoord.xy, sphere_centre, depth, chord))
+    if (!cast_particle_ray(gl_FragCoord.xy, sphere_centre, depth, chord))
         discard;
     thickness = thickness_above_floor(gl_FragCoord.xy, depth, chord);
 }

@@ -3,6 +3,7 @@
 
 #include <math.h>
 
+#include "anisotropy.h"
 #include "fc_error.h"
 #include "gl_util.h"
 #include "shader_program.h"
@@ -15,12 +16,16 @@ enum {
     LOC_RADIUS = 3,
     LOC_PARTICLE_COUNT = 6,
     LOC_UNITS_PER_CHORD = 7,
+    LOC_MAX_CHORD = 8,
+    LOC_FIRST_PARTICLE = 9,
     LOC_FLOOR_PLANE = 10
 };
 /* ... and in surface_resolve.comp.glsl. */
 enum { LOC_CHORD_PER_UNIT = 0, LOC_SOURCE_SIZE = 40 };
 enum { IMAGE_NEAREST_DEPTH = 0, IMAGE_THICKNESS_SUM = 1, IMAGE_DEPTH_OUT = 2, IMAGE_THICKNESS_OUT = 3 };
 enum { UNIT_POSITIONS = 0 };
+/* Storage buffer binding of the ellipsoids in ellipsoid_shape.comp.glsl. */
+enum { BIND_ELLIPSOIDS = 5 };
 /* local_size of the two shaders. */
 enum { SPLAT_GROUP = 64, RESOLVE_TILE = 8 };
 /* Bytes per particle position: xyz as float32. */
@@ -29,7 +34,8 @@ enum { POSITION_BYTES = 3 * sizeof(float) };
 #define SPLAT_GROUPS_PER_ROW 32768u
 
 /* Thickness is summed in fixed point, as a share of the sphere's diameter
- * (no chord is longer). The worst case for one pixel is every particle of
+ * (no chord is longer; for ellipsoids, of the longest diameter one can
+ * have, max_chord()). The worst case for one pixel is every particle of
  * the frame on it with its full diameter, so with U units per diameter the
  * sum stays below 2^32 as long as count * U < 2^32: U is chosen per render
  * from the count. Up to 256 particles U is 2^24 (the steps of a float's
@@ -69,10 +75,15 @@ static uint64_t dispatch_limit(GLint max_texels, GLint alignment)
 fc_code fc_compute_splat_create(const char *shader_dir, fc_compute_splat *s, fc_error *err)
 {
     *s = (fc_compute_splat){0};
-    const char *splat[] = {"sphere_bounds.glsl", "sphere_ray.glsl", "thickness_chord.glsl",
+    const char *splat[] = {"sphere_bounds.glsl", "sphere_ray.glsl", "thickness_chord.glsl", "sphere_shape.comp.glsl",
                            "surface_splat.comp.glsl"};
+    const char *ellipsoids[] = {"sphere_bounds.glsl", "sphere_ray.glsl", "ellipsoid_ray.glsl",
+                                "thickness_chord.glsl", "ellipsoid_shape.comp.glsl", "surface_splat.comp.glsl"};
     const char *resolve[] = {"surface_resolve.comp.glsl"};
     fc_code code = fc_program_build(shader_dir, splat, sizeof splat / sizeof splat[0], &s->splat_program, err);
+    if (code == FC_OK)
+        code = fc_program_build(shader_dir, ellipsoids, sizeof ellipsoids / sizeof ellipsoids[0],
+                                &s->ellipsoid_program, err);
     if (code == FC_OK)
         code = fc_program_build(shader_dir, resolve, 1, &s->resolve_program, err);
     if (code != FC_OK)
@@ -96,6 +107,7 @@ static void release_images(fc_compute_splat *s)
 void fc_compute_splat_destroy(fc_compute_splat *s)
 {
     glDeleteProgram(s->splat_program);
+    glDeleteProgram(s->ellipsoid_program);
     glDeleteProgram(s->resolve_program);
     glDeleteTextures(1, &s->positions);
     release_images(s);
@@ -126,26 +138,38 @@ static fc_code reserve(fc_compute_splat *s, uint32_t width, uint32_t height, fc_
 /* Particles [first, first + count) in one dispatch, read through the buffer
  * texture: llvmpipe gathers a texel fetch for all lanes at once, where it
  * loads from a storage buffer lane by lane (bench/RESULTS.md, fifth round). */
-static void dispatch(const fc_compute_splat *s, const fc_particle_buffer *particles, uint64_t first,
-                     uint64_t count)
+static void dispatch(const fc_compute_splat *s, GLuint program, const fc_particle_buffer *particles,
+                     uint64_t first, uint64_t count)
 {
     glTextureBufferRange(s->positions, GL_RGB32F, particles->buffer, (GLintptr)(first * POSITION_BYTES),
                          (GLsizeiptr)(count * POSITION_BYTES));
-    glProgramUniform1ui(s->splat_program, LOC_PARTICLE_COUNT, (GLuint)count);
+    glProgramUniform1ui(program, LOC_PARTICLE_COUNT, (GLuint)count);
+    if (program == s->ellipsoid_program)
+        glProgramUniform1ui(program, LOC_FIRST_PARTICLE, (GLuint)first);
     GLuint groups = (GLuint)((count + SPLAT_GROUP - 1) / SPLAT_GROUP);
     GLuint per_row = groups < SPLAT_GROUPS_PER_ROW ? groups : SPLAT_GROUPS_PER_ROW;
     glDispatchCompute(per_row, (groups + per_row - 1) / per_row, 1);
 }
 
+/* The longest chord through a particle: its diameter, or the longest
+ * ellipsoid's. */
+static float max_chord(const fc_particle_buffer *particles, float radius)
+{
+    return 2.0f * fc_anisotropy_reach(particles, radius);
+}
+
 static void splat(const fc_compute_splat *s, const fc_particle_buffer *particles, const fc_view *view,
                   float radius, const float *floor_plane, double units)
 {
-    GLuint program = s->splat_program;
+    GLuint program = particles->shapes ? s->ellipsoid_program : s->splat_program;
     glProgramUniformMatrix4fv(program, LOC_VIEW_MATRIX, 1, GL_FALSE, view->view);
     glProgramUniform4f(program, LOC_PROJECTION, view->fx, view->fy, view->p22, view->p32);
     glProgramUniform2f(program, LOC_VIEWPORT, (float)view->width, (float)view->height);
     glProgramUniform1f(program, LOC_RADIUS, radius);
     glProgramUniform1f(program, LOC_UNITS_PER_CHORD, floor_plane ? (float)units : 0.0f);
+    glProgramUniform1f(program, LOC_MAX_CHORD, max_chord(particles, radius));
+    if (particles->shapes)
+        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, BIND_ELLIPSOIDS, particles->shapes);
     if (floor_plane)
         glProgramUniform4fv(program, LOC_FLOOR_PLANE, 1, floor_plane);
     glBindImageTexture(IMAGE_NEAREST_DEPTH, s->nearest_depth, 0, GL_FALSE, 0, GL_READ_WRITE, GL_R32UI);
@@ -155,7 +179,7 @@ static void splat(const fc_compute_splat *s, const fc_particle_buffer *particles
     glBindTextureUnit(UNIT_POSITIONS, s->positions);
     for (uint64_t first = 0; first < particles->count; first += s->particles_per_dispatch) {
         uint64_t left = particles->count - first;
-        dispatch(s, particles, first, left < s->particles_per_dispatch ? left : s->particles_per_dispatch);
+        dispatch(s, program, particles, first, left < s->particles_per_dispatch ? left : s->particles_per_dispatch);
     }
     /* Detached, the texture does not keep a particle buffer alive once that
      * is reallocated. */
@@ -163,11 +187,11 @@ static void splat(const fc_compute_splat *s, const fc_particle_buffer *particles
     glBindTextureUnit(UNIT_POSITIONS, 0);
 }
 
-static void resolve(const fc_compute_splat *s, const fc_view *view, float radius, bool with_thickness,
+static void resolve(const fc_compute_splat *s, const fc_view *view, float longest_chord, bool with_thickness,
                     double units, GLuint depth, GLuint thickness)
 {
     glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
-    float chord_per_unit = with_thickness ? (float)(2.0 * radius / units) : 0.0f;
+    float chord_per_unit = with_thickness ? (float)((double)longest_chord / units) : 0.0f;
     glProgramUniform1f(s->resolve_program, LOC_CHORD_PER_UNIT, chord_per_unit);
     glProgramUniform2i(s->resolve_program, LOC_SOURCE_SIZE, (GLint)view->width, (GLint)view->height);
     glBindImageTexture(IMAGE_DEPTH_OUT, depth, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_R32F);
@@ -193,7 +217,7 @@ fc_code fc_compute_splat_run(fc_compute_splat *s, const fc_particle_buffer *part
     double units = units_per_chord(particles->count);
     if (particles->count > 0)
         splat(s, particles, view, radius, floor_plane, units);
-    resolve(s, view, radius, floor_plane != NULL, units, depth, thickness);
+    resolve(s, view, max_chord(particles, radius), floor_plane != NULL, units, depth, thickness);
     return fc_gl_check("compute surface splat", err);
 }
 

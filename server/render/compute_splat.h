@@ -13,7 +13,8 @@
 #include "view.h"
 
 typedef struct fc_compute_splat {
-    GLuint splat_program;
+    GLuint splat_program;              /* spheres */
+    GLuint ellipsoid_program;          /* the particles' ellipsoids (anisotropy.h), where the buffer names them */
     GLuint resolve_program;
     GLuint positions;                  /* buffer texture (RGB32F) over the particle buffer, during a run */
     uint64_t particles_per_dispatch;   /* the most particles the buffer texture may show at once */
@@ -29,7 +30,7 @@ void fc_compute_splat_destroy(fc_compute_splat *s);
 /* Writes the particles' linear depth (0 = no fluid) into `depth` and, when
  * `floor_plane` is not NULL, their thickness above it into `thickness`: both
  * R32F textures of the view's size, as the fragment splat and its resolve
- * leave them. */
+ * leave them. Ellipsoids where particles->shapes names them. */
 fc_code fc_compute_splat_run(fc_compute_splat *s, const fc_particle_buffer *particles, const fc_view *view,
                              float radius, const float *floor_plane, GLuint depth, GLuint thickness,
                              fc_error *err);

@@ -3,6 +3,7 @@
 
 #include <math.h>
 
+#include "anisotropy.h"
 #include "fc_error.h"
 #include "gl_util.h"
 #include "shader_program.h"
@@ -37,8 +38,8 @@ fc_code fc_depth_pass_create(const char *shader_dir, fc_depth_pass *pass, fc_err
     glCreateVertexArrays(1, &pass->empty_vertex_array);
     glCreateFramebuffers(1, &pass->splat_framebuffer);
     const char *resolve[] = {"fullscreen.vert.glsl", "depth_resolve.frag.glsl"};
-    fc_code code = fc_sphere_sprites_create_with(shader_dir, "thickness_chord.glsl", "surface_splat.frag.glsl",
-                                                 &pass->sprites, err);
+    fc_code code = fc_sphere_sprites_create_shaped(shader_dir, "thickness_chord.glsl", "surface_splat.frag.glsl",
+                                                   &pass->sprites, err);
     if (code == FC_OK)
         code = fc_program_build(shader_dir, resolve, sizeof resolve / sizeof resolve[0], &pass->resolve_program,
                                 err);
@@ -101,7 +102,7 @@ static void splat(fc_depth_pass *pass, const fc_particle_buffer *particles, cons
     glBlendEquationi(1, GL_FUNC_ADD);
     glBlendFunc(GL_ONE, GL_ONE);
     if (floor_plane)
-        glProgramUniform4fv(pass->sprites.program, LOC_FLOOR_PLANE, 1, floor_plane);
+        glProgramUniform4fv(fc_sphere_sprites_program(&pass->sprites, particles), LOC_FLOOR_PLANE, 1, floor_plane);
     fc_sphere_sprites_draw(&pass->sprites, particles, view, radius);
     glBlendEquation(GL_FUNC_ADD);
     glDisable(GL_BLEND);
@@ -156,7 +157,9 @@ fc_code fc_depth_pass_run(fc_depth_pass *pass, const fc_particle_buffer *particl
     fc_code code = resize(pass, view, err);
     if (code != FC_OK)
         return code;
-    pass->last_used = fc_depth_pass_choose(view, particles->lo, particles->hi, radius, pass->method);
+    /* Ellipsoids are chosen for by their bounding spheres, which the compute splat walks. */
+    pass->last_used = fc_depth_pass_choose(view, particles->lo, particles->hi,
+                                           fc_anisotropy_reach(particles, radius), pass->method);
     if (pass->last_used == FC_SPLAT_COMPUTE)
         return fc_compute_splat_run(&pass->compute, particles, view, radius, floor_plane, pass->target.color,
                                     pass->thickness.color, err);

@@ -119,6 +119,7 @@ void fc_particle_buffer_fill(fc_particle_buffer *pb, const fc_frame *frame, cons
     memcpy(pb->lo, b.lo, sizeof b.lo);
     memcpy(pb->hi, b.hi, sizeof b.hi);
     pb->count = frame->count;
+    pb->generation++;
 }
 
 fc_code fc_particle_buffer_upload(fc_particle_buffer *pb, const fc_frame *frame, fc_error *err)

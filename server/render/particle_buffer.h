@@ -24,6 +24,10 @@ typedef struct fc_particle_buffer {
     uint64_t count;         /* particles of the current frame */
     uint32_t allocations;   /* times the GL buffer was (re)allocated */
     float lo[3], hi[3];     /* bounds of the current frame; a point at the origin when empty */
+    uint64_t generation;    /* counts the fills: what is derived from the positions (anisotropy.h) is
+                               stale once it changes */
+    GLuint shapes;          /* per-slot ellipsoids the splats ray-cast (anisotropy.h), set for a render;
+                               0: spheres */
 } fc_particle_buffer;
 
 fc_code fc_particle_buffer_create(fc_particle_buffer *pb, fc_error *err);

@@ -7,6 +7,7 @@
 #include <stdlib.h>
 #include <time.h>
 
+#include "anisotropy.h"
 #include "background_pass.h"
 #include "composite_pass.h"
 #include "depth_pass.h"
@@ -36,6 +37,7 @@
 struct fc_pipeline {
     fc_particle_buffer particles;         /* in draw order: the frame's, or surface particles first, then spray */
     fc_particle_attributes attributes;
+    fc_anisotropy anisotropy;             /* the particles' ellipsoids, for FC_KERNEL_ANISOTROPIC */
     bool uploaded;
     fc_frame frame;                       /* the uploaded frame's arrays, which the caller keeps (pipeline.h) */
     fc_depth_pass depth;
@@ -84,6 +86,8 @@ static fc_code create_passes(fc_pipeline *p, const char *dir, fc_error *err)
     fc_code code = fc_particle_buffer_create(&p->particles, err);
     if (code == FC_OK)
         code = fc_particle_attributes_create(&p->attributes, err);
+    if (code == FC_OK)
+        code = fc_anisotropy_create(dir, &p->anisotropy, err);
     if (code == FC_OK)
         code = fc_depth_pass_create(dir, &p->depth, err);
     if (code == FC_OK)
@@ -322,6 +326,23 @@ static fc_code order_for(fc_pipeline *p, const fc_settings *settings, fc_error *
     return code;
 }
 
+/* The particles' shape for a render: their ellipsoids (computed once per
+ * upload, order and radius, whatever the camera) for the anisotropic kernel,
+ * named in the particle buffer so every splat of it casts them; else
+ * spheres. */
+static fc_code shape_particles(fc_pipeline *p, const fc_settings *settings, fc_error *err)
+{
+    p->particles.shapes = 0;
+    if (settings->kernel != FC_KERNEL_ANISOTROPIC)
+        return FC_OK;
+    fc_pass_profile_begin(&p->profile, "anisotropy");
+    fc_code code = fc_anisotropy_update(&p->anisotropy, &p->particles, settings->radius, err);
+    fc_pass_profile_end(&p->profile);
+    if (code == FC_OK)
+        p->particles.shapes = p->anisotropy.ellipsoids;
+    return code;
+}
+
 /* Renders a particle and a spray droplet into tiny images through every
  * stage and shading option. Drivers compile shader variants lazily at the
  * first draw, and some (llvmpipe) report a bogus duration for the first
@@ -344,8 +365,13 @@ static fc_code warm_up(fc_pipeline *p, fc_error *err)
     fc_particle_attributes_settle(&p->attributes);
     fc_view view;
     fc_view_from_camera(&camera, p->particles.lo, p->particles.hi, settings.radius, &view);
-    const fc_aov images[] = {FC_AOV_COLOR, FC_AOV_NORMAL};
+    /* The last image with the anisotropic kernel, for its programs. */
+    const fc_aov images[] = {FC_AOV_COLOR, FC_AOV_NORMAL, FC_AOV_COLOR};
     for (size_t i = 0; i < sizeof images / sizeof images[0] && code == FC_OK; i++) {
+        settings.kernel = i == 2 ? FC_KERNEL_ANISOTROPIC : FC_KERNEL_SPHERE;
+        code = shape_particles(p, &settings, err);
+        if (code != FC_OK)
+            break;
         render_job job;
         plan_job(p, &view, &camera, &settings, NULL, true, &job);
         const fc_render_target *result = NULL;
@@ -354,6 +380,8 @@ static fc_code warm_up(fc_pipeline *p, fc_error *err)
     for (int s = 0; s < FC_STAGE_COUNT; s++)
         fc_stage_timer_ms(&p->timer, (fc_stage)s);   /* waits until the GPU is done */
     p->particles.count = 0;
+    p->particles.shapes = 0;
+    fc_anisotropy_trim(&p->anisotropy);   /* a pipeline holds no ellipsoids until a render asks for them */
     p->attributes.count = 0;
     p->attributes.reorderable = false;
     p->frame = (fc_frame){0};   /* the warm-up's frame dies here */
@@ -395,6 +423,7 @@ void fc_pipeline_destroy(fc_pipeline *p)
     fc_smoother_destroy(&p->smoother);
     fc_thickness_pass_destroy(&p->thickness);
     fc_depth_pass_destroy(&p->depth);
+    fc_anisotropy_destroy(&p->anisotropy);
     fc_particle_attributes_destroy(&p->attributes);
     fc_particle_buffer_destroy(&p->particles);
     free(p);
@@ -462,13 +491,16 @@ fc_code fc_pipeline_render_scene(fc_pipeline *p, const fc_camera *camera, const 
     fc_code code = check_request(p, camera, settings, aov, err);
     if (code == FC_OK)
         code = order_for(p, settings, err);
+    if (code == FC_OK)
+        code = shape_particles(p, settings, err);
     if (code != FC_OK)
         return code;
     /* The frame's amplitudes were given after the upload, or are calm. */
     fc_particle_attributes_settle(&p->attributes);
 
     fc_view view;
-    fc_view_from_camera(camera, p->particles.lo, p->particles.hi, settings->radius, &view);
+    fc_view_from_camera(camera, p->particles.lo, p->particles.hi, fc_anisotropy_reach(&p->particles, settings->radius),
+                        &view);
     render_job job;
     plan_job(p, &view, camera, settings, scene, want_u8 != 0, &job);
     const fc_render_target *result = NULL;
@@ -508,6 +540,11 @@ fc_particle_attributes *fc_pipeline_particle_attributes(fc_pipeline *p)
     return &p->attributes;
 }
 
+const fc_anisotropy *fc_pipeline_anisotropy(const fc_pipeline *p)
+{
+    return &p->anisotropy;
+}
+
 void fc_pipeline_set_profiling(fc_pipeline *p, int on)
 {
     p->profile.enabled = on != 0;
@@ -537,6 +574,7 @@ void fc_pipeline_gpu_memory(const fc_pipeline *p, fc_gpu_memory *out)
     *out = (fc_gpu_memory){0};
     fc_particle_buffer_tally(&p->particles, out);
     fc_particle_attributes_tally(&p->attributes, out);
+    fc_anisotropy_tally(&p->anisotropy, out);
     fc_depth_pass_tally(&p->depth, out);
     fc_thickness_pass_tally(&p->thickness, out);
     fc_smoother_tally(&p->smoother, out);

@@ -3,12 +3,17 @@
 #ifndef FC_PIPELINE_INTERNAL_H
 #define FC_PIPELINE_INTERNAL_H
 
+#include "anisotropy.h"
 #include "depth_pass.h"
 #include "particle_attributes.h"
 #include "pipeline.h"
 
 /* The per-particle records of the uploaded frame. */
 fc_particle_attributes *fc_pipeline_particle_attributes(fc_pipeline *p);
+
+/* The ellipsoids of the last render with the anisotropic kernel (read them
+ * with fc_anisotropy_read; tests). */
+const fc_anisotropy *fc_pipeline_anisotropy(const fc_pipeline *p);
 
 /* Forces the surface splat of every render from now on (FC_SPLAT_AUTO
  * restores the choice by sprite size); for tests and the benchmark. */

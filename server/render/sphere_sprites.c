@@ -15,14 +15,16 @@ enum {
     LOC_AS_QUADS = 5,
     LOC_FIRST_PARTICLE = 9
 };
+/* Storage buffer binding of the ellipsoids in ellipsoid_shape.vert.glsl. */
+enum { BIND_ELLIPSOIDS = 5 };
 /* A quad as a triangle strip. */
 #define QUAD_VERTICES 4
 
-static fc_code build(const char *shader_dir, const char *const *files, size_t count, fc_sphere_sprites *s,
-                     fc_error *err)
+/* Links one program from `count` files and records the point size limit. */
+static fc_code build(const char *shader_dir, const char *const *files, size_t count, GLuint *program,
+                     fc_sphere_sprites *s, fc_error *err)
 {
-    *s = (fc_sphere_sprites){0};
-    fc_code code = fc_program_build(shader_dir, files, count, &s->program, err);
+    fc_code code = fc_program_build(shader_dir, files, count, program, err);
     if (code != FC_OK)
         return code;
     GLfloat range[2] = {1.0f, 1.0f};
@@ -31,23 +33,64 @@ static fc_code build(const char *shader_dir, const char *const *files, size_t co
     return fc_gl_check("querying the point size range", err);
 }
 
+/* The sphere program: the sphere's vertex and fragment sides
+ * (sphere_shape.vert.glsl, sphere_shape.frag.glsl) around the shared sprite. */
+static fc_code build_spheres(const char *shader_dir, const char *helper_file, const char *fragment_file,
+                             fc_sphere_sprites *s, fc_error *err)
+{
+    const char *files[] = {"sphere_bounds.glsl", "sphere_shape.vert.glsl", "sphere.vert.glsl", "sphere_ray.glsl",
+                           "sphere_shape.frag.glsl", helper_file, fragment_file};
+    size_t count = sizeof files / sizeof files[0];
+    if (!helper_file) {
+        files[count - 2] = fragment_file;
+        count--;
+    }
+    return build(shader_dir, files, count, &s->program, s, err);
+}
+
+static fc_code build_ellipsoids(const char *shader_dir, const char *helper_file, const char *fragment_file,
+                                fc_sphere_sprites *s, fc_error *err)
+{
+    const char *files[] = {"sphere_bounds.glsl", "ellipsoid_shape.vert.glsl", "sphere.vert.glsl", "sphere_ray.glsl",
+                           "ellipsoid_ray.glsl", "ellipsoid_shape.frag.glsl", helper_file, fragment_file};
+    size_t count = sizeof files / sizeof files[0];
+    if (!helper_file) {
+        files[count - 2] = fragment_file;
+        count--;
+    }
+    return build(shader_dir, files, count, &s->ellipsoid_program, s, err);
+}
+
 fc_code fc_sphere_sprites_create(const char *shader_dir, const char *fragment_file, fc_sphere_sprites *s,
                                  fc_error *err)
 {
-    const char *files[] = {"sphere_bounds.glsl", "sphere.vert.glsl", "sphere_ray.glsl", fragment_file};
-    return build(shader_dir, files, sizeof files / sizeof files[0], s, err);
+    *s = (fc_sphere_sprites){0};
+    return build_spheres(shader_dir, NULL, fragment_file, s, err);
 }
 
 fc_code fc_sphere_sprites_create_with(const char *shader_dir, const char *helper_file, const char *fragment_file,
                                       fc_sphere_sprites *s, fc_error *err)
 {
-    const char *files[] = {"sphere_bounds.glsl", "sphere.vert.glsl", "sphere_ray.glsl", helper_file, fragment_file};
-    return build(shader_dir, files, sizeof files / sizeof files[0], s, err);
+    *s = (fc_sphere_sprites){0};
+    return build_spheres(shader_dir, helper_file, fragment_file, s, err);
+}
+
+fc_code fc_sphere_sprites_create_shaped(const char *shader_dir, const char *helper_file, const char *fragment_file,
+                                        fc_sphere_sprites *s, fc_error *err)
+{
+    fc_code code = fc_sphere_sprites_create_with(shader_dir, helper_file, fragment_file, s, err);
+    return code == FC_OK ? build_ellipsoids(shader_dir, helper_file, fragment_file, s, err) : code;
+}
+
+GLuint fc_sphere_sprites_program(const fc_sphere_sprites *s, const fc_particle_buffer *particles)
+{
+    return particles->shapes && s->ellipsoid_program ? s->ellipsoid_program : s->program;
 }
 
 void fc_sphere_sprites_destroy(fc_sphere_sprites *s)
 {
     glDeleteProgram(s->program);
+    glDeleteProgram(s->ellipsoid_program);
     *s = (fc_sphere_sprites){0};
 }
 
@@ -65,7 +108,10 @@ void fc_sphere_sprites_draw_range(const fc_sphere_sprites *s, const fc_particle_
 {
     if (count == 0 || first + count > particles->count)
         return;
-    glUseProgram(s->program);
+    GLuint program = fc_sphere_sprites_program(s, particles);
+    glUseProgram(program);
+    if (program == s->ellipsoid_program)
+        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, BIND_ELLIPSOIDS, particles->shapes);
     glUniformMatrix4fv(LOC_VIEW_MATRIX, 1, GL_FALSE, view->view);
     glUniform4f(LOC_PROJECTION, view->fx, view->fy, view->p22, view->p32);
     glUniform2f(LOC_VIEWPORT, (float)view->width, (float)view->height);

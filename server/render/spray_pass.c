@@ -16,8 +16,8 @@ enum {
 
 fc_code fc_spray_pass_create(const char *shader_dir, fc_spray_pass *pass, fc_error *err)
 {
-    return fc_sphere_sprites_create_with(shader_dir, "particle_attributes.frag.glsl", "spray.frag.glsl",
-                                         &pass->sprites, err);
+    return fc_sphere_sprites_create_shaped(shader_dir, "particle_attributes.frag.glsl", "spray.frag.glsl",
+                                           &pass->sprites, err);
 }
 
 void fc_spray_pass_destroy(fc_spray_pass *pass)
@@ -25,9 +25,8 @@ void fc_spray_pass_destroy(fc_spray_pass *pass)
     fc_sphere_sprites_destroy(&pass->sprites);
 }
 
-static void set_uniforms(const fc_spray_pass *pass, const fc_environment *env, const fc_settings *settings)
+static void set_uniforms(GLuint program, const fc_environment *env, const fc_settings *settings)
 {
-    GLuint program = pass->sprites.program;
     glProgramUniform3fv(program, LOC_LIGHT_VIEW, 1, env->light_view);
     glProgramUniform3fv(program, LOC_FLUID_COLOR, 1, settings->fluid_color);
     glProgramUniform1f(program, LOC_WHITENING, settings->foam);
@@ -51,7 +50,7 @@ fc_code fc_spray_pass_run(fc_spray_pass *pass, const fc_particle_buffer *particl
     glBlendFuncSeparate(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA, GL_ZERO, GL_ONE);
     if (target->color_format == GL_SRGB8_ALPHA8)
         glEnable(GL_FRAMEBUFFER_SRGB);
-    set_uniforms(pass, env, settings);
+    set_uniforms(fc_sphere_sprites_program(&pass->sprites, particles), env, settings);
     fc_particle_attributes_bind(attributes);
     fc_sphere_sprites_draw_range(&pass->sprites, particles, first, particles->count - first, view,
                                  DROPLET_RADIUS_FRACTION * settings->radius);

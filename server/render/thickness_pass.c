@@ -14,8 +14,8 @@ enum { LOC_FLOOR_PLANE = 10 };
 fc_code fc_thickness_pass_create(const char *shader_dir, fc_thickness_pass *pass, fc_error *err)
 {
     pass->splat = fc_render_target_init(GL_R32F, false, true);
-    fc_code code = fc_sphere_sprites_create_with(shader_dir, "thickness_chord.glsl", "thickness.frag.glsl",
-                                                 &pass->sprites, err);
+    fc_code code = fc_sphere_sprites_create_shaped(shader_dir, "thickness_chord.glsl", "thickness.frag.glsl",
+                                                   &pass->sprites, err);
     if (code == FC_OK)
         code = fc_thickness_filter_create(shader_dir, &pass->filter, err);
     return code;
@@ -48,7 +48,8 @@ static fc_code splat(fc_thickness_pass *pass, const fc_particle_buffer *particle
     glEnable(GL_BLEND);
     glBlendEquation(GL_FUNC_ADD);
     glBlendFunc(GL_ONE, GL_ONE);
-    glProgramUniform4fv(pass->sprites.program, LOC_FLOOR_PLANE, 1, params->floor_plane);
+    glProgramUniform4fv(fc_sphere_sprites_program(&pass->sprites, particles), LOC_FLOOR_PLANE, 1,
+                        params->floor_plane);
     fc_sphere_sprites_draw(&pass->sprites, particles, view, params->radius);
     glDisable(GL_BLEND);
     return fc_gl_check("thickness pass", err);

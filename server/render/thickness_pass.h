@@ -39,8 +39,11 @@ void fc_thickness_pass_destroy(fc_thickness_pass *pass);
 
 /* Accumulates the particles' thickness and sets *result to a target holding
  * it, at the view's size where params->at_view_size, else at any resolution
- * (to be sampled bilinearly). Fluid below the floor is cut off; the fluid
- * does not hide itself (every sphere adds). */
+ * (to be sampled bilinearly): each particle's chord through its sphere, or
+ * through its ellipsoid where particles->shapes names them (anisotropy.h;
+ * the ellipsoids are in world space, so any view, a light's too, sees the
+ * same shapes). Fluid below the floor is cut off; the fluid does not hide
+ * itself (every particle adds). */
 fc_code fc_thickness_pass_run(fc_thickness_pass *pass, const fc_particle_buffer *particles, const fc_view *view,
                               const fc_thickness_params *params, const fc_render_target **result, fc_error *err);
 

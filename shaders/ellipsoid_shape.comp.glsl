@@ -1,0 +1,41 @@
+#version 450 core
+// The particle as its anisotropic ellipsoid (anisotropy.h), for the compute
+// splat (surface_splat.comp.glsl): the smoothed centre, the bounding sphere
+// the walk covers (radius x the longest stretch), and the ray cast, the
+// sphere's own for a particle the anisotropy left a sphere.
+
+bool cast_sphere_ray(vec2 pixel, vec3 centre, out float depth, out float chord);
+bool cast_ellipsoid_ray(vec2 pixel, vec3 centre, mat3 inverse, out float depth, out float chord);
+
+layout(location = 0) uniform mat4 view_matrix;    // world -> view
+layout(location = 3) uniform float radius;        // world units
+layout(location = 9) uniform uint first_particle; // draw slot of the dispatch's first particle
+
+struct ellipsoid {
+    vec4 centre_stretch;   // smoothed world centre; longest axis in radii, 1 exactly for a sphere
+    vec4 inverse_a;        // G xx, xy, xz, yy (world space)
+    vec4 inverse_b;        // G yz, zz; neighbours; unused
+};
+layout(std430, binding = 5) readonly buffer Ellipsoids { ellipsoid ellipsoids[]; };
+
+// The loaded particle's G in view space (see ellipsoid_shape.vert.glsl) and stretch.
+mat3 particle_inverse;
+float particle_stretch;
+
+vec4 load_particle(uint i)
+{
+    ellipsoid e = ellipsoids[first_particle + i];
+    vec4 a = e.inverse_a;
+    vec4 b = e.inverse_b;
+    mat3 rotation = mat3(view_matrix);
+    particle_inverse = rotation * mat3(a.x, a.y, a.z, a.y, a.w, b.x, a.z, b.x, b.y) * transpose(rotation);
+    particle_stretch = e.centre_stretch.w;
+    return vec4((view_matrix * vec4(e.centre_stretch.xyz, 1.0)).xyz, radius * particle_stretch);
+}
+
+bool cast_particle_ray(vec2 pixel, vec3 centre, out float depth, out float chord)
+{
+    if (particle_stretch == 1.0)
+        return cast_sphere_ray(pixel, centre, depth, chord);
+    return cast_ellipsoid_ray(pixel, centre, particle_inverse, depth, chord);
+}

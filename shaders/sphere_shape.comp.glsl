@@ -1,0 +1,24 @@
+#version 450 core
+// The particle as a sphere, for the compute splat (surface_splat.comp.glsl):
+// where it is and how to cast it (ellipsoid_shape.comp.glsl is the anisotropic
+// one).
+
+bool cast_sphere_ray(vec2 pixel, vec3 centre, out float depth, out float chord);
+
+layout(location = 0) uniform mat4 view_matrix;   // world -> view
+layout(location = 3) uniform float radius;       // world units
+
+// A buffer texture, not a storage buffer: llvmpipe gathers a texel fetch
+// for all lanes at once but loads from a storage buffer lane by lane.
+layout(binding = 0) uniform samplerBuffer particle_positions;   // RGB32F: xyz per particle, world space
+
+// The view-space centre and bounding radius of the dispatch's particle i.
+vec4 load_particle(uint i)
+{
+    return vec4((view_matrix * vec4(texelFetch(particle_positions, int(i)).xyz, 1.0)).xyz, radius);
+}
+
+bool cast_particle_ray(vec2 pixel, vec3 centre, out float depth, out float chord)
+{
+    return cast_sphere_ray(pixel, centre, depth, chord);
+}

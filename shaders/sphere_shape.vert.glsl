@@ -1,0 +1,10 @@
+#version 450 core
+// The particle as a sphere of the uniform radius at its position: the vertex
+// side of a sphere sprite (sphere.vert.glsl).
+
+layout(location = 3) uniform float radius;   // world units
+
+vec4 particle_bounds(int slot, vec3 position)
+{
+    return vec4(position, radius);
+}
