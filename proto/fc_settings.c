@@ -45,7 +45,7 @@ void fc_settings_default(fc_settings *s)
         .fluid_color = {0.05f, 0.30f, 0.45f},
         .absorption = {0.12f, 0.045f, 0.022f},
         .ior = 1.33f,
-        .refraction = 1.0f,
+        .refraction = 0.25f,
         .specular = 0.6f,
         .shininess = 60.0f,
         .thickness_scale = 1.0f,

@@ -108,8 +108,8 @@ typedef struct fc_settings {
     float absorption[3];       /* Beer-Lambert absorption per particle radius of thickness, per channel: the
                                   same scene in millimetres and in metres looks the same */
     float ior;                 /* index of refraction (Fresnel F0 = ((ior-1)/(ior+1))^2) */
-    float refraction;          /* gamma: background offset beta = gamma * thickness (pixels per particle
-                                  radius of thickness) */
+    float refraction;          /* gamma: background offset beta = gamma * thickness, both in pixels (the
+                                  thickness as the pixels it spans at its depth); about 1 - 1/ior */
     float specular;            /* Phong specular intensity, >= 0 */
     float shininess;           /* Phong exponent, >= 1 */
     float thickness_scale;     /* resolution of the thickness pass: 1, 0.5 or 0.25 */

@@ -10,6 +10,8 @@ vec3 view_ray(vec2 window);
 vec3 to_world_point(vec3 view_point);
 vec3 to_world_direction(vec3 view_direction);
 vec3 scene_radiance(vec3 origin, vec3 dir);
+vec3 display_color(vec3 radiance);
+vec3 picture_radiance(vec3 color);
 float floor_depth(vec3 ray);
 float window_depth(float z);
 
@@ -19,15 +21,15 @@ layout(location = 5) uniform vec2 viewport;
 layout(location = 30) uniform bool use_client_image;
 layout(location = 31) uniform vec2 image_scale;       // viewport uv -> image uv around the centre (cover fit)
 
-layout(location = 0) out vec4 radiance;      // the background texture (RGBA16F)
-layout(location = 1) out vec4 scene_color;   // the composite's target
+layout(location = 0) out vec4 radiance;      // the background texture (RGBA16F), linear HDR
+layout(location = 1) out vec4 scene_color;   // the composite's target, display colour
 
 vec3 background_radiance()
 {
     if (use_client_image) {
         vec2 uv = 0.5 + (gl_FragCoord.xy / viewport - 0.5) * image_scale;
         // The image's first row is its top, uploaded as the texture's first (bottom) row.
-        return texture(client_image, vec2(uv.x, 1.0 - uv.y)).rgb;
+        return picture_radiance(texture(client_image, vec2(uv.x, 1.0 - uv.y)).rgb);
     }
     vec3 dir = normalize(to_world_direction(view_ray(gl_FragCoord.xy)));
     return scene_radiance(to_world_point(vec3(0.0)), dir);
@@ -35,6 +37,8 @@ vec3 background_radiance()
 
 void main()
 {
-    radiance = scene_color = vec4(background_radiance(), 1.0);
+    vec3 scene = background_radiance();
+    radiance = vec4(scene, 1.0);
+    scene_color = vec4(display_color(scene), 1.0);
     gl_FragDepth = window_depth(floor_depth(view_ray(gl_FragCoord.xy)));
 }

@@ -11,6 +11,7 @@ vec3 view_ray(vec2 window);
 vec3 to_world_point(vec3 view_point);
 vec3 to_world_direction(vec3 view_direction);
 vec3 scene_radiance(vec3 origin, vec3 dir);
+vec3 display_color(vec3 radiance);
 struct surface_spans {
     ivec2 x;
     ivec2 y;
@@ -34,7 +35,7 @@ layout(location = 6) uniform vec3 light_view;            // unit, towards the li
 layout(location = 7) uniform vec3 fluid_color;           // linear RGB seen through thick fluid
 layout(location = 8) uniform vec3 absorption;            // per world unit of thickness
 layout(location = 9) uniform float fresnel_f0;
-layout(location = 10) uniform float refraction;          // γ of eq. 15: pixels per world unit of thickness
+layout(location = 10) uniform float refraction;          // γ of eq. 15: pixels per pixel of projected thickness
 layout(location = 11) uniform float specular_strength;   // k_s of eq. 13
 layout(location = 12) uniform float particle_radius;     // world units; thinner fluid fades out
 layout(location = 13) uniform float shininess;           // α of eq. 13
@@ -53,6 +54,9 @@ layout(location = 46) uniform vec2 thickness_size;             // texels of the 
 // so very thick fluid cannot sample far-away, unrelated parts of the scene.
 const float max_shift_fraction = 0.05;
 const vec3 foam_color = vec3(0.90, 0.92, 0.94);
+// The sun's highlight at specular 1, linear HDR: bright enough that the
+// filmic shoulder shows it near white, as the sun's glint on water is.
+const vec3 highlight_radiance = 4.0 * vec3(1.00, 0.93, 0.82);
 
 layout(location = 0) out vec4 color;
 
@@ -91,10 +95,14 @@ vec3 shade_fluid(ivec2 p, float z, vec3 behind_here)
     float cos_view = clamp(dot(n, v), 0.0, 1.0);
     float fresnel = fresnel_f0 + (1.0 - fresnel_f0) * pow(1.0 - cos_view, 5.0);
 
-    // Eqs. 14-15: the background shifted by β·n with β = γ·T pixels, and
+    // Eqs. 14-15: the background shifted by β·n with β = γ·T, T the
+    // thickness as the pixels it spans at this depth: a slab displaces what is
+    // behind it in proportion to its thickness (about (1 - 1/ior)·T), so a
+    // droplet bends the floor as much at any image size or scene unit, and
     // attenuated per channel by Beer-Lambert towards the fluid colour.
+    float thickness_pixels = t * 0.5 * viewport.y * focal.y / z;
     vec2 max_shift = max_shift_fraction * viewport;
-    vec2 shift = clamp(refraction * t * n.xy, -max_shift, max_shift);
+    vec2 shift = clamp(refraction * thickness_pixels * n.xy, -max_shift, max_shift);
     // Clamped to the last texel centres of the image in use: beyond them the
     // texture holds stale pixels where an edge texel used to be repeated.
     vec2 shifted = clamp(gl_FragCoord.xy + shift, vec2(0.5), viewport - 0.5);
@@ -108,7 +116,7 @@ vec3 shade_fluid(ivec2 p, float z, vec3 behind_here)
     vec3 half_vector = normalize(v + light_view);
     float highlight = inside_surface(spans) ? specular_strength * pow(max(dot(n, half_vector), 0.0), shininess) : 0.0;
 
-    vec3 fluid = mix(refracted, reflected, fresnel) + vec3(highlight);
+    vec3 fluid = mix(refracted, reflected, fresnel) + highlight * highlight_radiance;
     // Foam is a diffuse white layer on the surface, lit like one. Without
     // foam there is no noise texture to read: the uniform branch keeps the
     // fetches out (a GPU skips them; llvmpipe runs and discards them).
@@ -130,5 +138,5 @@ void main()
     float z, z_floor;
     fluid_here(z, z_floor);   // true: the stencil holds where it is
     ivec2 p = ivec2(gl_FragCoord.xy);
-    color = vec4(shade_fluid(p, z, texelFetch(background, p, 0).rgb), 1.0);
+    color = vec4(display_color(shade_fluid(p, z, texelFetch(background, p, 0).rgb)), 1.0);
 }

@@ -1,9 +1,13 @@
 #version 450 core
-// The scene around the fluid as a function of world-space rays: a procedural
-// sky over a checkered floor (sky alone when a client background replaces the
-// floor). The background (what refraction sees) and the reflections both come
-// from scene_radiance, so a cube map or real geometry replaces the scene here
-// alone. Radiance is linear RGB.
+// The scene around the fluid as a function of world-space rays: a sky with a
+// horizon, a sun and the ground below it, over a checkered floor lit by that
+// sun and sky (sky alone when a client background replaces the floor). The
+// background (what refraction sees) and the reflections both come from
+// scene_radiance, so one light and one sky shape the whole image: a surface
+// tilted towards the camera reflects the ground, one tilted away the bright
+// horizon and the sky, and the highlight sits where the sun is reflected.
+// Radiance is linear HDR RGB (the sun disc is far brighter than 1);
+// display_color() turns it into the image's colour (exposure, filmic curve).
 
 layout(location = 20) uniform vec3 world_up;         // unit
 layout(location = 21) uniform vec3 sun_direction;    // unit, towards the sun
@@ -13,22 +17,41 @@ layout(location = 24) uniform float floor_height;    // the floor is dot(x, worl
 layout(location = 25) uniform float checker_size;    // world units
 layout(location = 26) uniform float pixel_angle;     // radians one pixel spans at the image centre
 layout(location = 27) uniform bool has_floor;        // false: sky all around (a client background replaces the floor)
+layout(location = 28) uniform float exposure_scale;  // 2^exposure
+layout(location = 29) uniform bool tone_map;         // true: 8-bit output, false: linear HDR (float output)
+layout(location = 32) uniform mat4 sun_shadow;        // world point -> shadow map, (u w, v w, 0, w), uv in [0,1]
+layout(location = 36) uniform bool has_shadow;
+layout(location = 37) uniform vec3 shadow_extinction;  // per world unit of the fluid's thickness seen from the sun
+layout(location = 38) uniform vec2 shadow_uv_scale;    // the map's share of its texture
 
-const vec3 horizon_color = vec3(0.80, 0.85, 0.90);
-const vec3 zenith_color = vec3(0.15, 0.33, 0.70);
-const vec3 ground_color = vec3(0.30, 0.28, 0.25);
-const vec3 sun_color = vec3(1.00, 0.95, 0.85);
-const vec3 checker_light = vec3(0.80, 0.78, 0.72);
-const vec3 checker_dark = vec3(0.30, 0.32, 0.36);
+layout(binding = 5) uniform sampler2D shadow_thickness; // the fluid's thickness along sun rays, world units
+
+const vec3 zenith_color = vec3(0.16, 0.34, 0.78);
+const vec3 horizon_color = vec3(1.05, 1.08, 1.10);
+const vec3 ground_near_horizon = vec3(0.36, 0.33, 0.29);
+const vec3 ground_color = vec3(0.16, 0.14, 0.12);
+const vec3 sun_color = vec3(1.00, 0.93, 0.82);
+const float sun_disc_radiance = 60.0;
+const float sun_disc_cos = 0.99985;                  // about 1 degree across
+const float sun_irradiance = 1.4;                    // on a surface facing the sun
+const vec3 checker_light = vec3(0.78, 0.76, 0.70);
+const vec3 checker_dark = vec3(0.36, 0.37, 0.40);
 const float fog_distance_in_checkers = 60.0;
 
+// Sky above the horizon, ground below it, the horizon itself a sharp bright
+// line: in reflections it draws the surface's shape as a contour.
 vec3 sky_radiance(vec3 dir)
 {
     float elevation = dot(dir, world_up);
-    vec3 sky = elevation >= 0.0 ? mix(horizon_color, zenith_color, sqrt(elevation))
-                                : mix(horizon_color, ground_color, sqrt(-elevation));
+    vec3 sky;
+    if (elevation >= 0.0)
+        sky = mix(horizon_color, zenith_color, pow(elevation, 0.45));
+    else
+        sky = mix(ground_near_horizon, ground_color, pow(min(-elevation * 4.0, 1.0), 0.6));
     float sun = max(dot(dir, sun_direction), 0.0);
-    return sky + sun_color * (0.3 * pow(sun, 24.0) + 3.0 * pow(sun, 1200.0));
+    vec3 glow = sun_color * (0.35 * pow(sun, 12.0) + 1.5 * pow(sun, 300.0));
+    float disc = smoothstep(sun_disc_cos - 0.00005, sun_disc_cos, sun);
+    return sky + glow + sun_color * sun_disc_radiance * disc;
 }
 
 // Fraction of light squares in a box of `width` checker units around uv: the
@@ -41,6 +64,27 @@ float filtered_checker(vec2 uv, float width)
     return 0.5 - 0.5 * i.x * i.y;
 }
 
+// Light reaching a floor point from the sun through the fluid (Beer-Lambert
+// on the thickness the fluid has along the sun ray), per channel; 1 outside
+// the shadow map. Nine taps over two texels soften the edge like a sun of
+// finite size would.
+vec3 sun_transmission(vec3 hit)
+{
+    if (!has_shadow)
+        return vec3(1.0);
+    vec4 s = sun_shadow * vec4(hit, 1.0);
+    vec2 uv = s.xy / s.w;
+    if (any(lessThan(uv, vec2(0.0))) || any(greaterThan(uv, vec2(1.0))))
+        return vec3(1.0);
+    vec2 texel = 1.0 / vec2(textureSize(shadow_thickness, 0));
+    vec2 last = shadow_uv_scale - 0.5 * texel;   // the last texel centres of the map
+    float t = 0.0;
+    for (int y = -1; y <= 1; y++)
+        for (int x = -1; x <= 1; x++)
+            t += texture(shadow_thickness, min(uv * shadow_uv_scale + 1.5 * texel * vec2(x, y), last)).r;
+    return exp(-shadow_extinction * (t / 9.0));
+}
+
 // `distance` along the ray and the cosine between ray and floor normal give
 // the pixel's footprint on the floor without screen-space derivatives, which
 // reflections and silhouettes would make undefined.
@@ -49,9 +93,10 @@ vec3 floor_radiance(vec3 hit, float distance, float cos_incidence)
     vec2 uv = vec2(dot(hit, floor_axis_u), dot(hit, floor_axis_v)) / checker_size;
     float footprint = distance * pixel_angle / (checker_size * max(cos_incidence, 0.02));
     vec3 albedo = mix(checker_dark, checker_light, filtered_checker(uv, footprint));
-    vec3 irradiance = 0.55 * horizon_color + 0.6 * sun_color * max(dot(world_up, sun_direction), 0.0);
+    vec3 sky_light = 0.25 * (horizon_color + zenith_color);
+    vec3 sun_light = sun_irradiance * sun_color * max(dot(world_up, sun_direction), 0.0) * sun_transmission(hit);
     float fog = 1.0 - exp(-distance / (fog_distance_in_checkers * checker_size));
-    return mix(albedo * irradiance, horizon_color, fog);
+    return mix(albedo * (sky_light + sun_light), horizon_color, fog);
 }
 
 vec3 scene_radiance(vec3 origin, vec3 dir)
@@ -63,4 +108,37 @@ vec3 scene_radiance(vec3 origin, vec3 dir)
         return floor_radiance(origin + distance * dir, distance, descent);
     }
     return sky_radiance(dir);
+}
+
+// The filmic curve of Narkowicz's ACES fit: a toe that keeps shadows, a
+// shoulder that rolls highlights (the sun, its reflections) off to white
+// instead of clipping them into flat patches.
+vec3 filmic(vec3 x)
+{
+    return clamp(x * (2.51 * x + 0.03) / (x * (2.43 * x + 0.59) + 0.14), 0.0, 1.0);
+}
+
+// The radiance filmic() shows as y (y in [0, 1]): the root of its quadratic
+// that is >= 0. A client's background image is a picture already, so it
+// enters the scene through this and leaves the tone map unchanged.
+vec3 inverse_filmic(vec3 y)
+{
+    y = clamp(y, 0.0, 0.999);
+    vec3 a = 2.43 * y - 2.51;
+    vec3 b = 0.59 * y - 0.03;
+    vec3 c = 0.14 * y;
+    return (-b - sqrt(max(b * b - 4.0 * a * c, 0.0))) / (2.0 * a);
+}
+
+vec3 display_color(vec3 radiance)
+{
+    vec3 exposed = radiance * exposure_scale;
+    return tone_map ? filmic(exposed) : exposed;
+}
+
+// A client image's colour as scene radiance: what the filmic curve maps back
+// to it, so that 8-bit output shows the picture unchanged where no fluid is.
+vec3 picture_radiance(vec3 color)
+{
+    return inverse_filmic(color) / exposure_scale;
 }

@@ -69,8 +69,9 @@ static float fresnel_f0(float ior)
     return r * r;
 }
 
-/* Absorption and refraction are given per particle radius of thickness (so a
- * scene looks the same in any unit) and applied per world unit. */
+/* Absorption is given per particle radius of thickness (so a scene looks the
+ * same in any unit) and applied per world unit; refraction is per pixel of
+ * projected thickness (composite.frag.glsl), unit-free already. */
 static void apply_material(const fc_settings *settings)
 {
     const float per_radius = 1.0f / settings->radius;
@@ -78,7 +79,7 @@ static void apply_material(const fc_settings *settings)
     glUniform3f(LOC_ABSORPTION, settings->absorption[0] * per_radius, settings->absorption[1] * per_radius,
                 settings->absorption[2] * per_radius);
     glUniform1f(LOC_FRESNEL_F0, fresnel_f0(settings->ior));
-    glUniform1f(LOC_REFRACTION, settings->refraction * per_radius);
+    glUniform1f(LOC_REFRACTION, settings->refraction);
     glUniform1f(LOC_SPECULAR, settings->specular);
     glUniform1f(LOC_SHININESS, settings->shininess);
     /* No noise, no foam; the range must stay non-empty even then (smoothstep). */

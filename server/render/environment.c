@@ -19,12 +19,22 @@ enum {
     LOC_FLOOR_HEIGHT = 24,
     LOC_CHECKER_SIZE = 25,
     LOC_PIXEL_ANGLE = 26,
-    LOC_HAS_FLOOR = 27
+    LOC_HAS_FLOOR = 27,
+    LOC_EXPOSURE_SCALE = 28,
+    LOC_TONE_MAP = 29,
+    LOC_SUN_SHADOW = 32,
+    LOC_HAS_SHADOW = 36,
+    LOC_SHADOW_EXTINCTION = 37,
+    LOC_SHADOW_UV_SCALE = 38
 };
+enum { UNIT_SHADOW_MAP = 5 };   /* layout(binding) in environment.frag.glsl */
 
-/* Towards the light in view space: above, left of and behind the camera, so
- * the surfaces the camera sees are lit and the sun shows in reflections. */
-static const float LIGHT_VIEW[3] = {-0.35f, 0.75f, 0.56f};
+/* The sun stands this high over the floor, and (seen from above) this far
+ * round from straight behind the camera towards its right: the surfaces the
+ * camera sees are lit, highlights fall on them, and the fluid's shadow falls
+ * to the left, beside it rather than hidden behind it. */
+#define SUN_ELEVATION_DEG 35.0f
+#define SUN_AZIMUTH_FROM_BEHIND_DEG 65.0f
 /* Checkers per box diagonal: squares large enough to read through the fluid. */
 #define CHECKERS_PER_DIAGONAL 10.0f
 
@@ -70,16 +80,50 @@ static void floor_plane_in_view(const fc_view *view, fc_environment *env)
     env->floor_plane[3] = fc_dot3(env->up, view->eye) - env->floor_height;
 }
 
-void fc_environment_for_view(const fc_view *view, const fc_camera *cam, const float lo[3], const float hi[3],
-                             float radius, bool has_floor, fc_environment *env)
+/* The direction towards the sun in world space, placed relative to where the
+ * camera looks (SUN_* above): the camera's backward and right directions
+ * projected onto the floor plane. */
+static void place_sun(const fc_camera *cam, const float up[3], float sun[3])
 {
-    for (int i = 0; i < 3; i++) {
-        env->up[i] = cam->up[i];
-        env->light_view[i] = LIGHT_VIEW[i];
+    float back[3] = {cam->eye[0] - cam->target[0], cam->eye[1] - cam->target[1], cam->eye[2] - cam->target[2]};
+    float along_up = fc_dot3(back, up);
+    for (int i = 0; i < 3; i++)
+        back[i] -= along_up * up[i];
+    if (fc_dot3(back, back) < 1e-12f * (1.0f + along_up * along_up)) {
+        /* Looking straight down or up: "behind" is the camera's own down direction. */
+        float any[3] = {fabsf(up[0]) < 0.9f ? 1.0f : 0.0f, fabsf(up[0]) < 0.9f ? 0.0f : 1.0f, 0.0f};
+        fc_cross3(up, any, back);
     }
+    fc_normalize3(back);
+    float right[3];
+    fc_cross3(up, back, right);   /* up x backward = the camera's right */
+    const float deg = 3.14159265f / 180.0f;
+    float azimuth = SUN_AZIMUTH_FROM_BEHIND_DEG * deg, elevation = SUN_ELEVATION_DEG * deg;
+    for (int i = 0; i < 3; i++)
+        sun[i] = cosf(elevation) * (cosf(azimuth) * back[i] + sinf(azimuth) * right[i]) + sinf(elevation) * up[i];
+    fc_normalize3(sun);
+}
+
+/* A world direction in view space: the view matrix's rotation applied. */
+static void direction_to_view(const fc_view *view, const float world[3], float out[3])
+{
+    for (int r = 0; r < 3; r++)
+        out[r] = view->view[0 * 4 + r] * world[0] + view->view[1 * 4 + r] * world[1] + view->view[2 * 4 + r] * world[2];
+    fc_normalize3(out);
+}
+
+void fc_environment_for_view(const fc_view *view, const fc_camera *cam, const float lo[3], const float hi[3],
+                             const fc_settings *settings, bool has_floor, bool want_u8, fc_environment *env)
+{
+    const float radius = settings->radius;
+    for (int i = 0; i < 3; i++)
+        env->up[i] = cam->up[i];
     fc_normalize3(env->up);
-    fc_normalize3(env->light_view);
-    fc_view_direction_to_world(view, env->light_view, env->sun);
+    place_sun(cam, env->up, env->sun);
+    direction_to_view(view, env->sun, env->light_view);
+    env->exposure_scale = exp2f(settings->exposure);
+    env->tone_map = want_u8;
+    env->has_shadow = false;   /* until shadow_pass.c lays one down */
     floor_axes(env->up, env->floor_u, env->floor_v);
     env->floor_height = lowest_height(env->up, lo, hi) - radius;
     env->has_floor = has_floor;
@@ -107,4 +151,13 @@ void fc_environment_apply(const fc_environment *env, const fc_view *view)
     glUniform1f(LOC_CHECKER_SIZE, env->checker_size);
     glUniform1f(LOC_PIXEL_ANGLE, env->pixel_angle);
     glUniform1i(LOC_HAS_FLOOR, env->has_floor);
+    glUniform1f(LOC_EXPOSURE_SCALE, env->exposure_scale);
+    glUniform1i(LOC_TONE_MAP, env->tone_map);
+    glUniform1i(LOC_HAS_SHADOW, env->has_shadow);
+    if (env->has_shadow) {
+        glUniformMatrix4fv(LOC_SUN_SHADOW, 1, GL_FALSE, env->shadow_transform);
+        glUniform3fv(LOC_SHADOW_EXTINCTION, 1, env->shadow_extinction);
+        glUniform2fv(LOC_SHADOW_UV_SCALE, 1, env->shadow_uv_scale);
+        glBindTextureUnit(UNIT_SHADOW_MAP, env->shadow_map);
+    }
 }

@@ -3,6 +3,7 @@
 #ifndef FC_ENVIRONMENT_H
 #define FC_ENVIRONMENT_H
 
+#include <epoxy/gl.h>
 #include <stdbool.h>
 
 #include "fluidcast_types.h"
@@ -19,14 +20,23 @@ typedef struct fc_environment {
     float floor_plane[4];     /* the floor in view space: dot(xyz, x) + w > 0 above it; (0,0,0,1) without */
     float checker_size;       /* world units */
     float pixel_angle;        /* radians one pixel spans at the image centre */
+    float exposure_scale;     /* 2^settings.exposure */
+    bool tone_map;            /* the filmic curve on the output (8-bit images); float images stay linear HDR */
+    /* The fluid's shadow on the floor (shadow_pass.h); has_shadow false: none. */
+    bool has_shadow;
+    GLuint shadow_map;            /* R32F thickness along sun rays, world units */
+    float shadow_transform[16];   /* world point -> (u w, v w, 0, w), (u, v) in [0, 1] over the map */
+    float shadow_uv_scale[2];     /* the map's share of its texture */
+    float shadow_extinction[3];   /* per world unit of that thickness */
 } fc_environment;
 
 /* The environment of a render: a floor (when has_floor) perpendicular to the
  * camera's up vector touching the bottom of the particles' box [lo, hi]
- * (grown by radius), checkers scaled to the box, a light over the camera's
- * shoulder. */
+ * (grown by the settings' radius), checkers scaled to the box, a sun high
+ * behind the camera's left shoulder, the settings' exposure, and the tone map
+ * when the image is 8-bit. */
 void fc_environment_for_view(const fc_view *view, const fc_camera *cam, const float lo[3], const float hi[3],
-                             float radius, bool has_floor, fc_environment *env);
+                             const fc_settings *settings, bool has_floor, bool want_u8, fc_environment *env);
 
 /* Sets the uniforms of camera.frag.glsl and environment.frag.glsl on the
  * program in use. */

@@ -23,6 +23,7 @@
 #include "pipeline_internal.h"
 #include "readback.h"
 #include "scene_textures.h"
+#include "shadow_pass.h"
 #include "smoothing.h"
 #include "spray_pass.h"
 #include "stage_timer.h"
@@ -48,6 +49,7 @@ struct fc_pipeline {
     fc_background_pass background;
     fc_composite_pass composite;
     fc_spray_pass spray;
+    fc_shadow_pass shadow;
     fc_stage_timer timer;
     fc_pass_profile profile;
     fc_readback readback;
@@ -92,6 +94,8 @@ static fc_code create_passes(fc_pipeline *p, const char *dir, fc_error *err)
         code = fc_depth_pass_create(dir, &p->depth, err);
     if (code == FC_OK)
         code = fc_thickness_pass_create(dir, &p->thickness, err);
+    if (code == FC_OK)
+        code = fc_shadow_pass_create(dir, &p->shadow, err);
     if (code == FC_OK)
         code = fc_smoother_create(dir, &p->smoother, err);
     if (code == FC_OK)
@@ -205,21 +209,24 @@ static fc_code composite_stage(fc_pipeline *p, const render_job *job, const fc_r
     fc_composite_inputs inputs = {surface, thickness, &p->background.target, NULL,
                                   job->scene ? job->scene->environment_map : 0};
     bool want_u8 = job->want_u8;
+    fc_environment env = job->env;   /* the shadow pass adds its map */
     fc_stage_timer_begin(&p->timer, FC_STAGE_COMPOSITE);
     fc_code code = shading_noise(p, job, surface, &inputs.noise, err);
     fc_pass_profile *profile = &p->profile;
+    if (code == FC_OK && job->settings->shadow && env.has_floor)
+        code = fc_shadow_pass_run(&p->shadow, &job->surface, p->particles.lo, p->particles.hi, job->settings, profile,
+                                  &env, err);
     const fc_render_target *target = NULL;
     if (code == FC_OK)
         code = fc_composite_pass_target(&p->composite, job->view, want_u8, &target, err);
     if (code == FC_OK) {
         fc_pass_profile_begin(profile, "background");
-        code = fc_background_pass_run(&p->background, job->view, &job->env, job->scene, target, err);
+        code = fc_background_pass_run(&p->background, job->view, &env, job->scene, target, err);
         fc_pass_profile_end(profile);
     }
     if (code == FC_OK) {
         fc_pass_profile_begin(profile, "composite");
-        code = fc_composite_pass_run(&p->composite, &inputs, job->view, &job->env, job->settings, want_u8, result,
-                                     err);
+        code = fc_composite_pass_run(&p->composite, &inputs, job->view, &env, job->settings, want_u8, result, err);
         fc_pass_profile_end(profile);
     }
     if (code == FC_OK) {
@@ -292,7 +299,7 @@ static void plan_job(const fc_pipeline *p, const fc_view *view, const fc_camera 
                         .want_u8 = want_u8};
     job->surface.count = fc_particle_attributes_surface_count(&p->attributes, settings->density_threshold);
     bool has_floor = !(scene && scene->background);
-    fc_environment_for_view(view, camera, p->particles.lo, p->particles.hi, settings->radius, has_floor, &job->env);
+    fc_environment_for_view(view, camera, p->particles.lo, p->particles.hi, settings, has_floor, want_u8, &job->env);
 }
 
 /* Positions go to the GPU in the frame's order, with their records: each
@@ -422,6 +429,7 @@ void fc_pipeline_destroy(fc_pipeline *p)
     fc_noise_pass_destroy(&p->noise);
     fc_smoother_destroy(&p->smoother);
     fc_thickness_pass_destroy(&p->thickness);
+    fc_shadow_pass_destroy(&p->shadow);
     fc_depth_pass_destroy(&p->depth);
     fc_anisotropy_destroy(&p->anisotropy);
     fc_particle_attributes_destroy(&p->attributes);
@@ -561,6 +569,7 @@ void fc_pipeline_trim(fc_pipeline *p)
 {
     fc_depth_pass_trim(&p->depth);
     fc_thickness_pass_trim(&p->thickness);
+    fc_shadow_pass_trim(&p->shadow);
     fc_smoother_trim(&p->smoother);
     fc_render_target_release(&p->noise.target);
     fc_render_target_release(&p->normal.target);
@@ -577,6 +586,7 @@ void fc_pipeline_gpu_memory(const fc_pipeline *p, fc_gpu_memory *out)
     fc_anisotropy_tally(&p->anisotropy, out);
     fc_depth_pass_tally(&p->depth, out);
     fc_thickness_pass_tally(&p->thickness, out);
+    fc_shadow_pass_tally(&p->shadow, out);
     fc_smoother_tally(&p->smoother, out);
     fc_render_target_tally(&p->noise.target, out);
     fc_render_target_tally(&p->normal.target, out);

@@ -1,0 +1,104 @@
+/* shadow_pass.c — see shadow_pass.h. */
+#include "shadow_pass.h"
+
+#include <math.h>
+
+#include "vec3.h"
+#include "view.h"
+
+/* Texels per side of the map: a particle covers a few of them at the
+ * sizes simulations come in, and the blur makes the edge soft anyway. */
+#define MAP_SIZE 512u
+/* The blur of the map, in its texels: the penumbra of a sun about a degree
+ * across at the distances splashes stand above their floor. */
+#define MAP_BLUR 3u
+/* The sun's camera stands this many box radii away, looking at the box:
+ * rays from it are parallel within about three degrees. */
+#define SUN_DISTANCE_RADII 20.0f
+/* Light leaves the sun's beam through water by absorption (the fluid's
+ * own, per channel) and by refraction at its surfaces, which bends it out
+ * of the beam whatever its colour: this much per particle radius. */
+#define REFRACTED_OUT_PER_RADIUS 0.3f
+
+fc_code fc_shadow_pass_create(const char *shader_dir, fc_shadow_pass *pass, fc_error *err)
+{
+    return fc_thickness_pass_create(shader_dir, &pass->thickness, err);
+}
+
+void fc_shadow_pass_destroy(fc_shadow_pass *pass)
+{
+    fc_thickness_pass_destroy(&pass->thickness);
+}
+
+/* A camera on the sun's side of the box, framing its bounding sphere. */
+static void sun_camera(const float lo[3], const float hi[3], float radius, const float sun[3], fc_camera *cam)
+{
+    float centre[3], half[3];
+    for (int i = 0; i < 3; i++) {
+        centre[i] = 0.5f * (lo[i] + hi[i]);
+        half[i] = 0.5f * (hi[i] - lo[i]);
+    }
+    float extent = sqrtf(fc_dot3(half, half)) + radius;
+    float distance = SUN_DISTANCE_RADII * extent;
+    /* Any direction not along the sun serves as up: the map is square. */
+    float up[3] = {0.0f, 0.0f, 1.0f};
+    if (fabsf(sun[2]) > 0.9f)
+        up[0] = 1.0f, up[2] = 0.0f;
+    *cam = (fc_camera){.fov_y_deg = (float)(2.0 * atan(1.02 * extent / distance) * 180.0 / 3.14159265358979),
+                       .width = MAP_SIZE, .height = MAP_SIZE};
+    for (int i = 0; i < 3; i++) {
+        cam->eye[i] = centre[i] + distance * sun[i];
+        cam->target[i] = centre[i];
+        cam->up[i] = up[i];
+    }
+}
+
+/* World point -> (u w, v w, 0, w) with (u, v) in [0, 1] over the map:
+ * uv = 0.5 ndc + 0.5 and ndc = f x / w, w the distance in front of the sun's
+ * camera. Column-major like fc_view.view. */
+static void map_transform(const fc_view *v, float m[16])
+{
+    for (int c = 0; c < 4; c++) {
+        float x = v->view[c * 4 + 0], y = v->view[c * 4 + 1], w = -v->view[c * 4 + 2];
+        m[c * 4 + 0] = 0.5f * v->fx * x + 0.5f * w;
+        m[c * 4 + 1] = 0.5f * v->fy * y + 0.5f * w;
+        m[c * 4 + 2] = 0.0f;
+        m[c * 4 + 3] = w;
+    }
+}
+
+fc_code fc_shadow_pass_run(fc_shadow_pass *pass, const fc_particle_buffer *particles, const float lo[3],
+                           const float hi[3], const fc_settings *settings, fc_pass_profile *profile,
+                           fc_environment *env, fc_error *err)
+{
+    fc_camera cam;
+    sun_camera(lo, hi, settings->radius, env->sun, &cam);
+    fc_view view;
+    fc_view_from_camera(&cam, lo, hi, settings->radius, &view);
+    static const float no_floor[4] = {0.0f, 0.0f, 0.0f, 1.0f};   /* nothing is cut off */
+    fc_thickness_params params = {.radius = settings->radius, .scale = 1.0f, .blur = MAP_BLUR,
+                                  .floor_plane = no_floor, .profile = profile};
+    const fc_render_target *map = NULL;
+    fc_code code = fc_thickness_pass_run(&pass->thickness, particles, &view, &params, &map, err);
+    if (code != FC_OK)
+        return code;
+    map_transform(&view, env->shadow_transform);
+    /* The map may fill only the lower-left part of its texture (targets only grow). */
+    env->shadow_uv_scale[0] = (float)map->width / (float)map->texture_width;
+    env->shadow_uv_scale[1] = (float)map->height / (float)map->texture_height;
+    env->shadow_map = map->color;
+    env->has_shadow = true;
+    for (int c = 0; c < 3; c++)
+        env->shadow_extinction[c] = (settings->absorption[c] + REFRACTED_OUT_PER_RADIUS) / settings->radius;
+    return FC_OK;
+}
+
+void fc_shadow_pass_tally(const fc_shadow_pass *pass, fc_gpu_memory *m)
+{
+    fc_thickness_pass_tally(&pass->thickness, m);
+}
+
+void fc_shadow_pass_trim(fc_shadow_pass *pass)
+{
+    fc_thickness_pass_trim(&pass->thickness);
+}

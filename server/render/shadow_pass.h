@@ -1,0 +1,31 @@
+/* shadow_pass.h — the fluid's shadow on the built-in floor: the thickness of
+ * fluid along the sun's rays, splatted from the sun by the thickness pass
+ * into a square map, through which environment.frag.glsl attenuates the
+ * sunlight on each floor point (Beer-Lambert), so that a splash is seen to
+ * stand above the floor. */
+#ifndef FC_SHADOW_PASS_H
+#define FC_SHADOW_PASS_H
+
+#include "environment.h"
+#include "gpu_memory.h"
+#include "pass_profile.h"
+#include "thickness_pass.h"
+
+typedef struct fc_shadow_pass {
+    fc_thickness_pass thickness;   /* its own targets: the camera's thickness is splatted after this */
+} fc_shadow_pass;
+
+fc_code fc_shadow_pass_create(const char *shader_dir, fc_shadow_pass *pass, fc_error *err);
+void fc_shadow_pass_destroy(fc_shadow_pass *pass);
+
+/* Splats the particles (inside the box [lo, hi], of the settings' radius)
+ * as seen from env->sun and sets env's shadow: the map, the world-to-map
+ * transform and the extinction per world unit of thickness. */
+fc_code fc_shadow_pass_run(fc_shadow_pass *pass, const fc_particle_buffer *particles, const float lo[3],
+                           const float hi[3], const fc_settings *settings, fc_pass_profile *profile,
+                           fc_environment *env, fc_error *err);
+
+void fc_shadow_pass_tally(const fc_shadow_pass *pass, fc_gpu_memory *m);
+void fc_shadow_pass_trim(fc_shadow_pass *pass);
+
+#endif
