@@ -284,12 +284,12 @@ static void test_density_threshold(const test_env *env)
 static void test_shading_flags(const test_env *env)
 {
     fc_decoded_image red, blue;
-    if (render(env, "ball.f32", "red.png", FLAGS("--color", "1,0,0"), &red)) {
+    if (render(env, "ball.f32", "red.png", FLAGS("--color", "1,0,0", "--absorption", "1,1,1"), &red)) {
         const uint8_t *c = pixel(&red, WIDTH / 2, HEIGHT / 2);
         CHECK_MSG(c[0] > c[2] + 60, "--color 1,0,0 gives %d,%d,%d", c[0], c[1], c[2]);
         fc_decoded_image_free(&red);
     }
-    if (render(env, "ball.f32", "blue.png", FLAGS("--color", "0,0,1"), &blue)) {
+    if (render(env, "ball.f32", "blue.png", FLAGS("--color", "0,0,1", "--absorption", "1,1,1"), &blue)) {
         const uint8_t *c = pixel(&blue, WIDTH / 2, HEIGHT / 2);
         CHECK_MSG(c[2] > c[0] + 60, "--color 0,0,1 gives %d,%d,%d", c[0], c[1], c[2]);
         fc_decoded_image_free(&blue);
