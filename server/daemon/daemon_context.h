@@ -25,7 +25,7 @@ typedef struct fc_daemon_context {
     uint32_t max_connections;      /* connections at once; more are refused with LIMIT */
     double idle_timeout_ms;        /* no complete message for this long closes a connection; 0 = never */
     double read_timeout_ms;        /* a started message must complete within this; 0 = never */
-    uint64_t max_session_memory;   /* bytes one connection may hold (session_memory.h) */
+    uint64_t max_session_memory;   /* bytes one connection may hold (clients/client_memory.h) */
 } fc_daemon_context;
 
 #endif

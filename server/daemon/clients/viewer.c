@@ -3,11 +3,11 @@
 
 #include <string.h>
 
-#include "clients/session_internal.h"
+#include "clients/client_internal.h"
 #include "fc_error.h"
 #include "monotonic.h"
+#include "sessions/session.h"
 #include "sessions/session_events.h"
-#include "sessions/stream_session.h"
 
 typedef enum image_reason {
     REASON_NEW_FRAME = 0,    /* the session published a frame this viewer has not seen */
@@ -15,27 +15,27 @@ typedef enum image_reason {
     REASON_REFRESH           /* lossless copy of a frame shown lossy */
 } image_reason;
 
-static bool is_viewer(const struct fc_session *s)
+static bool is_viewer(const struct fc_client *c)
 {
-    return s->role == FC_ROLE_VIEWER;
+    return c->role == FC_ROLE_VIEWER;
 }
 
-static fc_render_order order_for(const struct fc_session *s, image_reason reason, double now_ms)
+static fc_render_order order_for(const struct fc_client *c, image_reason reason, double now_ms)
 {
-    const fc_viewer *v = &s->viewer;
-    const fc_stream_session *stream = s->stream;
+    const fc_viewer *v = &c->viewer;
+    const fc_session *session = c->session;
     fc_render_order order = {0};
     order.kind = FC_JOB_STREAM;
     order.request_id = v->subscribe_id;
     order.request = v->request;
     order.auto_width = v->auto_width;
     order.auto_height = v->auto_height;
-    order.tag.frame_number = stream->latest->number;
-    order.tag.sequence = stream->sequence;
+    order.tag.frame_number = session->latest->number;
+    order.tag.sequence = session->sequence;
     if (reason == REASON_NEW_FRAME) {
-        uint64_t missed = stream->sequence - v->last_sequence - 1;
+        uint64_t missed = session->sequence - v->last_sequence - 1;
         order.tag.missed = missed > UINT32_MAX ? UINT32_MAX : (uint32_t)missed;
-        order.received_ms = stream->latest->ready_ms;
+        order.received_ms = session->latest->ready_ms;
     } else if (reason == REASON_VIEW) {
         order.tag.flags = FC_STREAM_VIEW;
         order.received_ms = v->view_changed_ms;
@@ -47,138 +47,138 @@ static fc_render_order order_for(const struct fc_session *s, image_reason reason
     return order;
 }
 
-static void dispatch(struct fc_session *s, image_reason reason, double now_ms)
+static void dispatch(struct fc_client *c, image_reason reason, double now_ms)
 {
-    fc_viewer *v = &s->viewer;
-    fc_render_order order = order_for(s, reason, now_ms);
+    fc_viewer *v = &c->viewer;
+    fc_render_order order = order_for(c, reason, now_ms);
     fc_error err;
-    if (fc_session_submit_render(s, s->stream->latest, &order, &err) != FC_OK) {
-        fc_session_send_error(s, v->subscribe_id, &err);
+    if (fc_client_submit_render(c, c->session->latest, &order, &err) != FC_OK) {
+        fc_client_send_error(c, v->subscribe_id, &err);
         return;
     }
     v->busy = true;
     v->view_changed = false;
-    v->last_sequence = s->stream->sequence;
-    double refresh_ms = s->ctx->refresh_ms;
+    v->last_sequence = c->session->sequence;
+    double refresh_ms = c->ctx->refresh_ms;
     bool lossy = order.request.format == FC_FORMAT_JPEG;
     v->refresh_due_ms = lossy && refresh_ms > 0.0 ? now_ms + refresh_ms : 0.0;
 }
 
-static void send_end(struct fc_session *s)
+static void send_end(struct fc_client *c)
 {
     fc_error err;
-    fc_stream_session *stream = s->stream;
-    if (fc_wire_write_session_end(s->out, s->viewer.end_request_id, stream->name, &err) != FC_OK)
-        fc_log_write(s->ctx->log, FC_LOG_ERROR, "%s: cannot queue SESSION_END: %s", s->peer, err.message);
-    fc_log_write(s->ctx->log, FC_LOG_INFO, "%s: left session '%s' as a viewer", s->peer, stream->name);
-    fc_session_leave_stream(s);
+    fc_session *session = c->session;
+    if (fc_wire_write_session_end(c->out, c->viewer.end_request_id, session->name, &err) != FC_OK)
+        fc_log_write(c->ctx->log, FC_LOG_ERROR, "%s: cannot queue SESSION_END: %s", c->peer, err.message);
+    fc_log_write(c->ctx->log, FC_LOG_INFO, "%s: left session '%s' as a viewer", c->peer, session->name);
+    fc_client_leave_session(c);
 }
 
 /* Starts the next image this viewer is due, or ends its subscription. */
-static void pump(struct fc_session *s, double now_ms)
+static void pump(struct fc_client *c, double now_ms)
 {
-    fc_viewer *v = &s->viewer;
-    if (!is_viewer(s) || v->busy)
+    fc_viewer *v = &c->viewer;
+    if (!is_viewer(c) || v->busy)
         return;
-    const fc_stream_session *stream = s->stream;
-    bool new_frame = stream->latest && stream->sequence > v->last_sequence;
+    const fc_session *session = c->session;
+    bool new_frame = session->latest && session->sequence > v->last_sequence;
     if (v->ending && !(v->deliver_last && new_frame))
-        send_end(s);
+        send_end(c);
     else if (new_frame)
-        dispatch(s, REASON_NEW_FRAME, now_ms);
-    else if (stream->latest && v->view_changed && !v->ending)
-        dispatch(s, REASON_VIEW, now_ms);
-    else if (stream->latest && v->refresh_due_ms > 0.0 && now_ms >= v->refresh_due_ms && !v->ending)
-        dispatch(s, REASON_REFRESH, now_ms);
+        dispatch(c, REASON_NEW_FRAME, now_ms);
+    else if (session->latest && v->view_changed && !v->ending)
+        dispatch(c, REASON_VIEW, now_ms);
+    else if (session->latest && v->refresh_due_ms > 0.0 && now_ms >= v->refresh_due_ms && !v->ending)
+        dispatch(c, REASON_REFRESH, now_ms);
 }
 
-void fc_viewer_start(struct fc_session *s, uint32_t subscribe_id, const fc_subscribe *sub, uint32_t auto_width,
+void fc_viewer_start(struct fc_client *c, uint32_t subscribe_id, const fc_subscribe *sub, uint32_t auto_width,
                      uint32_t auto_height)
 {
-    fc_viewer *v = &s->viewer;
+    fc_viewer *v = &c->viewer;
     memset(v, 0, sizeof *v);
     v->subscribe_id = subscribe_id;
     v->request = sub->request;
     v->auto_width = auto_width;
     v->auto_height = auto_height;
     /* Missed frames count from the subscription: a frame already there is the first image, not a loss. */
-    const fc_stream_session *stream = s->stream;
-    v->last_sequence = stream->latest ? stream->sequence - 1 : stream->sequence;
-    pump(s, fc_monotonic_ms());
+    const fc_session *session = c->session;
+    v->last_sequence = session->latest ? session->sequence - 1 : session->sequence;
+    pump(c, fc_monotonic_ms());
 }
 
-void fc_viewer_view_changed(struct fc_session *s, double now_ms)
+void fc_viewer_view_changed(struct fc_client *c, double now_ms)
 {
-    if (!is_viewer(s))
+    if (!is_viewer(c))
         return;
-    s->viewer.view_changed = true;
-    s->viewer.view_changed_ms = now_ms;
-    pump(s, now_ms);
+    c->viewer.view_changed = true;
+    c->viewer.view_changed_ms = now_ms;
+    pump(c, now_ms);
 }
 
-void fc_viewer_leave(struct fc_session *s, uint32_t request_id)
+void fc_viewer_leave(struct fc_client *c, uint32_t request_id)
 {
-    s->viewer.ending = true;
-    s->viewer.deliver_last = false;
-    s->viewer.end_request_id = request_id;
-    pump(s, fc_monotonic_ms());
+    c->viewer.ending = true;
+    c->viewer.deliver_last = false;
+    c->viewer.end_request_id = request_id;
+    pump(c, fc_monotonic_ms());
 }
 
-void fc_viewer_job_done(struct fc_session *s, const fc_render_job *job)
+void fc_viewer_job_done(struct fc_client *c, const fc_render_job *job)
 {
-    if (!is_viewer(s))
+    if (!is_viewer(c))
         return;
-    s->viewer.queued = true;
+    c->viewer.queued = true;
     fc_error err;
     if (job->error.code != FC_OK) {
-        fc_session_send_error(s, job->request_id, &job->error);
+        fc_client_send_error(c, job->request_id, &job->error);
         return;
     }
-    if (fc_session_queue_message(s, &job->message, "the STREAM_IMAGE", &err) != FC_OK) {
+    if (fc_client_queue_message(c, &job->message, "the STREAM_IMAGE", &err) != FC_OK) {
         /* The image is lost like one a slow viewer misses; the ERROR says why. */
-        fc_session_send_error(s, job->request_id, &err);
+        fc_client_send_error(c, job->request_id, &err);
         return;
     }
-    s->viewer.queued_bytes = job->message.len;
+    c->viewer.queued_bytes = job->message.len;
 }
 
-size_t fc_viewer_backlog_allowance(const struct fc_session *s)
+size_t fc_viewer_backlog_allowance(const struct fc_client *c)
 {
     enum { MIN_ALLOWANCE = 64 * 1024 };
-    if (!is_viewer(s) || !s->viewer.queued)
+    if (!is_viewer(c) || !c->viewer.queued)
         return SIZE_MAX;
-    return s->viewer.queued_bytes > MIN_ALLOWANCE ? s->viewer.queued_bytes : MIN_ALLOWANCE;
+    return c->viewer.queued_bytes > MIN_ALLOWANCE ? c->viewer.queued_bytes : MIN_ALLOWANCE;
 }
 
-void fc_viewer_drained(struct fc_session *s)
+void fc_viewer_drained(struct fc_client *c)
 {
-    if (!is_viewer(s) || !s->viewer.queued)
+    if (!is_viewer(c) || !c->viewer.queued)
         return;
-    s->viewer.queued = false;
-    s->viewer.busy = false;
-    pump(s, fc_monotonic_ms());
+    c->viewer.queued = false;
+    c->viewer.busy = false;
+    pump(c, fc_monotonic_ms());
 }
 
-double fc_viewer_deadline_ms(const struct fc_session *s)
+double fc_viewer_deadline_ms(const struct fc_client *c)
 {
-    if (!is_viewer(s) || s->viewer.busy || s->viewer.refresh_due_ms <= 0.0)
+    if (!is_viewer(c) || c->viewer.busy || c->viewer.refresh_due_ms <= 0.0)
         return -1.0;
-    return s->viewer.refresh_due_ms;
+    return c->viewer.refresh_due_ms;
 }
 
-void fc_viewer_tick(struct fc_session *s, double now_ms)
+void fc_viewer_tick(struct fc_client *c, double now_ms)
 {
-    pump(s, now_ms);
+    pump(c, now_ms);
 }
 
 /* ---- What the named session tells its viewers ---- */
 
-void fc_session_on_new_frame(struct fc_session *viewer)
+void fc_client_on_new_frame(struct fc_client *viewer)
 {
     pump(viewer, fc_monotonic_ms());
 }
 
-void fc_session_on_stream_ended(struct fc_session *viewer)
+void fc_client_on_session_ended(struct fc_client *viewer)
 {
     fc_viewer *v = &viewer->viewer;
     if (v->ending)

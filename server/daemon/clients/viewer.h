@@ -13,7 +13,7 @@
 #include "gpu/render_job.h"
 #include "wire_session.h"
 
-struct fc_session;
+struct fc_client;
 
 typedef struct fc_viewer {
     uint32_t subscribe_id;         /* request id of the SUBSCRIBE: stream images and the end echo it */
@@ -32,24 +32,24 @@ typedef struct fc_viewer {
     uint32_t end_request_id;
 } fc_viewer;
 
-/* Subscribes the session's connection (already added to s->stream) with
+/* Subscribes the client (already added to c->session as a viewer) with
  * request id `subscribe_id`; a frame the session has already is sent at once. */
-void fc_viewer_start(struct fc_session *s, uint32_t subscribe_id, const fc_subscribe *sub, uint32_t auto_width,
+void fc_viewer_start(struct fc_client *c, uint32_t subscribe_id, const fc_subscribe *sub, uint32_t auto_width,
                      uint32_t auto_height);
 /* CAMERA or SETTINGS changed: the current frame is rendered again for this viewer. */
-void fc_viewer_view_changed(struct fc_session *s, double now_ms);
+void fc_viewer_view_changed(struct fc_client *c, double now_ms);
 /* The client sent SESSION_END: no more images; SESSION_END answers request_id
  * once the image in flight (if any) has gone out. */
-void fc_viewer_leave(struct fc_session *s, uint32_t request_id);
+void fc_viewer_leave(struct fc_client *c, uint32_t request_id);
 /* A stream job of this viewer finished: queue its image (or its ERROR). */
-void fc_viewer_job_done(struct fc_session *s, const fc_render_job *job);
+void fc_viewer_job_done(struct fc_client *c, const fc_render_job *job);
 /* The connection's output queue is empty. */
-void fc_viewer_drained(struct fc_session *s);
+void fc_viewer_drained(struct fc_client *c);
 /* How much of its output the kernel may still hold before the viewer's next
  * image starts: about one image (so a link stays busy), SIZE_MAX when no image waits. */
-size_t fc_viewer_backlog_allowance(const struct fc_session *s);
+size_t fc_viewer_backlog_allowance(const struct fc_client *c);
 /* When the viewer next needs fc_viewer_tick without I/O; negative for never. */
-double fc_viewer_deadline_ms(const struct fc_session *s);
-void fc_viewer_tick(struct fc_session *s, double now_ms);
+double fc_viewer_deadline_ms(const struct fc_client *c);
+void fc_viewer_tick(struct fc_client *c, double now_ms);
 
 #endif

@@ -41,7 +41,7 @@ fc_code fc_connection_create(int fd, const char *peer, uint64_t id, fc_daemon_co
     c->fd = fd;
     snprintf(c->peer, sizeof c->peer, "%s", peer);
     fc_buf_init(&c->out);
-    fc_session_init(&c->session, c->peer, ctx, id, &c->out);
+    fc_client_init(&c->client, c->peer, ctx, id, &c->out);
     c->last_message_ms = fc_monotonic_ms();
     *out = c;
     return FC_OK;
@@ -52,7 +52,7 @@ void fc_connection_destroy(fc_connection *c)
     if (!c)
         return;
     close(c->fd);
-    fc_session_free(&c->session);
+    fc_client_free(&c->client);
     free(c->payload);
     fc_buf_free(&c->out);
     free(c);
@@ -73,7 +73,7 @@ short fc_connection_wanted_events(const fc_connection *c)
          * order of the requests. */
         if (has_pending_output(c))
             return POLLOUT;
-        return c->session.reply_pending ? 0 : POLLIN;
+        return c->client.reply_pending ? 0 : POLLIN;
     case FC_CONN_FLUSHING:
         return POLLOUT;
     case FC_CONN_LINGERING:
@@ -94,12 +94,12 @@ static bool message_in_progress(const fc_connection *c)
  * our replies wait to be read, and never for a viewer, which only listens. */
 static double client_deadline_ms(const fc_connection *c)
 {
-    const fc_daemon_context *ctx = c->session.ctx;
-    if (c->phase != FC_CONN_OPEN || has_pending_output(c) || c->session.reply_pending)
+    const fc_daemon_context *ctx = c->client.ctx;
+    if (c->phase != FC_CONN_OPEN || has_pending_output(c) || c->client.reply_pending)
         return -1.0;
     if (message_in_progress(c))
         return ctx->read_timeout_ms > 0.0 ? c->started_ms + ctx->read_timeout_ms : -1.0;
-    if (c->session.role == FC_ROLE_VIEWER || ctx->idle_timeout_ms <= 0.0)
+    if (c->client.role == FC_ROLE_VIEWER || ctx->idle_timeout_ms <= 0.0)
         return -1.0;
     return c->last_message_ms + ctx->idle_timeout_ms;
 }
@@ -119,7 +119,7 @@ int fc_connection_timeout_ms(const fc_connection *c, double now_ms)
     else if (c->phase == FC_CONN_OPEN && c->backlog_check_ms > 0.0)
         deadline = c->backlog_check_ms;
     else if (c->phase == FC_CONN_OPEN)
-        deadline = fc_session_deadline_ms(&c->session);
+        deadline = fc_client_deadline_ms(&c->client);
     deadline = earliest(deadline, client_deadline_ms(c));
     if (deadline < 0.0)
         return -1;
@@ -152,13 +152,13 @@ static size_t kernel_backlog(int fd)
  * there would be exactly the stale frames latest-wins is meant to drop. */
 static void report_drained(fc_connection *c)
 {
-    size_t allowance = fc_session_backlog_allowance(&c->session);
+    size_t allowance = fc_client_backlog_allowance(&c->client);
     if (allowance != SIZE_MAX && kernel_backlog(c->fd) > allowance) {
         c->backlog_check_ms = fc_monotonic_ms() + BACKLOG_POLL_MS;
         return;
     }
     c->backlog_check_ms = 0.0;
-    fc_session_output_drained(&c->session);
+    fc_client_output_drained(&c->client);
 }
 
 static void flush(fc_connection *c)
@@ -195,11 +195,11 @@ static void start_closing(fc_connection *c)
     flush(c);
 }
 
-static void apply_verdict(fc_connection *c, fc_session_verdict verdict)
+static void apply_verdict(fc_connection *c, fc_client_verdict verdict)
 {
-    if (verdict == FC_SESSION_ABORT)
+    if (verdict == FC_CLIENT_ABORT)
         c->phase = FC_CONN_DONE;
-    else if (verdict == FC_SESSION_CLOSE)
+    else if (verdict == FC_CLIENT_CLOSE)
         start_closing(c);
 }
 
@@ -208,7 +208,7 @@ static void apply_verdict(fc_connection *c, fc_session_verdict verdict)
 static fc_error error_for_client(const fc_connection *c, const fc_error *err)
 {
     fc_error reply = *err;
-    if (fc_session_unauthenticated(&c->session))
+    if (fc_client_unauthenticated(&c->client))
         fc_error_set(&reply, FC_ERR_UNAUTHORIZED, "authentication required");
     return reply;
 }
@@ -216,14 +216,14 @@ static fc_error error_for_client(const fc_connection *c, const fc_error *err)
 static void close_with_error(fc_connection *c, fc_daemon_context *ctx, uint32_t request_id, const fc_error *err)
 {
     fc_error reply = error_for_client(c, err);
-    apply_verdict(c, fc_session_reply_error(ctx, c->peer, request_id, &reply, FC_SESSION_CLOSE, &c->out));
+    apply_verdict(c, fc_client_reply_error(ctx, c->peer, request_id, &reply, FC_CLIENT_CLOSE, &c->out));
 }
 
 void fc_connection_refuse(fc_connection *c, fc_daemon_context *ctx)
 {
     fc_error err;
     fc_error_set(&err, FC_ERR_LIMIT, "the server has its maximum of %u connections", (unsigned)ctx->max_connections);
-    apply_verdict(c, fc_session_reply_error(ctx, c->peer, 0, &err, FC_SESSION_CLOSE, &c->out));
+    apply_verdict(c, fc_client_reply_error(ctx, c->peer, 0, &err, FC_CLIENT_CLOSE, &c->out));
 }
 
 /* A client that stopped mid-message or sent nothing for too long gives up its
@@ -256,21 +256,21 @@ static void forget_payload(fc_connection *c)
     c->payload_cap = 0;
 }
 
-/* A whole message is in: hand it to the session (or answer the header fault
+/* A whole message is in: hand it to the client (or answer the header fault
  * found earlier) and start on the next one. */
 static void deliver(fc_connection *c, fc_daemon_context *ctx)
 {
-    fc_session_verdict verdict;
+    fc_client_verdict verdict;
     if (c->header_error.code != FC_OK) {
         /* Before the handshake any error ends the connection. */
         fc_error reply = error_for_client(c, &c->header_error);
-        fc_session_verdict then =
-            c->session.state == FC_SESSION_READY ? FC_SESSION_CONTINUE : FC_SESSION_CLOSE;
-        verdict = fc_session_reply_error(ctx, c->peer, c->header.request_id, &reply, then, &c->out);
+        fc_client_verdict then =
+            c->client.state == FC_CLIENT_READY ? FC_CLIENT_CONTINUE : FC_CLIENT_CLOSE;
+        verdict = fc_client_reply_error(ctx, c->peer, c->header.request_id, &reply, then, &c->out);
     } else {
-        c->session.message_started_ms = c->started_ms;
+        c->client.message_started_ms = c->started_ms;
         fc_payload payload = {c->payload, c->payload_cap};
-        verdict = fc_session_handle(&c->session, ctx, &c->header, &payload, fc_monotonic_ms(), &c->out);
+        verdict = fc_client_handle(&c->client, ctx, &c->header, &payload, fc_monotonic_ms(), &c->out);
         if (!payload.bytes)
             forget_payload(c);   /* a frame decoded in place kept it */
     }
@@ -385,7 +385,7 @@ static read_result receive_payload(fc_connection *c, fc_daemon_context *ctx)
 static void read_messages(fc_connection *c, fc_daemon_context *ctx)
 {
     unsigned long first = c->messages;
-    while (c->phase == FC_CONN_OPEN && !has_pending_output(c) && !c->session.reply_pending &&
+    while (c->phase == FC_CONN_OPEN && !has_pending_output(c) && !c->client.reply_pending &&
            c->messages - first < MESSAGES_PER_WAKE) {
         read_result result = c->have_header ? receive_payload(c, ctx) : receive_header(c, ctx);
         if (result == READ_WOULD_BLOCK)
@@ -416,7 +416,7 @@ void fc_connection_on_events(fc_connection *c, short revents, fc_daemon_context 
     /* A socket error surfaces from send() or recv(), whichever comes first. */
     if (revents & (POLLOUT | POLLHUP | POLLERR))
         flush(c);
-    if (c->phase == FC_CONN_OPEN && c->session.reply_pending && (revents & (POLLHUP | POLLERR)))
+    if (c->phase == FC_CONN_OPEN && c->client.reply_pending && (revents & (POLLHUP | POLLERR)))
         c->phase = FC_CONN_DONE;   /* reset while its RENDER renders: nobody is left to answer */
     else if (c->phase == FC_CONN_OPEN && (revents & (POLLIN | POLLHUP | POLLERR)))
         read_messages(c, ctx);
@@ -426,13 +426,13 @@ void fc_connection_on_events(fc_connection *c, short revents, fc_daemon_context 
     if (c->phase == FC_CONN_OPEN && revents == 0 && c->backlog_check_ms > 0.0)
         report_drained(c);
     else if (c->phase == FC_CONN_OPEN && revents == 0)
-        fc_session_tick(&c->session, fc_monotonic_ms());
+        fc_client_tick(&c->client, fc_monotonic_ms());
 }
 
 void fc_connection_on_job_done(fc_connection *c, const fc_render_job *job)
 {
     if (c->phase != FC_CONN_OPEN)
         return;
-    fc_session_job_done(&c->session, job);
+    fc_client_job_done(&c->client, job);
     flush(c);
 }

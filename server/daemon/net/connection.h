@@ -1,5 +1,5 @@
 /* connection.h — one client socket: reads whole messages (header, then
- * payload), hands them to the session, queues the replies (and a viewer's
+ * payload), hands them to its client (clients/client.h), queues the replies (and a viewer's
  * stream images) and flushes them as the socket accepts them. All I/O is
  * non-blocking; the event loop calls in when poll() reports the socket ready,
  * when a timer is due, or when a render job of this connection finished. */
@@ -9,7 +9,7 @@
 #include <stdbool.h>
 #include <stddef.h>
 
-#include "clients/session.h"
+#include "clients/client.h"
 
 typedef enum fc_connection_phase {
     FC_CONN_OPEN = 0,      /* reading and answering messages */
@@ -41,7 +41,7 @@ typedef struct fc_connection {
     /* replies not yet sent */
     fc_buf out;
     size_t out_sent;
-    fc_session session;
+    fc_client client;
 } fc_connection;
 
 /* Takes ownership of the connected, non-blocking socket fd. */

@@ -250,7 +250,7 @@ static void accept_ready(fc_event_loop *loop)
 /* A connection whose RENDER is being rendered, or whose replies are not all sent. */
 static bool connection_busy(const fc_connection *c)
 {
-    return c->phase == FC_CONN_OPEN && (c->session.reply_pending || fc_connection_wanted_events(c) == POLLOUT);
+    return c->phase == FC_CONN_OPEN && (c->client.reply_pending || fc_connection_wanted_events(c) == POLLOUT);
 }
 
 /* Prepares a drain round: only busy connections are polled, so no new request

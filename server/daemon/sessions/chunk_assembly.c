@@ -214,7 +214,7 @@ void fc_chunk_assembly_expire(fc_chunk_assembly *a, double now_ms,
     }
 }
 
-void fc_chunk_assembly_forget(fc_chunk_assembly *a, const struct fc_session *session)
+void fc_chunk_assembly_forget(fc_chunk_assembly *a, const struct fc_client *session)
 {
     for (int i = 0; i < FC_ASSEMBLY_MAX_FRAMES; i++)
         for (uint32_t k = 0; a->frames[i].used && k < a->frames[i].count; k++)

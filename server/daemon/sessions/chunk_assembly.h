@@ -14,12 +14,12 @@
 /* Frames of one session being assembled at once (ranks drift apart by a frame or two). */
 #define FC_ASSEMBLY_MAX_FRAMES 8
 
-struct fc_session;
+struct fc_client;
 struct fc_frame_pool;
 
 /* Who sent a chunk, to be told when its frame fails. */
 typedef struct fc_chunk_origin {
-    struct fc_session *session;   /* NULL once that connection has gone */
+    struct fc_client *session;   /* NULL once that connection has gone */
     uint32_t request_id;
 } fc_chunk_origin;
 
@@ -85,7 +85,7 @@ void fc_chunk_assembly_expire(fc_chunk_assembly *a, double now_ms,
                               void (*report)(const fc_chunk_origin *origin, const fc_error *err, void *data),
                               void *data);
 
-/* The session has gone: its chunks stay, but nobody is told about them. */
-void fc_chunk_assembly_forget(fc_chunk_assembly *a, const struct fc_session *session);
+/* The producer has gone: its chunks stay, but nobody is told about them. */
+void fc_chunk_assembly_forget(fc_chunk_assembly *a, const struct fc_client *session);
 
 #endif

@@ -9,7 +9,7 @@
 #include "uploads/frame_pool.h"
 
 struct fc_session_registry {
-    fc_stream_session **sessions;
+    fc_session **sessions;
     size_t count;
     size_t capacity;
     uint32_t max_sessions;
@@ -32,12 +32,12 @@ void fc_registry_destroy(fc_session_registry *reg)
     if (!reg)
         return;
     for (size_t i = 0; i < reg->count; i++)
-        fc_stream_session_destroy(reg->sessions[i]);
+        fc_session_destroy(reg->sessions[i]);
     free(reg->sessions);
     free(reg);
 }
 
-static fc_stream_session *find_live(const fc_session_registry *reg, const char *name)
+static fc_session *find_live(const fc_session_registry *reg, const char *name)
 {
     for (size_t i = 0; i < reg->count; i++)
         if (!reg->sessions[i]->ended && strcmp(reg->sessions[i]->name, name) == 0)
@@ -45,11 +45,11 @@ static fc_stream_session *find_live(const fc_session_registry *reg, const char *
     return NULL;
 }
 
-static fc_code add(fc_session_registry *reg, fc_stream_session *s, fc_error *err)
+static fc_code add(fc_session_registry *reg, fc_session *s, fc_error *err)
 {
     if (reg->count == reg->capacity) {
         size_t capacity = reg->capacity ? 2 * reg->capacity : 8;
-        fc_stream_session **grown = realloc(reg->sessions, capacity * sizeof *grown);
+        fc_session **grown = realloc(reg->sessions, capacity * sizeof *grown);
         if (!grown)
             return fc_error_set(err, FC_ERR_INTERNAL, "no memory for another session");
         reg->sessions = grown;
@@ -59,17 +59,17 @@ static fc_code add(fc_session_registry *reg, fc_stream_session *s, fc_error *err
     return FC_OK;
 }
 
-fc_code fc_registry_open(fc_session_registry *reg, const char *name, fc_stream_session **out, fc_error *err)
+fc_code fc_registry_open(fc_session_registry *reg, const char *name, fc_session **out, fc_error *err)
 {
     *out = find_live(reg, name);
     if (*out)
         return FC_OK;
     if (reg->count >= reg->max_sessions)
         return fc_error_set(err, FC_ERR_LIMIT, "this server holds %u sessions already", reg->max_sessions);
-    fc_stream_session *s;
-    fc_code code = fc_stream_session_create(name, reg->pool, &s, err);
+    fc_session *s;
+    fc_code code = fc_session_create(name, reg->pool, &s, err);
     if (code == FC_OK && (code = add(reg, s, err)) != FC_OK)
-        fc_stream_session_destroy(s);
+        fc_session_destroy(s);
     if (code == FC_OK)
         *out = s;
     return code;
@@ -79,8 +79,8 @@ void fc_registry_collect(fc_session_registry *reg)
 {
     size_t kept = 0;
     for (size_t i = 0; i < reg->count; i++) {
-        if (fc_stream_session_unused(reg->sessions[i]))
-            fc_stream_session_destroy(reg->sessions[i]);
+        if (fc_session_unused(reg->sessions[i]))
+            fc_session_destroy(reg->sessions[i]);
         else
             reg->sessions[kept++] = reg->sessions[i];
     }
@@ -95,7 +95,7 @@ fc_code fc_registry_list(const fc_session_registry *reg, fc_session_info **out, 
         return fc_error_set(err, FC_ERR_INTERNAL, "no memory to list %zu sessions", reg->count);
     for (size_t i = 0; i < reg->count; i++)
         if (!reg->sessions[i]->ended)
-            fc_stream_session_describe(reg->sessions[i], &(*out)[(*count)++]);
+            fc_session_describe(reg->sessions[i], &(*out)[(*count)++]);
     return FC_OK;
 }
 
@@ -113,5 +113,5 @@ double fc_registry_next_deadline(const fc_session_registry *reg)
 void fc_registry_expire(fc_session_registry *reg, double now_ms)
 {
     for (size_t i = 0; i < reg->count; i++)
-        fc_chunk_assembly_expire(&reg->sessions[i]->chunks, now_ms, fc_session_on_chunk_failed, NULL);
+        fc_chunk_assembly_expire(&reg->sessions[i]->chunks, now_ms, fc_client_on_chunk_failed, NULL);
 }

@@ -7,7 +7,7 @@
 #include <stddef.h>
 #include <stdint.h>
 
-#include "sessions/stream_session.h"
+#include "sessions/session.h"
 
 typedef struct fc_session_registry fc_session_registry;
 
@@ -21,7 +21,7 @@ void fc_registry_destroy(fc_session_registry *reg);
 
 /* The live (not ended) session called `name`, created when there is none.
  * FC_ERR_LIMIT when max_sessions exist already. */
-fc_code fc_registry_open(fc_session_registry *reg, const char *name, fc_stream_session **out, fc_error *err);
+fc_code fc_registry_open(fc_session_registry *reg, const char *name, fc_session **out, fc_error *err);
 /* Frees every session that has neither producers nor viewers any more. Called
  * by the event loop between events, never from inside a session's callbacks,
  * so no session disappears under code still using it. */

@@ -1,4 +1,4 @@
-/* test_daemon_session.c — a well-behaved client against the real fluidcastd:
+/* test_daemon_requests.c — a well-behaved client against the real fluidcastd:
  * the handshake, renders in every format checked against what the scene must
  * look like, settings, the automatic camera, GOODBYE and a clean SIGTERM exit. */
 #include <stdlib.h>

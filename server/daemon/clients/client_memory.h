@@ -1,4 +1,4 @@
-/* session_memory.h — the one place that accounts what a connection holds on
+/* client_memory.h — the one place that accounts what a connection holds on
  * the daemon, against --max-session-memory (PROTOCOL.md 6.4). What it holds
  * is measured from its state each time it asks for more, so there is no
  * counter that could drift from the truth:
@@ -17,25 +17,25 @@
  * thread keeps (the foam history, copies on the GPU), the blocks the frame
  * pool keeps for reuse (daemon memory, bounded there: frame_pool.h), and
  * what a frame or chunk decoded in place keeps beyond its arrays with its
- * message's buffer: at most 64 bytes and an eighth (fc_session_keep_payload).
+ * message's buffer: at most 64 bytes and an eighth (fc_client_keep_payload).
  * Event-loop thread only. */
-#ifndef FC_DAEMON_SESSION_MEMORY_H
-#define FC_DAEMON_SESSION_MEMORY_H
+#ifndef FC_DAEMON_CLIENT_MEMORY_H
+#define FC_DAEMON_CLIENT_MEMORY_H
 
 #include <stdint.h>
 
-#include "clients/session.h"
+#include "clients/client.h"
 
 uint64_t fc_memory_of_frame(const fc_frame *frame);
 uint64_t fc_memory_of_scene_part(const fc_scene_part *part);   /* 0 for NULL */
 
 /* Everything the list above counts for this connection. */
-uint64_t fc_session_memory_held(const fc_session *s);
+uint64_t fc_client_memory_held(const fc_client *c);
 
-/* FC_OK when the session, giving up `released` bytes of what it holds and
+/* FC_OK when the client, giving up `released` bytes of what it holds and
  * taking `added` more, stays within its limit; else FC_ERR_LIMIT with a reason
  * that names `what` (e.g. "a frame of 1000 particles") and the limit. */
-fc_code fc_session_memory_admit(const fc_session *s, uint64_t released, uint64_t added, const char *what,
+fc_code fc_client_memory_admit(const fc_client *c, uint64_t released, uint64_t added, const char *what,
                                 fc_error *err);
 
 #endif

@@ -1,9 +1,9 @@
-/* stream_session.h — one named session: its producers (counted), its viewers,
+/* session.h — one named session: its producers (counted), its viewers,
  * the latest complete frame (latest wins: a frame nobody rendered yet is
  * simply replaced) and the multi-rank frames being assembled. Event-loop
  * thread only. */
-#ifndef FC_DAEMON_STREAM_SESSION_H
-#define FC_DAEMON_STREAM_SESSION_H
+#ifndef FC_DAEMON_SESSION_H
+#define FC_DAEMON_SESSION_H
 
 #include <stdbool.h>
 #include <stddef.h>
@@ -14,41 +14,41 @@
 #include "uploads/shared_frame.h"
 #include "wire_session.h"
 
-struct fc_session;
+struct fc_client;
 
-typedef struct fc_stream_session {
+typedef struct fc_session {
     char name[FC_SESSION_NAME_MAX + 1];
     uint32_t producers;
     bool had_producer;            /* losing the last producer ends the session only once there was one */
     bool ended;                   /* producers gone: it lives on only until its viewers have been told */
-    struct fc_session **viewers;
+    struct fc_client **viewers;
     size_t viewer_count;
     size_t viewer_capacity;
     fc_shared_frame *latest;      /* newest complete frame; NULL before the first */
     uint64_t sequence;            /* complete frames published so far */
     fc_foam_track *foam;          /* foam history of its frames, shared by every viewer */
     fc_chunk_assembly chunks;
-} fc_stream_session;
+} fc_session;
 
 struct fc_frame_pool;
 
-fc_code fc_stream_session_create(const char *name, struct fc_frame_pool *pool, fc_stream_session **out,
+fc_code fc_session_create(const char *name, struct fc_frame_pool *pool, fc_session **out,
                                  fc_error *err);
-void fc_stream_session_destroy(fc_stream_session *s);
+void fc_session_destroy(fc_session *s);
 
-void fc_stream_session_describe(const fc_stream_session *s, fc_session_info *out);
+void fc_session_describe(const fc_session *s, fc_session_info *out);
 /* No producer and no viewer: nothing can reach it any more. */
-bool fc_stream_session_unused(const fc_stream_session *s);
+bool fc_session_unused(const fc_session *s);
 
-void fc_stream_session_add_producer(fc_stream_session *s);
+void fc_session_add_producer(fc_session *s);
 /* The producer leaves; its pending chunks stay but it will not hear about them.
  * The last producer leaving ends the session: every viewer is told. */
-void fc_stream_session_remove_producer(fc_stream_session *s, const struct fc_session *producer);
+void fc_session_remove_producer(fc_session *s, const struct fc_client *producer);
 
-fc_code fc_stream_session_add_viewer(fc_stream_session *s, struct fc_session *viewer, fc_error *err);
-void fc_stream_session_remove_viewer(fc_stream_session *s, const struct fc_session *viewer);
+fc_code fc_session_add_viewer(fc_session *s, struct fc_client *viewer, fc_error *err);
+void fc_session_remove_viewer(fc_session *s, const struct fc_client *viewer);
 
 /* Makes `frame` (whose reference is taken) the latest and tells every viewer. */
-void fc_stream_session_publish(fc_stream_session *s, fc_shared_frame *frame);
+void fc_session_publish(fc_session *s, fc_shared_frame *frame);
 
 #endif

@@ -1,34 +1,34 @@
-/* session.c — one client's protocol state and message dispatch. */
-#include "clients/session.h"
+/* client.c — one connection's protocol state and message dispatch. */
+#include "clients/client.h"
 
 #include <string.h>
 
-#include "clients/session_internal.h"
-#include "clients/session_memory.h"
+#include "clients/client_internal.h"
+#include "clients/client_memory.h"
 #include "fc_error.h"
 #include "fc_frame.h"
 #include "monotonic.h"
 #include "wire_session.h"
 
-void fc_session_init(fc_session *s, const char *peer, fc_daemon_context *ctx, uint64_t connection_id, fc_buf *out)
+void fc_client_init(fc_client *c, const char *peer, fc_daemon_context *ctx, uint64_t connection_id, fc_buf *out)
 {
-    memset(s, 0, sizeof *s);
-    s->state = FC_SESSION_AWAIT_HELLO;
-    s->peer = peer;
-    s->ctx = ctx;
-    s->connection_id = connection_id;
-    s->out = out;
-    fc_settings_default(&s->settings);
+    memset(c, 0, sizeof *c);
+    c->state = FC_CLIENT_AWAIT_HELLO;
+    c->peer = peer;
+    c->ctx = ctx;
+    c->connection_id = connection_id;
+    c->out = out;
+    fc_settings_default(&c->settings);
 }
 
-void fc_session_free(fc_session *s)
+void fc_client_free(fc_client *c)
 {
-    fc_session_leave_stream(s);
-    fc_shared_frame_unref(s->frame);
-    s->frame = NULL;
-    fc_foam_track_unref(s->foam);
-    s->foam = NULL;
-    fc_scene_uploads_free(&s->scene);
+    fc_client_leave_session(c);
+    fc_shared_frame_unref(c->frame);
+    c->frame = NULL;
+    fc_foam_track_unref(c->foam);
+    c->foam = NULL;
+    fc_scene_uploads_free(&c->scene);
 }
 
 static bool is_defined_type(uint16_t type)
@@ -51,8 +51,8 @@ static fc_code wire_code(fc_code code)
     return code == FC_ERR_GL ? FC_ERR_RENDER : FC_ERR_INTERNAL;
 }
 
-fc_session_verdict fc_session_reply_error(const fc_daemon_context *ctx, const char *peer, uint32_t request_id,
-                                          const fc_error *error, fc_session_verdict then, fc_buf *out)
+fc_client_verdict fc_client_reply_error(const fc_daemon_context *ctx, const char *peer, uint32_t request_id,
+                                          const fc_error *error, fc_client_verdict then, fc_buf *out)
 {
     fc_error wire = *error;
     wire.code = wire_code(error->code);
@@ -60,51 +60,51 @@ fc_session_verdict fc_session_reply_error(const fc_daemon_context *ctx, const ch
     int server_side = wire.code == FC_ERR_RENDER || wire.code == FC_ERR_ENCODE || wire.code == FC_ERR_INTERNAL;
     fc_log_write(ctx->log, server_side ? FC_LOG_WARN : FC_LOG_INFO, "%s: request %u: %s: %s%s", peer,
                  (unsigned)request_id, fc_code_name(wire.code), wire.message,
-                 then == FC_SESSION_CLOSE ? " (closing)" : "");
+                 then == FC_CLIENT_CLOSE ? " (closing)" : "");
     fc_error write_err;
     if (fc_wire_write_error(out, request_id, &wire, &write_err) != FC_OK) {
         fc_log_write(ctx->log, FC_LOG_ERROR, "%s: cannot queue ERROR: %s", peer, write_err.message);
-        return FC_SESSION_ABORT;
+        return FC_CLIENT_ABORT;
     }
     return then;
 }
 
 /* Shorthand for the handlers: answer the message `h` with err. */
-static fc_session_verdict reply_error(const fc_session *s, const fc_daemon_context *ctx, const fc_msg_header *h,
-                                      const fc_error *err, fc_session_verdict then, fc_buf *out)
+static fc_client_verdict reply_error(const fc_client *c, const fc_daemon_context *ctx, const fc_msg_header *h,
+                                      const fc_error *err, fc_client_verdict then, fc_buf *out)
 {
-    return fc_session_reply_error(ctx, s->peer, h->request_id, err, then, out);
+    return fc_client_reply_error(ctx, c->peer, h->request_id, err, then, out);
 }
 
-static fc_session_verdict handle_hello(fc_session *s, fc_daemon_context *ctx, const fc_msg_header *h,
+static fc_client_verdict handle_hello(fc_client *c, fc_daemon_context *ctx, const fc_msg_header *h,
                                        const uint8_t *payload, fc_buf *out)
 {
     fc_hello hello;
     fc_error err;
     if (fc_wire_read_hello(payload, h->length, &hello, &err) != FC_OK)
-        return reply_error(s, ctx, h, &err, FC_SESSION_CLOSE, out);
+        return reply_error(c, ctx, h, &err, FC_CLIENT_CLOSE, out);
     if (hello.version_min > FC_PROTOCOL_VERSION || hello.version_max < FC_PROTOCOL_VERSION) {
         fc_error_set(&err, FC_ERR_VERSION, "client speaks protocol versions %u..%u, this server only %u",
                      (unsigned)hello.version_min, (unsigned)hello.version_max, FC_PROTOCOL_VERSION);
-        return reply_error(s, ctx, h, &err, FC_SESSION_CLOSE, out);
+        return reply_error(c, ctx, h, &err, FC_CLIENT_CLOSE, out);
     }
     /* Capabilities are granted as requested, as far as this server has them. */
     fc_welcome welcome = ctx->welcome;
     welcome.capabilities = hello.capabilities & FC_CAPS_ALL;
     if (fc_wire_write_welcome(out, h->request_id, &welcome, &err) != FC_OK) {
-        fc_log_write(ctx->log, FC_LOG_ERROR, "%s: cannot queue WELCOME: %s", s->peer, err.message);
-        return FC_SESSION_ABORT;
+        fc_log_write(ctx->log, FC_LOG_ERROR, "%s: cannot queue WELCOME: %s", c->peer, err.message);
+        return FC_CLIENT_ABORT;
     }
-    s->state = FC_SESSION_READY;
-    s->capabilities = welcome.capabilities;
-    fc_log_write(ctx->log, FC_LOG_INFO, "%s: HELLO from '%s' (capabilities 0x%x)", s->peer, hello.client_name,
+    c->state = FC_CLIENT_READY;
+    c->capabilities = welcome.capabilities;
+    fc_log_write(ctx->log, FC_LOG_INFO, "%s: HELLO from '%s' (capabilities 0x%x)", c->peer, hello.client_name,
                  (unsigned)welcome.capabilities);
-    return FC_SESSION_CONTINUE;
+    return FC_CLIENT_CONTINUE;
 }
 
 /* A new frame replaces the old one only once it decoded completely; on a
  * producer it is published to the named session. */
-static fc_session_verdict handle_frame(fc_session *s, fc_daemon_context *ctx, const fc_msg_header *h,
+static fc_client_verdict handle_frame(fc_client *c, fc_daemon_context *ctx, const fc_msg_header *h,
                                        fc_payload *payload, double received_ms, fc_buf *out)
 {
     fc_frame_view view = {0};
@@ -113,16 +113,16 @@ static fc_session_verdict handle_frame(fc_session *s, fc_daemon_context *ctx, co
     /* Decoded in place: the payload's block becomes the frame's. */
     fc_code code = fc_wire_view_frame(payload->bytes, h->length, ctx->welcome.limits.max_particles, &view.frame, &err);
     if (code == FC_OK) {
-        fc_log_write(ctx->log, FC_LOG_DEBUG, "%s: FRAME of %llu particles", s->peer,
+        fc_log_write(ctx->log, FC_LOG_DEBUG, "%s: FRAME of %llu particles", c->peer,
                      (unsigned long long)view.frame.count);
-        code = fc_session_take_frame(s, &view, payload, received_ms, fc_monotonic_ms() - start, &err);
+        code = fc_client_take_frame(c, &view, payload, received_ms, fc_monotonic_ms() - start, &err);
     }
     if (code != FC_OK)
-        return reply_error(s, ctx, h, &err, FC_SESSION_CONTINUE, out);
-    return FC_SESSION_CONTINUE;
+        return reply_error(c, ctx, h, &err, FC_CLIENT_CONTINUE, out);
+    return FC_CLIENT_CONTINUE;
 }
 
-fc_code fc_session_check_image_limit(const fc_limits *limits, uint32_t width, uint32_t height, fc_error *err)
+fc_code fc_client_check_image_limit(const fc_limits *limits, uint32_t width, uint32_t height, fc_error *err)
 {
     if (width <= limits->max_width && height <= limits->max_height)
         return FC_OK;
@@ -130,100 +130,100 @@ fc_code fc_session_check_image_limit(const fc_limits *limits, uint32_t width, ui
                         (unsigned)height, (unsigned)limits->max_width, (unsigned)limits->max_height);
 }
 
-static fc_session_verdict handle_camera(fc_session *s, fc_daemon_context *ctx, const fc_msg_header *h,
+static fc_client_verdict handle_camera(fc_client *c, fc_daemon_context *ctx, const fc_msg_header *h,
                                         const uint8_t *payload, fc_buf *out)
 {
     fc_camera camera;
     fc_error err;
     if (fc_wire_read_camera(payload, h->length, &camera, &err) != FC_OK ||
-        fc_session_check_image_limit(&ctx->welcome.limits, camera.width, camera.height, &err) != FC_OK)
-        return reply_error(s, ctx, h, &err, FC_SESSION_CONTINUE, out);
-    s->camera = camera;
-    s->has_camera = true;
-    fc_viewer_view_changed(s, fc_monotonic_ms());
-    return FC_SESSION_CONTINUE;
+        fc_client_check_image_limit(&ctx->welcome.limits, camera.width, camera.height, &err) != FC_OK)
+        return reply_error(c, ctx, h, &err, FC_CLIENT_CONTINUE, out);
+    c->camera = camera;
+    c->has_camera = true;
+    fc_viewer_view_changed(c, fc_monotonic_ms());
+    return FC_CLIENT_CONTINUE;
 }
 
 /* Entries merge into the current settings; the codec leaves them untouched on any error. */
-static fc_session_verdict handle_settings(fc_session *s, fc_daemon_context *ctx, const fc_msg_header *h,
+static fc_client_verdict handle_settings(fc_client *c, fc_daemon_context *ctx, const fc_msg_header *h,
                                           const uint8_t *payload, fc_buf *out)
 {
     fc_error err;
-    if (fc_wire_read_settings(payload, h->length, &s->settings, &err) != FC_OK)
-        return reply_error(s, ctx, h, &err, FC_SESSION_CONTINUE, out);
-    fc_viewer_view_changed(s, fc_monotonic_ms());
-    return FC_SESSION_CONTINUE;
+    if (fc_wire_read_settings(payload, h->length, &c->settings, &err) != FC_OK)
+        return reply_error(c, ctx, h, &err, FC_CLIENT_CONTINUE, out);
+    fc_viewer_view_changed(c, fc_monotonic_ms());
+    return FC_CLIENT_CONTINUE;
 }
 
 /* BACKGROUND / ENVIRONMENT: decoded now, so a bad image is answered at once;
  * renders queued before keep the images they were submitted with. The image
  * it replaces is given up only once the new one is known to fit. */
-static fc_session_verdict handle_scene_image(fc_session *s, fc_daemon_context *ctx, const fc_msg_header *h,
+static fc_client_verdict handle_scene_image(fc_client *c, fc_daemon_context *ctx, const fc_msg_header *h,
                                              const uint8_t *payload, fc_buf *out)
 {
     fc_error err;
     bool background = h->type == FC_MSG_BACKGROUND;
-    fc_scene_part **slot = background ? &s->scene.background : &s->scene.environment;
+    fc_scene_part **slot = background ? &c->scene.background : &c->scene.environment;
     fc_scene_part *part;
     fc_code code = background ? fc_scene_part_decode_background(payload, h->length, &part, &err)
                               : fc_scene_part_decode_environment(payload, h->length, &part, &err);
     if (code == FC_OK)
-        code = fc_session_memory_admit(s, fc_memory_of_scene_part(*slot), fc_memory_of_scene_part(part),
+        code = fc_client_memory_admit(c, fc_memory_of_scene_part(*slot), fc_memory_of_scene_part(part),
                                        background ? "BACKGROUND" : "ENVIRONMENT", &err);
     if (code != FC_OK) {
         fc_scene_part_unref(part);
-        return reply_error(s, ctx, h, &err, FC_SESSION_CONTINUE, out);
+        return reply_error(c, ctx, h, &err, FC_CLIENT_CONTINUE, out);
     }
     fc_scene_uploads_replace(slot, part);
-    fc_viewer_view_changed(s, fc_monotonic_ms());
-    return FC_SESSION_CONTINUE;
+    fc_viewer_view_changed(c, fc_monotonic_ms());
+    return FC_CLIENT_CONTINUE;
 }
 
 /* A RENDER goes to the GL thread; its IMAGE (or ERROR) is queued by
- * fc_session_job_done, and until then the connection reads nothing more, so
+ * fc_client_job_done, and until then the connection reads nothing more, so
  * replies stay in request order. Without a CAMERA the frame is framed at the
  * viewer's size, or the default size, which must fit the limits. */
-static fc_session_verdict handle_render(fc_session *s, fc_daemon_context *ctx, const fc_msg_header *h,
+static fc_client_verdict handle_render(fc_client *c, fc_daemon_context *ctx, const fc_msg_header *h,
                                         const uint8_t *payload, double received_ms, fc_buf *out)
 {
     fc_render_order order = {.kind = FC_JOB_REPLY, .request_id = h->request_id, .received_ms = received_ms};
-    bool viewer = s->role == FC_ROLE_VIEWER;
-    order.auto_width = viewer ? s->viewer.auto_width : FC_DEFAULT_VIEW_WIDTH;
-    order.auto_height = viewer ? s->viewer.auto_height : FC_DEFAULT_VIEW_HEIGHT;
-    fc_shared_frame *frame = fc_session_current_frame(s);
+    bool viewer = c->role == FC_ROLE_VIEWER;
+    order.auto_width = viewer ? c->viewer.auto_width : FC_DEFAULT_VIEW_WIDTH;
+    order.auto_height = viewer ? c->viewer.auto_height : FC_DEFAULT_VIEW_HEIGHT;
+    fc_shared_frame *frame = fc_client_current_frame(c);
     fc_error err;
     fc_code code = fc_wire_read_render(payload, h->length, &order.request, &err);
     if (code == FC_OK && !frame)
         code = fc_error_set(&err, FC_ERR_BAD_STATE, "RENDER before any FRAME");
-    if (code == FC_OK && !s->has_camera)
-        code = fc_session_check_image_limit(&ctx->welcome.limits, order.auto_width, order.auto_height, &err);
+    if (code == FC_OK && !c->has_camera)
+        code = fc_client_check_image_limit(&ctx->welcome.limits, order.auto_width, order.auto_height, &err);
     if (code == FC_OK)
-        code = fc_session_submit_render(s, frame, &order, &err);
+        code = fc_client_submit_render(c, frame, &order, &err);
     if (code != FC_OK)
-        return reply_error(s, ctx, h, &err, FC_SESSION_CONTINUE, out);
-    s->reply_pending = true;
-    return FC_SESSION_CONTINUE;
+        return reply_error(c, ctx, h, &err, FC_CLIENT_CONTINUE, out);
+    c->reply_pending = true;
+    return FC_CLIENT_CONTINUE;
 }
 
 /* The connection closes after GOODBYE either way; a malformed one is still answered. */
-static fc_session_verdict handle_goodbye(fc_session *s, fc_daemon_context *ctx, const fc_msg_header *h,
+static fc_client_verdict handle_goodbye(fc_client *c, fc_daemon_context *ctx, const fc_msg_header *h,
                                          const uint8_t *payload, fc_buf *out)
 {
     fc_error err;
     if (fc_wire_read_goodbye(payload, h->length, &err) != FC_OK)
-        return reply_error(s, ctx, h, &err, FC_SESSION_CLOSE, out);
-    fc_log_write(ctx->log, FC_LOG_DEBUG, "%s: GOODBYE", s->peer);
-    return FC_SESSION_CLOSE;
+        return reply_error(c, ctx, h, &err, FC_CLIENT_CLOSE, out);
+    fc_log_write(ctx->log, FC_LOG_DEBUG, "%s: GOODBYE", c->peer);
+    return FC_CLIENT_CLOSE;
 }
 
-bool fc_session_unauthenticated(const fc_session *s)
+bool fc_client_unauthenticated(const fc_client *c)
 {
-    return s->state == FC_SESSION_AWAIT_HELLO && s->ctx->token && fc_auth_token_required(s->ctx->token);
+    return c->state == FC_CLIENT_AWAIT_HELLO && c->ctx->token && fc_auth_token_required(c->ctx->token);
 }
 
 /* With a token configured, nothing about the server (not even which protocol
  * errors it finds) is revealed before the client proved it knows the token. */
-static fc_session_verdict authenticate_hello(fc_session *s, fc_daemon_context *ctx, const fc_msg_header *h,
+static fc_client_verdict authenticate_hello(fc_client *c, fc_daemon_context *ctx, const fc_msg_header *h,
                                              const uint8_t *payload, fc_buf *out)
 {
     fc_hello hello;
@@ -235,29 +235,29 @@ static fc_session_verdict authenticate_hello(fc_session *s, fc_daemon_context *c
     else if (!fc_auth_token_matches(ctx->token->text, hello.token))
         fc_error_set(&err, FC_ERR_UNAUTHORIZED, "wrong token");
     else
-        return handle_hello(s, ctx, h, payload, out);
-    return reply_error(s, ctx, h, &err, FC_SESSION_CLOSE, out);
+        return handle_hello(c, ctx, h, payload, out);
+    return reply_error(c, ctx, h, &err, FC_CLIENT_CLOSE, out);
 }
 
 /* Before the handshake only HELLO (or a polite GOODBYE) is accepted; any
  * other message ends the connection, as the client is not speaking fluidcast. */
-static fc_session_verdict handle_before_hello(fc_session *s, fc_daemon_context *ctx, const fc_msg_header *h,
+static fc_client_verdict handle_before_hello(fc_client *c, fc_daemon_context *ctx, const fc_msg_header *h,
                                               const uint8_t *payload, fc_buf *out)
 {
     if (h->type == FC_MSG_HELLO)
-        return handle_hello(s, ctx, h, payload, out);
+        return handle_hello(c, ctx, h, payload, out);
     if (h->type == FC_MSG_GOODBYE)
-        return handle_goodbye(s, ctx, h, payload, out);
+        return handle_goodbye(c, ctx, h, payload, out);
     fc_error err;
     if (!is_defined_type(h->type))
         fc_error_set(&err, FC_ERR_UNKNOWN_TYPE, "message type %u is not defined", (unsigned)h->type);
     else
         fc_error_set(&err, FC_ERR_BAD_STATE, "%s before HELLO", message_name(h->type));
-    return reply_error(s, ctx, h, &err, FC_SESSION_CLOSE, out);
+    return reply_error(c, ctx, h, &err, FC_CLIENT_CLOSE, out);
 }
 
 /* Messages a client must not send once READY. */
-static fc_session_verdict refuse_after_hello(fc_session *s, fc_daemon_context *ctx, const fc_msg_header *h,
+static fc_client_verdict refuse_after_hello(fc_client *c, fc_daemon_context *ctx, const fc_msg_header *h,
                                              fc_buf *out)
 {
     fc_error err;
@@ -268,34 +268,34 @@ static fc_session_verdict refuse_after_hello(fc_session *s, fc_daemon_context *c
     else
         fc_error_set(&err, FC_ERR_UNKNOWN_TYPE, "message type %u is not defined in protocol version %u",
                      (unsigned)h->type, FC_PROTOCOL_VERSION);
-    return reply_error(s, ctx, h, &err, FC_SESSION_CONTINUE, out);
+    return reply_error(c, ctx, h, &err, FC_CLIENT_CONTINUE, out);
 }
 
-fc_session_verdict fc_session_handle(fc_session *s, fc_daemon_context *ctx, const fc_msg_header *header,
+fc_client_verdict fc_client_handle(fc_client *c, fc_daemon_context *ctx, const fc_msg_header *header,
                                      fc_payload *message, double received_ms, fc_buf *out)
 {
     const uint8_t *payload = message->bytes;
-    if (fc_session_unauthenticated(s))
-        return authenticate_hello(s, ctx, header, payload, out);
-    if (s->state == FC_SESSION_AWAIT_HELLO)
-        return handle_before_hello(s, ctx, header, payload, out);
+    if (fc_client_unauthenticated(c))
+        return authenticate_hello(c, ctx, header, payload, out);
+    if (c->state == FC_CLIENT_AWAIT_HELLO)
+        return handle_before_hello(c, ctx, header, payload, out);
     switch (header->type) {
     case FC_MSG_FRAME:
-        return handle_frame(s, ctx, header, message, received_ms, out);
+        return handle_frame(c, ctx, header, message, received_ms, out);
     case FC_MSG_CAMERA:
-        return handle_camera(s, ctx, header, payload, out);
+        return handle_camera(c, ctx, header, payload, out);
     case FC_MSG_SETTINGS:
-        return handle_settings(s, ctx, header, payload, out);
+        return handle_settings(c, ctx, header, payload, out);
     case FC_MSG_RENDER:
-        return handle_render(s, ctx, header, payload, received_ms, out);
+        return handle_render(c, ctx, header, payload, received_ms, out);
     case FC_MSG_GOODBYE:
-        return handle_goodbye(s, ctx, header, payload, out);
+        return handle_goodbye(c, ctx, header, payload, out);
     case FC_MSG_BACKGROUND:
     case FC_MSG_ENVIRONMENT:
-        return handle_scene_image(s, ctx, header, payload, out);
+        return handle_scene_image(c, ctx, header, payload, out);
     default:
-        if (fc_session_is_stream_message(header->type))
-            return fc_session_handle_stream(s, ctx, header, message, received_ms, out);
-        return refuse_after_hello(s, ctx, header, out);
+        if (fc_client_is_session_message(header->type))
+            return fc_client_handle_session_message(c, ctx, header, message, received_ms, out);
+        return refuse_after_hello(c, ctx, header, out);
     }
 }

@@ -1,8 +1,8 @@
-/* session_memory.c — see session_memory.h. */
-#include "clients/session_memory.h"
+/* client_memory.c — see client_memory.h. */
+#include "clients/client_memory.h"
 
 #include "fc_error.h"
-#include "sessions/stream_session.h"
+#include "sessions/session.h"
 
 uint64_t fc_memory_of_frame(const fc_frame *frame)
 {
@@ -40,20 +40,20 @@ static uint64_t memory_of_assembly(const fc_chunk_assembly *a)
     return bytes;
 }
 
-uint64_t fc_session_memory_held(const fc_session *s)
+uint64_t fc_client_memory_held(const fc_client *c)
 {
-    uint64_t bytes = memory_of_shared(s->frame) + fc_memory_of_scene_part(s->scene.background) +
-                     fc_memory_of_scene_part(s->scene.environment) + s->out->len;
-    if (s->role == FC_ROLE_PRODUCER)
-        bytes += memory_of_shared(s->stream->latest) + memory_of_assembly(&s->stream->chunks);
+    uint64_t bytes = memory_of_shared(c->frame) + fc_memory_of_scene_part(c->scene.background) +
+                     fc_memory_of_scene_part(c->scene.environment) + c->out->len;
+    if (c->role == FC_ROLE_PRODUCER)
+        bytes += memory_of_shared(c->session->latest) + memory_of_assembly(&c->session->chunks);
     return bytes;
 }
 
-fc_code fc_session_memory_admit(const fc_session *s, uint64_t released, uint64_t added, const char *what,
+fc_code fc_client_memory_admit(const fc_client *c, uint64_t released, uint64_t added, const char *what,
                                 fc_error *err)
 {
-    uint64_t limit = s->ctx->max_session_memory;
-    uint64_t held = fc_session_memory_held(s);
+    uint64_t limit = c->ctx->max_session_memory;
+    uint64_t held = fc_client_memory_held(c);
     uint64_t kept = held > released ? held - released : 0;
     if (added <= limit && kept <= limit - added)
         return FC_OK;

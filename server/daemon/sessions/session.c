@@ -1,5 +1,5 @@
-/* stream_session.c — see stream_session.h. */
-#include "sessions/stream_session.h"
+/* session.c — see session.h. */
+#include "sessions/session.h"
 
 #include <stdio.h>
 #include <stdlib.h>
@@ -9,9 +9,9 @@
 #include "sessions/session_events.h"
 #include "uploads/frame_pool.h"
 
-fc_code fc_stream_session_create(const char *name, fc_frame_pool *pool, fc_stream_session **out, fc_error *err)
+fc_code fc_session_create(const char *name, fc_frame_pool *pool, fc_session **out, fc_error *err)
 {
-    fc_stream_session *s = calloc(1, sizeof *s);
+    fc_session *s = calloc(1, sizeof *s);
     if (!s)
         return fc_error_set(err, FC_ERR_INTERNAL, "no memory for session '%s'", name);
     fc_code code = fc_foam_track_create(&s->foam, err);
@@ -25,7 +25,7 @@ fc_code fc_stream_session_create(const char *name, fc_frame_pool *pool, fc_strea
     return FC_OK;
 }
 
-void fc_stream_session_destroy(fc_stream_session *s)
+void fc_session_destroy(fc_session *s)
 {
     if (!s)
         return;
@@ -36,7 +36,7 @@ void fc_stream_session_destroy(fc_stream_session *s)
     free(s);
 }
 
-void fc_stream_session_describe(const fc_stream_session *s, fc_session_info *out)
+void fc_session_describe(const fc_session *s, fc_session_info *out)
 {
     memset(out, 0, sizeof *out);
     snprintf(out->name, sizeof out->name, "%s", s->name);
@@ -46,18 +46,18 @@ void fc_stream_session_describe(const fc_stream_session *s, fc_session_info *out
     out->last_frame = s->latest ? s->latest->number : 0;
 }
 
-bool fc_stream_session_unused(const fc_stream_session *s)
+bool fc_session_unused(const fc_session *s)
 {
     return s->producers == 0 && s->viewer_count == 0;
 }
 
-void fc_stream_session_add_producer(fc_stream_session *s)
+void fc_session_add_producer(fc_session *s)
 {
     s->producers++;
     s->had_producer = true;
 }
 
-static void end_session(fc_stream_session *s)
+static void end_session(fc_session *s)
 {
     s->ended = true;
     /* Frames still waiting for chunks can never complete now. */
@@ -65,10 +65,10 @@ static void end_session(fc_stream_session *s)
     fc_chunk_assembly_init(&s->chunks, s->chunks.pool);
     /* Backwards: a viewer told at once removes itself, shifting only the ones already told. */
     for (size_t i = s->viewer_count; i-- > 0;)
-        fc_session_on_stream_ended(s->viewers[i]);
+        fc_client_on_session_ended(s->viewers[i]);
 }
 
-void fc_stream_session_remove_producer(fc_stream_session *s, const struct fc_session *producer)
+void fc_session_remove_producer(fc_session *s, const struct fc_client *producer)
 {
     fc_chunk_assembly_forget(&s->chunks, producer);
     if (s->producers > 0)
@@ -77,11 +77,11 @@ void fc_stream_session_remove_producer(fc_stream_session *s, const struct fc_ses
         end_session(s);
 }
 
-fc_code fc_stream_session_add_viewer(fc_stream_session *s, struct fc_session *viewer, fc_error *err)
+fc_code fc_session_add_viewer(fc_session *s, struct fc_client *viewer, fc_error *err)
 {
     if (s->viewer_count == s->viewer_capacity) {
         size_t capacity = s->viewer_capacity ? 2 * s->viewer_capacity : 4;
-        struct fc_session **grown = realloc(s->viewers, capacity * sizeof *grown);
+        struct fc_client **grown = realloc(s->viewers, capacity * sizeof *grown);
         if (!grown)
             return fc_error_set(err, FC_ERR_INTERNAL, "no memory for another viewer of '%s'", s->name);
         s->viewers = grown;
@@ -91,7 +91,7 @@ fc_code fc_stream_session_add_viewer(fc_stream_session *s, struct fc_session *vi
     return FC_OK;
 }
 
-void fc_stream_session_remove_viewer(fc_stream_session *s, const struct fc_session *viewer)
+void fc_session_remove_viewer(fc_session *s, const struct fc_client *viewer)
 {
     for (size_t i = 0; i < s->viewer_count; i++) {
         if (s->viewers[i] == viewer) {
@@ -102,11 +102,11 @@ void fc_stream_session_remove_viewer(fc_stream_session *s, const struct fc_sessi
     }
 }
 
-void fc_stream_session_publish(fc_stream_session *s, fc_shared_frame *frame)
+void fc_session_publish(fc_session *s, fc_shared_frame *frame)
 {
     fc_shared_frame_unref(s->latest);
     s->latest = frame;
     s->sequence++;
     for (size_t i = 0; i < s->viewer_count; i++)
-        fc_session_on_new_frame(s->viewers[i]);
+        fc_client_on_new_frame(s->viewers[i]);
 }

@@ -1,0 +1,271 @@
+/* client_sessions.c — a client's named-session and packed-upload messages:
+ * PUBLISH, SUBSCRIBE, SESSION_END, CHUNK, FRAME_PACKED and LIST_SESSIONS. */
+#include "clients/client_internal.h"
+
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "clients/client_memory.h"
+#include "fc_error.h"
+#include "monotonic.h"
+#include "sessions/session.h"
+#include "sessions/session_events.h"
+#include "uploads/frame_pool.h"
+#include "wire_session.h"
+
+bool fc_client_is_session_message(uint16_t type)
+{
+    return fc_wire_session_type_name(type) != NULL;
+}
+
+static fc_client_verdict reply_error(fc_client *c, const fc_msg_header *h, const fc_error *err, fc_buf *out)
+{
+    return fc_client_reply_error(c->ctx, c->peer, h->request_id, err, FC_CLIENT_CONTINUE, out);
+}
+
+static fc_client_verdict reply_state(fc_client *c, const fc_msg_header *h, fc_buf *out)
+{
+    fc_session_info info;
+    fc_error err;
+    fc_session_describe(c->session, &info);
+    if (fc_wire_write_session_state(out, h->request_id, &info, &err) != FC_OK) {
+        fc_log_write(c->ctx->log, FC_LOG_ERROR, "%s: cannot queue SESSION_STATE: %s", c->peer, err.message);
+        return FC_CLIENT_ABORT;
+    }
+    return FC_CLIENT_CONTINUE;
+}
+
+static fc_code check_no_role(const fc_client *c, fc_error *err)
+{
+    if (c->role == FC_ROLE_NONE)
+        return FC_OK;
+    return fc_error_set(err, FC_ERR_BAD_STATE, "this connection already %s session '%s'",
+                        c->role == FC_ROLE_PRODUCER ? "publishes to" : "watches", c->session->name);
+}
+
+void fc_client_leave_session(fc_client *c)
+{
+    fc_session *session = c->session;
+    if (!session)
+        return;
+    fc_client_role role = c->role;
+    c->session = NULL;
+    c->role = FC_ROLE_NONE;
+    memset(&c->viewer, 0, sizeof c->viewer);
+    /* After detaching: a producer's leaving may end the session, which then tells only the others. */
+    if (role == FC_ROLE_PRODUCER)
+        fc_session_remove_producer(session, c);
+    else
+        fc_session_remove_viewer(session, c);
+}
+
+/* ---- PUBLISH / SUBSCRIBE / SESSION_END ---- */
+
+static fc_client_verdict handle_publish(fc_client *c, const fc_msg_header *h, const uint8_t *payload,
+                                         fc_buf *out)
+{
+    char name[FC_SESSION_NAME_MAX + 1];
+    fc_session *session;
+    fc_error err;
+    if (fc_wire_read_publish(payload, h->length, name, &err) != FC_OK || check_no_role(c, &err) != FC_OK ||
+        fc_registry_open(c->ctx->sessions, name, &session, &err) != FC_OK)
+        return reply_error(c, h, &err, out);
+    fc_session_add_producer(session);
+    c->role = FC_ROLE_PRODUCER;
+    c->session = session;
+    fc_log_write(c->ctx->log, FC_LOG_INFO, "%s: publishes to session '%s'", c->peer, name);
+    return reply_state(c, h, out);
+}
+
+static fc_client_verdict handle_subscribe(fc_client *c, const fc_msg_header *h, const uint8_t *payload,
+                                           fc_buf *out)
+{
+    fc_subscribe sub;
+    fc_session *session;
+    fc_error err;
+    if (fc_wire_read_subscribe(payload, h->length, &sub, &err) != FC_OK || check_no_role(c, &err) != FC_OK)
+        return reply_error(c, h, &err, out);
+    uint32_t width = sub.width ? sub.width : FC_DEFAULT_VIEW_WIDTH;
+    uint32_t height = sub.height ? sub.height : FC_DEFAULT_VIEW_HEIGHT;
+    if (fc_client_check_image_limit(&c->ctx->welcome.limits, width, height, &err) != FC_OK ||
+        fc_registry_open(c->ctx->sessions, sub.name, &session, &err) != FC_OK ||
+        fc_session_add_viewer(session, c, &err) != FC_OK)
+        return reply_error(c, h, &err, out);
+    c->role = FC_ROLE_VIEWER;
+    c->session = session;
+    fc_log_write(c->ctx->log, FC_LOG_INFO, "%s: watches session '%s'", c->peer, sub.name);
+    /* The acknowledgement goes first: the first image may follow at once. */
+    fc_client_verdict verdict = reply_state(c, h, out);
+    if (verdict == FC_CLIENT_CONTINUE)
+        fc_viewer_start(c, h->request_id, &sub, width, height);
+    return verdict;
+}
+
+static fc_client_verdict handle_session_end(fc_client *c, const fc_msg_header *h, const uint8_t *payload,
+                                             fc_buf *out)
+{
+    fc_error err;
+    if (fc_wire_read_session_leave(payload, h->length, &err) != FC_OK)
+        return reply_error(c, h, &err, out);
+    if (c->role == FC_ROLE_NONE) {
+        fc_error_set(&err, FC_ERR_BAD_STATE, "SESSION_END outside a session");
+        return reply_error(c, h, &err, out);
+    }
+    if (c->role == FC_ROLE_VIEWER && c->viewer.ending && !c->viewer.deliver_last) {
+        fc_error_set(&err, FC_ERR_BAD_STATE, "SESSION_END was sent already");
+        return reply_error(c, h, &err, out);
+    }
+    if (c->role == FC_ROLE_VIEWER) {
+        fc_viewer_leave(c, h->request_id);
+        return FC_CLIENT_CONTINUE;
+    }
+    char name[FC_SESSION_NAME_MAX + 1];
+    memcpy(name, c->session->name, sizeof name);
+    fc_client_leave_session(c);
+    fc_log_write(c->ctx->log, FC_LOG_INFO, "%s: stopped publishing to session '%s'", c->peer, name);
+    if (fc_wire_write_session_end(out, h->request_id, name, &err) != FC_OK)
+        return FC_CLIENT_ABORT;
+    return FC_CLIENT_CONTINUE;
+}
+
+/* ---- Frames: FRAME_PACKED and CHUNK ---- */
+
+static fc_client_verdict handle_frame_packed(fc_client *c, const fc_msg_header *h, fc_payload *payload,
+                                              double received_ms, fc_buf *out)
+{
+    fc_frame_view view = {0};
+    fc_error err;
+    double start = fc_monotonic_ms();
+    fc_block_source blocks = fc_frame_pool_source(c->ctx->frames);
+    fc_code code = fc_wire_view_frame_packed(payload->bytes, h->length, fc_pack_allowed(c->capabilities),
+                                             c->ctx->welcome.limits.max_particles, &blocks, &view, &err);
+    if (code == FC_OK)
+        code = fc_client_take_frame(c, &view, payload, received_ms, fc_monotonic_ms() - start, &err);
+    return code == FC_OK ? FC_CLIENT_CONTINUE : reply_error(c, h, &err, out);
+}
+
+/* Publishes a frame the chunks completed, unless a newer one is out already
+ * (chunks of two frames can complete out of order; viewers only go forward). */
+static fc_code publish_assembled(fc_client *c, fc_assembled_frame *done, fc_error *err)
+{
+    fc_session *session = c->session;
+    if (session->latest && done->frame_number <= session->latest->number) {
+        fc_log_write(c->ctx->log, FC_LOG_DEBUG, "%s: frame %llu completed after frame %llu: dropped", c->peer,
+                     (unsigned long long)done->frame_number, (unsigned long long)session->latest->number);
+        fc_frame_pool_give_view(c->ctx->frames, &done->frame);
+        return FC_OK;
+    }
+    fc_shared_frame *shared;
+    fc_code code =
+        fc_shared_frame_create(&done->frame, c->ctx->frames, ++c->ctx->last_frame_id, session->foam, &shared, err);
+    if (code != FC_OK)
+        return code;
+    shared->number = done->frame_number;
+    shared->ready_ms = fc_monotonic_ms();
+    shared->receive_ms = done->receive_ms;
+    shared->decode_ms = done->decode_ms;
+    fc_session_publish(session, shared);
+    return FC_OK;
+}
+
+/* The frames being assembled hold every chunk until their last one arrives. */
+static fc_code admit_chunk(const fc_client *c, const fc_chunk *chunk, fc_error *err)
+{
+    char what[96];
+    snprintf(what, sizeof what, "chunk %u of frame %llu (%llu particles)", chunk->header.index,
+             (unsigned long long)chunk->header.frame_number, (unsigned long long)chunk->part.frame.count);
+    return fc_client_memory_admit(c, 0, fc_memory_of_frame(&chunk->part.frame), what, err);
+}
+
+static fc_client_verdict handle_chunk(fc_client *c, const fc_msg_header *h, fc_payload *payload,
+                                       double received_ms, fc_buf *out)
+{
+    fc_error err;
+    if (c->role != FC_ROLE_PRODUCER) {
+        fc_error_set(&err, FC_ERR_BAD_STATE, "CHUNK needs PUBLISH first");
+        return reply_error(c, h, &err, out);
+    }
+    fc_frame_pool *pool = c->ctx->frames;
+    fc_block_source blocks = fc_frame_pool_source(pool);
+    fc_chunk chunk = {0};
+    double start = fc_monotonic_ms();
+    fc_code code = fc_wire_view_chunk(payload->bytes, h->length, fc_pack_allowed(c->capabilities),
+                                      c->ctx->welcome.limits.max_particles, &blocks, &chunk.header, &chunk.part, &err);
+    if (code == FC_OK)
+        code = fc_client_keep_payload(c, &chunk.part, payload, &err);
+    if (code == FC_OK)
+        code = admit_chunk(c, &chunk, &err);
+    if (code != FC_OK) {
+        fc_frame_pool_give_view(pool, &chunk.part);
+        return reply_error(c, h, &err, out);
+    }
+    double now = fc_monotonic_ms();
+    chunk.origin = (fc_chunk_origin){c, h->request_id};
+    chunk.first_byte_ms = c->message_started_ms;
+    chunk.received_ms = received_ms;
+    chunk.decode_ms = (float)(now - start);
+    bool complete = false;
+    fc_assembled_frame done = {0};
+    code = fc_chunk_assembly_add(&c->session->chunks, &chunk, c->ctx->welcome.limits.max_particles, now,
+                                 c->ctx->chunk_timeout_ms, &complete, &done, &err);
+    fc_frame_pool_give_view(pool, &chunk.part);
+    if (code == FC_OK && complete)
+        code = publish_assembled(c, &done, &err);
+    return code == FC_OK ? FC_CLIENT_CONTINUE : reply_error(c, h, &err, out);
+}
+
+/* ---- LIST_SESSIONS ---- */
+
+static fc_client_verdict handle_list_sessions(fc_client *c, const fc_msg_header *h, const uint8_t *payload,
+                                               fc_buf *out)
+{
+    fc_session_info *list = NULL;
+    uint32_t count = 0;
+    fc_error err;
+    fc_code code = fc_wire_read_list_sessions(payload, h->length, &err);
+    if (code == FC_OK)
+        code = fc_registry_list(c->ctx->sessions, &list, &count, &err);
+    if (code == FC_OK)
+        code = fc_wire_write_session_list(out, h->request_id, list, count, &err);
+    free(list);
+    return code == FC_OK ? FC_CLIENT_CONTINUE : reply_error(c, h, &err, out);
+}
+
+/* ---- Dispatch ---- */
+
+/* The capabilities a message type needs: it is undefined on connections that did not get them. */
+static uint32_t required_capabilities(uint16_t type)
+{
+    return type == FC_MSG_FRAME_PACKED ? (uint32_t)(FC_CAP_ZSTD | FC_CAP_QUANTIZE16) : (uint32_t)FC_CAP_SESSIONS;
+}
+
+fc_client_verdict fc_client_handle_session_message(fc_client *c, fc_daemon_context *ctx, const fc_msg_header *h,
+                                            fc_payload *message, double received_ms, fc_buf *out)
+{
+    const uint8_t *payload = message->bytes;
+    (void)ctx;
+    fc_error err;
+    if (!(c->capabilities & required_capabilities(h->type))) {
+        fc_error_set(&err, FC_ERR_UNKNOWN_TYPE, "%s (type %u) needs a capability this connection did not negotiate",
+                     fc_wire_session_type_name(h->type), (unsigned)h->type);
+        return reply_error(c, h, &err, out);
+    }
+    switch (h->type) {
+    case FC_MSG_PUBLISH: return handle_publish(c, h, payload, out);
+    case FC_MSG_SUBSCRIBE: return handle_subscribe(c, h, payload, out);
+    case FC_MSG_SESSION_END: return handle_session_end(c, h, payload, out);
+    case FC_MSG_CHUNK: return handle_chunk(c, h, message, received_ms, out);
+    case FC_MSG_FRAME_PACKED: return handle_frame_packed(c, h, message, received_ms, out);
+    case FC_MSG_LIST_SESSIONS: return handle_list_sessions(c, h, payload, out);
+    default:
+        fc_error_set(&err, FC_ERR_BAD_STATE, "%s is sent by servers, not clients", fc_wire_session_type_name(h->type));
+        return reply_error(c, h, &err, out);
+    }
+}
+
+void fc_client_on_chunk_failed(const fc_chunk_origin *origin, const fc_error *err, void *data)
+{
+    (void)data;
+    fc_client_send_error(origin->session, origin->request_id, err);
+}
