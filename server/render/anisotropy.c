@@ -36,6 +36,8 @@ enum { MAX_SCAN_LEVELS = 6 };
 #define MIN_CELL_CAP 4096u
 #define MAX_CELL_CAP (1u << 24)
 #define CELL_GROWTH 1.25f
+/* fc_frame_estimate_radius's radius per nearest-neighbour distance (fc_radius.c). */
+#define ESTIMATED_RADIUS_PER_SPACING 0.9f
 
 typedef struct grid {
     float origin[3];
@@ -244,12 +246,22 @@ static void run_passes(fc_anisotropy *a, const fc_particle_buffer *particles, co
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
 }
 
-fc_code fc_anisotropy_update(fc_anisotropy *a, const fc_particle_buffer *particles, float radius, fc_error *err)
+/* r_s: the frame's typical spacing (the median nearest-neighbour distance of
+ * a sample, found exactly) times the support in spacings. */
+static float support_radius(const fc_frame *frame)
 {
-    if (a->ellipsoids && a->generation == particles->generation && a->count == particles->count &&
-        a->radius == radius)
+    return FC_ANISOTROPY_SUPPORT_SPACINGS * fc_frame_estimate_radius(frame) / ESTIMATED_RADIUS_PER_SPACING;
+}
+
+fc_code fc_anisotropy_update(fc_anisotropy *a, const fc_particle_buffer *particles, const fc_frame *frame,
+                             fc_error *err)
+{
+    if (a->ellipsoids && a->generation == particles->generation && a->count == particles->count)
         return FC_OK;
-    float support = FC_ANISOTROPY_SUPPORT_RADII * radius;
+    if (frame->count != particles->count)
+        return fc_error_set(err, FC_ERR_USAGE, "fc_anisotropy_update: a frame of %llu particles for %llu",
+                            (unsigned long long)frame->count, (unsigned long long)particles->count);
+    float support = support_radius(frame);
     grid g = plan_grid(particles, support);
     scan_plan s = plan_scan(g.total);
     fc_code code = reserve(a, particles->count, (uint64_t)s.offset[s.levels] + 1, err);
@@ -262,7 +274,7 @@ fc_code fc_anisotropy_update(fc_anisotropy *a, const fc_particle_buffer *particl
         a->computations++;
         a->generation = particles->generation;
         a->count = particles->count;
-        a->radius = radius;
+        a->support = support;
     }
     return code;
 }

@@ -7,16 +7,20 @@
  * splats ray-cast these ellipsoids where a particle buffer names them
  * (fc_particle_buffer.shapes).
  *
- * Parameters (Yu & Turk's symbols), chosen for particles about 1.8 radii
- * apart (the radius the daemon estimates is 0.55 of the spacing):
- *   r_s = FC_ANISOTROPY_SUPPORT_RADII x radius: the support radius, Yu & Turk's
- *         2h; 4 radii is 2.2 spacings, about 44 neighbours inside the fluid,
- *         20-30 at its surface and on a two-layer sheet;
+ * Parameters (Yu & Turk's symbols):
+ *   r_s = FC_ANISOTROPY_SUPPORT_SPACINGS x the particle spacing: the support
+ *         radius, Yu & Turk's 2h. The spacing is the frame's own (the median
+ *         nearest-neighbour distance, fc_frame_estimate_radius / 0.9), not
+ *         the render radius: radii differ by convention (the splash data
+ *         suggests 0.55 spacings, the daemon's estimate is 0.9), and the
+ *         neighbourhood must not. 2.2 spacings hold about 44 neighbours inside
+ *         the fluid, 20-30 at its surface and on a two-layer sheet;
  *   w(d) = 1 - (d / r_s)^3 for d < r_s;
  *   lambda = FC_ANISOTROPY_LAMBDA (0.9, the paper's) for the smoothed centres;
  *   N_eps = FC_ANISOTROPY_MIN_NEIGHBOURS (the paper's 25 counts neighbours of
- *         a larger support): fewer neighbours keep the sphere, so droplets stay
- *         round and the few-sample covariance of a sparse region is not used;
+ *         a larger support): fewer neighbours keep the sphere, so droplets and
+ *         small clusters stay round; 6 made the sparse crown of the splash data
+ *         spiky (needles from few-sample covariances), 12 keeps it beads;
  *   k_r = FC_ANISOTROPY_MAX_RATIO (4, the paper's): no axis is shorter than the
  *         longest / k_r, each axis proportional to its covariance eigenvalue;
  *   the three stretches multiply to 1 (the sphere's volume), so the longest
@@ -28,11 +32,12 @@
 #include <epoxy/gl.h>
 #include <stdint.h>
 
+#include "fc_frame.h"
 #include "fluidcast_types.h"
 #include "gpu_memory.h"
 #include "particle_buffer.h"
 
-#define FC_ANISOTROPY_SUPPORT_RADII 4.0f
+#define FC_ANISOTROPY_SUPPORT_SPACINGS 2.2f
 #define FC_ANISOTROPY_LAMBDA 0.9f
 #define FC_ANISOTROPY_MIN_NEIGHBOURS 12u
 #define FC_ANISOTROPY_MAX_RATIO 4.0f
@@ -62,7 +67,7 @@ typedef struct fc_anisotropy {
     /* What the ellipsoids were computed for: the cache key. */
     uint64_t generation;
     uint64_t count;
-    float radius;
+    float support;          /* r_s of the last computation, world units */
     GLint max_groups;       /* GL_MAX_COMPUTE_WORK_GROUP_COUNT along x */
 } fc_anisotropy;
 
@@ -72,10 +77,13 @@ void fc_anisotropy_destroy(fc_anisotropy *a);
 /* Frees the buffers; the next update allocates and computes them again. */
 void fc_anisotropy_trim(fc_anisotropy *a);
 
-/* Computes the ellipsoids of the particles (every slot of the buffer) for
- * spheres of `radius`, unless they are already those of this upload
- * (particles->generation) and radius: a new camera or render re-uses them. */
-fc_code fc_anisotropy_update(fc_anisotropy *a, const fc_particle_buffer *particles, float radius, fc_error *err);
+/* Computes the ellipsoids of the particles (every slot of the buffer),
+ * `frame` being the same particles in any order (for their spacing), unless
+ * they are already those of this upload (particles->generation): a new
+ * camera, radius or render re-uses them. The ellipsoids are shapes relative
+ * to the render radius, whatever it is. */
+fc_code fc_anisotropy_update(fc_anisotropy *a, const fc_particle_buffer *particles, const fc_frame *frame,
+                             fc_error *err);
 
 /* Reads the ellipsoids of slots [0, count) back into out (tests). */
 fc_code fc_anisotropy_read(const fc_anisotropy *a, uint64_t count, fc_ellipsoid *out, fc_error *err);

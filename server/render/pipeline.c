@@ -334,7 +334,7 @@ static fc_code order_for(fc_pipeline *p, const fc_settings *settings, fc_error *
 }
 
 /* The particles' shape for a render: their ellipsoids (computed once per
- * upload, order and radius, whatever the camera) for the anisotropic kernel,
+ * upload and order, whatever the camera and radius) for the anisotropic kernel,
  * named in the particle buffer so every splat of it casts them; else
  * spheres. */
 static fc_code shape_particles(fc_pipeline *p, const fc_settings *settings, fc_error *err)
@@ -343,7 +343,7 @@ static fc_code shape_particles(fc_pipeline *p, const fc_settings *settings, fc_e
     if (settings->kernel != FC_KERNEL_ANISOTROPIC)
         return FC_OK;
     fc_pass_profile_begin(&p->profile, "anisotropy");
-    fc_code code = fc_anisotropy_update(&p->anisotropy, &p->particles, settings->radius, err);
+    fc_code code = fc_anisotropy_update(&p->anisotropy, &p->particles, &p->frame, err);
     fc_pass_profile_end(&p->profile);
     if (code == FC_OK)
         p->particles.shapes = p->anisotropy.ellipsoids;

@@ -5,7 +5,8 @@
  * force neighbours, its own Jacobi iterated to convergence); a straight line
  * of particles gives ellipsoids elongated along it at the largest stretch
  * allowed; an isolated particle stays exactly the sphere at its position; and
- * the ellipsoids are computed once per upload and radius, not per render. */
+ * the ellipsoids are computed once per upload, not per render, camera or
+ * radius. */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -88,11 +89,12 @@ static void sorted_eigen(const double m[3][3], double values[3], double vectors[
     }
 }
 
-/* Yu & Turk 2013 for particle i with anisotropy.h's parameters. */
-static reference reference_ellipsoid(const float *x, int count, int i, double radius)
+/* Yu & Turk 2013 for particle i with anisotropy.h's parameters and the
+ * support radius the pipeline found for the frame (its spacing estimate is
+ * fc_frame_estimate_radius's, tested on its own). */
+static reference reference_ellipsoid(const float *x, int count, int i, double support)
 {
     reference r = {0};
-    double support = FC_ANISOTROPY_SUPPORT_RADII * radius;
     double weight = 0.0, first[3] = {0}, second[3][3] = {{0}};
     for (int j = 0; j < count; j++) {
         double d[3], dist = 0.0;
@@ -163,8 +165,10 @@ static void longest_axis(const fc_ellipsoid *e, double axis[3])
         axis[k] = vectors[k][2];
 }
 
-/* Renders once with the anisotropic kernel (computing the ellipsoids) and reads them back. */
-static fc_ellipsoid *ellipsoids_of(render_fixture *f, const float *positions, int count, float radius)
+/* Renders once with the anisotropic kernel (computing the ellipsoids) and
+ * reads them back, with the support radius they had. */
+static fc_ellipsoid *ellipsoids_of(render_fixture *f, const float *positions, int count, float radius,
+                                   double *support)
 {
     fc_camera cam = axis_camera(3.0, 16, 16);
     fc_settings settings = test_settings(radius, FC_SMOOTHING_NONE, 0);
@@ -174,7 +178,9 @@ static fc_ellipsoid *ellipsoids_of(render_fixture *f, const float *positions, in
     fc_image_free(&depth);
     fc_ellipsoid *out = calloc((size_t)count, sizeof *out);
     fc_error err = {0};
-    CHECK_CODE(fc_anisotropy_read(fc_pipeline_anisotropy(f->pipeline), (uint64_t)count, out, &err), FC_OK);
+    const fc_anisotropy *a = fc_pipeline_anisotropy(f->pipeline);
+    CHECK_CODE(fc_anisotropy_read(a, (uint64_t)count, out, &err), FC_OK);
+    *support = a->support;
     return out;
 }
 
@@ -212,11 +218,15 @@ static void test_against_reference(render_fixture *f)
 {
     float x[3 * 400];
     int count = jittered_block(x);
-    fc_ellipsoid *gpu = ellipsoids_of(f, x, count, RADIUS);
+    double support;
+    fc_ellipsoid *gpu = ellipsoids_of(f, x, count, RADIUS, &support);
+    /* The jittered lattice's nearest neighbours are somewhat closer than its spacing. */
+    const double spacing = 2.0 * RADIUS / 1.1;
+    CHECK_MSG(support > 1.6 * spacing && support < 2.3 * spacing, "support %g for spacing %g", support, spacing);
     int compared = 0, ellipsoids = 0, spheres = 0, axes_compared = 0;
     double worst_centre = 0.0, worst_g = 0.0, worst_axis = 1.0;
     for (int i = 0; i < count; i++) {
-        reference r = reference_ellipsoid(x, count, i, RADIUS);
+        reference r = reference_ellipsoid(x, count, i, support);
         if (r.borderline)
             continue;
         compared++;
@@ -260,26 +270,36 @@ static void test_against_reference(render_fixture *f)
     free(gpu);
 }
 
-/* Particles 0.3 radii apart on a line: each has about 27 neighbours, all on
- * the line, so the covariance has rank one and both short axes are clamped
- * at the longest / k_r: stretches k_r^(2/3) along the line, k_r^(-1/3) across. */
+/* A block at spacing 1 sets the frame's spacing (the support radius: 2.2);
+ * far from it, particles 0.21 apart on a line each have up to 21 neighbours,
+ * all on the line, so the covariance has rank one and both short axes are
+ * clamped at the longest / k_r: stretches k_r^(2/3) along the line,
+ * k_r^(-1/3) across. The two ends have 11, below N_eps: spheres. */
 static void test_line_elongates(render_fixture *f)
 {
-    enum { COUNT = 41 };
+    enum { LINE = 41, BLOCK = 512, COUNT = LINE + BLOCK };
     const double dir[3] = {1.0 / sqrt(5.25), 2.0 / sqrt(5.25), 0.5 / sqrt(5.25)};
-    float x[3 * COUNT];
-    for (int i = 0; i < COUNT; i++)
+    float *x = malloc(3 * COUNT * sizeof *x);
+    for (int i = 0; i < LINE; i++)
         for (int k = 0; k < 3; k++)
-            x[3 * i + k] = (float)(0.1 * k + (i - COUNT / 2) * 0.3 * RADIUS * dir[k]);
-    fc_ellipsoid *gpu = ellipsoids_of(f, x, COUNT, RADIUS);
-    for (int i = 0; i < COUNT; i++) {
+            x[3 * i + k] = (float)(0.1 * k + (i - LINE / 2) * 0.21 * dir[k]);
+    for (int i = 0; i < BLOCK; i++) {
+        x[3 * (LINE + i)] = 20.0f + (float)(i % 8);
+        x[3 * (LINE + i) + 1] = (float)(i / 8 % 8);
+        x[3 * (LINE + i) + 2] = (float)(i / 64);
+    }
+    double support;
+    fc_ellipsoid *gpu = ellipsoids_of(f, x, COUNT, 0.55f, &support);
+    CHECK_NEAR(support, FC_ANISOTROPY_SUPPORT_SPACINGS, 1e-4);
+    CHECK(gpu[0].stretch_max == 1.0f && gpu[LINE - 1].stretch_max == 1.0f);
+    for (int i = 1; i < LINE - 1; i++) {
         CHECK_MSG(gpu[i].stretch_max > 2.0f, "particle %d: longest stretch %g", i, (double)gpu[i].stretch_max);
         double axis[3];
         longest_axis(&gpu[i], axis);
         double dot = fabs(axis[0] * dir[0] + axis[1] * dir[1] + axis[2] * dir[2]);
         CHECK_MSG(dot > 0.999, "particle %d: longest axis at |cos| %g to the line", i, dot);
     }
-    const fc_ellipsoid *middle = &gpu[COUNT / 2];
+    const fc_ellipsoid *middle = &gpu[LINE / 2];
     CHECK_NEAR(middle->stretch_max, FC_ANISOTROPY_MAX_STRETCH, 1e-3);
     /* G's eigenvalues are the inverse stretches: 1/k_r^(2/3) along, k_r^(1/3) across (twice). */
     double g[3][3], values[3], vectors[3][3];
@@ -289,9 +309,10 @@ static void test_line_elongates(render_fixture *f)
     CHECK_NEAR(values[1], cbrt(FC_ANISOTROPY_MAX_RATIO), 2e-3);
     CHECK_NEAR(values[2], 1.0 / FC_ANISOTROPY_MAX_STRETCH, 2e-3);
     free(gpu);
+    free(x);
 }
 
-/* The ellipsoids follow the frame and the radius, not the camera or the image. */
+/* The ellipsoids follow the frame, not the camera, the radius or the image. */
 static void test_computed_once_per_frame_and_radius(render_fixture *f)
 {
     float x[3 * 400];
@@ -314,10 +335,10 @@ static void test_computed_once_per_frame_and_radius(render_fixture *f)
     CHECK(a->computations == before + 1);
     settings.radius = 1.5f * RADIUS;
     CHECK_CODE(fc_pipeline_render(f->pipeline, &other, &settings, FC_AOV_DEPTH, 0, &img, NULL, &err), FC_OK);
-    CHECK(a->computations == before + 2);
+    CHECK(a->computations == before + 1);
     CHECK_CODE(fc_pipeline_upload(f->pipeline, &frame, NULL, &err), FC_OK);
     CHECK_CODE(fc_pipeline_render(f->pipeline, &other, &settings, FC_AOV_DEPTH, 0, &img, NULL, &err), FC_OK);
-    CHECK(a->computations == before + 3);
+    CHECK(a->computations == before + 2);
     fc_image_free(&img);
 }
 
