@@ -54,6 +54,7 @@ layout(location = 46) uniform vec2 thickness_size;             // texels of the 
 // so very thick fluid cannot sample far-away, unrelated parts of the scene.
 const float max_shift_fraction = 0.05;
 const vec3 foam_color = vec3(0.90, 0.92, 0.94);
+const float min_coverage = 0.8;
 // The sun's highlight at specular 1, linear HDR: bright enough that the
 // filmic shoulder shows it near white, as the sun's glint on water is.
 const vec3 highlight_radiance = 4.0 * vec3(1.00, 0.93, 0.82);
@@ -126,10 +127,12 @@ vec3 shade_fluid(ivec2 p, float z, vec3 behind_here)
         fluid = mix(fluid, foam_lit, foam_amount);
     }
     // Silhouettes are the rims of single sprites, jagged and seen at grazing
-    // angles; fading out where the fluid is thinner than a particle (the
-    // thickness falls smoothly to 0 there) softens them (cf. the silhouette
-    // map of Instant Liquids).
-    float coverage = smoothstep(0.0, particle_radius, t);
+    // angles; letting a fifth of the background through where the fluid is
+    // thinner than a particle (the thickness falls smoothly to 0 there)
+    // softens them (cf. the silhouette map of Instant Liquids) without
+    // fading thin sheets and droplets, whose outline and Fresnel rim are
+    // what shows them, into haze.
+    float coverage = max(smoothstep(0.0, particle_radius, t), min_coverage);
     return mix(behind_here, fluid, coverage);
 }
 

@@ -6,6 +6,7 @@
 #include <string.h>
 
 #include "cli_report.h"
+#include "cli_settings.h"
 #include "cli_values.h"
 #include "fc_error.h"
 #include "fc_frame.h"
@@ -251,7 +252,7 @@ static void set_defaults(fc_snapshot_options *o)
     o->width = 1280;
     o->height = 720;
     o->fov_deg = FC_SNAPSHOT_DEFAULT_FOV;
-    fc_settings_default(&o->settings);
+    fc_cli_default_settings(&o->settings);
     o->aov = FC_AOV_COLOR;
     o->quality = FC_SNAPSHOT_DEFAULT_QUALITY;
 }
@@ -456,7 +457,7 @@ void fc_snapshot_print_help(FILE *to)
           "\n",
           to);
     fc_settings defaults;
-    fc_settings_default(&defaults);
+    fc_cli_default_settings(&defaults);
     print_camera_help(to);
     print_surface_help(to, &defaults);
     print_shading_help(to, &defaults);

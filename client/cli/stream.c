@@ -9,6 +9,7 @@
 #include "cli_frames.h"
 #include "cli_particles.h"
 #include "cli_report.h"
+#include "cli_settings.h"
 #include "cli_token.h"
 #include "fc_error.h"
 #include "fc_frame.h"
@@ -40,7 +41,7 @@ static int set_up_view(fc_client *c, const fc_stream_options *o, const fc_frame 
     if (fc_camera_validate(&cam, &why) != FC_OK)
         return fc_cli_fail(FC_EXIT_USAGE, "bad camera: %s", why.message);
     fc_settings settings;
-    fc_settings_default(&settings);
+    fc_cli_default_settings(&settings);
     settings.radius = o->radius > 0.0f ? o->radius : fc_frame_estimate_radius(first);
     if (fc_client_set_camera(c, &cam, &err) != FC_OK || fc_client_set_settings(c, &settings, &err) != FC_OK)
         return client_failure(o, &err);
