@@ -18,10 +18,11 @@ PACKAGES=(
   clang-14 libclang-rt-14-dev
 )
 
-# The peer benchmark (bench/run_bench.sh) also needs VTK and a virtual X server:
+# The peer benchmark (bench/run_bench.sh, bench/peer/compare_images.sh) also needs VTK and a
+# virtual X server, and docs/gallery/make_gallery.sh oiiotool:
 # `deploy/setup.sh --bench` adds them.
 if [ "${1:-}" = "--bench" ]; then
-  PACKAGES+=(python3-vtk9 python3-numpy xvfb xauth)
+  PACKAGES+=(python3-vtk9 python3-numpy xvfb xauth openimageio-tools)
 fi
 
 missing=()

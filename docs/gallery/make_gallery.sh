@@ -1,7 +1,10 @@
 #!/usr/bin/env bash
 # Regenerates the README gallery through the real product path: fluidcastd on
 # this machine's GL (llvmpipe without a GPU) and the fluidcast CLI, on the demo
-# scene deploy/demo/drop_64k.f32 (65,536 particles) at 640x480.
+# scene deploy/demo/drop_64k.f32 (65,536 particles) at 640x480, and on frames
+# 5, 11 and 16 of the splash simulation in ../shared/data/splash (its
+# suggested radius and camera, 640x360): kernel sphere | anisotropic and
+# shadow off | on. The VTK | fluidcast row comes from bench/peer/compare_images.sh.
 # Usage: docs/gallery/make_gallery.sh   (after deploy/build.sh)
 set -euo pipefail
 cd "$(dirname "$0")/../.."
@@ -36,4 +39,20 @@ aov_png aov_thickness thickness 0.5
 snap aov_normal.exr --aov normal
 oiiotool "$out/aov_normal.exr" --mulc 0.5 --addc 0.5 --clamp:min=0:max=1 -d uint8 -o "$out/aov_normal.png"
 rm -f "$out/aov_normal.exr"
+splash=../shared/data/splash
+if [ -d "$splash" ]; then
+  for f in 05 11 16; do
+    look() { # NAME ARGS...: splash frame $f as the README shows it
+      local name=$1; shift
+      $bin/fluidcast snapshot "$splash/frame_00$f.ply" --server "127.0.0.1:$(cat "$portfile")" --size 640x360 \
+        --eye -0.3664,-1.0005,1.4229 --target 0.5,0.5,0.21 --up z --fov 40 --radius 0.0078571 "$@" \
+        -o "$out/splash_f${f}_$name.png"
+    }
+    look sphere --kernel sphere
+    look anisotropic
+    look shadow_off --shadow off
+  done
+else
+  echo "gallery: no $splash, splash rows not regenerated" >&2
+fi
 echo "gallery: $(ls "$out"/*.png | wc -l) images in $out"
