@@ -6,6 +6,7 @@
 
 bool cast_sphere_ray(vec2 pixel, vec3 centre, out float depth, out float chord);
 bool cast_ellipsoid_ray(vec2 pixel, vec3 centre, mat3 inverse, out float depth, out float chord);
+bool projected_ellipsoid_bounds(vec3 centre, mat3 a, vec2 focal, out vec4 box);
 
 layout(location = 0) uniform mat4 view_matrix;    // world -> view
 layout(location = 3) uniform float radius;        // world units
@@ -38,4 +39,12 @@ bool cast_particle_ray(vec2 pixel, vec3 centre, out float depth, out float chord
     if (particle_stretch == 1.0)
         return cast_sphere_ray(pixel, centre, depth, chord);
     return cast_ellipsoid_ray(pixel, centre, particle_inverse, depth, chord);
+}
+
+// The exact NDC box of the loaded ellipsoid (see ellipsoid_shape.vert.glsl).
+bool particle_ndc_bounds(vec3 view_centre, vec2 focal, out vec4 box)
+{
+    box = vec4(0.0);
+    return particle_stretch != 1.0 &&
+           projected_ellipsoid_bounds(view_centre, radius * inverse(particle_inverse), focal, box);
 }

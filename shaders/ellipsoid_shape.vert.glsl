@@ -15,6 +15,8 @@ struct ellipsoid {
 };
 layout(std430, binding = 5) readonly buffer Ellipsoids { ellipsoid ellipsoids[]; };
 
+bool projected_ellipsoid_bounds(vec3 centre, mat3 a, vec2 focal, out vec4 box);
+
 layout(location = 2) flat out mat3 ellipsoid_inverse;   // G in view space (locations 2-4)
 layout(location = 5) flat out float ellipsoid_stretch;
 
@@ -29,10 +31,26 @@ mat3 view_inverse(ellipsoid e)
     return rotation * g * transpose(rotation);
 }
 
+// The particle's G and stretch in view space, kept for particle_ndc_bounds.
+mat3 view_g;
+float stretch;
+
 vec4 particle_bounds(int slot, vec3 position)
 {
     ellipsoid e = ellipsoids[slot];
-    ellipsoid_inverse = view_inverse(e);
-    ellipsoid_stretch = e.centre_stretch.w;
-    return vec4(e.centre_stretch.xyz, radius * e.centre_stretch.w);
+    view_g = view_inverse(e);
+    stretch = e.centre_stretch.w;
+    ellipsoid_inverse = view_g;
+    ellipsoid_stretch = stretch;
+    return vec4(e.centre_stretch.xyz, radius * stretch);
+}
+
+// The exact NDC box of the ellipsoid (ellipsoid_bounds.glsl): a needle or a
+// disc seen edge-on covers a fraction of its bounding sphere's box. False
+// for a sphere (its own intervals, bit for bit) and for an ellipsoid reaching
+// the eye's plane (the bounding sphere's, clamped).
+bool particle_ndc_bounds(vec3 view_centre, vec2 focal, out vec4 box)
+{
+    box = vec4(0.0);
+    return stretch != 1.0 && projected_ellipsoid_bounds(view_centre, radius * inverse(view_g), focal, box);
 }

@@ -2,8 +2,9 @@
 // Particles as sprites, and the fragment shaders ray-cast the sphere (or the
 // anisotropic ellipsoid, anisotropy.h) inside each one (sphere_ray.glsl,
 // ellipsoid_ray.glsl), so depth and silhouette are the shape's own; an
-// ellipsoid's sprite bounds its bounding sphere. Every draw comes in two parts over the same particles
-// (sphere_sprites.c), and each particle is drawn by exactly one:
+// ellipsoid's sprite is the exact box of its projection (ellipsoid_bounds.glsl).
+// Every draw comes in two parts over the same particles (sphere_sprites.c),
+// and each particle is drawn by exactly one:
 //  - points: a point sprite covering the projected sphere. Cheapest on a
 //    software rasterizer (one primitive, not two triangles), but a point is
 //    dropped whole when its centre leaves the view volume, and cannot grow
@@ -37,6 +38,9 @@ vec2 projected_interval(float lateral, float depth, float focal, float radius); 
 // The particle's bounding sphere: world centre, radius (sphere_shape.vert.glsl,
 // ellipsoid_shape.vert.glsl, which also passes the ellipsoid on to the fragments).
 vec4 particle_bounds(int slot, vec3 position);
+// The shape's exact NDC box (x_lo, x_hi, y_lo, y_hi) where it has one of its
+// own (ellipsoids), else false: the bounding sphere's intervals then.
+bool particle_ndc_bounds(vec3 view_centre, vec2 focal, out vec4 box);
 
 void main()
 {
@@ -47,8 +51,10 @@ void main()
     sphere_centre = centre.xyz;
     float depth = -centre.z;
 
-    vec2 x_range = projected_interval(centre.x, depth, projection.x, reach);
-    vec2 y_range = projected_interval(centre.y, depth, projection.y, reach);
+    vec4 box;
+    bool exact = particle_ndc_bounds(centre.xyz, projection.xy, box);
+    vec2 x_range = exact ? box.xy : projected_interval(centre.x, depth, projection.x, reach);
+    vec2 y_range = exact ? box.zw : projected_interval(centre.y, depth, projection.y, reach);
     vec2 ndc_centre = projection.xy * centre.xy / depth;
     vec2 half_extent = 0.5 * viewport * vec2(max(x_range.y - ndc_centre.x, ndc_centre.x - x_range.x),
                                              max(y_range.y - ndc_centre.y, ndc_centre.y - y_range.x));

@@ -22,3 +22,10 @@ bool cast_particle_ray(vec2 pixel, vec3 centre, out float depth, out float chord
 {
     return cast_sphere_ray(pixel, centre, depth, chord);
 }
+
+// Spheres take their NDC bounds from sphere_bounds.glsl's intervals.
+bool particle_ndc_bounds(vec3 view_centre, vec2 focal, out vec4 box)
+{
+    box = vec4(0.0);
+    return false;
+}

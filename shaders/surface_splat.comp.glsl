@@ -23,6 +23,7 @@ vec4 load_particle(uint i);
 bool cast_particle_ray(vec2 pixel, vec3 centre, out float depth, out float chord);
 float thickness_above_floor(vec2 pixel, float depth, float chord);
 vec2 projected_interval(float lateral, float depth, float focal, float radius);
+bool particle_ndc_bounds(vec3 view_centre, vec2 focal, out vec4 box);
 
 layout(location = 1) uniform vec4 projection;        // P[0][0], P[1][1], P[2][2], P[3][2]
 layout(location = 2) uniform vec2 viewport;          // pixels
@@ -99,8 +100,12 @@ void main()
     // A centre behind the eye: the fragment splat culls its sprite too.
     if (depth <= 0.0)
         return;
-    vec2 x_range = projected_interval(centre.x, depth, projection.x, reach);
-    vec2 y_range = projected_interval(centre.y, depth, projection.y, reach);
+    // An ellipsoid's exact box where it has one; the row spans below stay
+    // those of its bounding sphere, clipped to the box.
+    vec4 box;
+    bool exact = particle_ndc_bounds(centre, projection.xy, box);
+    vec2 x_range = exact ? box.xy : projected_interval(centre.x, depth, projection.x, reach);
+    vec2 y_range = exact ? box.zw : projected_interval(centre.y, depth, projection.y, reach);
     // The pixels whose centres lie within the bounds, grown by the fragment
     // splat's margin (sphere.vert.glsl), clipped to the image. Walking one
     // more pixel per side and axis, as a plain floor and ceil of the bounds

@@ -77,7 +77,7 @@ fc_code fc_compute_splat_create(const char *shader_dir, fc_compute_splat *s, fc_
     *s = (fc_compute_splat){0};
     const char *splat[] = {"sphere_bounds.glsl", "sphere_ray.glsl", "thickness_chord.glsl", "sphere_shape.comp.glsl",
                            "surface_splat.comp.glsl"};
-    const char *ellipsoids[] = {"sphere_bounds.glsl", "sphere_ray.glsl", "ellipsoid_ray.glsl",
+    const char *ellipsoids[] = {"sphere_bounds.glsl", "ellipsoid_bounds.glsl", "sphere_ray.glsl", "ellipsoid_ray.glsl",
                                 "thickness_chord.glsl", "ellipsoid_shape.comp.glsl", "surface_splat.comp.glsl"};
     const char *resolve[] = {"surface_resolve.comp.glsl"};
     fc_code code = fc_program_build(shader_dir, splat, sizeof splat / sizeof splat[0], &s->splat_program, err);

@@ -11,7 +11,7 @@
 
 /* Shaders sharing a stage are linked as separate compilation units; no
  * program of ours needs more files than this. */
-#define MAX_PROGRAM_FILES 8
+#define MAX_PROGRAM_FILES 10
 #define INFO_LOG_MAX 1024
 
 static int ends_with(const char *text, const char *suffix)

@@ -51,7 +51,8 @@ static fc_code build_spheres(const char *shader_dir, const char *helper_file, co
 static fc_code build_ellipsoids(const char *shader_dir, const char *helper_file, const char *fragment_file,
                                 fc_sphere_sprites *s, fc_error *err)
 {
-    const char *files[] = {"sphere_bounds.glsl", "ellipsoid_shape.vert.glsl", "sphere.vert.glsl", "sphere_ray.glsl",
+    const char *files[] = {"sphere_bounds.glsl", "ellipsoid_bounds.glsl", "ellipsoid_shape.vert.glsl",
+                           "sphere.vert.glsl", "sphere_ray.glsl",
                            "ellipsoid_ray.glsl", "ellipsoid_shape.frag.glsl", helper_file, fragment_file};
     size_t count = sizeof files / sizeof files[0];
     if (!helper_file) {

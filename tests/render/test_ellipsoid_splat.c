@@ -135,14 +135,15 @@ static int jittered_block(float *x, float radius)
     return n;
 }
 
-static void test_depth_is_the_ellipsoids(render_fixture *f)
+/* Every pixel of a depth render of the particles has the nearest depth of
+ * a C ray cast of their ellipsoids, as read back: silhouettes (so the
+ * sprites' exact boxes, ellipsoid_bounds.glsl) and depths. At least
+ * `min_ellipsoids` of them must be ellipsoids. */
+static void check_against_ellipsoids(render_fixture *f, const float *x, int count, float radius,
+                                     const fc_camera *cam, int min_ellipsoids, const char *what)
 {
-    const float radius = 0.01f;
-    float x[3 * 384];
-    int count = jittered_block(x, radius);
-    fc_camera cam = axis_camera(0.6, 200, 160);
     fc_image depth = {0};
-    render(f, x, count, &cam, radius, FC_KERNEL_ANISOTROPIC, FC_AOV_DEPTH, &depth);
+    render(f, x, count, cam, radius, FC_KERNEL_ANISOTROPIC, FC_AOV_DEPTH, &depth);
     fc_ellipsoid *e = calloc((size_t)count, sizeof *e);
     fc_error err = {0};
     CHECK_CODE(fc_anisotropy_read(fc_pipeline_anisotropy(f->pipeline), (uint64_t)count, e, &err), FC_OK);
@@ -157,7 +158,7 @@ static void test_depth_is_the_ellipsoids(render_fixture *f)
             bool ambiguous = false;
             for (int i = 0; i < count; i++) {
                 double edge;
-                double t = analytic_ellipsoid_depth(&cam, &e[i], radius, px, row, &edge);
+                double t = analytic_ellipsoid_depth(cam, &e[i], radius, px, row, &edge);
                 ambiguous |= fabs(edge) < EDGE_SLACK;
                 if (t > 0.0 && (expected == 0.0 || t < expected))
                     expected = t;
@@ -173,13 +174,54 @@ static void test_depth_is_the_ellipsoids(render_fixture *f)
             if (expected > 0.0 && got > 0.0)
                 worst = fmax(worst, fabs(got - expected));
         }
-    printf("block: %d of %d ellipsoids, %d pixels covered, worst depth error %.3g\n", ellipsoids, count, covered,
-           worst);
-    CHECK(ellipsoids > count / 2 && covered > 1000);
+    printf("%s: %d of %d ellipsoids, %d pixels covered, worst depth error %.3g\n", what, ellipsoids, count,
+           covered, worst);
+    CHECK(ellipsoids >= min_ellipsoids && covered > 1000);
     CHECK_MSG(wrong_coverage == 0, "%d pixels disagree with the ellipsoids' silhouettes", wrong_coverage);
     CHECK_MSG(wrong_depth == 0, "%d pixels off the ellipsoids' depth (worst %g)", wrong_depth, worst);
     free(e);
     fc_image_free(&depth);
+}
+
+/* A jittered block of ellipsoids of every orientation, overlapping: centred,
+ * and shifted to the image's upper right corner, where the projection
+ * stretches silhouettes most. */
+static void test_block_is_its_ellipsoids(render_fixture *f)
+{
+    const float radius = 0.01f;
+    float x[3 * 384];
+    int count = jittered_block(x, radius);
+    fc_camera cam = axis_camera(0.6, 200, 160);
+    check_against_ellipsoids(f, x, count, radius, &cam, count / 2, "block");
+    for (int i = 0; i < count; i++) {
+        x[3 * i] += 0.2f;
+        x[3 * i + 1] += 0.13f;
+    }
+    check_against_ellipsoids(f, x, count, radius, &cam, count / 2, "block in the corner");
+}
+
+/* Needles 250 pixels long across the image (a line of particles 0.21
+ * spacings apart, the spacing set by a block out of view): sprites as large
+ * as points can be, whose exact boxes are a fraction of their bounding
+ * spheres'. Too large for the compute splat (depth_pass.h): fragment only. */
+static void test_needles_are_their_ellipsoids(render_fixture *f)
+{
+    if (f->splat == FC_SPLAT_COMPUTE)
+        return;
+    enum { LINE = 15, BLOCK = 512, COUNT = LINE + BLOCK };
+    float *x = malloc(3 * COUNT * sizeof *x);
+    const float dir[3] = {0.95f, 0.25f, 0.2f};
+    for (int i = 0; i < LINE; i++)
+        for (int k = 0; k < 3; k++)
+            x[3 * i + k] = (float)(i - LINE / 2) * 0.21f * dir[k];
+    for (int i = 0; i < BLOCK; i++) {
+        x[3 * (LINE + i)] = 40.0f + (float)(i % 8);
+        x[3 * (LINE + i) + 1] = (float)(i / 8 % 8);
+        x[3 * (LINE + i) + 2] = (float)(i / 64);
+    }
+    fc_camera cam = axis_camera(3.0, 240, 200);
+    check_against_ellipsoids(f, x, COUNT, 0.55f, &cam, LINE - 2, "needles");
+    free(x);
 }
 
 /* Two jittered layers of 24 x 24 particles facing the camera, the second
@@ -289,7 +331,8 @@ int main(int argc, char **argv)
     if (!fixture_open_splat(&f, argc, argv))
         return 1;
     test_isolated_particle_is_the_sphere(&f);
-    test_depth_is_the_ellipsoids(&f);
+    test_block_is_its_ellipsoids(&f);
+    test_needles_are_their_ellipsoids(&f);
     test_sheet_is_smooth_and_closed(&f);
     fixture_close(&f);
     return test_result();
