@@ -66,7 +66,7 @@ float filtered_checker(vec2 uv, float width)
 
 // Light reaching a floor point from the sun through the fluid (Beer-Lambert
 // on the thickness the fluid has along the sun ray), per channel; 1 outside
-// the shadow map. Nine taps over two texels soften the edge like a sun of
+// the shadow map. A box of 4x4 texels softens the edge like a sun of
 // finite size would.
 vec3 sun_transmission(vec3 hit)
 {
@@ -79,10 +79,11 @@ vec3 sun_transmission(vec3 hit)
     vec2 texel = 1.0 / vec2(textureSize(shadow_thickness, 0));
     vec2 last = shadow_uv_scale - 0.5 * texel;   // the last texel centres of the map
     float t = 0.0;
-    for (int y = -1; y <= 1; y++)
-        for (int x = -1; x <= 1; x++)
-            t += texture(shadow_thickness, min(uv * shadow_uv_scale + 1.5 * texel * vec2(x, y), last)).r;
-    return exp(-shadow_extinction * (t / 9.0));
+    for (int i = 0; i < 4; i++) {
+        vec2 corner = vec2(i & 1, i >> 1) * 2.0 - 1.0;   // four bilinear taps: a 4x4-texel box
+        t += texture(shadow_thickness, min(uv * shadow_uv_scale + texel * corner, last)).r;
+    }
+    return exp(-shadow_extinction * (t / 4.0));
 }
 
 // `distance` along the ray and the cosine between ray and floor normal give

@@ -6,12 +6,13 @@
 #include "vec3.h"
 #include "view.h"
 
-/* Texels per side of the map: a particle covers a few of them at the
- * sizes simulations come in, and the blur makes the edge soft anyway. */
-#define MAP_SIZE 512u
+/* Texels per side of the map: the shadow is soft, so a coarse map serves,
+ * and the splat's cost grows with its area (at 512 it cost more than the
+ * camera's own splat of 1M particles on llvmpipe, bench/RESULTS.md). */
+#define MAP_SIZE 256u
 /* The blur of the map, in its texels: the penumbra of a sun about a degree
  * across at the distances splashes stand above their floor. */
-#define MAP_BLUR 3u
+#define MAP_BLUR 2u
 /* The sun's camera stands this many box radii away, looking at the box:
  * rays from it are parallel within about three degrees. */
 #define SUN_DISTANCE_RADII 20.0f
