@@ -33,7 +33,7 @@ typedef struct fc_environment {
 /* The environment of a render: a floor (when has_floor) perpendicular to the
  * camera's up vector touching the bottom of the particles' box [lo, hi]
  * (grown by the settings' radius), checkers scaled to the box, a sun high
- * behind the camera's left shoulder, the settings' exposure, and the tone map
+ * behind the camera's right shoulder, the settings' exposure, and the tone map
  * when the image is 8-bit. */
 void fc_environment_for_view(const fc_view *view, const fc_camera *cam, const float lo[3], const float hi[3],
                              const fc_settings *settings, bool has_floor, bool want_u8, fc_environment *env);
