@@ -33,6 +33,7 @@ void bench_options_print_usage(void)
            "         [--size 1280x720,...] [--smoothing curvature,none,...] [--iterations 15,40,default,...]\n"
            "         [--scale 1,0.5,0.25] [--frames N] [--encode png|jpeg|exr|none] [--image PATH.png]\n"
            "         [--profile] [--shader-dir DIR] [--splat auto|fragment|compute] [--filter-radius PX]\n"
+           "         [--kernel sphere|anisotropic]\n"
            "       fluidcast-bench --particles N --write-scene PATH.f32\n"
            "Prints a markdown table: median GPU ms per stage (timer queries; upload: the GL thread's\n"
            "wall time copying the frame), encode ms, wall ms, and\n"
@@ -52,6 +53,10 @@ void bench_options_print_usage(void)
            "narrow-range filters (default 0: from the projected particle size).\n"
            "--splat forces the surface splat: sprites through the rasterizer or the compute splat\n"
            "(default auto: the pipeline's choice by sprite size).\n"
+           "--kernel anisotropic splats Yu & Turk's ellipsoids (default sphere); the ellipsoids are\n"
+           "computed once per upload, so the rows time their splat; before the rows of each\n"
+           "particle count a line gives the anisotropy passes' own time (median over --frames\n"
+           "fresh computations, the GL queue drained around each).\n"
            "--write-scene writes the drop scene as raw little-endian float32 xyz and prints\n"
            "'particles N spacing S radius R' (R: the sphere radius the benchmark renders with).\n");
 }
@@ -205,6 +210,17 @@ static fc_code parse_splat(const char *value, bench_options *o, fc_error *err)
     return FC_OK;
 }
 
+static fc_code parse_kernel(const char *value, bench_options *o, fc_error *err)
+{
+    if (!strcmp(value, "sphere"))
+        o->kernel = FC_KERNEL_SPHERE;
+    else if (!strcmp(value, "anisotropic"))
+        o->kernel = FC_KERNEL_ANISOTROPIC;
+    else
+        return fc_error_set(err, FC_ERR_USAGE, "--kernel %s: expected sphere or anisotropic", value);
+    return FC_OK;
+}
+
 static fc_code parse_valued(const char *option, const char *value, bench_options *o, fc_error *err)
 {
     if (!strcmp(option, "--gpu"))
@@ -231,6 +247,8 @@ static fc_code parse_valued(const char *option, const char *value, bench_options
         return parse_splat(value, o, err);
     if (!strcmp(option, "--filter-radius"))
         return parse_filter_radius(value, o, err);
+    if (!strcmp(option, "--kernel"))
+        return parse_kernel(value, o, err);
     if (!strcmp(option, "--image")) {
         o->image_path = value;
         return FC_OK;

@@ -8,6 +8,7 @@
 
 #include "bench_options.h"
 #include "fc_error.h"
+#include "fc_frame.h"
 #include "pipeline_internal.h"
 
 static int compare_float(const void *a, const void *b)
@@ -134,6 +135,48 @@ fc_code bench_profile_config(fc_pipeline *pipe, int frames, const fc_camera *cam
         free(all[i].ms);
         free(all[i].fragments);
     }
+    fc_image_free(&img);
+    return rc;
+}
+
+/* The "anisotropy" sample of the last profiled render; -1 without one. */
+static float anisotropy_ms(const fc_pipeline *pipe)
+{
+    const fc_pass_sample *samples = NULL;
+    int n = fc_pipeline_pass_profile(pipe, &samples);
+    for (int i = 0; i < n; i++)
+        if (!strcmp(samples[i].name, "anisotropy"))
+            return (float)samples[i].ms;
+    return -1.0f;
+}
+
+fc_code bench_profile_anisotropy(fc_pipeline *pipe, const fc_frame *frame, float radius, int frames,
+                                 fc_error *err)
+{
+    fc_settings settings;
+    fc_settings_default(&settings);
+    settings.radius = radius;
+    settings.kernel = FC_KERNEL_ANISOTROPIC;
+    settings.smoothing = FC_SMOOTHING_NONE;
+    /* A tiny image: the render around the passes costs next to nothing. */
+    const fc_camera cam = {.eye = {0.0f, -3.0f, 1.0f}, .up = {0.0f, 0.0f, 1.0f}, .fov_y_deg = 40.0f,
+                           .width = 16, .height = 16};
+    float *ms = calloc((size_t)frames, sizeof *ms);
+    fc_code rc = ms ? FC_OK : fc_error_set(err, FC_ERR_NOMEM, "out of memory");
+    fc_image img = {0};
+    fc_pipeline_set_profiling(pipe, 1);
+    for (int f = 0; rc == FC_OK && f < frames; f++) {
+        rc = fc_pipeline_upload(pipe, frame, NULL, err);
+        if (rc == FC_OK)
+            rc = fc_pipeline_render(pipe, &cam, &settings, FC_AOV_DEPTH, 0, &img, NULL, err);
+        ms[f] = anisotropy_ms(pipe);
+    }
+    fc_pipeline_set_profiling(pipe, 0);
+    if (rc == FC_OK)
+        printf("\nanisotropy passes: %llu particles, radius %g: %.2f ms (median of %d computations)\n\n",
+               (unsigned long long)frame->count, (double)radius, median_of(ms, frames), frames);
+    fflush(stdout);
+    free(ms);
     fc_image_free(&img);
     return rc;
 }

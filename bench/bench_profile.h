@@ -17,4 +17,11 @@ void bench_sprite_diameters(const fc_frame *frame, const fc_camera *cam, float r
 fc_code bench_profile_config(fc_pipeline *pipe, int frames, const fc_camera *cam, const fc_settings *settings,
                              uint64_t particles, const float sprite_px[3], fc_error *err);
 
+/* Times the anisotropy passes (anisotropy.h) on the particles of `frame`
+ * for spheres of `radius`: `frames` times, each after a fresh upload (which
+ * invalidates the ellipsoids), a tiny profiled render whose "anisotropy" pass
+ * is the computation alone; prints the median. */
+fc_code bench_profile_anisotropy(fc_pipeline *pipe, const fc_frame *frame, float radius, int frames,
+                                 fc_error *err);
+
 #endif

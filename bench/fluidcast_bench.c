@@ -144,7 +144,7 @@ static void print_row(uint64_t particles, uint32_t w, uint32_t h, const fc_setti
 
 /* fluidcast's defaults but for the quantities the benchmark varies. */
 static void config_settings(fc_smoothing method, uint32_t iterations, float smooth_scale, float radius,
-                            uint32_t filter_radius, fc_settings *settings)
+                            uint32_t filter_radius, fc_kernel kernel, fc_settings *settings)
 {
     fc_settings_default(settings);
     settings->radius = radius;
@@ -153,6 +153,7 @@ static void config_settings(fc_smoothing method, uint32_t iterations, float smoo
     settings->iterations =
         iterations == BENCH_DEFAULT_ITERATIONS ? fc_smoothing_default_iterations(method) : iterations;
     settings->smooth_scale = smooth_scale;
+    settings->kernel = kernel;
 }
 
 /* The rows of one image size: every smoothing method x iteration count x
@@ -171,7 +172,7 @@ static fc_code bench_size(fc_pipeline *pipe, const bench_options *o, const bench
             for (int ri = 0; ri < (smooths ? o->n_smooth_scales : 1); ri++) {
                 fc_settings settings;
                 config_settings(method, smooths ? o->iterations[ii] : 0, smooths ? o->smooth_scales[ri] : 1.0f,
-                                radius, o->filter_radius, &settings);
+                                radius, o->filter_radius, o->kernel, &settings);
                 bench_row row;
                 fc_code rc = bench_config(pipe, o, w, h, &settings, &row, err);
                 if (rc != FC_OK)
@@ -196,11 +197,14 @@ static fc_code bench_particles(fc_pipeline *pipe, const bench_options *o, const 
     fc_code rc = bench_scene_drop(particles, &frame, &spacing, err);
     if (rc != FC_OK)
         return rc;
+    float radius = BENCH_SCENE_RADIUS_PER_SPACING * spacing;
+    if (o->kernel == FC_KERNEL_ANISOTROPIC)
+        rc = bench_profile_anisotropy(pipe, &frame, radius, o->frames, err);
     float upload_ms = -1.0f;
-    rc = fc_pipeline_upload(pipe, &frame, &upload_ms, err);
+    if (rc == FC_OK)
+        rc = fc_pipeline_upload(pipe, &frame, &upload_ms, err);
     for (int si = 0; rc == FC_OK && si < o->n_sizes; si++)
-        rc = bench_size(pipe, o, memory, &frame, o->sizes[si][0], o->sizes[si][1],
-                        BENCH_SCENE_RADIUS_PER_SPACING * spacing, upload_ms, err);
+        rc = bench_size(pipe, o, memory, &frame, o->sizes[si][0], o->sizes[si][1], radius, upload_ms, err);
     fc_frame_free(&frame);
     return rc;
 }
