@@ -275,6 +275,7 @@ fc_code fc_anisotropy_update(fc_anisotropy *a, const fc_particle_buffer *particl
         a->generation = particles->generation;
         a->count = particles->count;
         a->support = support;
+        a->cells = g.total;
     }
     return code;
 }

@@ -68,6 +68,7 @@ typedef struct fc_anisotropy {
     uint64_t generation;
     uint64_t count;
     float support;          /* r_s of the last computation, world units */
+    uint32_t cells;         /* grid cells of the last computation */
     GLint max_groups;       /* GL_MAX_COMPUTE_WORK_GROUP_COUNT along x */
 } fc_anisotropy;
 

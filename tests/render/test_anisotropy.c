@@ -342,6 +342,46 @@ static void test_computed_once_per_frame_and_radius(render_fixture *f)
     fc_image_free(&img);
 }
 
+/* 1M particles in tight clusters of 8 (0.1 apart) on a grid of pitch 1:
+ * the grid over their bounds is capped at 2 cells per particle (1.7M cells),
+ * so the prefix sum runs on three levels (1024 cells per block). Every
+ * particle must find exactly its 7 cluster mates, and its centre move to
+ * their weighted mean: a cell counted, scanned or scattered wrongly loses or
+ * adds neighbours. */
+static void test_large_grid(render_fixture *f)
+{
+    enum { SIDE = 50, CLUSTERS = SIDE * SIDE * SIDE, COUNT = 8 * CLUSTERS };
+    float *x = malloc(3 * (size_t)COUNT * sizeof *x);
+    uint32_t state = 31u;
+    for (int c = 0; c < CLUSTERS; c++)
+        for (int k = 0; k < 8; k++) {
+            float *p = x + 3 * (8 * c + k);
+            p[0] = (float)(c % SIDE) + 0.1f * (float)(k & 1) + 0.01f * ((float)lcg(&state) / 16777216.0f);
+            p[1] = (float)(c / SIDE % SIDE) + 0.1f * (float)(k >> 1 & 1) + 0.01f * ((float)lcg(&state) / 16777216.0f);
+            p[2] = (float)(c / SIDE / SIDE) + 0.1f * (float)(k >> 2) + 0.01f * ((float)lcg(&state) / 16777216.0f);
+        }
+    double support;
+    fc_ellipsoid *gpu = ellipsoids_of(f, x, COUNT, 0.05f, &support);
+    const fc_anisotropy *a = fc_pipeline_anisotropy(f->pipeline);
+    CHECK_MSG(a->cells > 1024u * 1024u, "%u cells: fewer than three scan levels", a->cells);
+    int wrong = 0;
+    double worst_centre = 0.0;
+    for (int i = 0; i < COUNT; i++) {
+        wrong += gpu[i].neighbours != 8.0f;
+        if (i % 997 == 0) {   /* the reference over the cluster alone: every other particle is out of reach */
+            reference r = reference_ellipsoid(x + 3 * (i / 8 * 8), 8, i % 8, support);
+            for (int k = 0; k < 3; k++)
+                worst_centre = fmax(worst_centre, fabs(gpu[i].centre[k] - r.centre[k]));
+        }
+    }
+    printf("large grid: %u cells, support %g, %d of %d particles with other than 8 neighbours, worst centre %.3g\n",
+           a->cells, support, wrong, COUNT, worst_centre);
+    CHECK(wrong == 0);
+    CHECK_MSG(worst_centre < 1e-5, "smoothed centres off by %g", worst_centre);
+    free(gpu);
+    free(x);
+}
+
 int main(void)
 {
     render_fixture f;
@@ -350,6 +390,7 @@ int main(void)
     test_against_reference(&f);
     test_line_elongates(&f);
     test_computed_once_per_frame_and_radius(&f);
+    test_large_grid(&f);
     fixture_close(&f);
     return test_result();
 }
