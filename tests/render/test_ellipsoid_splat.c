@@ -2,7 +2,9 @@
  * (anisotropy.h, ellipsoid_ray.glsl) through real GL: an isolated particle is
  * bit for bit today's sphere in depth and thickness; every pixel of a
  * jittered block of ellipsoids has the nearest depth a C ray cast of the
- * ellipsoids read back from the GPU gives, silhouettes included; and a
+ * ellipsoids read back from the GPU gives, silhouettes included; long
+ * needles' thickness is the sum of their chords (at full resolution; at half,
+ * the same footprint); and a
  * jittered two-layer sheet of particles 0.55 spacings in radius, rendered
  * raw (no smoothing), is at least 3x smoother with ellipsoids than with
  * spheres and has no pinhole. Run with "fragment" and "compute", once per
@@ -94,8 +96,8 @@ static void test_isolated_particle_is_the_sphere(render_fixture *f)
 /* The ray through pixel (x, row) of an axis_camera image against an
  * ellipsoid read back from the GPU, in double: the front hit's linear depth
  * or 0, and how close to the silhouette (as analytic_sphere_depth). */
-static double analytic_ellipsoid_depth(const fc_camera *cam, const fc_ellipsoid *e, double radius, uint32_t x,
-                                       uint32_t row, double *edge)
+static double analytic_ellipsoid_hit(const fc_camera *cam, const fc_ellipsoid *e, double radius, uint32_t x,
+                                     uint32_t row, double *edge, double *chord)
 {
     double fy = 1.0 / tan(cam->fov_y_deg * PI / 360.0), fx = fy * cam->height / cam->width;
     double d[3] = {((x + 0.5) / cam->width * 2.0 - 1.0) / fx, (1.0 - (row + 0.5) / cam->height * 2.0) / fy, -1.0};
@@ -115,7 +117,16 @@ static double analytic_ellipsoid_depth(const fc_camera *cam, const fc_ellipsoid 
         miss_sq += (b[k] - t * a[k]) * (b[k] - t * a[k]);
     double half_sq = radius * radius - miss_sq;
     *edge = half_sq / (radius * radius);
+    /* The ray's parameter is linear depth; its length per unit of depth is |d|. */
+    *chord = half_sq > 0.0 ? 2.0 * sqrt(half_sq / aa) * sqrt(d[0] * d[0] + d[1] * d[1] + 1.0) : 0.0;
     return half_sq > 0.0 ? t - sqrt(half_sq / aa) : 0.0;
+}
+
+static double analytic_ellipsoid_depth(const fc_camera *cam, const fc_ellipsoid *e, double radius, uint32_t x,
+                                       uint32_t row, double *edge)
+{
+    double chord;
+    return analytic_ellipsoid_hit(cam, e, radius, x, row, edge, &chord);
 }
 
 /* A jittered 8 x 8 x 6 block at spacing 1.82 radii: ellipsoids of every
@@ -200,6 +211,22 @@ static void test_block_is_its_ellipsoids(render_fixture *f)
     check_against_ellipsoids(f, x, count, radius, &cam, count / 2, "block in the corner");
 }
 
+/* `line` particles 0.21 apart along a slanted line through the origin, then
+ * a `block` of particles 1 apart far out of view, which sets the frame's
+ * spacing. */
+static void needles(float *x, int line, int block)
+{
+    const float dir[3] = {0.95f, 0.25f, 0.2f};
+    for (int i = 0; i < line; i++)
+        for (int k = 0; k < 3; k++)
+            x[3 * i + k] = (float)(i - line / 2) * 0.21f * dir[k];
+    for (int i = 0; i < block; i++) {
+        x[3 * (line + i)] = 40.0f + (float)(i % 8);
+        x[3 * (line + i) + 1] = (float)(i / 8 % 8);
+        x[3 * (line + i) + 2] = (float)(i / 64);
+    }
+}
+
 /* Needles 250 pixels long across the image (a line of particles 0.21
  * spacings apart, the spacing set by a block out of view): sprites as large
  * as points can be, whose exact boxes are a fraction of their bounding
@@ -210,18 +237,85 @@ static void test_needles_are_their_ellipsoids(render_fixture *f)
         return;
     enum { LINE = 15, BLOCK = 512, COUNT = LINE + BLOCK };
     float *x = malloc(3 * COUNT * sizeof *x);
-    const float dir[3] = {0.95f, 0.25f, 0.2f};
-    for (int i = 0; i < LINE; i++)
-        for (int k = 0; k < 3; k++)
-            x[3 * i + k] = (float)(i - LINE / 2) * 0.21f * dir[k];
-    for (int i = 0; i < BLOCK; i++) {
-        x[3 * (LINE + i)] = 40.0f + (float)(i % 8);
-        x[3 * (LINE + i) + 1] = (float)(i / 8 % 8);
-        x[3 * (LINE + i) + 2] = (float)(i / 64);
-    }
+    needles(x, LINE, BLOCK);
     fc_camera cam = axis_camera(3.0, 240, 200);
     check_against_ellipsoids(f, x, COUNT, 0.55f, &cam, LINE - 2, "needles");
     free(x);
+}
+
+static double image_sum(const fc_image *img)
+{
+    double sum = 0.0;
+    for (uint32_t row = 0; row < img->height; row++)
+        for (uint32_t x = 0; x < img->width; x++)
+            sum += pixel_f32(img, x, row);
+    return sum;
+}
+
+/* The needles' thickness: at full resolution (the depth pass's splat) every
+ * pixel holds the sum of the C chords through the ellipsoids; splatted at half
+ * resolution by the thickness pass (thickness.frag.glsl) and resampled, the
+ * image holds the same total and differs from the full one by 0.4% of it
+ * (the resampling), where spheres would differ by half. */
+static void test_needles_thickness(render_fixture *f)
+{
+    if (f->splat == FC_SPLAT_COMPUTE)
+        return;
+    enum { LINE = 15, BLOCK = 512, COUNT = LINE + BLOCK };
+    float *x = malloc(3 * COUNT * sizeof *x);
+    needles(x, LINE, BLOCK);
+    fc_camera cam = axis_camera(3.0, 240, 200);
+    fc_settings settings = test_settings(0.55f, FC_SMOOTHING_NONE, 0);
+    settings.kernel = FC_KERNEL_ANISOTROPIC;
+    fc_image full = {0}, half = {0};
+    CHECK_CODE(render_positions(f, x, COUNT, &cam, &settings, FC_AOV_THICKNESS, 0, &full), FC_OK);
+    settings.thickness_scale = 0.5f;
+    CHECK_CODE(render_positions(f, x, COUNT, &cam, &settings, FC_AOV_THICKNESS, 0, &half), FC_OK);
+    fc_ellipsoid *e = calloc(COUNT, sizeof *e);
+    fc_error err = {0};
+    CHECK_CODE(fc_anisotropy_read(fc_pipeline_anisotropy(f->pipeline), COUNT, e, &err), FC_OK);
+    int wrong = 0;
+    double worst = 0.0;
+    for (uint32_t row = 0; row < full.height; row++)
+        for (uint32_t px = 0; px < full.width; px++) {
+            double expected = 0.0, edge, chord;
+            bool ambiguous = false;
+            for (int i = 0; i < LINE; i++) {
+                analytic_ellipsoid_hit(&cam, &e[i], 0.55, px, row, &edge, &chord);
+                ambiguous |= fabs(edge) < EDGE_SLACK;
+                expected += chord;
+            }
+            double diff = fabs(pixel_f32(&full, px, row) - expected);
+            if (!ambiguous && diff > 1e-4 * (1.0 + expected))
+                wrong++;
+            if (!ambiguous)
+                worst = fmax(worst, diff);
+        }
+    double full_sum = image_sum(&full), half_sum = image_sum(&half), apart = 0.0;
+    for (uint32_t row = 0; row < full.height; row++)
+        for (uint32_t px = 0; px < full.width; px++)
+            apart += fabs(pixel_f32(&half, px, row) - pixel_f32(&full, px, row));
+    fc_image spheres = {0};
+    settings.kernel = FC_KERNEL_SPHERE;
+    CHECK_CODE(render_positions(f, x, COUNT, &cam, &settings, FC_AOV_THICKNESS, 0, &spheres), FC_OK);
+    double sphere_apart = 0.0;
+    for (uint32_t row = 0; row < full.height; row++)
+        for (uint32_t px = 0; px < full.width; px++)
+            sphere_apart += fabs(pixel_f32(&spheres, px, row) - pixel_f32(&full, px, row));
+    fc_image_free(&spheres);
+    printf("needles' thickness: worst %.3g against the C chords; total %.4g at full, %.4g at half resolution, "
+           "apart %.3g (spheres at half: %.3g)\n",
+           worst, full_sum, half_sum, apart / full_sum, sphere_apart / full_sum);
+    CHECK_MSG(wrong == 0, "%d pixels off the ellipsoids' chords (worst %g)", wrong, worst);
+    CHECK_MSG(fabs(half_sum - full_sum) < 0.02 * full_sum, "half-resolution thickness total %g, full %g", half_sum,
+              full_sum);
+    /* Spheres hold the same total (the same volume): the footprint tells the shapes apart. */
+    CHECK_MSG(apart < 0.05 * full_sum && sphere_apart > 0.3 * full_sum,
+              "half resolution %g apart from full, spheres %g", apart / full_sum, sphere_apart / full_sum);
+    free(e);
+    free(x);
+    fc_image_free(&full);
+    fc_image_free(&half);
 }
 
 /* Two jittered layers of 24 x 24 particles facing the camera, the second
@@ -333,6 +427,7 @@ int main(int argc, char **argv)
     test_isolated_particle_is_the_sphere(&f);
     test_block_is_its_ellipsoids(&f);
     test_needles_are_their_ellipsoids(&f);
+    test_needles_thickness(&f);
     test_sheet_is_smooth_and_closed(&f);
     fixture_close(&f);
     return test_result();
