@@ -221,6 +221,31 @@ static void test_spray_hidden_behind_fluid(render_fixture *f)
     fc_image_free(&without);
 }
 
+/* With the anisotropic kernel the spray pass casts each droplet's shape: a
+ * droplet without neighbours is the sphere, pixel for pixel. */
+static void test_isolated_droplet_keeps_its_sphere(render_fixture *f)
+{
+    static spray_frame s;
+    make_frame(&s, BESIDE, 0.3f);
+    fc_camera cam = axis_camera(4.0, WIDTH, HEIGHT);
+    uint32_t x, row;
+    pixel_of(&cam, BESIDE, &x, &row);
+    fc_settings settings = spray_settings(THRESHOLD);
+    fc_image sphere = {0}, shaped = {0};
+    CHECK_CODE(render_frame(f, &s.frame, &cam, &settings, NULL, FC_AOV_COLOR, 0, &sphere), FC_OK);
+    settings.kernel = FC_KERNEL_ANISOTROPIC;
+    CHECK_CODE(render_frame(f, &s.frame, &cam, &settings, NULL, FC_AOV_COLOR, 0, &shaped), FC_OK);
+    int differ = 0;
+    for (uint32_t r = row - 3; r <= row + 3; r++)
+        for (uint32_t c = x - 3; c <= x + 3; c++)
+            for (uint32_t k = 0; k < 4; k++)
+                differ += channel_f32(&sphere, c, r, k) != channel_f32(&shaped, c, r, k);
+    CHECK_MSG(differ == 0, "%d channels of the droplet differ from the sphere's", differ);
+    CHECK(luminance(&shaped, x, row) > 0.0f);
+    fc_image_free(&sphere);
+    fc_image_free(&shaped);
+}
+
 int main(void)
 {
     test_density_order();
@@ -231,6 +256,7 @@ int main(void)
     test_spray_drawn_and_whitened(&f);
     test_spray_hidden_behind_fluid(&f);
     test_sorted_only_for_a_threshold(&f);
+    test_isolated_droplet_keeps_its_sphere(&f);
     fixture_close(&f);
     return test_result();
 }
