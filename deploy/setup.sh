@@ -12,6 +12,8 @@ PACKAGES=(
   libopenimageio-dev
   # compressed frame uploads
   libzstd-dev
+  # particle readers: gzip'd .bgeo and compressed .vtu (zlib), VTK XML (expat)
+  zlib1g-dev libexpat1-dev
   # shader validation in the test suite
   glslang-tools
   # fuzzing (libFuzzer) in the test suite
