@@ -19,8 +19,9 @@ layout(location = 13) uniform float speed_reference; // a droplet this fast is h
 layout(location = 0) flat in vec3 sphere_centre;
 layout(location = 0) out vec4 color;
 
-// Droplets are mostly white: the fluid's tint only shows faintly in them.
-const float tint = 0.35;
+// Droplets are mostly white, as sunlit spray is: the fluid's tint only
+// shows faintly in them, and their shaded side stays bright.
+const float tint = 0.15;
 const float opacity = 0.85;
 
 void main()
@@ -33,7 +34,7 @@ void main()
     float speed = particle_speed();
     float white = clamp(whitening * speed / (speed + speed_reference), 0.0, 1.0);
     vec3 albedo = mix(mix(vec3(1.0), fluid_color, tint), vec3(1.0), white);
-    float light = 0.55 + 0.45 * max(dot(n, light_view), 0.0);
+    float light = 0.8 + 0.3 * max(dot(n, light_view), 0.0);
     // Fading towards the rim (n.z -> 0) keeps tiny droplets from aliasing.
     color = vec4(albedo * light, opacity * clamp(2.0 * n.z, 0.0, 1.0));
 }

@@ -1,6 +1,9 @@
-/* cli_settings.h — the render settings the command line starts from. */
+/* cli_settings.h — the render settings the command line starts from, and
+ * those it chooses from the particles when the user leaves them out. */
 #ifndef FC_CLI_SETTINGS_H
 #define FC_CLI_SETTINGS_H
+
+#include <stdbool.h>
 
 #include "fluidcast_types.h"
 
@@ -11,5 +14,20 @@
  * keeps spheres as its default, the exact shape its analytic tests and
  * existing clients rely on. */
 void fc_cli_default_settings(fc_settings *s);
+
+/* What fc_cli_complete_settings chose. */
+typedef struct fc_cli_choices {
+    bool radius;   /* the radius was estimated from the particle spacing */
+    bool spray;    /* the spray threshold was set from the frame's densities */
+} fc_cli_choices;
+
+/* Completes the settings from a frame (the first of a sequence): a radius
+ * <= 0 is estimated from the particle spacing, for ellipsoids smaller than
+ * for spheres (ELLIPSOID_RADIUS_SHARE in cli_settings.c); unless the user
+ * gave one, a frame with densities gets a spray threshold of half its median
+ * density, so that single-particle droplets (an isolated SPH particle has
+ * about a third of the rest density) are drawn as white spray instead of as
+ * clear beads that hardly show. */
+void fc_cli_complete_settings(fc_settings *s, const fc_frame *frame, bool threshold_given, fc_cli_choices *chosen);
 
 #endif

@@ -6,6 +6,7 @@
 
 #include "cli_particles.h"
 #include "cli_report.h"
+#include "cli_settings.h"
 #include "cli_token.h"
 #include "fc_error.h"
 #include "fc_frame.h"
@@ -16,13 +17,6 @@
 #include "snapshot_scene.h"
 #include "up_choice.h"
 
-/* The options' settings (checked while parsing), with the radius resolved so it can be reported. */
-static void choose_settings(const fc_snapshot_options *o, const fc_frame *frame, fc_settings *s)
-{
-    *s = o->settings;
-    if (!(s->radius > 0.0f))
-        s->radius = fc_frame_estimate_radius(frame);
-}
 
 static int resolve_scene(const fc_snapshot_options *o, fc_snapshot_scene *scene)
 {
@@ -77,7 +71,7 @@ static int render_remotely(const fc_snapshot_options *o, const fc_snapshot_scene
 
 /* The up direction is reported like the radius: only when the CLI chose it. */
 static int write_image(const fc_snapshot_options *o, const fc_image_result *image, const fc_settings *settings,
-                       const fc_up_choice *up)
+                       const fc_cli_choices *chosen, const fc_up_choice *up)
 {
     fc_error err;
     if (fc_output_write(o->output, image->data, image->size, &err) != FC_OK)
@@ -85,9 +79,12 @@ static int write_image(const fc_snapshot_options *o, const fc_image_result *imag
     printf("wrote %s: %ux%u %s, %zu bytes, server %.1f ms, radius %g%s\n", o->output, (unsigned)image->width,
            (unsigned)image->height, fc_output_format_name(image->format), image->size,
            (double)image->stage_ms[FC_STAGE_TOTAL], (double)settings->radius,
-           o->settings.radius > 0.0f ? "" : " (estimated from particle spacing)");
+           chosen->radius ? " (estimated from particle spacing)" : "");
     if (!up->given)
         printf("up %s\n", up->note);
+    if (chosen->spray)
+        printf("spray: particles below density %g (half the median; --density-threshold to change)\n",
+               (double)settings->density_threshold);
     return FC_EXIT_OK;
 }
 
@@ -106,12 +103,14 @@ static int snapshot(const fc_snapshot_options *o, fc_frame *frame)
         return fc_cli_fail(FC_EXIT_INPUT, "%s", err.message);
     if (fc_snapshot_camera(o, frame, &up, &cam, &err) != FC_OK)
         return fc_cli_fail(FC_EXIT_USAGE, "%s", err.message);
-    fc_settings settings;
-    choose_settings(o, frame, &settings);
+    /* The options' settings (checked while parsing), completed from the frame so the choices can be reported. */
+    fc_settings settings = o->settings;
+    fc_cli_choices chosen;
+    fc_cli_complete_settings(&settings, frame, o->has_density_threshold, &chosen);
     fc_image_result image = { 0 };
     status = render_remotely(o, &scene, frame, &cam, &settings, &image);
     if (status == FC_EXIT_OK)
-        status = write_image(o, &image, &settings, &up);
+        status = write_image(o, &image, &settings, &chosen, &up);
     fc_image_result_free(&image);
     return status;
 }

@@ -149,6 +149,13 @@ static fc_code set_shadow(fc_snapshot_options *o, const option_spec *spec, const
     return code;
 }
 
+static fc_code set_density_threshold(fc_snapshot_options *o, const option_spec *spec, const char *value,
+                                     fc_error *err)
+{
+    o->has_density_threshold = true;
+    return set_float_setting(o, spec, value, err);
+}
+
 static fc_code set_iterations(fc_snapshot_options *o, const option_spec *spec, const char *value, fc_error *err)
 {
     o->has_iterations = true;
@@ -222,7 +229,7 @@ static const option_spec options[] = {
     SETTING("--foam", set_float_setting, foam),
     SETTING("--foam-tau", set_float_setting, foam_tau),
     SETTING("--foam-decay", set_float_setting, foam_decay),
-    SETTING("--density-threshold", set_float_setting, density_threshold),
+    SETTING("--density-threshold", set_density_threshold, density_threshold),
     {"--background", set_background, 0},
     {"--cubemap", set_cubemap, 0},
     {"--aov", set_aov, 0},
@@ -377,8 +384,8 @@ static void print_surface_help(FILE *to, const fc_settings *d)
             "fluid surface:\n"
             "  --radius R              particle sphere radius in world units; without it\n"
             "                          the radius is estimated from the particle spacing\n"
-            "                          (0.9 x the median nearest-neighbour distance) and\n"
-            "                          the radius used is printed\n"
+            "                          (the median nearest-neighbour distance times 0.9\n"
+            "                          for spheres, 0.585 for ellipsoids) and printed\n"
             "  --kernel sphere|anisotropic\n"
             "                          particle shape: spheres, or ellipsoids stretched\n"
             "                          along each particle's neighbours (flat sheets,\n"
@@ -399,15 +406,17 @@ static void print_surface_help(FILE *to, const fc_settings *d)
             "                          (default %g)\n"
             "  --foam-decay F          per-frame decay of raised foam, 0 <= F < 1\n"
             "                          (default %g)\n"
-            "  --density-threshold D   particles with density below D are spray; 0 = off\n"
-            "                          (default %g)\n"
+            "  --density-threshold D   particles with density below D are drawn as white\n"
+            "                          spray; 0 = off (default: half the frame's median\n"
+            "                          density when the file has densities, and printed;\n"
+            "                          else off)\n"
             "\n",
             d->kernel == FC_KERNEL_ANISOTROPIC ? "anisotropic" : "sphere",
             fc_smoothing_default_iterations(FC_SMOOTHING_NARROW),
             fc_smoothing_default_iterations(FC_SMOOTHING_CURVATURE),
             fc_smoothing_default_iterations(FC_SMOOTHING_BILATERAL),
             fc_smoothing_default_iterations(FC_SMOOTHING_BINOMIAL), (double)d->smooth_scale, (double)d->noise, (double)d->foam,
-            (double)d->foam_tau, (double)d->foam_decay, (double)d->density_threshold);
+            (double)d->foam_tau, (double)d->foam_decay);
 }
 
 static void print_shading_help(FILE *to, const fc_settings *d)

@@ -30,6 +30,7 @@ typedef struct fc_snapshot_options {
     fc_aov aov;
     bool has_quality;
     bool has_iterations;      /* --iterations given: --smoothing keeps it */
+    bool has_density_threshold;   /* --density-threshold given: no spray threshold from the frame's densities */
     uint32_t quality;
 } fc_snapshot_options;
 

@@ -42,7 +42,12 @@ static int set_up_view(fc_client *c, const fc_stream_options *o, const fc_frame 
         return fc_cli_fail(FC_EXIT_USAGE, "bad camera: %s", why.message);
     fc_settings settings;
     fc_cli_default_settings(&settings);
-    settings.radius = o->radius > 0.0f ? o->radius : fc_frame_estimate_radius(first);
+    settings.radius = o->radius;
+    fc_cli_choices chosen;
+    fc_cli_complete_settings(&settings, first, false, &chosen);
+    if (chosen.spray)
+        printf("spray: particles below density %g (half the first frame's median)\n",
+               (double)settings.density_threshold);
     if (fc_client_set_camera(c, &cam, &err) != FC_OK || fc_client_set_settings(c, &settings, &err) != FC_OK)
         return client_failure(o, &err);
     return FC_EXIT_OK;

@@ -3,6 +3,7 @@
 
 #include <math.h>
 
+#include "anisotropy.h"
 #include "vec3.h"
 #include "view.h"
 
@@ -72,10 +73,12 @@ fc_code fc_shadow_pass_run(fc_shadow_pass *pass, const fc_particle_buffer *parti
                            const float hi[3], const fc_settings *settings, fc_pass_profile *profile,
                            fc_environment *env, fc_error *err)
 {
+    /* Ellipsoids may reach past the radius: the sun's view must hold them whole. */
+    float reach = fc_anisotropy_reach(particles, settings->radius);
     fc_camera cam;
-    sun_camera(lo, hi, settings->radius, env->sun, &cam);
+    sun_camera(lo, hi, reach, env->sun, &cam);
     fc_view view;
-    fc_view_from_camera(&cam, lo, hi, settings->radius, &view);
+    fc_view_from_camera(&cam, lo, hi, reach, &view);
     static const float no_floor[4] = {0.0f, 0.0f, 0.0f, 1.0f};   /* nothing is cut off */
     fc_thickness_params params = {.radius = settings->radius, .scale = 1.0f, .blur = MAP_BLUR,
                                   .floor_plane = no_floor, .profile = profile};

@@ -47,7 +47,8 @@ static bool write_bytes(const char *path, const uint8_t *data, size_t size)
 }
 
 /* The ball with a density column (every particle 1000) and, in ballv.csv,
- * every other particle a fast spray droplet (density 10, moving up at 3). */
+ * every fourth particle a fast spray droplet (density 10, moving up at 3):
+ * the droplets are a minority, so the median density stays 1000. */
 static bool write_csv(const fc_frame *ball, const char *path, bool with_spray)
 {
     FILE *f = fopen(path, "w");
@@ -57,7 +58,7 @@ static bool write_csv(const fc_frame *ball, const char *path, bool with_spray)
     for (uint64_t i = 0; i < ball->count; i++) {
         const float *p = &ball->positions[3 * i];
         if (with_spray)
-            fprintf(f, "%.9g,%.9g,%.9g,%d,0,0,3\n", (double)p[0], (double)p[1], (double)p[2], i % 2 ? 1000 : 10);
+            fprintf(f, "%.9g,%.9g,%.9g,%d,0,0,3\n", (double)p[0], (double)p[1], (double)p[2], i % 4 ? 1000 : 10);
         else
             fprintf(f, "%.9g,%.9g,%.9g,1000\n", (double)p[0], (double)p[1], (double)p[2]);
     }
@@ -281,6 +282,27 @@ static void test_density_threshold(const test_env *env)
     fc_decoded_image_free(&all);
 }
 
+/* Without --density-threshold a frame with densities gets half its median
+ * density as spray threshold: in ballv.csv the median is 1000, so the
+ * threshold is 500 and the droplets (density 10) leave the surface, exactly
+ * as with --density-threshold 500. */
+static void test_spray_threshold_from_the_densities(const test_env *env)
+{
+    fc_decoded_image chosen, given, off;
+    if (!render(env, "ballv.csv", "spray_auto.exr", FLAGS("--aov", "depth"), &chosen))
+        return;
+    if (render(env, "ballv.csv", "spray_500.exr", FLAGS("--aov", "depth", "--density-threshold", "500"), &given)) {
+        CHECK_MSG(differing(&chosen, &given) == 0, "%zu pixels differ from --density-threshold 500",
+                  differing(&chosen, &given));
+        fc_decoded_image_free(&given);
+    }
+    if (render(env, "ballv.csv", "spray_off.exr", FLAGS("--aov", "depth", "--density-threshold", "0"), &off)) {
+        CHECK_MSG(differing(&chosen, &off) > 0, "the droplets stayed in the surface");
+        fc_decoded_image_free(&off);
+    }
+    fc_decoded_image_free(&chosen);
+}
+
 static void test_shading_flags(const test_env *env)
 {
     fc_decoded_image red, blue;
@@ -434,6 +456,7 @@ int main(void)
     test_filter_and_resolution_flags(&env);
     test_noise_and_foam_flags(&env);
     test_density_threshold(&env);
+    test_spray_threshold_from_the_densities(&env);
     test_shading_flags(&env);
     test_background(&env);
     test_cubemap(&env);
