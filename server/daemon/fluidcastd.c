@@ -1,7 +1,8 @@
 /* fluidcastd.c — the render daemon's top level: options, signals, the render
  * service (GL thread and encoders), the named sessions, the listeners and the
  * event loop, in that order; exit 0 on SIGINT/SIGTERM, 1 when it cannot start,
- * 2 on a bad command line. */
+ * 2 on a bad command line. The folders below (net/, clients/, sessions/, gpu/,
+ * uploads/) are the daemon's layers: README.md maps them. */
 #include <arpa/inet.h>
 #include <errno.h>
 #include <signal.h>

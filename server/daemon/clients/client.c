@@ -1,4 +1,6 @@
-/* client.c — one connection's protocol state and message dispatch. */
+/* client.c — one connection's protocol state: the handshake, the dispatch of
+ * its messages, and what its connection reports (render results, output sent,
+ * timers). */
 #include "clients/client.h"
 
 #include <string.h>
@@ -23,7 +25,7 @@ void fc_client_init(fc_client *c, const char *peer, fc_daemon_context *ctx, uint
 
 void fc_client_free(fc_client *c)
 {
-    fc_client_leave_session(c);
+    fc_client_detach(c);
     fc_shared_frame_unref(c->frame);
     c->frame = NULL;
     fc_foam_track_unref(c->foam);
@@ -43,41 +45,15 @@ static const char *message_name(uint16_t type)
     return is_defined_type(type) ? names[type - FC_MSG_HELLO] : "unknown";
 }
 
-/* Codes >= 100 never travel: each becomes the wire code a client can act on. */
-static fc_code wire_code(fc_code code)
-{
-    if (code >= 1 && code <= 99)
-        return code;
-    return code == FC_ERR_GL ? FC_ERR_RENDER : FC_ERR_INTERNAL;
-}
-
-fc_client_verdict fc_client_reply_error(const fc_daemon_context *ctx, const char *peer, uint32_t request_id,
-                                          const fc_error *error, fc_client_verdict then, fc_buf *out)
-{
-    fc_error wire = *error;
-    wire.code = wire_code(error->code);
-    /* Client mistakes are routine; failures on the server's side deserve attention. */
-    int server_side = wire.code == FC_ERR_RENDER || wire.code == FC_ERR_ENCODE || wire.code == FC_ERR_INTERNAL;
-    fc_log_write(ctx->log, server_side ? FC_LOG_WARN : FC_LOG_INFO, "%s: request %u: %s: %s%s", peer,
-                 (unsigned)request_id, fc_code_name(wire.code), wire.message,
-                 then == FC_CLIENT_CLOSE ? " (closing)" : "");
-    fc_error write_err;
-    if (fc_wire_write_error(out, request_id, &wire, &write_err) != FC_OK) {
-        fc_log_write(ctx->log, FC_LOG_ERROR, "%s: cannot queue ERROR: %s", peer, write_err.message);
-        return FC_CLIENT_ABORT;
-    }
-    return then;
-}
-
 /* Shorthand for the handlers: answer the message `h` with err. */
 static fc_client_verdict reply_error(const fc_client *c, const fc_daemon_context *ctx, const fc_msg_header *h,
-                                      const fc_error *err, fc_client_verdict then, fc_buf *out)
+                                     const fc_error *err, fc_client_verdict then, fc_buf *out)
 {
     return fc_client_reply_error(ctx, c->peer, h->request_id, err, then, out);
 }
 
 static fc_client_verdict handle_hello(fc_client *c, fc_daemon_context *ctx, const fc_msg_header *h,
-                                       const uint8_t *payload, fc_buf *out)
+                                      const uint8_t *payload, fc_buf *out)
 {
     fc_hello hello;
     fc_error err;
@@ -105,7 +81,7 @@ static fc_client_verdict handle_hello(fc_client *c, fc_daemon_context *ctx, cons
 /* A new frame replaces the old one only once it decoded completely; on a
  * producer it is published to the named session. */
 static fc_client_verdict handle_frame(fc_client *c, fc_daemon_context *ctx, const fc_msg_header *h,
-                                       fc_payload *payload, double received_ms, fc_buf *out)
+                                      fc_payload *payload, double received_ms, fc_buf *out)
 {
     fc_frame_view view = {0};
     fc_error err;
@@ -122,16 +98,8 @@ static fc_client_verdict handle_frame(fc_client *c, fc_daemon_context *ctx, cons
     return FC_CLIENT_CONTINUE;
 }
 
-fc_code fc_client_check_image_limit(const fc_limits *limits, uint32_t width, uint32_t height, fc_error *err)
-{
-    if (width <= limits->max_width && height <= limits->max_height)
-        return FC_OK;
-    return fc_error_set(err, FC_ERR_LIMIT, "image %ux%u exceeds this server's limit of %ux%u", (unsigned)width,
-                        (unsigned)height, (unsigned)limits->max_width, (unsigned)limits->max_height);
-}
-
 static fc_client_verdict handle_camera(fc_client *c, fc_daemon_context *ctx, const fc_msg_header *h,
-                                        const uint8_t *payload, fc_buf *out)
+                                       const uint8_t *payload, fc_buf *out)
 {
     fc_camera camera;
     fc_error err;
@@ -146,7 +114,7 @@ static fc_client_verdict handle_camera(fc_client *c, fc_daemon_context *ctx, con
 
 /* Entries merge into the current settings; the codec leaves them untouched on any error. */
 static fc_client_verdict handle_settings(fc_client *c, fc_daemon_context *ctx, const fc_msg_header *h,
-                                          const uint8_t *payload, fc_buf *out)
+                                         const uint8_t *payload, fc_buf *out)
 {
     fc_error err;
     if (fc_wire_read_settings(payload, h->length, &c->settings, &err) != FC_OK)
@@ -159,7 +127,7 @@ static fc_client_verdict handle_settings(fc_client *c, fc_daemon_context *ctx, c
  * renders queued before keep the images they were submitted with. The image
  * it replaces is given up only once the new one is known to fit. */
 static fc_client_verdict handle_scene_image(fc_client *c, fc_daemon_context *ctx, const fc_msg_header *h,
-                                             const uint8_t *payload, fc_buf *out)
+                                            const uint8_t *payload, fc_buf *out)
 {
     fc_error err;
     bool background = h->type == FC_MSG_BACKGROUND;
@@ -169,7 +137,7 @@ static fc_client_verdict handle_scene_image(fc_client *c, fc_daemon_context *ctx
                               : fc_scene_part_decode_environment(payload, h->length, &part, &err);
     if (code == FC_OK)
         code = fc_client_memory_admit(c, fc_memory_of_scene_part(*slot), fc_memory_of_scene_part(part),
-                                       background ? "BACKGROUND" : "ENVIRONMENT", &err);
+                                      background ? "BACKGROUND" : "ENVIRONMENT", &err);
     if (code != FC_OK) {
         fc_scene_part_unref(part);
         return reply_error(c, ctx, h, &err, FC_CLIENT_CONTINUE, out);
@@ -184,7 +152,7 @@ static fc_client_verdict handle_scene_image(fc_client *c, fc_daemon_context *ctx
  * replies stay in request order. Without a CAMERA the frame is framed at the
  * viewer's size, or the default size, which must fit the limits. */
 static fc_client_verdict handle_render(fc_client *c, fc_daemon_context *ctx, const fc_msg_header *h,
-                                        const uint8_t *payload, double received_ms, fc_buf *out)
+                                       const uint8_t *payload, double received_ms, fc_buf *out)
 {
     fc_render_order order = {.kind = FC_JOB_REPLY, .request_id = h->request_id, .received_ms = received_ms};
     bool viewer = c->role == FC_ROLE_VIEWER;
@@ -207,7 +175,7 @@ static fc_client_verdict handle_render(fc_client *c, fc_daemon_context *ctx, con
 
 /* The connection closes after GOODBYE either way; a malformed one is still answered. */
 static fc_client_verdict handle_goodbye(fc_client *c, fc_daemon_context *ctx, const fc_msg_header *h,
-                                         const uint8_t *payload, fc_buf *out)
+                                        const uint8_t *payload, fc_buf *out)
 {
     fc_error err;
     if (fc_wire_read_goodbye(payload, h->length, &err) != FC_OK)
@@ -224,7 +192,7 @@ bool fc_client_unauthenticated(const fc_client *c)
 /* With a token configured, nothing about the server (not even which protocol
  * errors it finds) is revealed before the client proved it knows the token. */
 static fc_client_verdict authenticate_hello(fc_client *c, fc_daemon_context *ctx, const fc_msg_header *h,
-                                             const uint8_t *payload, fc_buf *out)
+                                            const uint8_t *payload, fc_buf *out)
 {
     fc_hello hello;
     fc_error err;
@@ -242,7 +210,7 @@ static fc_client_verdict authenticate_hello(fc_client *c, fc_daemon_context *ctx
 /* Before the handshake only HELLO (or a polite GOODBYE) is accepted; any
  * other message ends the connection, as the client is not speaking fluidcast. */
 static fc_client_verdict handle_before_hello(fc_client *c, fc_daemon_context *ctx, const fc_msg_header *h,
-                                              const uint8_t *payload, fc_buf *out)
+                                             const uint8_t *payload, fc_buf *out)
 {
     if (h->type == FC_MSG_HELLO)
         return handle_hello(c, ctx, h, payload, out);
@@ -258,7 +226,7 @@ static fc_client_verdict handle_before_hello(fc_client *c, fc_daemon_context *ct
 
 /* Messages a client must not send once READY. */
 static fc_client_verdict refuse_after_hello(fc_client *c, fc_daemon_context *ctx, const fc_msg_header *h,
-                                             fc_buf *out)
+                                            fc_buf *out)
 {
     fc_error err;
     if (h->type == FC_MSG_HELLO)
@@ -272,7 +240,7 @@ static fc_client_verdict refuse_after_hello(fc_client *c, fc_daemon_context *ctx
 }
 
 fc_client_verdict fc_client_handle(fc_client *c, fc_daemon_context *ctx, const fc_msg_header *header,
-                                     fc_payload *message, double received_ms, fc_buf *out)
+                                   fc_payload *message, double received_ms, fc_buf *out)
 {
     const uint8_t *payload = message->bytes;
     if (fc_client_unauthenticated(c))
@@ -298,4 +266,47 @@ fc_client_verdict fc_client_handle(fc_client *c, fc_daemon_context *ctx, const f
             return fc_client_handle_session_message(c, ctx, header, message, received_ms, out);
         return refuse_after_hello(c, ctx, header, out);
     }
+}
+
+/* ---- What the connection reports ---- */
+
+void fc_client_job_done(fc_client *c, const fc_render_job *job)
+{
+    if (job->kind == FC_JOB_STREAM) {
+        fc_viewer_job_done(c, job);
+        return;
+    }
+    c->reply_pending = false;
+    if (job->error.code != FC_OK) {
+        fc_client_send_error(c, job->request_id, &job->error);
+        return;
+    }
+    fc_error err;
+    /* A reply that does not fit leaves the queue as it was, so an ERROR can still follow. */
+    if (fc_client_queue_message(c, &job->message, "the IMAGE", &err) != FC_OK) {
+        fc_client_send_error(c, job->request_id, &err);
+        return;
+    }
+    fc_log_write(c->ctx->log, FC_LOG_DEBUG, "%s: request %u: IMAGE of %zu bytes queued", c->peer,
+                 (unsigned)job->request_id, job->message.len);
+}
+
+void fc_client_output_drained(fc_client *c)
+{
+    fc_viewer_drained(c);
+}
+
+size_t fc_client_backlog_allowance(const fc_client *c)
+{
+    return fc_viewer_backlog_allowance(c);
+}
+
+double fc_client_deadline_ms(const fc_client *c)
+{
+    return fc_viewer_deadline_ms(c);
+}
+
+void fc_client_tick(fc_client *c, double now_ms)
+{
+    fc_viewer_tick(c, now_ms);
 }

@@ -2,7 +2,18 @@
  * dispatch of its messages: the handshake, the current frame, camera and
  * settings, the replies, and its part in a named session (producer or viewer;
  * client_sessions.c, viewer.c). The word "session" means a named session only
- * (sessions/). */
+ * (sessions/); a client is told of its session's events through the member
+ * it embeds (sessions/session_member.h), so the session layer never calls
+ * back into this one.
+ *
+ * The files of clients/ call one another one way, top to bottom:
+ *   client.c           handshake, dispatch, what the connection reports
+ *   client_sessions.c  PUBLISH, SUBSCRIBE, SESSION_END, CHUNK, FRAME_PACKED,
+ *                      LIST_SESSIONS; the member a session calls
+ *   viewer.c           a subscribed client's stream of images
+ *   client_render.c    render jobs and frames from the client's state
+ *   client_reply.c     ERROR replies, messages queued within the memory limit
+ *   client_memory.c    what the client holds, against --max-session-memory */
 #ifndef FC_DAEMON_CLIENT_H
 #define FC_DAEMON_CLIENT_H
 
@@ -11,6 +22,7 @@
 #include "clients/viewer.h"
 #include "daemon_context.h"
 #include "gpu/render_job.h"
+#include "sessions/session_member.h"
 #include "uploads/foam_track.h"
 #include "uploads/scene_uploads.h"
 
@@ -41,7 +53,8 @@ typedef struct fc_client {
     fc_settings settings;
     fc_scene_uploads scene;        /* BACKGROUND / ENVIRONMENT images for this connection's renders */
     fc_client_role role;
-    struct fc_session *session;   /* the named session published or subscribed to; NULL when none */
+    struct fc_session *session;    /* the named session published or subscribed to; NULL when none */
+    fc_session_member member;      /* how that session tells this client (client_sessions.c) */
     fc_viewer viewer;              /* role == FC_ROLE_VIEWER */
 } fc_client;
 
@@ -69,12 +82,13 @@ typedef struct fc_payload {
  * any immediate reply (WELCOME, ERROR, SESSION_STATE, ...) to out; a RENDER's
  * IMAGE follows through fc_client_job_done. received_ms: when it arrived. */
 fc_client_verdict fc_client_handle(fc_client *c, fc_daemon_context *ctx, const fc_msg_header *header,
-                                     fc_payload *payload, double received_ms, fc_buf *out);
+                                   fc_payload *payload, double received_ms, fc_buf *out);
 
 /* Appends an ERROR answering request_id; local codes become the nearest wire
- * code. Used for framing errors too, which the connection detects. */
+ * code. Used for framing errors too, which the connection detects.
+ * (client_reply.c) */
 fc_client_verdict fc_client_reply_error(const fc_daemon_context *ctx, const char *peer, uint32_t request_id,
-                                          const fc_error *error, fc_client_verdict then, fc_buf *out);
+                                        const fc_error *error, fc_client_verdict then, fc_buf *out);
 
 /* True while a token is required and this client has not presented it:
  * the only reply such a client may get is ERROR UNAUTHORIZED. */

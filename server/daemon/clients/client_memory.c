@@ -50,7 +50,7 @@ uint64_t fc_client_memory_held(const fc_client *c)
 }
 
 fc_code fc_client_memory_admit(const fc_client *c, uint64_t released, uint64_t added, const char *what,
-                                fc_error *err)
+                               fc_error *err)
 {
     uint64_t limit = c->ctx->max_session_memory;
     uint64_t held = fc_client_memory_held(c);

@@ -36,6 +36,6 @@ uint64_t fc_client_memory_held(const fc_client *c);
  * taking `added` more, stays within its limit; else FC_ERR_LIMIT with a reason
  * that names `what` (e.g. "a frame of 1000 particles") and the limit. */
 fc_code fc_client_memory_admit(const fc_client *c, uint64_t released, uint64_t added, const char *what,
-                                fc_error *err);
+                               fc_error *err);
 
 #endif

@@ -1,5 +1,5 @@
-/* client_render.c — turning a client's state into render jobs, and their
- * results back into replies; frames becoming current; the client's timers. */
+/* client_render.c — turning a client's state into render jobs; frames
+ * becoming the client's current frame or its named session's newest. */
 #include "clients/client_internal.h"
 
 #include <stdio.h>
@@ -17,23 +17,12 @@
  * recycled buffer (up to an eighth). */
 #define PAYLOAD_SLACK_BYTES 64
 
-void fc_client_send_error(fc_client *c, uint32_t request_id, const fc_error *err)
+fc_code fc_client_check_image_limit(const fc_limits *limits, uint32_t width, uint32_t height, fc_error *err)
 {
-    fc_client_reply_error(c->ctx, c->peer, request_id, err, FC_CLIENT_CONTINUE, c->out);
-}
-
-fc_code fc_client_queue_message(fc_client *c, const fc_buf *message, const char *what, fc_error *err)
-{
-    fc_code code = fc_client_memory_admit(c, 0, message->len, what, err);
-    if (code != FC_OK)
-        return code;
-    if (!fc_buf_reserve(c->out, message->len)) {
-        c->out->failed = false;
-        return fc_error_set(err, FC_ERR_INTERNAL, "no memory to queue %s of %zu bytes", what, message->len);
-    }
-    memcpy(c->out->data + c->out->len, message->data, message->len);
-    c->out->len += message->len;
-    return FC_OK;
+    if (width <= limits->max_width && height <= limits->max_height)
+        return FC_OK;
+    return fc_error_set(err, FC_ERR_LIMIT, "image %ux%u exceeds this server's limit of %ux%u", (unsigned)width,
+                        (unsigned)height, (unsigned)limits->max_width, (unsigned)limits->max_height);
 }
 
 fc_shared_frame *fc_client_current_frame(const fc_client *c)
@@ -42,7 +31,7 @@ fc_shared_frame *fc_client_current_frame(const fc_client *c)
 }
 
 fc_code fc_client_submit_render(fc_client *c, fc_shared_frame *frame, const fc_render_order *order,
-                                 fc_error *err)
+                                fc_error *err)
 {
     fc_render_job *job = fc_render_job_create(frame);
     if (!job)
@@ -101,7 +90,7 @@ static fc_code admit_frame(const fc_client *c, bool publishes, const fc_frame *f
     char what[64];
     snprintf(what, sizeof what, "a frame of %llu particles", (unsigned long long)frame->count);
     return fc_client_memory_admit(c, replaced ? fc_memory_of_frame(&replaced->frame) : 0, fc_memory_of_frame(frame),
-                                   what, err);
+                                  what, err);
 }
 
 fc_code fc_client_keep_payload(fc_client *c, fc_frame_view *view, fc_payload *payload, fc_error *err)
@@ -128,7 +117,7 @@ fc_code fc_client_keep_payload(fc_client *c, fc_frame_view *view, fc_payload *pa
 }
 
 fc_code fc_client_take_frame(fc_client *c, fc_frame_view *view, fc_payload *payload, double received_ms,
-                              double decode_ms, fc_error *err)
+                             double decode_ms, fc_error *err)
 {
     fc_code code = fc_client_keep_payload(c, view, payload, err);
     if (code != FC_OK)
@@ -157,45 +146,4 @@ fc_code fc_client_take_frame(fc_client *c, fc_frame_view *view, fc_payload *payl
         c->frame = shared;
     }
     return FC_OK;
-}
-
-void fc_client_job_done(fc_client *c, const fc_render_job *job)
-{
-    if (job->kind == FC_JOB_STREAM) {
-        fc_viewer_job_done(c, job);
-        return;
-    }
-    c->reply_pending = false;
-    if (job->error.code != FC_OK) {
-        fc_client_send_error(c, job->request_id, &job->error);
-        return;
-    }
-    fc_error err;
-    /* A reply that does not fit leaves the queue as it was, so an ERROR can still follow. */
-    if (fc_client_queue_message(c, &job->message, "the IMAGE", &err) != FC_OK) {
-        fc_client_send_error(c, job->request_id, &err);
-        return;
-    }
-    fc_log_write(c->ctx->log, FC_LOG_DEBUG, "%s: request %u: IMAGE of %zu bytes queued", c->peer,
-                 (unsigned)job->request_id, job->message.len);
-}
-
-void fc_client_output_drained(fc_client *c)
-{
-    fc_viewer_drained(c);
-}
-
-size_t fc_client_backlog_allowance(const fc_client *c)
-{
-    return fc_viewer_backlog_allowance(c);
-}
-
-double fc_client_deadline_ms(const fc_client *c)
-{
-    return fc_viewer_deadline_ms(c);
-}
-
-void fc_client_tick(fc_client *c, double now_ms)
-{
-    fc_viewer_tick(c, now_ms);
 }

@@ -10,7 +10,6 @@
 #include "fc_error.h"
 #include "monotonic.h"
 #include "sessions/session.h"
-#include "sessions/session_events.h"
 #include "uploads/frame_pool.h"
 #include "wire_session.h"
 
@@ -44,26 +43,49 @@ static fc_code check_no_role(const fc_client *c, fc_error *err)
                         c->role == FC_ROLE_PRODUCER ? "publishes to" : "watches", c->session->name);
 }
 
-void fc_client_leave_session(fc_client *c)
+void fc_client_detach(fc_client *c)
 {
     fc_session *session = c->session;
     if (!session)
         return;
-    fc_client_role role = c->role;
+    if (c->role == FC_ROLE_VIEWER) {
+        fc_viewer_detach(c);
+        return;
+    }
     c->session = NULL;
     c->role = FC_ROLE_NONE;
-    memset(&c->viewer, 0, sizeof c->viewer);
     /* After detaching: a producer's leaving may end the session, which then tells only the others. */
-    if (role == FC_ROLE_PRODUCER)
-        fc_session_remove_producer(session, c);
-    else
-        fc_session_remove_viewer(session, c);
+    fc_session_remove_producer(session, &c->member);
 }
+
+/* ---- What the named session tells this client (sessions/session_member.h) ---- */
+
+static void on_new_frame(fc_session_member *viewer)
+{
+    fc_viewer_on_new_frame(fc_client_of_member(viewer));
+}
+
+static void on_session_ended(fc_session_member *viewer)
+{
+    fc_viewer_on_session_ended(fc_client_of_member(viewer));
+}
+
+/* The ERROR answers the chunk; the connection stays open. */
+static void on_chunk_failed(fc_session_member *producer, uint32_t request_id, const fc_error *err)
+{
+    fc_client_send_error(fc_client_of_member(producer), request_id, err);
+}
+
+static const fc_session_member_ops member_ops = {
+    .new_frame = on_new_frame,
+    .session_ended = on_session_ended,
+    .chunk_failed = on_chunk_failed,
+};
 
 /* ---- PUBLISH / SUBSCRIBE / SESSION_END ---- */
 
 static fc_client_verdict handle_publish(fc_client *c, const fc_msg_header *h, const uint8_t *payload,
-                                         fc_buf *out)
+                                        fc_buf *out)
 {
     char name[FC_SESSION_NAME_MAX + 1];
     fc_session *session;
@@ -71,6 +93,7 @@ static fc_client_verdict handle_publish(fc_client *c, const fc_msg_header *h, co
     if (fc_wire_read_publish(payload, h->length, name, &err) != FC_OK || check_no_role(c, &err) != FC_OK ||
         fc_registry_open(c->ctx->sessions, name, &session, &err) != FC_OK)
         return reply_error(c, h, &err, out);
+    c->member.ops = &member_ops;
     fc_session_add_producer(session);
     c->role = FC_ROLE_PRODUCER;
     c->session = session;
@@ -79,7 +102,7 @@ static fc_client_verdict handle_publish(fc_client *c, const fc_msg_header *h, co
 }
 
 static fc_client_verdict handle_subscribe(fc_client *c, const fc_msg_header *h, const uint8_t *payload,
-                                           fc_buf *out)
+                                          fc_buf *out)
 {
     fc_subscribe sub;
     fc_session *session;
@@ -88,9 +111,10 @@ static fc_client_verdict handle_subscribe(fc_client *c, const fc_msg_header *h, 
         return reply_error(c, h, &err, out);
     uint32_t width = sub.width ? sub.width : FC_DEFAULT_VIEW_WIDTH;
     uint32_t height = sub.height ? sub.height : FC_DEFAULT_VIEW_HEIGHT;
+    c->member.ops = &member_ops;
     if (fc_client_check_image_limit(&c->ctx->welcome.limits, width, height, &err) != FC_OK ||
         fc_registry_open(c->ctx->sessions, sub.name, &session, &err) != FC_OK ||
-        fc_session_add_viewer(session, c, &err) != FC_OK)
+        fc_session_add_viewer(session, &c->member, &err) != FC_OK)
         return reply_error(c, h, &err, out);
     c->role = FC_ROLE_VIEWER;
     c->session = session;
@@ -103,7 +127,7 @@ static fc_client_verdict handle_subscribe(fc_client *c, const fc_msg_header *h, 
 }
 
 static fc_client_verdict handle_session_end(fc_client *c, const fc_msg_header *h, const uint8_t *payload,
-                                             fc_buf *out)
+                                            fc_buf *out)
 {
     fc_error err;
     if (fc_wire_read_session_leave(payload, h->length, &err) != FC_OK)
@@ -122,7 +146,7 @@ static fc_client_verdict handle_session_end(fc_client *c, const fc_msg_header *h
     }
     char name[FC_SESSION_NAME_MAX + 1];
     memcpy(name, c->session->name, sizeof name);
-    fc_client_leave_session(c);
+    fc_client_detach(c);
     fc_log_write(c->ctx->log, FC_LOG_INFO, "%s: stopped publishing to session '%s'", c->peer, name);
     if (fc_wire_write_session_end(out, h->request_id, name, &err) != FC_OK)
         return FC_CLIENT_ABORT;
@@ -132,7 +156,7 @@ static fc_client_verdict handle_session_end(fc_client *c, const fc_msg_header *h
 /* ---- Frames: FRAME_PACKED and CHUNK ---- */
 
 static fc_client_verdict handle_frame_packed(fc_client *c, const fc_msg_header *h, fc_payload *payload,
-                                              double received_ms, fc_buf *out)
+                                             double received_ms, fc_buf *out)
 {
     fc_frame_view view = {0};
     fc_error err;
@@ -179,7 +203,7 @@ static fc_code admit_chunk(const fc_client *c, const fc_chunk *chunk, fc_error *
 }
 
 static fc_client_verdict handle_chunk(fc_client *c, const fc_msg_header *h, fc_payload *payload,
-                                       double received_ms, fc_buf *out)
+                                      double received_ms, fc_buf *out)
 {
     fc_error err;
     if (c->role != FC_ROLE_PRODUCER) {
@@ -201,7 +225,7 @@ static fc_client_verdict handle_chunk(fc_client *c, const fc_msg_header *h, fc_p
         return reply_error(c, h, &err, out);
     }
     double now = fc_monotonic_ms();
-    chunk.origin = (fc_chunk_origin){c, h->request_id};
+    chunk.origin = (fc_chunk_origin){&c->member, h->request_id};
     chunk.first_byte_ms = c->message_started_ms;
     chunk.received_ms = received_ms;
     chunk.decode_ms = (float)(now - start);
@@ -218,7 +242,7 @@ static fc_client_verdict handle_chunk(fc_client *c, const fc_msg_header *h, fc_p
 /* ---- LIST_SESSIONS ---- */
 
 static fc_client_verdict handle_list_sessions(fc_client *c, const fc_msg_header *h, const uint8_t *payload,
-                                               fc_buf *out)
+                                              fc_buf *out)
 {
     fc_session_info *list = NULL;
     uint32_t count = 0;
@@ -241,7 +265,7 @@ static uint32_t required_capabilities(uint16_t type)
 }
 
 fc_client_verdict fc_client_handle_session_message(fc_client *c, fc_daemon_context *ctx, const fc_msg_header *h,
-                                            fc_payload *message, double received_ms, fc_buf *out)
+                                                   fc_payload *message, double received_ms, fc_buf *out)
 {
     const uint8_t *payload = message->bytes;
     (void)ctx;
@@ -262,10 +286,4 @@ fc_client_verdict fc_client_handle_session_message(fc_client *c, fc_daemon_conte
         fc_error_set(&err, FC_ERR_BAD_STATE, "%s is sent by servers, not clients", fc_wire_session_type_name(h->type));
         return reply_error(c, h, &err, out);
     }
-}
-
-void fc_client_on_chunk_failed(const fc_chunk_origin *origin, const fc_error *err, void *data)
-{
-    (void)data;
-    fc_client_send_error(origin->session, origin->request_id, err);
 }

@@ -7,7 +7,6 @@
 #include "fc_error.h"
 #include "monotonic.h"
 #include "sessions/session.h"
-#include "sessions/session_events.h"
 
 typedef enum image_reason {
     REASON_NEW_FRAME = 0,    /* the session published a frame this viewer has not seen */
@@ -71,7 +70,7 @@ static void send_end(struct fc_client *c)
     if (fc_wire_write_session_end(c->out, c->viewer.end_request_id, session->name, &err) != FC_OK)
         fc_log_write(c->ctx->log, FC_LOG_ERROR, "%s: cannot queue SESSION_END: %s", c->peer, err.message);
     fc_log_write(c->ctx->log, FC_LOG_INFO, "%s: left session '%s' as a viewer", c->peer, session->name);
-    fc_client_leave_session(c);
+    fc_viewer_detach(c);
 }
 
 /* Starts the next image this viewer is due, or ends its subscription. */
@@ -171,14 +170,23 @@ void fc_viewer_tick(struct fc_client *c, double now_ms)
     pump(c, now_ms);
 }
 
+void fc_viewer_detach(struct fc_client *c)
+{
+    fc_session *session = c->session;
+    c->session = NULL;
+    c->role = FC_ROLE_NONE;
+    memset(&c->viewer, 0, sizeof c->viewer);
+    fc_session_remove_viewer(session, &c->member);
+}
+
 /* ---- What the named session tells its viewers ---- */
 
-void fc_client_on_new_frame(struct fc_client *viewer)
+void fc_viewer_on_new_frame(struct fc_client *viewer)
 {
     pump(viewer, fc_monotonic_ms());
 }
 
-void fc_client_on_session_ended(struct fc_client *viewer)
+void fc_viewer_on_session_ended(struct fc_client *viewer)
 {
     fc_viewer *v = &viewer->viewer;
     if (v->ending)

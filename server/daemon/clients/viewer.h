@@ -51,5 +51,14 @@ size_t fc_viewer_backlog_allowance(const struct fc_client *c);
 /* When the viewer next needs fc_viewer_tick without I/O; negative for never. */
 double fc_viewer_deadline_ms(const struct fc_client *c);
 void fc_viewer_tick(struct fc_client *c, double now_ms);
+/* Leaves the named session without a word to the client (SESSION_END went
+ * out already, the client has gone, or the caller answers). */
+void fc_viewer_detach(struct fc_client *c);
+
+/* What the named session tells a viewer, through the client's member
+ * (client_sessions.c): the session published a new frame; */
+void fc_viewer_on_new_frame(struct fc_client *c);
+/* the session lost its last producer: the viewer gets what is pending, then SESSION_END. */
+void fc_viewer_on_session_ended(struct fc_client *c);
 
 #endif

@@ -13,10 +13,10 @@
 #include "fc_error.h"
 #include "fc_frame.h"
 #include "gpu/encoder_pool.h"
+#include "gpu/foam_apply.h"
 #include "gpu/gpu_state.h"
 #include "gpu/job_queue.h"
 #include "monotonic.h"
-#include "uploads/foam_track.h"
 
 typedef struct gl_identity {
     char renderer[128];
@@ -68,7 +68,7 @@ static fc_code ensure_uploaded(fc_gpu_state *gpu, fc_shared_frame *frame, const 
     gpu->uploaded_frame_id = 0;
     fc_code code = fc_pipeline_upload(gpu->pipeline, &frame->frame, upload_ms, err);
     if (code == FC_OK)
-        code = fc_foam_track_apply(frame, gpu->pipeline, settings, err);
+        code = fc_foam_apply(frame, gpu->pipeline, settings, err);
     if (code == FC_OK)
         gpu->uploaded_frame_id = frame->id;
     return code;

@@ -197,7 +197,7 @@ static void report_incomplete(const fc_frame_assembly *fa,
     fc_error_set(&err, FC_ERR_INCOMPLETE, "frame %llu: only %u of its %u chunks arrived before the chunk timeout",
                  (unsigned long long)fa->frame_number, fa->received, fa->count);
     for (uint32_t i = 0; i < fa->count; i++)
-        if (fa->parts[i].frame.count != 0 && fa->origins[i].session)
+        if (fa->parts[i].frame.count != 0 && fa->origins[i].producer)
             report(&fa->origins[i], &err, data);
 }
 
@@ -214,10 +214,10 @@ void fc_chunk_assembly_expire(fc_chunk_assembly *a, double now_ms,
     }
 }
 
-void fc_chunk_assembly_forget(fc_chunk_assembly *a, const struct fc_client *session)
+void fc_chunk_assembly_forget(fc_chunk_assembly *a, const fc_session_member *producer)
 {
     for (int i = 0; i < FC_ASSEMBLY_MAX_FRAMES; i++)
         for (uint32_t k = 0; a->frames[i].used && k < a->frames[i].count; k++)
-            if (a->frames[i].origins[k].session == session)
-                a->frames[i].origins[k].session = NULL;
+            if (a->frames[i].origins[k].producer == producer)
+                a->frames[i].origins[k].producer = NULL;
 }

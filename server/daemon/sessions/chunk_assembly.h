@@ -9,17 +9,17 @@
 #include <stdint.h>
 
 #include "fluidcast_types.h"
+#include "sessions/session_member.h"
 #include "wire_session.h"
 
 /* Frames of one session being assembled at once (ranks drift apart by a frame or two). */
 #define FC_ASSEMBLY_MAX_FRAMES 8
 
-struct fc_client;
 struct fc_frame_pool;
 
 /* Who sent a chunk, to be told when its frame fails. */
 typedef struct fc_chunk_origin {
-    struct fc_client *session;   /* NULL once that connection has gone */
+    fc_session_member *producer;  /* NULL once that producer has gone */
     uint32_t request_id;
 } fc_chunk_origin;
 
@@ -86,6 +86,6 @@ void fc_chunk_assembly_expire(fc_chunk_assembly *a, double now_ms,
                               void *data);
 
 /* The producer has gone: its chunks stay, but nobody is told about them. */
-void fc_chunk_assembly_forget(fc_chunk_assembly *a, const struct fc_client *session);
+void fc_chunk_assembly_forget(fc_chunk_assembly *a, const fc_session_member *producer);
 
 #endif

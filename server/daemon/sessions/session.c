@@ -6,7 +6,6 @@
 #include <string.h>
 
 #include "fc_error.h"
-#include "sessions/session_events.h"
 #include "uploads/frame_pool.h"
 
 fc_code fc_session_create(const char *name, fc_frame_pool *pool, fc_session **out, fc_error *err)
@@ -65,10 +64,10 @@ static void end_session(fc_session *s)
     fc_chunk_assembly_init(&s->chunks, s->chunks.pool);
     /* Backwards: a viewer told at once removes itself, shifting only the ones already told. */
     for (size_t i = s->viewer_count; i-- > 0;)
-        fc_client_on_session_ended(s->viewers[i]);
+        s->viewers[i]->ops->session_ended(s->viewers[i]);
 }
 
-void fc_session_remove_producer(fc_session *s, const struct fc_client *producer)
+void fc_session_remove_producer(fc_session *s, const fc_session_member *producer)
 {
     fc_chunk_assembly_forget(&s->chunks, producer);
     if (s->producers > 0)
@@ -77,11 +76,11 @@ void fc_session_remove_producer(fc_session *s, const struct fc_client *producer)
         end_session(s);
 }
 
-fc_code fc_session_add_viewer(fc_session *s, struct fc_client *viewer, fc_error *err)
+fc_code fc_session_add_viewer(fc_session *s, fc_session_member *viewer, fc_error *err)
 {
     if (s->viewer_count == s->viewer_capacity) {
         size_t capacity = s->viewer_capacity ? 2 * s->viewer_capacity : 4;
-        struct fc_client **grown = realloc(s->viewers, capacity * sizeof *grown);
+        fc_session_member **grown = realloc(s->viewers, capacity * sizeof *grown);
         if (!grown)
             return fc_error_set(err, FC_ERR_INTERNAL, "no memory for another viewer of '%s'", s->name);
         s->viewers = grown;
@@ -91,7 +90,7 @@ fc_code fc_session_add_viewer(fc_session *s, struct fc_client *viewer, fc_error 
     return FC_OK;
 }
 
-void fc_session_remove_viewer(fc_session *s, const struct fc_client *viewer)
+void fc_session_remove_viewer(fc_session *s, const fc_session_member *viewer)
 {
     for (size_t i = 0; i < s->viewer_count; i++) {
         if (s->viewers[i] == viewer) {
@@ -108,5 +107,5 @@ void fc_session_publish(fc_session *s, fc_shared_frame *frame)
     s->latest = frame;
     s->sequence++;
     for (size_t i = 0; i < s->viewer_count; i++)
-        fc_client_on_new_frame(s->viewers[i]);
+        s->viewers[i]->ops->new_frame(s->viewers[i]);
 }

@@ -10,18 +10,17 @@
 #include <stdint.h>
 
 #include "sessions/chunk_assembly.h"
+#include "sessions/session_member.h"
 #include "uploads/foam_track.h"
 #include "uploads/shared_frame.h"
 #include "wire_session.h"
-
-struct fc_client;
 
 typedef struct fc_session {
     char name[FC_SESSION_NAME_MAX + 1];
     uint32_t producers;
     bool had_producer;            /* losing the last producer ends the session only once there was one */
     bool ended;                   /* producers gone: it lives on only until its viewers have been told */
-    struct fc_client **viewers;
+    fc_session_member **viewers;  /* told of new frames and of the end (session_member.h) */
     size_t viewer_count;
     size_t viewer_capacity;
     fc_shared_frame *latest;      /* newest complete frame; NULL before the first */
@@ -33,7 +32,7 @@ typedef struct fc_session {
 struct fc_frame_pool;
 
 fc_code fc_session_create(const char *name, struct fc_frame_pool *pool, fc_session **out,
-                                 fc_error *err);
+                          fc_error *err);
 void fc_session_destroy(fc_session *s);
 
 void fc_session_describe(const fc_session *s, fc_session_info *out);
@@ -43,10 +42,10 @@ bool fc_session_unused(const fc_session *s);
 void fc_session_add_producer(fc_session *s);
 /* The producer leaves; its pending chunks stay but it will not hear about them.
  * The last producer leaving ends the session: every viewer is told. */
-void fc_session_remove_producer(fc_session *s, const struct fc_client *producer);
+void fc_session_remove_producer(fc_session *s, const fc_session_member *producer);
 
-fc_code fc_session_add_viewer(fc_session *s, struct fc_client *viewer, fc_error *err);
-void fc_session_remove_viewer(fc_session *s, const struct fc_client *viewer);
+fc_code fc_session_add_viewer(fc_session *s, fc_session_member *viewer, fc_error *err);
+void fc_session_remove_viewer(fc_session *s, const fc_session_member *viewer);
 
 /* Makes `frame` (whose reference is taken) the latest and tells every viewer. */
 void fc_session_publish(fc_session *s, fc_shared_frame *frame);

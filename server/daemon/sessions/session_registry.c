@@ -5,7 +5,6 @@
 #include <string.h>
 
 #include "fc_error.h"
-#include "sessions/session_events.h"
 #include "uploads/frame_pool.h"
 
 struct fc_session_registry {
@@ -110,8 +109,15 @@ double fc_registry_next_deadline(const fc_session_registry *reg)
     return next;
 }
 
+/* The producer of a chunk whose frame failed answers that chunk with the ERROR. */
+static void tell_producer(const fc_chunk_origin *origin, const fc_error *err, void *data)
+{
+    (void)data;
+    origin->producer->ops->chunk_failed(origin->producer, origin->request_id, err);
+}
+
 void fc_registry_expire(fc_session_registry *reg, double now_ms)
 {
     for (size_t i = 0; i < reg->count; i++)
-        fc_chunk_assembly_expire(&reg->sessions[i]->chunks, now_ms, fc_client_on_chunk_failed, NULL);
+        fc_chunk_assembly_expire(&reg->sessions[i]->chunks, now_ms, tell_producer, NULL);
 }

@@ -4,16 +4,16 @@
  * connection or session while any of its frames waits for the GL thread.
  *
  * The state advances once per frame, when the GL thread first uploads that
- * frame, with the settings of that first render. Frames nobody renders
- * (latest wins) never reach the GL thread, so a jump in velocity is measured
- * between the frames of the stream that were shown. */
+ * frame, with the settings of that first render (gpu/foam_apply.h). Frames
+ * nobody renders (latest wins) never reach the GL thread, so a jump in
+ * velocity is measured between the frames of the stream that were shown. */
 #ifndef FC_DAEMON_FOAM_TRACK_H
 #define FC_DAEMON_FOAM_TRACK_H
 
 #include <stdatomic.h>
 
+#include "fluidcast_types.h"
 #include "render/pipeline.h"
-#include "uploads/shared_frame.h"
 
 typedef struct fc_foam_track {
     atomic_uint refs;
@@ -25,11 +25,5 @@ fc_code fc_foam_track_create(fc_foam_track **out, fc_error *err);
 fc_foam_track *fc_foam_track_ref(fc_foam_track *t);
 /* Drops a reference; the last one frees the history. NULL is ignored. Any thread. */
 void fc_foam_track_unref(fc_foam_track *t);
-
-/* GL thread, right after `frame` was uploaded to `p`: a frame the GL thread
- * uploads for the first time advances its track with `settings` and keeps the
- * amplitudes that gave its particles; a frame uploaded again (another frame
- * was uploaded in between) gets those amplitudes back. */
-fc_code fc_foam_track_apply(fc_shared_frame *frame, fc_pipeline *p, const fc_settings *settings, fc_error *err);
 
 #endif
