@@ -6,6 +6,7 @@
 #include "anisotropy.h"
 #include "fc_error.h"
 #include "gl_util.h"
+#include "pinhole_fill.h"
 #include "shader_program.h"
 
 /* Uniform locations fixed by layout(location) in surface_splat.comp.glsl and its libraries. */
@@ -79,13 +80,13 @@ fc_code fc_compute_splat_create(const char *shader_dir, fc_compute_splat *s, fc_
                            "surface_splat.comp.glsl"};
     const char *ellipsoids[] = {"sphere_bounds.glsl", "ellipsoid_bounds.glsl", "sphere_ray.glsl", "ellipsoid_ray.glsl",
                                 "thickness_chord.glsl", "ellipsoid_shape.comp.glsl", "surface_splat.comp.glsl"};
-    const char *resolve[] = {"surface_resolve.comp.glsl"};
+    const char *resolve[] = {"pinhole_fill.glsl", "surface_resolve.comp.glsl"};
     fc_code code = fc_program_build(shader_dir, splat, sizeof splat / sizeof splat[0], &s->splat_program, err);
     if (code == FC_OK)
         code = fc_program_build(shader_dir, ellipsoids, sizeof ellipsoids / sizeof ellipsoids[0],
                                 &s->ellipsoid_program, err);
     if (code == FC_OK)
-        code = fc_program_build(shader_dir, resolve, 1, &s->resolve_program, err);
+        code = fc_program_build(shader_dir, resolve, 2, &s->resolve_program, err);
     if (code != FC_OK)
         return code;
     glCreateTextures(GL_TEXTURE_BUFFER, 1, &s->positions);
@@ -217,6 +218,7 @@ fc_code fc_compute_splat_run(fc_compute_splat *s, const fc_particle_buffer *part
     double units = units_per_chord(particles->count);
     if (particles->count > 0)
         splat(s, particles, view, radius, floor_plane, units);
+    fc_pinhole_fill_apply(s->resolve_program, view, radius);
     resolve(s, view, max_chord(particles, radius), floor_plane != NULL, units, depth, thickness);
     return fc_gl_check("compute surface splat", err);
 }

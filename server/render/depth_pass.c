@@ -6,10 +6,11 @@
 #include "anisotropy.h"
 #include "fc_error.h"
 #include "gl_util.h"
+#include "pinhole_fill.h"
 #include "shader_program.h"
 
 /* Uniform location fixed by layout(location) in thickness_chord.glsl. */
-enum { LOC_FLOOR_PLANE = 10 };
+enum { LOC_FLOOR_PLANE = 10, LOC_SOURCE_SIZE = 52 };
 enum { UNIT_SPLAT_DEPTH = 0 };
 
 /* The compute splat wins while a typical sprite (at the depth of the
@@ -37,7 +38,7 @@ fc_code fc_depth_pass_create(const char *shader_dir, fc_depth_pass *pass, fc_err
     };
     glCreateVertexArrays(1, &pass->empty_vertex_array);
     glCreateFramebuffers(1, &pass->splat_framebuffer);
-    const char *resolve[] = {"fullscreen.vert.glsl", "depth_resolve.frag.glsl"};
+    const char *resolve[] = {"fullscreen.vert.glsl", "pinhole_fill.glsl", "depth_resolve.frag.glsl"};
     fc_code code = fc_sphere_sprites_create_shaped(shader_dir, "thickness_chord.glsl", "surface_splat.frag.glsl",
                                                    &pass->sprites, err);
     if (code == FC_OK)
@@ -145,6 +146,8 @@ static fc_code fragment_splat(fc_depth_pass *pass, const fc_particle_buffer *par
 {
     splat(pass, particles, view, radius, floor_plane);
     fc_render_target_bind(&pass->target);
+    fc_pinhole_fill_apply(pass->resolve_program, view, radius);
+    glProgramUniform2i(pass->resolve_program, LOC_SOURCE_SIZE, (GLint)view->width, (GLint)view->height);
     glUseProgram(pass->resolve_program);
     glBindTextureUnit(UNIT_SPLAT_DEPTH, pass->raw.color);
     fc_gl_draw_fullscreen(pass->empty_vertex_array);

@@ -415,8 +415,40 @@ static void test_sheet_is_smooth_and_closed(render_fixture *f)
     CHECK(e.pixels > 10000);
     CHECK_MSG(s.rms >= 3.0 * e.rms, "roughness %g -> %g: less than 3x smoother", s.rms, e.rms);
     CHECK_MSG(e.pinholes == 0, "%d pinholes in the ellipsoids' sheet", e.pinholes);
+    /* The spheres leave gaps between them (18 here), which the depth resolve
+     * closes (pinhole_fill.glsl). */
+    CHECK_MSG(s.pinholes == 0, "%d pinholes in the spheres' sheet", s.pinholes);
     fc_image_free(&sphere);
     fc_image_free(&ellipsoid);
+}
+
+/* Closing pinholes must not close a real gap: two jittered sheets side by
+ * side, three spacings apart (1.9 spacings between the spheres' edges),
+ * keep every pixel of the gap's middle column empty, whatever the kernel. */
+static void test_gap_between_sheets_stays_open(render_fixture *f)
+{
+    const float spacing = 0.02f, radius = 0.55f * spacing;
+    float x[3 * 1152];
+    int all = two_layer_sheet(x, spacing), count = 0;
+    for (int i = 0; i < all; i++) {
+        float *p = &x[3 * i];
+        if (fabsf(p[0]) < 1.4f * spacing)
+            continue;   /* the gap: |x| < 1.4 spacings */
+        memmove(&x[3 * count], p, 3 * sizeof(float));
+        count++;
+    }
+    const uint32_t size = 256;
+    fc_camera cam = axis_camera(0.8, size, size);
+    const fc_kernel kernels[2] = {FC_KERNEL_SPHERE, FC_KERNEL_ANISOTROPIC};
+    for (int k = 0; k < 2; k++) {
+        fc_image depth = {0};
+        render(f, x, count, &cam, radius, kernels[k], FC_AOV_DEPTH, &depth);
+        int filled = 0, rows = 0;
+        for (uint32_t row = size / 4; row < 3 * size / 4; row++, rows++)
+            filled += pixel_f32(&depth, size / 2, row) != 0.0f;
+        CHECK_MSG(filled == 0, "kernel %d: %d of %d gap pixels filled", k, filled, rows);
+        fc_image_free(&depth);
+    }
 }
 
 int main(int argc, char **argv)
@@ -429,6 +461,7 @@ int main(int argc, char **argv)
     test_needles_are_their_ellipsoids(&f);
     test_needles_thickness(&f);
     test_sheet_is_smooth_and_closed(&f);
+    test_gap_between_sheets_stays_open(&f);
     fixture_close(&f);
     return test_result();
 }

@@ -1,0 +1,46 @@
+#version 450 core
+// Closing pinholes in the splatted depth: where no particle covers a pixel
+// but fluid lies on both sides of it along every one of four directions
+// (across, down and both diagonals) within a fraction of a particle's
+// projected radius, at depths close to each other, the pixel is a gap
+// between the particles of one surface (a jittered sheet's spheres leave
+// them), not background: it gets the depth interpolated across it.
+// Requiring all four directions keeps the gaps between separate bodies,
+// which are open along their length, and every silhouette untouched.
+// Linked into depth_resolve.frag.glsl and surface_resolve.comp.glsl, which
+// define splat_depth_at.
+
+float splat_depth_at(ivec2 p);   // +inf where no particle is, and outside the image
+
+layout(location = 50) uniform float fill_reach_depth;   // reach in pixels times the depth there
+layout(location = 51) uniform float fill_max_step;      // depths across a gap differ by less
+
+const int max_reach = 6;
+
+// The nearest fluid from p along d within reach: its depth and distance (0 if none).
+vec2 fluid_along(ivec2 p, ivec2 d)
+{
+    for (int k = 1; k <= max_reach; k++) {
+        float z = splat_depth_at(p + k * d);
+        if (!isinf(z))
+            return float(k) <= fill_reach_depth / z ? vec2(z, float(k)) : vec2(0.0);
+    }
+    return vec2(0.0);
+}
+
+// The depth to give the empty pixel p, or +inf to leave it empty.
+float filled_depth(ivec2 p)
+{
+    const ivec2 directions[4] = ivec2[4](ivec2(1, 0), ivec2(0, 1), ivec2(1, 1), ivec2(1, -1));
+    float sum = 0.0;
+    for (int i = 0; i < 4; i++) {
+        vec2 a = fluid_along(p, directions[i]);
+        if (a.y == 0.0)
+            return uintBitsToFloat(0x7f800000u);
+        vec2 b = fluid_along(p, -directions[i]);
+        if (b.y == 0.0 || abs(a.x - b.x) > fill_max_step)
+            return uintBitsToFloat(0x7f800000u);
+        sum += (a.x * b.y + b.x * a.y) / (a.y + b.y);   // linear across the gap
+    }
+    return 0.25 * sum;
+}
