@@ -33,7 +33,7 @@ void bench_options_print_usage(void)
            "         [--size 1280x720,...] [--smoothing curvature,none,...] [--iterations 15,40,default,...]\n"
            "         [--scale 1,0.5,0.25] [--frames N] [--encode png|jpeg|exr|none] [--image PATH.png]\n"
            "         [--profile] [--shader-dir DIR] [--splat auto|fragment|compute] [--filter-radius PX]\n"
-           "         [--kernel sphere|anisotropic]\n"
+           "         [--kernel sphere|anisotropic] [--shadow on|off]\n"
            "       fluidcast-bench --particles N --write-scene PATH.f32\n"
            "Prints a markdown table: median GPU ms per stage (timer queries; upload: the GL thread's\n"
            "wall time copying the frame), encode ms, wall ms, and\n"
@@ -57,6 +57,7 @@ void bench_options_print_usage(void)
            "computed once per upload, so the rows time their splat; before the rows of each\n"
            "particle count a line gives the anisotropy passes' own time (median over --frames\n"
            "fresh computations, the GL queue drained around each).\n"
+           "--shadow off leaves out the fluid's shadow on the floor (default on, as rendered).\n"
            "--write-scene writes the drop scene as raw little-endian float32 xyz and prints\n"
            "'particles N spacing S radius R' (R: the sphere radius the benchmark renders with).\n");
 }
@@ -73,6 +74,7 @@ void bench_options_default(bench_options *o)
         .smooth_scales = {1.0f}, .n_smooth_scales = 1,
         .frames = 10,
         .format = FC_FORMAT_PNG,
+        .shadow = true,
     };
     *o = defaults;
 }
@@ -221,6 +223,15 @@ static fc_code parse_kernel(const char *value, bench_options *o, fc_error *err)
     return FC_OK;
 }
 
+static fc_code parse_shadow(const char *value, bench_options *o, fc_error *err)
+{
+    if (!strcmp(value, "on") || !strcmp(value, "off")) {
+        o->shadow = !strcmp(value, "on");
+        return FC_OK;
+    }
+    return fc_error_set(err, FC_ERR_USAGE, "--shadow %s: expected on or off", value);
+}
+
 static fc_code parse_valued(const char *option, const char *value, bench_options *o, fc_error *err)
 {
     if (!strcmp(option, "--gpu"))
@@ -249,6 +260,8 @@ static fc_code parse_valued(const char *option, const char *value, bench_options
         return parse_filter_radius(value, o, err);
     if (!strcmp(option, "--kernel"))
         return parse_kernel(value, o, err);
+    if (!strcmp(option, "--shadow"))
+        return parse_shadow(value, o, err);
     if (!strcmp(option, "--image")) {
         o->image_path = value;
         return FC_OK;

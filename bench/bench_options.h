@@ -38,6 +38,7 @@ typedef struct bench_options {
     fc_splat_method splat;   /* --splat: the surface splat forced on the pipeline; AUTO: its own choice */
     uint32_t filter_radius;  /* --filter-radius: fc_settings.filter_radius; 0: from the projected particle size */
     fc_kernel kernel;        /* --kernel: fc_settings.kernel */
+    bool shadow;             /* --shadow: fc_settings.shadow */
 } bench_options;
 
 /* Defaults: 64k particles, 1280x720, curvature flow 40 iterations at full

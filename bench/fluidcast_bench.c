@@ -144,16 +144,17 @@ static void print_row(uint64_t particles, uint32_t w, uint32_t h, const fc_setti
 
 /* fluidcast's defaults but for the quantities the benchmark varies. */
 static void config_settings(fc_smoothing method, uint32_t iterations, float smooth_scale, float radius,
-                            uint32_t filter_radius, fc_kernel kernel, fc_settings *settings)
+                            const bench_options *o, fc_settings *settings)
 {
     fc_settings_default(settings);
     settings->radius = radius;
-    settings->filter_radius = filter_radius;
+    settings->filter_radius = o->filter_radius;
     settings->smoothing = method;
     settings->iterations =
         iterations == BENCH_DEFAULT_ITERATIONS ? fc_smoothing_default_iterations(method) : iterations;
     settings->smooth_scale = smooth_scale;
-    settings->kernel = kernel;
+    settings->kernel = o->kernel;
+    settings->shadow = o->shadow;
 }
 
 /* The rows of one image size: every smoothing method x iteration count x
@@ -172,7 +173,7 @@ static fc_code bench_size(fc_pipeline *pipe, const bench_options *o, const bench
             for (int ri = 0; ri < (smooths ? o->n_smooth_scales : 1); ri++) {
                 fc_settings settings;
                 config_settings(method, smooths ? o->iterations[ii] : 0, smooths ? o->smooth_scales[ri] : 1.0f,
-                                radius, o->filter_radius, o->kernel, &settings);
+                                radius, o, &settings);
                 bench_row row;
                 fc_code rc = bench_config(pipe, o, w, h, &settings, &row, err);
                 if (rc != FC_OK)
