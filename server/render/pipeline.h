@@ -89,7 +89,9 @@ fc_code fc_pipeline_render_scene(fc_pipeline *p, const fc_camera *camera, const 
  * linear depth (R32F each), the compute splat's two R32UI images, the
  * thickness splat and its blur (R32F x 3: the blur's two at half the
  * image's resolution, or the splat's where lower) and the thickness AOV's
- * upsampled copy (R32F), the smoothing methods' ping-pong
+ * upsampled copy (R32F), the shadow pass's own thickness splat and
+ * blur of the sun's view (R32F x 3, a 256x256 map and its half-resolution
+ * blur), the smoothing methods' ping-pong
  * pairs (curvature flow R32F, bilateral R32F, narrow range RG32F, binomial
  * RGBA32F), the reduced-resolution depth pair (R32F) and the silhouette blend
  * (SRGB8_ALPHA8, RGBA32F), noise (R32F), normals (RGBA32F), background
