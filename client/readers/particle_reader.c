@@ -19,19 +19,27 @@ static const struct {
     { "ply", FC_FILE_PLY },
     { "vtk", FC_FILE_VTK },
     { "csv", FC_FILE_CSV },
+    { "bgeo", FC_FILE_BGEO },
+    { "bhclassic", FC_FILE_BGEO },
+    { "bgeo.gz", FC_FILE_BGEO },
+    { "bgeo.sc", FC_FILE_BGEO },
 };
+
+/* Whether the name ends with "." extension, case-insensitively. */
+static bool has_extension(const char *base, const char *extension)
+{
+    size_t n = strlen(base), m = strlen(extension);
+    return n > m && base[n - m - 1] == '.' && fc_span_iequals((fc_span){ base + n - m, m }, extension);
+}
 
 fc_file_format fc_file_format_from_path(const char *path)
 {
     if (path == NULL)
         return FC_FILE_UNKNOWN;
-    const char *base = strrchr(path, '/');
-    const char *dot = strrchr(base ? base : path, '.');
-    if (dot == NULL)
-        return FC_FILE_UNKNOWN;
-    fc_span extension = { dot + 1, strlen(dot + 1) };
+    const char *slash = strrchr(path, '/');
+    const char *base = slash ? slash + 1 : path;
     for (size_t i = 0; i < sizeof format_extensions / sizeof format_extensions[0]; i++) {
-        if (fc_span_iequals(extension, format_extensions[i].extension))
+        if (has_extension(base, format_extensions[i].extension))
             return format_extensions[i].format;
     }
     return FC_FILE_UNKNOWN;
@@ -39,7 +47,7 @@ fc_file_format fc_file_format_from_path(const char *path)
 
 static fc_code unknown_format(const char *name, fc_error *err)
 {
-    return fc_error_set(err, FC_ERR_PARSE, "%s: unknown particle file format (expected .f32, .ply, .vtk or .csv)",
+    return fc_error_set(err, FC_ERR_PARSE, "%s: unknown particle file format (expected .f32, .ply, .vtk, .csv or .bgeo)",
                         name);
 }
 
@@ -54,6 +62,8 @@ static fc_code read_format(fc_cursor *c, fc_file_format format, fc_frame *frame,
         return fc_read_vtk(c, frame, err);
     case FC_FILE_CSV:
         return fc_read_csv(c, frame, err);
+    case FC_FILE_BGEO:
+        return fc_read_bgeo(c, frame, err);
     case FC_FILE_UNKNOWN:
         break;
     }

@@ -31,6 +31,9 @@ typedef struct broken_file {
 #define ONE_LE_PARTICLE "\x00\x00\x80\x3f" "\x00\x00\x00\x40" "\x00\x00\x40\x40"   /* 1 2 3 */
 #define VTK_ASCII "# vtk DataFile Version 3.0\nbroken\nASCII\nDATASET POLYDATA\n"
 #define VTK_BINARY "# vtk DataFile Version 3.0\nbroken\nBINARY\nDATASET POLYDATA\n"
+#define BGEO_ZEROS(n) BGEO_ZEROS_##n
+#define BGEO_ZEROS_3 "\0\0\0\0\0\0\0\0\0\0\0\0"
+#define BGEO_ZEROS_6 BGEO_ZEROS_3 BGEO_ZEROS_3
 #define ONE_BE_PARTICLE "\x3f\x80\x00\x00" "\x40\x00\x00\x00" "\x40\x40\x00\x00"   /* 1 2 3 */
 
 static const broken_file files[] = {
@@ -151,6 +154,26 @@ static const broken_file files[] = {
     {"float_overflow.csv", "x,y,z\n1,3.5e38,2\n", 0, "particle 0: y"},
     {"id_2_32.csv", "x,y,z,id\n1,2,3,4294967296\n", 0, "id = 4.29497e+09 is not an integer"},
     {"id_fraction.csv", "x,y,z,id\n1,2,3,0.5\n", 0, "id = 0.5 is not an integer"},
+
+    /* ---- Houdini classic BGEO (big-endian ints: version nPoints nPrims nPointGroups nPrimGroups
+     *      nPointAttrib nVertexAttrib nPrimAttrib nAttrib) ---- */
+    {"empty.bgeo", "", 0, "empty file"},
+    {"magic_cut.bgeo", "Bge", 0, "not a classic BGEO file"},
+    {"json.bgeo", BIN("\x7fNSJb[\x00"), "binary JSON BGEO (Houdini 12 and later) is not supported"},
+    {"header_cut.bgeo", BIN("BgeoV" "\0\0\0\x05" "\0\0\0\x01" "\0\0"), "header ends before nPrims"},
+    {"points_2_31.bgeo", BIN("BgeoV" "\0\0\0\x05" "\x7f\xff\xff\xff" BGEO_ZEROS(6) "\0\0\0\0" ONE_BE_PARTICLE "\x3f\x80\0\0"),
+     "2147483647 points of 16 bytes cannot fit in the 16 bytes left"},
+    {"points_negative.bgeo", BIN("BgeoV" "\0\0\0\x05" "\xff\xff\xff\xff" BGEO_ZEROS(6)), "nPoints is negative (-1)"},
+    {"attributes_2_31.bgeo", BIN("BgeoV" "\0\0\0\x05" "\0\0\0\x01" BGEO_ZEROS(3) "\x7f\xff\xff\xff" BGEO_ZEROS(3)),
+     "2147483647 point attributes (at most 256)"},
+    {"attribute_name_cut.bgeo", BIN("BgeoV" "\0\0\0\x05" "\0\0\0\x01" BGEO_ZEROS(3) "\0\0\0\x01" BGEO_ZEROS(3) "\xff\xffv"),
+     "point attribute name runs past the end of the data"},
+    {"index_strings_2_31.bgeo",
+     BIN("BgeoV" "\0\0\0\x05" "\0\0\0\x01" BGEO_ZEROS(3) "\0\0\0\x01" BGEO_ZEROS(3) "\0\x01p" "\0\x01" "\0\0\0\x04"
+         "\x7f\xff\xff\xff" "\0\x01" "a"),
+     "point attribute 'p': index string 1 runs past the end of the data"},
+    {"gzip_cut.bgeo", BIN("\x1f\x8b\x08\x00\x00\x00\x00\x00\x00\x03"), "gzip: compressed stream is truncated"},
+    {"gzip_bad_block.bgeo", BIN("\x1f\x8b\x08\x00\x00\x00\x00\x00\x00\x03\x07\x00"), "gzip: corrupt compressed data"},
 
     /* ---- raw float32 ---- */
     {"empty.f32", "", 0, "empty file"},

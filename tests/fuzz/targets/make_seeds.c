@@ -8,6 +8,7 @@
 #include <stdint.h>
 #include <stdio.h>
 #include <string.h>
+#include <zlib.h>
 
 #include "fc_error.h"
 #include "fc_frame.h"
@@ -164,6 +165,65 @@ static int write_binary_vtk(const char *dir, bool unstructured)
     append_vtk_point_data(&b);
     int failed = save(dir, "fuzz_reader_vtk", unstructured ? "binary_unstructured.vtk" : "binary_polydata.vtk", &b);
     fc_buf_free(&b);
+    return failed;
+}
+
+/* A BGEO attribute definition with zero defaults, as partio writes it. */
+static void append_bgeo_attribute(fc_buf *b, const char *name, uint16_t components, uint32_t type)
+{
+    uint8_t len[2] = {0, (uint8_t)strlen(name)};
+    uint8_t size[2] = {(uint8_t)(components >> 8), (uint8_t)components};
+    append(b, len, 2);
+    append_text(b, name);
+    append(b, size, 2);
+    append_word(b, type, true);
+    for (uint16_t k = 0; k < components; k++)
+        append_word(b, 0, true);
+}
+
+/* Houdini classic BGEO V5 as partio writes it: header, v (vector), density (float), id (int), the points, 00 ff. */
+static void build_bgeo(fc_buf *b)
+{
+    const uint32_t header[] = {5, SEED_PARTICLES, 0, 0, 0, 3, 0, 0, 0};
+    append_text(b, "BgeoV");
+    for (size_t i = 0; i < sizeof header / sizeof header[0]; i++)
+        append_word(b, header[i], true);
+    append_bgeo_attribute(b, "v", 3, 5);
+    append_bgeo_attribute(b, "density", 1, 0);
+    append_bgeo_attribute(b, "id", 1, 1);
+    for (int i = 0; i < SEED_PARTICLES; i++) {
+        for (int k = 0; k < 3; k++)
+            append_f32(b, POSITIONS[i][k], true);
+        append_f32(b, 1.0f, true);
+        for (int k = 0; k < 3; k++)
+            append_f32(b, VELOCITY[i][k], true);
+        append_f32(b, DENSITY[i], true);
+        append_word(b, IDS[i] & 0x7fffffffu, true);
+    }
+    append(b, "\x00\xff", 2);
+}
+
+/* The plain file, and the same gzip'd as partio does while keeping the .bgeo name. */
+static int write_bgeo(const char *dir)
+{
+    fc_buf plain, packed;
+    fc_buf_init(&plain);
+    fc_buf_init(&packed);
+    build_bgeo(&plain);
+    int failed = save(dir, "fuzz_reader_bgeo", "classic.bgeo", &plain);
+    z_stream z = {0};
+    uint8_t out[4096];
+    failed |= deflateInit2(&z, 6, Z_DEFLATED, 16 + MAX_WBITS, 8, Z_DEFAULT_STRATEGY) != Z_OK;
+    z.next_in = plain.data;
+    z.avail_in = (uInt)plain.len;
+    z.next_out = out;
+    z.avail_out = sizeof out;
+    failed |= deflate(&z, Z_FINISH) != Z_STREAM_END;
+    append(&packed, out, sizeof out - z.avail_out);
+    deflateEnd(&z);
+    failed |= save(dir, "fuzz_reader_bgeo", "gzip.bgeo", &packed);
+    fc_buf_free(&plain);
+    fc_buf_free(&packed);
     return failed;
 }
 
@@ -505,7 +565,7 @@ int main(int argc, char **argv)
     }
     const char *dir = argv[1];
     int failed = write_f32(dir) | write_binary_ply(dir, false) | write_binary_ply(dir, true) |
-                 write_binary_vtk(dir, false) | write_binary_vtk(dir, true) | write_messages(dir) |
+                 write_binary_vtk(dir, false) | write_binary_vtk(dir, true) | write_bgeo(dir) | write_messages(dir) |
                  write_session_messages(dir) | write_settings_payloads(dir);
     return failed ? 1 : 0;
 }
