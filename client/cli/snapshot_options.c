@@ -385,7 +385,7 @@ static void print_surface_help(FILE *to, const fc_settings *d)
             "  --radius R              particle sphere radius in world units; without it\n"
             "                          the radius is estimated from the particle spacing\n"
             "                          (the median nearest-neighbour distance times 0.9\n"
-            "                          for spheres, 0.585 for ellipsoids) and printed\n"
+            "                          for spheres, 0.72 for ellipsoids) and printed\n"
             "  --kernel sphere|anisotropic\n"
             "                          particle shape: spheres, or ellipsoids stretched\n"
             "                          along each particle's neighbours (flat sheets,\n"
