@@ -5,14 +5,6 @@
 
 #include "fc_frame.h"
 
-/* The ellipsoids' radius as a share of the spheres' estimate (0.9 nearest-
- * neighbour distances): ellipsoids close a surface at a smaller radius, and
- * a smaller one keeps the particles' detail, but below about 0.7 distances
- * the smoothing, whose reach follows the radius, leaves a jittered surface
- * pebbly at 1280x720 (the demo scene). 0.8 gives 0.72 distances, chosen side
- * by side on the splash frames (whose solver suggests 0.55 spacings) and the
- * demo. */
-#define ELLIPSOID_RADIUS_SHARE 0.8f
 /* Spray: below this share of the median density. */
 #define SPRAY_DENSITY_SHARE 0.5f
 /* The median is that of an evenly spread sample of at most this many particles. */
@@ -48,8 +40,6 @@ void fc_cli_complete_settings(fc_settings *s, const fc_frame *frame, bool thresh
     *chosen = (fc_cli_choices){0};
     if (!(s->radius > 0.0f)) {
         s->radius = fc_frame_estimate_radius(frame);
-        if (s->kernel == FC_KERNEL_ANISOTROPIC)
-            s->radius *= ELLIPSOID_RADIUS_SHARE;
         chosen->radius = true;
     }
     if (!threshold_given && frame->density) {

@@ -22,8 +22,9 @@ typedef struct fc_cli_choices {
 } fc_cli_choices;
 
 /* Completes the settings from a frame (the first of a sequence): a radius
- * <= 0 is estimated from the particle spacing, for ellipsoids smaller than
- * for spheres (ELLIPSOID_RADIUS_SHARE in cli_settings.c); unless the user
+ * <= 0 is estimated from the particle spacing (fc_frame_estimate_radius:
+ * side by side on the splash frames and the demo scene, smaller radii made
+ * ellipsoids no crisper, and jittered surfaces pebbly); unless the user
  * gave one, a frame with densities gets a spray threshold of half its median
  * density, so that single-particle droplets (an isolated SPH particle has
  * about a third of the rest density) are drawn as white spray instead of as
