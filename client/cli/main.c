@@ -5,6 +5,7 @@
 #include "cli_report.h"
 #include "cli_token.h"
 #include "info.h"
+#include "render.h"
 #include "snapshot.h"
 #include "stream.h"
 #include "watch.h"
@@ -20,6 +21,8 @@ static void print_help(FILE *to)
           "commands:\n"
           "  snapshot INPUT -o OUT   render one particle file to an image\n"
           "                          (fluidcast snapshot --help for its options)\n"
+          "  render INPUTS... -o OUT render a sequence of particle files to a video\n"
+          "                          (.mp4, .webm) or numbered images\n"
           "  stream FILES...         push a sequence of particle files as frames, into a\n"
           "                          session (--session) and/or rendered back (--out-dir)\n"
           "  watch --session NAME    follow a session's frames as a viewer\n"
@@ -54,6 +57,8 @@ int main(int argc, char **argv)
     }
     if (strcmp(command, "snapshot") == 0)
         return fc_snapshot_main(argc - 2, argv + 2);
+    if (strcmp(command, "render") == 0)
+        return fc_render_main(argc - 2, argv + 2);
     if (strcmp(command, "stream") == 0)
         return fc_stream_main(argc - 2, argv + 2);
     if (strcmp(command, "watch") == 0)

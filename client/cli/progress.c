@@ -30,6 +30,12 @@ void fc_progress_start(fc_progress *p, FILE *to, bool tty, uint32_t total)
     *p = (fc_progress){.to = to, .tty = tty, .total = total, .start_ms = now_ms()};
 }
 
+/* Seconds the remaining frames take at the rate so far. */
+static double seconds_left(const fc_progress *p)
+{
+    return p->done && p->total > p->done ? elapsed_s(p) * (p->total - p->done) / p->done : 0.0;
+}
+
 static void draw_bar(const fc_progress *p)
 {
     char bar[BAR_WIDTH + 1];
@@ -39,8 +45,8 @@ static void draw_bar(const fc_progress *p)
     bar[BAR_WIDTH] = '\0';
     double s = elapsed_s(p);
     /* \r and erase-to-end-of-line redraw the bar in place. */
-    fprintf(p->to, "\r%u/%u frames [%s] %.2f MB/s %.1f fps %.0f%% saved\033[K", p->done, p->total, bar,
-            (double)p->wire_bytes / 1e6 / s, p->done / s, saved_percent(p));
+    fprintf(p->to, "\r%u/%u frames [%s] %.2f MB/s %.1f fps %.0f s left %.0f%% saved\033[K", p->done, p->total, bar,
+            (double)p->wire_bytes / 1e6 / s, p->done / s, seconds_left(p), saved_percent(p));
     fflush(p->to);
 }
 
@@ -53,9 +59,9 @@ void fc_progress_frame(fc_progress *p, const char *file, uint64_t particles, con
         draw_bar(p);
         return;
     }
-    fprintf(p->to, "frame %u/%u %s: %llu particles, %llu bytes sent (%llu raw), %.1f fps\n", p->done, p->total,
-            file, (unsigned long long)particles, (unsigned long long)stats->wire_bytes,
-            (unsigned long long)stats->raw_bytes, p->done / elapsed_s(p));
+    fprintf(p->to, "frame %u/%u %s: %llu particles, %llu bytes sent (%llu raw), %.1f fps, %.0f s left\n", p->done,
+            p->total, file, (unsigned long long)particles, (unsigned long long)stats->wire_bytes,
+            (unsigned long long)stats->raw_bytes, p->done / elapsed_s(p), seconds_left(p));
     fflush(p->to);
 }
 

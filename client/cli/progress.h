@@ -1,5 +1,6 @@
-/* progress.h — what `fluidcast stream` tells while it pushes a sequence: on a
- * terminal one progress bar redrawn in place (frames, MB/s, fps, bytes saved),
+/* progress.h — what `fluidcast stream` and `render` tell while they push a
+ * sequence: on a terminal one progress bar redrawn in place (frames, MB/s,
+ * fps, time left, bytes saved),
  * otherwise one plain line per frame, for logs; a summary line at the end. */
 #ifndef FC_PROGRESS_H
 #define FC_PROGRESS_H
@@ -23,7 +24,7 @@ typedef struct fc_progress {
 void fc_progress_start(fc_progress *p, FILE *to, bool tty, uint32_t total);
 /* One more frame went out: its file, particles and upload cost. */
 void fc_progress_frame(fc_progress *p, const char *file, uint64_t particles, const fc_upload_stats *stats);
-/* The summary line (after ending the bar on a terminal). */
+/* stream's summary line (after ending the bar on a terminal). */
 void fc_progress_finish(fc_progress *p);
 
 #endif

@@ -252,7 +252,7 @@ static const option_spec *find_option(const char *arg, const char **inline_value
     return NULL;
 }
 
-static void set_defaults(fc_snapshot_options *o)
+void fc_snapshot_set_defaults(fc_snapshot_options *o)
 {
     memset(o, 0, sizeof *o);
     o->server = FC_SNAPSHOT_DEFAULT_SERVER;
@@ -279,7 +279,7 @@ static void stand_in_up(const fc_snapshot_options *o, float up[3])
 
 /* An explicit camera is checked before any file is read, so a mistyped vector
  * is a usage error rather than a server rejection after the upload. */
-static fc_code check_explicit_camera(const fc_snapshot_options *o, fc_error *err)
+fc_code fc_snapshot_check_camera(const fc_snapshot_options *o, fc_error *err)
 {
     if (o->has_eye != o->has_target)
         return fc_error_set(err, FC_ERR_USAGE, "--eye and --target go together: give both or neither");
@@ -314,12 +314,27 @@ static fc_code check_combinations(fc_snapshot_options *o, fc_error *err)
         return fc_error_set(err, FC_ERR_USAGE, "--aov writes float channels: the output must be .exr");
     if (o->has_quality && o->format != FC_FORMAT_JPEG)
         return fc_error_set(err, FC_ERR_USAGE, "--quality applies to .jpg/.jpeg output only");
-    return check_explicit_camera(o, err);
+    return fc_snapshot_check_camera(o, err);
+}
+
+fc_code fc_snapshot_take_option(fc_snapshot_options *o, int argc, char **argv, int *i, bool *known, fc_error *err)
+{
+    const char *value;
+    const option_spec *spec = find_option(argv[*i], &value);
+    *known = spec != NULL;
+    if (!spec)
+        return FC_OK;
+    if (!value) {
+        if (*i + 1 >= argc)
+            return fc_error_set(err, FC_ERR_USAGE, "%s needs a value", spec->name);
+        value = argv[++*i];
+    }
+    return spec->handle(o, spec, value, err);
 }
 
 fc_code fc_snapshot_parse(int argc, char **argv, fc_snapshot_options *out, fc_error *err)
 {
-    set_defaults(out);
+    fc_snapshot_set_defaults(out);
     for (int i = 0; i < argc; i++) {
         const char *arg = argv[i];
         if (strcmp(arg, "--help") == 0 || strcmp(arg, "-h") == 0) {
@@ -332,16 +347,10 @@ fc_code fc_snapshot_parse(int argc, char **argv, fc_snapshot_options *out, fc_er
             out->input = arg;
             continue;
         }
-        const char *value;
-        const option_spec *spec = find_option(arg, &value);
-        if (!spec)
+        bool known;
+        fc_code code = fc_snapshot_take_option(out, argc, argv, &i, &known, err);
+        if (!known)
             return fc_error_set(err, FC_ERR_USAGE, "unknown option %s (see fluidcast snapshot --help)", arg);
-        if (!value) {
-            if (i + 1 >= argc)
-                return fc_error_set(err, FC_ERR_USAGE, "%s needs a value", spec->name);
-            value = argv[++i];
-        }
-        fc_code code = spec->handle(out, spec, value, err);
         if (code != FC_OK)
             return code;
     }
@@ -455,6 +464,14 @@ static void print_shading_help(FILE *to, const fc_settings *d)
             (unsigned)d->thickness_blur, d->shadow ? "on" : "off", (double)d->exposure);
 }
 
+void fc_snapshot_print_settings_help(FILE *to)
+{
+    fc_settings defaults;
+    fc_cli_default_settings(&defaults);
+    print_surface_help(to, &defaults);
+    print_shading_help(to, &defaults);
+}
+
 void fc_snapshot_print_help(FILE *to)
 {
     fputs("usage: fluidcast snapshot INPUT -o OUT [options]\n"
@@ -465,11 +482,8 @@ void fc_snapshot_print_help(FILE *to)
           "value as the next argument or after '=' (--ior=1.5).\n"
           "\n",
           to);
-    fc_settings defaults;
-    fc_cli_default_settings(&defaults);
     print_camera_help(to);
-    print_surface_help(to, &defaults);
-    print_shading_help(to, &defaults);
+    fc_snapshot_print_settings_help(to);
     fputs("  -h, --help              show this help\n\n", to);
     fc_cli_print_exit_codes(to);
 }

@@ -42,4 +42,23 @@ fc_code fc_snapshot_parse(int argc, char **argv, fc_snapshot_options *out, fc_er
 
 void fc_snapshot_print_help(FILE *to);
 
+/* ---- the same options for other commands (`fluidcast render`) ---- */
+
+/* The defaults fc_snapshot_parse starts from. */
+void fc_snapshot_set_defaults(fc_snapshot_options *o);
+
+/* When argv[*i] is one of snapshot's options (camera, image, render
+ * settings, scene images), applies it with its value (consuming the next
+ * argument when the value is not given after '=') and sets *known; leaves *o
+ * alone and clears *known otherwise. FC_ERR_USAGE as fc_snapshot_parse. */
+fc_code fc_snapshot_take_option(fc_snapshot_options *o, int argc, char **argv, int *i, bool *known,
+                                fc_error *err);
+
+/* Checks --eye/--target (both or neither) and the camera they make with
+ * --up, --fov and --size, as fc_snapshot_parse does. */
+fc_code fc_snapshot_check_camera(const fc_snapshot_options *o, fc_error *err);
+
+/* The help of the render settings: the "fluid surface" and "shading" sections. */
+void fc_snapshot_print_settings_help(FILE *to);
+
 #endif

@@ -1,0 +1,256 @@
+/* render_options.c — see render_options.h. */
+#include "render_options.h"
+
+#include <stdlib.h>
+#include <string.h>
+
+#include "cli_args.h"
+#include "cli_report.h"
+#include "cli_values.h"
+#include "fc_error.h"
+#include "output_file.h"
+#include "video_encoder.h"
+
+static fc_code set_start(void *o, const char *name, const char *value, fc_error *err)
+{
+    fc_render_options *r = o;
+    r->range.has_start = true;
+    return fc_cli_parse_uint(name, value, 0, UINT32_MAX, &r->range.start, err);
+}
+
+static fc_code set_end(void *o, const char *name, const char *value, fc_error *err)
+{
+    fc_render_options *r = o;
+    r->range.has_end = true;
+    return fc_cli_parse_uint(name, value, 0, UINT32_MAX, &r->range.end, err);
+}
+
+static fc_code set_step(void *o, const char *name, const char *value, fc_error *err)
+{
+    return fc_cli_parse_uint(name, value, 1, UINT32_MAX, &((fc_render_options *)o)->range.step, err);
+}
+
+static fc_code set_fps(void *o, const char *name, const char *value, fc_error *err)
+{
+    return fc_cli_parse_uint(name, value, 1, 1000, &((fc_render_options *)o)->fps, err);
+}
+
+static fc_code set_orbit(void *o, const char *name, const char *value, fc_error *err)
+{
+    fc_render_options *r = o;
+    r->has_orbit = true;
+    return fc_cli_parse_float(name, value, &r->orbit_deg, err);
+}
+
+static fc_code set_skip_existing(void *o, const char *name, const char *value, fc_error *err)
+{
+    (void)name, (void)value, (void)err;
+    ((fc_render_options *)o)->skip_existing = true;
+    return FC_OK;
+}
+
+/* Its range depends on the output: checked once the command line is complete. */
+static fc_code set_quality(void *o, const char *name, const char *value, fc_error *err)
+{
+    fc_render_options *r = o;
+    r->has_quality = true;
+    return fc_cli_parse_uint(name, value, 0, 1000, &r->quality, err);
+}
+
+/* render's own options; the rest are snapshot's. */
+static const fc_cli_option own_options[] = {
+    {"--start", true, set_start}, {"--end", true, set_end},     {"--step", true, set_step},
+    {"--fps", true, set_fps},     {"--orbit", true, set_orbit}, {"--skip-existing", false, set_skip_existing},
+    {"--quality", true, set_quality},
+};
+
+static const fc_cli_option *find_own(const char *arg, const char **inline_value)
+{
+    *inline_value = NULL;
+    size_t name_len = strcspn(arg, "=");
+    for (size_t i = 0; i < sizeof own_options / sizeof own_options[0]; i++) {
+        const fc_cli_option *option = &own_options[i];
+        if (strlen(option->name) == name_len && strncmp(arg, option->name, name_len) == 0) {
+            if (arg[name_len] == '=')
+                *inline_value = arg + name_len + 1;
+            return option;
+        }
+    }
+    return NULL;
+}
+
+static fc_code take_own(fc_render_options *o, const fc_cli_option *option, const char *value, int argc, char **argv,
+                        int *i, fc_error *err)
+{
+    if (!option->takes_value && value)
+        return fc_error_set(err, FC_ERR_USAGE, "%s takes no value", option->name);
+    if (option->takes_value && !value) {
+        if (*i + 1 >= argc)
+            return fc_error_set(err, FC_ERR_USAGE, "%s needs a value", option->name);
+        value = argv[++*i];
+    }
+    return option->set(o, option->name, value, err);
+}
+
+static fc_code add_input(fc_render_options *o, const char *arg, fc_error *err)
+{
+    const char **grown = realloc(o->inputs, (o->input_count + 1) * sizeof *grown);
+    if (!grown)
+        return fc_error_set(err, FC_ERR_NOMEM, "no memory for the input list");
+    o->inputs = grown;
+    o->inputs[o->input_count++] = arg;
+    return FC_OK;
+}
+
+static fc_code take_argument(fc_render_options *o, int argc, char **argv, int *i, fc_error *err)
+{
+    const char *arg = argv[*i];
+    if (arg[0] != '-' || arg[1] == '\0')
+        return add_input(o, arg, err);
+    const char *value;
+    const fc_cli_option *own = find_own(arg, &value);
+    if (own)
+        return take_own(o, own, value, argc, argv, i, err);
+    bool known;
+    fc_code code = fc_snapshot_take_option(&o->view, argc, argv, i, &known, err);
+    if (!known)
+        return fc_error_set(err, FC_ERR_USAGE, "unknown option %s (see fluidcast render --help)", arg);
+    return code;
+}
+
+static fc_code check_video(fc_render_options *o, fc_error *err)
+{
+    const char *out = o->view.output;
+    if (o->skip_existing)
+        return fc_error_set(err, FC_ERR_USAGE, "--skip-existing resumes image sequences; %s is one video", out);
+    if (o->view.aov != FC_AOV_COLOR)
+        return fc_error_set(err, FC_ERR_USAGE, "--aov writes float channels: use an .exr pattern, not a video");
+    if (o->view.width % 2 || o->view.height % 2)
+        return fc_error_set(err, FC_ERR_USAGE, "video needs an even width and height (yuv420p), not --size %ux%u",
+                            (unsigned)o->view.width, (unsigned)o->view.height);
+    uint32_t max = fc_video_max_quality(out);
+    if (!o->has_quality)
+        o->quality = fc_video_default_quality(out);
+    else if (o->quality > max)
+        return fc_error_set(err, FC_ERR_USAGE, "--quality is the video's constant-rate factor, 0..%u for %s",
+                            (unsigned)max, out);
+    o->view.format = FC_FORMAT_RAW;
+    return FC_OK;
+}
+
+static fc_code check_image_pattern(fc_render_options *o, fc_error *err)
+{
+    const char *out = o->view.output;
+    if (!fc_is_frame_pattern(out))
+        return fc_error_set(err, FC_ERR_USAGE,
+                            "-o %s: give a video (.mp4, .webm) or an image pattern with one %%d, such as "
+                            "frames/f_%%04d.png",
+                            out);
+    fc_code code = fc_output_format_from_path(out, &o->view.format, err);
+    if (code != FC_OK)
+        return code;
+    if (o->view.aov != FC_AOV_COLOR && o->view.format != FC_FORMAT_EXR)
+        return fc_error_set(err, FC_ERR_USAGE, "--aov writes float channels: the output must be .exr");
+    if (o->has_quality && o->view.format != FC_FORMAT_JPEG)
+        return fc_error_set(err, FC_ERR_USAGE, "--quality applies to videos and .jpg/.jpeg images only");
+    if (o->has_quality && (o->quality < 1 || o->quality > 100))
+        return fc_error_set(err, FC_ERR_USAGE, "--quality of JPEG images is 1..100");
+    if (o->has_quality)
+        o->view.quality = o->quality;
+    return FC_OK;
+}
+
+static fc_code check_combinations(fc_render_options *o, fc_error *err)
+{
+    if (o->input_count == 0)
+        return fc_error_set(err, FC_ERR_USAGE, "render needs particle files: a list, a glob or a %%04d pattern");
+    if (!o->view.output)
+        return fc_error_set(err, FC_ERR_USAGE, "render needs an output: -o OUT.mp4|.webm or -o frames/f_%%04d.png");
+    o->video = fc_video_is_video_path(o->view.output);
+    fc_code code = o->video ? check_video(o, err) : check_image_pattern(o, err);
+    return code != FC_OK ? code : fc_snapshot_check_camera(&o->view, err);
+}
+
+fc_code fc_render_parse(int argc, char **argv, fc_render_options *out, fc_error *err)
+{
+    memset(out, 0, sizeof *out);
+    fc_snapshot_set_defaults(&out->view);
+    out->range.step = 1;
+    out->fps = FC_RENDER_DEFAULT_FPS;
+    for (int i = 0; i < argc; i++) {
+        if (strcmp(argv[i], "--help") == 0 || strcmp(argv[i], "-h") == 0) {
+            out->help = true;
+            return FC_OK;
+        }
+        fc_code code = take_argument(out, argc, argv, &i, err);
+        if (code != FC_OK)
+            return code;
+    }
+    return check_combinations(out, err);
+}
+
+void fc_render_options_free(fc_render_options *o)
+{
+    free(o->inputs);
+    o->inputs = NULL;
+    o->input_count = 0;
+}
+
+static void print_sequence_help(FILE *to)
+{
+    fprintf(to,
+            "usage: fluidcast render INPUTS... -o OUT [options]\n"
+            "\n"
+            "Renders a sequence of particle files (.f32, .ply, .vtk, .csv) on a fluidcastd\n"
+            "server, in order, into a video or numbered images. The camera stays put over\n"
+            "the sequence: it frames the bounding box of all its frames (a first pass reads\n"
+            "every file for it), up guessed from the first frame as snapshot does.\n"
+            "\n"
+            "INPUTS: files in the order given; quoted globs ('out/*.ply', expanded here,\n"
+            "numbers in names sorted by value); or one pattern with a %%d (frame_%%04d.ply):\n"
+            "frames from the lowest number that exists up to the first that is missing.\n"
+            "\n"
+            "sequence:\n"
+            "  -o, --output OUT        video (.mp4: H.264 with libx264, else MPEG-4;\n"
+            "                          .webm: VP9; yuv420p, even sizes) or an image\n"
+            "                          pattern with one %%d: frames/f_%%04d.png|.jpg|.exr,\n"
+            "                          numbered like the input pattern's frames, else\n"
+            "                          0, 1, 2... in order (the directory must exist)\n"
+            "  --start N, --end N      first and last frame number of a %%d pattern (with\n"
+            "                          --end every frame must exist)\n"
+            "  --step N                every Nth frame of a pattern (default 1)\n"
+            "  --fps N                 video frame rate, 1..1000 (default %u)\n"
+            "  --quality Q             video: constant-rate factor, lower is better\n"
+            "                          (H.264 0..51, default 23; VP9 0..63, default 32);\n"
+            "                          .jpg: JPEG quality 1..100 (default 90)\n"
+            "  --orbit DEGREES         turn the eye about the target around the up axis,\n"
+            "                          DEGREES x i / N at frame i of N (360: a seamless loop)\n"
+            "  --skip-existing         image patterns: leave frames whose image exists, to\n"
+            "                          resume an interrupted batch (the camera is the same)\n"
+            "\n"
+            "camera and image (as for snapshot):\n"
+            "  --server HOST:PORT      server address (default " FC_SNAPSHOT_DEFAULT_SERVER ")\n"
+            "  --size WxH              image size (default 1280x720)\n"
+            "  --eye X,Y,Z, --target X,Y,Z\n"
+            "                          fixed look-at camera (both or neither)\n"
+            "  --up X,Y,Z|x|y|z|-x|-y|-z\n"
+            "                          up in the picture and axis of --orbit (default:\n"
+            "                          guessed from the first frame's particles, printed)\n"
+            "  --fov DEG               vertical field of view (default 40)\n"
+            "  --aov NAME              an output variable instead of the colour (.exr only)\n"
+            "\n",
+            FC_RENDER_DEFAULT_FPS);
+}
+
+void fc_render_print_help(FILE *to)
+{
+    print_sequence_help(to);
+    fc_snapshot_print_settings_help(to);
+    fputs("On a terminal a progress bar shows frames, fps and the time left; otherwise one\n"
+          "line per frame. A frame that cannot be read stops the render with its name; a\n"
+          "video is finished so that the frames before it play.\n"
+          "  -h, --help              show this help\n"
+          "\n",
+          to);
+    fc_cli_print_exit_codes(to);
+}

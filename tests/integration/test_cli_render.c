@@ -1,0 +1,419 @@
+/* test_cli_render.c — `fluidcast render` against the real fluidcastd: six
+ * frames of a ball of particles moving along +x, rendered at 160x120 to PNGs
+ * and to an .mp4 (and a .webm). The videos are decoded with libavformat and
+ * libavcodec: as many frames as files, in order (the ball's centroid moves
+ * monotonically, as in the PNGs), each within a PSNR bound of its PNG.
+ * --skip-existing renders only the missing images and leaves the others
+ * untouched; a missing or corrupt frame in the middle stops the render with
+ * exit status 3 and its name, and the partial video plays with the frames
+ * before it; --orbit 90 turns the view (the floor changes between the first
+ * and last frame) while the fixed camera keeps every pixel away from the
+ * ball. */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include "cli_runner.h"
+#include "fc_error.h"
+#include "fc_frame.h"
+#include "support/daemon_process.h"
+#include "support/image_decode.h"
+#include "test_ball.h"
+#include "test_util.h"
+#include "video_frames.h"
+
+#define FRAMES 6
+#define WIDTH 160
+#define HEIGHT 120
+#define PATH_CAP 256
+
+typedef struct test_env {
+    char dir[64];
+    char server[32];
+} test_env;
+
+static const char *path_in(const test_env *env, const char *name, char *buf)
+{
+    if (snprintf(buf, PATH_CAP, "%s/%s", env->dir, (const char *)name) >= PATH_CAP)
+        buf[0] = '\0';
+    return buf;
+}
+
+static const char *frame_input(const test_env *env, int i, char *buf)
+{
+    snprintf(buf, PATH_CAP, "%s/in/ball_%04d.f32", env->dir, i);
+    return buf;
+}
+
+/* ---- the sequence: a ball of radius 0.15 (lattice spacing 0.05) whose
+ * centre moves from x = -0.5 to x = 0.5, 0.3 above the origin ---- */
+
+static bool write_ball(const char *path, float cx)
+{
+    const int n = 3;
+    fc_frame f = {0};
+    if (fc_frame_alloc(&f, (uint64_t)(2 * n + 1) * (2 * n + 1) * (2 * n + 1), 0, NULL) != FC_OK)
+        return false;
+    uint64_t count = 0;
+    for (int a = -n; a <= n; a++)
+        for (int b = -n; b <= n; b++)
+            for (int c = -n; c <= n; c++) {
+                if (a * a + b * b + c * c > n * n)
+                    continue;
+                float *p = f.positions + 3 * count++;
+                p[0] = cx + 0.05f * a;
+                p[1] = 0.05f * b;
+                p[2] = 0.3f + 0.05f * c;
+            }
+    f.count = count;
+    bool ok = test_write_f32(&f, path);
+    fc_frame_free(&f);
+    return ok;
+}
+
+static bool write_sequence(const test_env *env)
+{
+    char buf[PATH_CAP];
+    if (mkdir(path_in(env, "in", buf), 0700) != 0)
+        return false;
+    for (int i = 0; i < FRAMES; i++)
+        if (!write_ball(frame_input(env, i, buf), -0.5f + 0.2f * i))
+            return false;
+    /* Corrupt: 5 bytes are not whole xyz float triples. */
+    FILE *f = fopen(path_in(env, "in/corrupt.f32", buf), "wb");
+    return f && fwrite("abcde", 1, 5, f) == 5 && fclose(f) == 0;
+}
+
+/* ---- running the CLI ---- */
+
+/* The CLI with the common options first, then `extra` (NULL-terminated). */
+static void render(const test_env *env, const char *const *inputs, const char *out, const char *const *extra,
+                   cli_result *r)
+{
+    const char *args[31] = {"render"};
+    int n = 1;
+    for (int i = 0; inputs[i] && n < 20; i++)
+        args[n++] = inputs[i];
+    const char *common[] = {"-o", out, "--server", env->server, "--size", "160x120", "--up", "z", "--radius",
+                            "0.04", NULL};
+    for (int i = 0; common[i]; i++)
+        args[n++] = common[i];
+    for (int i = 0; extra && extra[i] && n < 30; i++)
+        args[n++] = extra[i];
+    args[n] = NULL;
+    cli_run(FLUIDCAST_CLI_PATH, env->dir, args, r);
+}
+
+static const char *pattern_input(const test_env *env, char *buf)
+{
+    snprintf(buf, PATH_CAP, "%s/in/ball_%%04d.f32", env->dir);
+    return buf;
+}
+
+/* ---- pictures ---- */
+
+typedef struct picture {
+    uint32_t width, height;
+    uint8_t *rgb;    /* 3 bytes a pixel */
+} picture;
+
+static bool read_png(const char *path, picture *out)
+{
+    size_t size;
+    uint8_t *data = read_whole_file(path, &size);
+    fc_decoded_image img;
+    fc_error err;
+    bool ok = data && fc_decode_image(data, size, "png", 0, &img, &err) == FC_OK;
+    free(data);
+    if (!ok)
+        return false;
+    out->width = img.width;
+    out->height = img.height;
+    out->rgb = malloc((size_t)img.width * img.height * 3);
+    const uint8_t *src = img.pixels;
+    for (size_t p = 0; p < (size_t)img.width * img.height; p++)
+        for (int c = 0; c < 3; c++)
+            out->rgb[3 * p + c] = src[p * img.channels + (c < (int)img.channels ? c : 0)];
+    fc_decoded_image_free(&img);
+    return true;
+}
+
+static bool read_frame_png(const char *pattern_dir, const test_env *env, int i, picture *out)
+{
+    char name[PATH_CAP], path[PATH_CAP];
+    snprintf(name, sizeof name, "%s/f_%04d.png", pattern_dir, i);
+    return read_png(path_in(env, name, path), out);
+}
+
+/* The fluid is blue over a neutral floor and sky: pixels whose blue exceeds
+ * their red by 60. Returns the mean x of those pixels, -1 when none. */
+static double fluid_centroid_x(const uint8_t *rgb, uint32_t width, uint32_t height, uint32_t *pixels)
+{
+    double sum = 0;
+    *pixels = 0;
+    for (uint32_t y = 0; y < height; y++)
+        for (uint32_t x = 0; x < width; x++) {
+            const uint8_t *p = rgb + 3 * ((size_t)y * width + x);
+            if (p[2] > p[0] + 60) {
+                sum += x;
+                (*pixels)++;
+            }
+        }
+    return *pixels ? sum / *pixels : -1.0;
+}
+
+static double psnr(const uint8_t *a, const uint8_t *b, size_t bytes)
+{
+    double se = 0;
+    for (size_t i = 0; i < bytes; i++) {
+        double d = (double)a[i] - b[i];
+        se += d * d;
+    }
+    double mse = se / (double)bytes;
+    return mse > 0 ? 10.0 * log10(255.0 * 255.0 / mse) : 99.0;
+}
+
+/* Fraction of the pixels of rows [first_row, height) where some channel
+ * differs by more than 2. */
+static double changed_fraction(const picture *a, const picture *b, uint32_t first_row)
+{
+    size_t n = (size_t)a->width * a->height, changed = 0;
+    for (size_t p = (size_t)first_row * a->width; p < n; p++)
+        for (int c = 0; c < 3; c++)
+            if (abs((int)a->rgb[3 * p + c] - (int)b->rgb[3 * p + c]) > 2) {
+                changed++;
+                break;
+            }
+    return (double)changed / (double)(n - (size_t)first_row * a->width);
+}
+
+/* ---- the tests ---- */
+
+static void test_png_sequence(const test_env *env, double centroid[FRAMES])
+{
+    char in[PATH_CAP], out[PATH_CAP];
+    cli_result r;
+    render(env, (const char *const[]){pattern_input(env, in), NULL}, path_in(env, "png/f_%04d.png", out), NULL, &r);
+    CHECK_MSG(r.status == 0, "render to PNGs: exit %d\n%s%s", r.status, r.out, r.err);
+    CHECK_MSG(strstr(r.out, "render: 6 frames") && strstr(r.out, "frame 6/6 ") &&
+                  strstr(r.out, "rendered 6 frames to "),
+              "stdout: %s", r.out);
+    for (int i = 0; i < FRAMES; i++) {
+        picture png;
+        centroid[i] = -1;
+        if (!read_frame_png("png", env, i, &png)) {
+            CHECK_MSG(0, "png/f_%04d.png missing or undecodable", i);
+            continue;
+        }
+        CHECK(png.width == WIDTH && png.height == HEIGHT);
+        uint32_t pixels;
+        centroid[i] = fluid_centroid_x(png.rgb, png.width, png.height, &pixels);
+        CHECK_MSG(pixels > 30, "frame %d: %u fluid pixels", i, pixels);
+        if (i > 0)
+            CHECK_MSG(centroid[i] > centroid[i - 1] + 3, "PNG centroids: frame %d at %.1f, frame %d at %.1f", i - 1,
+                      centroid[i - 1], i, centroid[i]);
+        free(png.rgb);
+    }
+}
+
+/* The video has the PNGs' frames, in their order, within `min_psnr` dB. */
+static void check_video(const test_env *env, const char *name, const char *codec, const double centroid[FRAMES],
+                        double min_psnr)
+{
+    char path[PATH_CAP];
+    video_frames v;
+    if (!video_frames_read(path_in(env, name, path), &v)) {
+        CHECK_MSG(0, "%s does not decode", name);
+        return;
+    }
+    CHECK_MSG(strcmp(v.codec, codec) == 0, "%s: codec %s, expected %s", name, v.codec, codec);
+    CHECK_MSG(v.count == FRAMES, "%s: %u frames, expected %d", name, v.count, FRAMES);
+    CHECK_MSG(v.width == WIDTH && v.height == HEIGHT, "%s: %ux%u", name, v.width, v.height);
+    for (uint32_t i = 0; i < v.count && i < FRAMES && v.width == WIDTH && v.height == HEIGHT; i++) {
+        picture png;
+        if (!read_frame_png("png", env, (int)i, &png))
+            continue;
+        double db = psnr(v.rgb[i], png.rgb, (size_t)WIDTH * HEIGHT * 3);
+        uint32_t pixels;
+        double cx = fluid_centroid_x(v.rgb[i], WIDTH, HEIGHT, &pixels);
+        printf("%s frame %u: PSNR %.1f dB against the PNG; centroid x %.1f (PNG %.1f)\n", name, i, db, cx,
+               centroid[i]);
+        CHECK_MSG(db > min_psnr, "%s frame %u: PSNR %.1f dB against png/f_%04u.png", name, i, db, i);
+        CHECK_MSG(fabs(cx - centroid[i]) < 2.0, "%s frame %u: centroid %.1f, PNG's %.1f", name, i, cx, centroid[i]);
+        free(png.rgb);
+    }
+    video_frames_free(&v);
+}
+
+static void test_videos(const test_env *env, const double centroid[FRAMES])
+{
+    char in[PATH_CAP], out[PATH_CAP];
+    cli_result r;
+    render(env, (const char *const[]){pattern_input(env, in), NULL}, path_in(env, "seq.mp4", out),
+           (const char *const[]){"--quality", "18", NULL}, &r);
+    CHECK_MSG(r.status == 0, "render to mp4: exit %d\n%s%s", r.status, r.out, r.err);
+    CHECK_MSG(strstr(r.out, "libx264, yuv420p, 160x120, crf 18, 24 fps"), "stdout: %s", r.out);
+    check_video(env, "seq.mp4", "h264", centroid, 30.0);
+
+    /* A glob, sorted by the numbers in the names, into VP9. */
+    snprintf(in, sizeof in, "%s/in/ball_*.f32", env->dir);
+    render(env, (const char *const[]){in, NULL}, path_in(env, "seq.webm", out), NULL, &r);
+    CHECK_MSG(r.status == 0, "render to webm: exit %d\n%s%s", r.status, r.out, r.err);
+    CHECK_MSG(strstr(r.out, "libvpx-vp9"), "stdout: %s", r.out);
+    check_video(env, "seq.webm", "vp9", centroid, 30.0);
+}
+
+static bool same_mtime(const struct stat *a, const struct stat *b)
+{
+    return a->st_mtim.tv_sec == b->st_mtim.tv_sec && a->st_mtim.tv_nsec == b->st_mtim.tv_nsec;
+}
+
+static void test_skip_existing(const test_env *env)
+{
+    char in[PATH_CAP], out[PATH_CAP], path[PATH_CAP], name[PATH_CAP];
+    struct stat before[FRAMES];
+    for (int i = 0; i < FRAMES; i++) {
+        snprintf(name, sizeof name, "png/f_%04d.png", i);
+        CHECK(stat(path_in(env, name, path), &before[i]) == 0);
+    }
+    CHECK(unlink(path_in(env, "png/f_0002.png", path)) == 0);
+    CHECK(unlink(path_in(env, "png/f_0004.png", path)) == 0);
+    cli_result r;
+    render(env, (const char *const[]){pattern_input(env, in), NULL}, path_in(env, "png/f_%04d.png", out),
+           (const char *const[]){"--skip-existing", NULL}, &r);
+    CHECK_MSG(r.status == 0, "--skip-existing: exit %d\n%s%s", r.status, r.out, r.err);
+    CHECK_MSG(strstr(r.out, "skipping 4 frames whose images exist") && strstr(r.out, "frame 2/2 ") &&
+                  strstr(r.out, "ball_0004.f32") && !strstr(r.out, "ball_0003.f32:"),
+              "stdout: %s", r.out);
+    for (int i = 0; i < FRAMES; i++) {
+        struct stat now;
+        snprintf(name, sizeof name, "png/f_%04d.png", i);
+        CHECK_MSG(stat(path_in(env, name, path), &now) == 0, "%s missing", name);
+        if (i != 2 && i != 4)
+            CHECK_MSG(same_mtime(&before[i], &now), "%s was rewritten", name);
+    }
+}
+
+static void test_missing_and_corrupt_frames(const test_env *env)
+{
+    char in[FRAMES][PATH_CAP], out[PATH_CAP], path[PATH_CAP];
+    for (int i = 0; i < FRAMES; i++)
+        frame_input(env, i, in[i]);
+    snprintf(in[3], PATH_CAP, "%s/in/ball_missing.f32", env->dir);
+    cli_result r;
+    render(env, (const char *const[]){in[0], in[1], in[2], in[3], in[4], in[5], NULL}, path_in(env, "part.mp4", out),
+           NULL, &r);
+    CHECK_MSG(r.status == 3, "missing frame: exit %d\n%s%s", r.status, r.out, r.err);
+    CHECK_MSG(strstr(r.err, "frame 4 of 6") && strstr(r.err, in[3]), "stderr: %s", r.err);
+    CHECK_MSG(strstr(r.err, "part.mp4 is finished with the 3 frames rendered before the failure"), "stderr: %s",
+              r.err);
+    video_frames v;
+    CHECK_MSG(video_frames_read(path_in(env, "part.mp4", path), &v) && v.count == 3,
+              "the partial video decodes to %u frames, expected 3", v.count);
+    video_frames_free(&v);
+
+    snprintf(in[3], PATH_CAP, "%s/in/corrupt.f32", env->dir);
+    render(env, (const char *const[]){in[0], in[1], in[2], in[3], in[4], NULL}, path_in(env, "corrupt/f_%d.png", out),
+           NULL, &r);
+    CHECK_MSG(r.status == 3 && strstr(r.err, "frame 4 of 5") && strstr(r.err, "corrupt.f32"),
+              "corrupt frame: exit %d: %s", r.status, r.err);
+    CHECK_MSG(access(path_in(env, "corrupt/f_2.png", path), F_OK) == 0 &&
+                  access(path_in(env, "corrupt/f_3.png", path), F_OK) != 0,
+              "the images before the corrupt frame are written, none after");
+
+    /* A pattern with --end wants every frame up to it. */
+    char pattern[PATH_CAP];
+    render(env, (const char *const[]){pattern_input(env, pattern), NULL}, path_in(env, "end.mp4", out),
+           (const char *const[]){"--start", "4", "--end", "7", NULL}, &r);
+    CHECK_MSG(r.status == 3 && strstr(r.err, "frame 3 of 4") && strstr(r.err, "ball_0006.f32"),
+              "--end past the last file: exit %d: %s", r.status, r.err);
+}
+
+static void test_orbit(const test_env *env)
+{
+    char in[PATH_CAP], out[PATH_CAP];
+    cli_result r;
+    render(env, (const char *const[]){pattern_input(env, in), NULL}, path_in(env, "orbit/f_%04d.png", out),
+           (const char *const[]){"--orbit", "90", NULL}, &r);
+    CHECK_MSG(r.status == 0, "--orbit: exit %d\n%s%s", r.status, r.out, r.err);
+    picture fixed_first, fixed_last, orbit_first, orbit_last;
+    if (!read_frame_png("png", env, 0, &fixed_first) || !read_frame_png("png", env, FRAMES - 1, &fixed_last) ||
+        !read_frame_png("orbit", env, 0, &orbit_first) || !read_frame_png("orbit", env, FRAMES - 1, &orbit_last)) {
+        CHECK_MSG(0, "cannot read the fixed and orbit images");
+        return;
+    }
+    /* The bottom rows show the near floor's checkers, which neither the ball
+     * nor its shadow reaches: the background. */
+    uint32_t floor_rows = HEIGHT - 16;
+    double fixed = changed_fraction(&fixed_first, &fixed_last, floor_rows);
+    double orbit = changed_fraction(&orbit_first, &orbit_last, floor_rows);
+    double start = changed_fraction(&fixed_first, &orbit_first, 0);
+    printf("background (bottom 16 rows) changed first to last: fixed camera %.1f%%, --orbit 90 %.1f%%; orbit's "
+           "first frame against the fixed one: %.1f%% of all pixels\n",
+           100 * fixed, 100 * orbit, 100 * start);
+    CHECK_MSG(fixed == 0.0, "fixed camera: %.1f%% of the background changes", 100 * fixed);
+    CHECK_MSG(orbit > 0.4, "--orbit 90: only %.1f%% of the background changes", 100 * orbit);
+    CHECK_MSG(start == 0.0, "--orbit starts from the fixed camera: %.2f%% differ", 100 * start);
+    free(fixed_first.rgb);
+    free(fixed_last.rgb);
+    free(orbit_first.rgb);
+    free(orbit_last.rgb);
+}
+
+static void expect_usage(const test_env *env, const char *out, const char *const *extra, const char *message)
+{
+    char in[PATH_CAP], path[PATH_CAP];
+    cli_result r;
+    render(env, (const char *const[]){pattern_input(env, in), NULL}, path_in(env, out, path), extra, &r);
+    CHECK_MSG(r.status == 2 && strstr(r.err, message), "%s: exit %d: %s", message, r.status, r.err);
+}
+
+static void test_usage_errors(const test_env *env)
+{
+    expect_usage(env, "x.mp4", (const char *const[]){"--skip-existing", NULL}, "--skip-existing resumes image");
+    expect_usage(env, "x.mp4", (const char *const[]){"--size", "161x120", NULL}, "even width and height");
+    expect_usage(env, "x.mp4", (const char *const[]){"--quality", "52", NULL}, "0..51");
+    expect_usage(env, "x.png", NULL, "image pattern with one %d");
+    expect_usage(env, "x_%d.png", (const char *const[]){"--bogus", NULL}, "unknown option --bogus");
+}
+
+static void remove_tree(const char *dir)
+{
+    char command[PATH_CAP + 16];
+    snprintf(command, sizeof command, "rm -rf '%s'", dir);
+    if (system(command) != 0)
+        fprintf(stderr, "cannot remove %s\n", dir);
+}
+
+int main(void)
+{
+    test_env env = {.dir = "/tmp/fluidcast-cli-render-XXXXXX"};
+    if (!mkdtemp(env.dir) || !write_sequence(&env)) {
+        fprintf(stderr, "cannot set up the scratch directory\n");
+        return 1;
+    }
+    fc_test_daemon daemon;
+    fc_error err;
+    if (fc_test_daemon_start(&daemon, NULL, FC_TEST_DAEMON_START_TIMEOUT_MS, &err) != FC_OK) {
+        fprintf(stderr, "cannot start fluidcastd: %s\n", err.message);
+        remove_tree(env.dir);
+        return 1;
+    }
+    snprintf(env.server, sizeof env.server, "127.0.0.1:%u", (unsigned)daemon.port);
+    test_usage_errors(&env);
+    double centroid[FRAMES];
+    test_png_sequence(&env, centroid);
+    test_videos(&env, centroid);
+    test_skip_existing(&env);
+    test_missing_and_corrupt_frames(&env);
+    test_orbit(&env);
+    CHECK_CODE(fc_test_daemon_stop(&daemon, FC_TEST_DAEMON_STOP_TIMEOUT_MS, &err), FC_OK);
+    if (getenv("FLUIDCAST_TEST_KEEP"))   /* to look at the images and videos */
+        printf("kept %s\n", env.dir);
+    else
+        remove_tree(env.dir);
+    return test_result();
+}
