@@ -23,6 +23,7 @@ static const struct {
     { "bhclassic", FC_FILE_BGEO },
     { "bgeo.gz", FC_FILE_BGEO },
     { "bgeo.sc", FC_FILE_BGEO },
+    { "npy", FC_FILE_NPY },
 };
 
 /* Whether the name ends with "." extension, case-insensitively. */
@@ -47,7 +48,7 @@ fc_file_format fc_file_format_from_path(const char *path)
 
 static fc_code unknown_format(const char *name, fc_error *err)
 {
-    return fc_error_set(err, FC_ERR_PARSE, "%s: unknown particle file format (expected .f32, .ply, .vtk, .csv or .bgeo)",
+    return fc_error_set(err, FC_ERR_PARSE, "%s: unknown particle file format (expected .f32, .ply, .vtk, .csv, .bgeo or .npy)",
                         name);
 }
 
@@ -64,6 +65,8 @@ static fc_code read_format(fc_cursor *c, fc_file_format format, fc_frame *frame,
         return fc_read_csv(c, frame, err);
     case FC_FILE_BGEO:
         return fc_read_bgeo(c, frame, err);
+    case FC_FILE_NPY:
+        return fc_read_npy(c, frame, err);
     case FC_FILE_UNKNOWN:
         break;
     }

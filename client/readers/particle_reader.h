@@ -1,7 +1,8 @@
 /* particle_reader.h — turns particle files into the in-memory frame the wire carries.
  * Formats: raw little-endian float32 xyz (.f32), PLY (ascii, binary little/big
  * endian), legacy VTK (ascii and binary POLYDATA / UNSTRUCTURED_GRID), CSV with a
- * header line, Houdini classic BGEO (partio's .bgeo, gzip'd or not). A bad file gets FC_ERR_PARSE (or FC_ERR_IO) with a message naming
+ * header line, Houdini classic BGEO (partio's .bgeo, gzip'd or not), numpy .npy (N, 3) float
+ * arrays. A bad file gets FC_ERR_PARSE (or FC_ERR_IO) with a message naming
  * the file and what is wrong; never a crash. */
 #ifndef FC_PARTICLE_READER_H
 #define FC_PARTICLE_READER_H
@@ -18,10 +19,11 @@ typedef enum fc_file_format {
     FC_FILE_PLY,
     FC_FILE_VTK,
     FC_FILE_CSV,
-    FC_FILE_BGEO
+    FC_FILE_BGEO,
+    FC_FILE_NPY
 } fc_file_format;
 
-/* From the file name's extension (case-insensitive): .f32 .ply .vtk .csv, .bgeo
+/* From the file name's extension (case-insensitive): .f32 .ply .vtk .csv .npy, .bgeo
  * (also .bgeo.gz, .bhclassic, and .bgeo.sc so that its reader can refuse it clearly) */
 fc_file_format fc_file_format_from_path(const char *path);
 

@@ -12,5 +12,6 @@ fc_code fc_read_ply(fc_cursor *c, fc_frame *frame, fc_error *err);
 fc_code fc_read_vtk(fc_cursor *c, fc_frame *frame, fc_error *err);
 fc_code fc_read_csv(fc_cursor *c, fc_frame *frame, fc_error *err);
 fc_code fc_read_bgeo(fc_cursor *c, fc_frame *frame, fc_error *err);
+fc_code fc_read_npy(fc_cursor *c, fc_frame *frame, fc_error *err);
 
 #endif

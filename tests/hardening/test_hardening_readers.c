@@ -175,6 +175,21 @@ static const broken_file files[] = {
     {"gzip_cut.bgeo", BIN("\x1f\x8b\x08\x00\x00\x00\x00\x00\x00\x03"), "gzip: compressed stream is truncated"},
     {"gzip_bad_block.bgeo", BIN("\x1f\x8b\x08\x00\x00\x00\x00\x00\x00\x03\x07\x00"), "gzip: corrupt compressed data"},
 
+    /* ---- numpy .npy ---- */
+    {"empty.npy", "", 0, "empty file"},
+    {"magic_cut.npy", "\x93NUM", 0, "not a numpy .npy file"},
+    {"header_len_cut.npy", BIN("\x93NUMPY\x01\x00\x40"), "file ends in the header length"},
+    {"header_len_65535.npy", BIN("\x93NUMPY\x01\x00\xff\xff{'descr': '<f4'}"), "header of 65535 bytes runs past"},
+    {"rows_2_62.npy", BIN("\x93NUMPY\x01\x00\x46\x00{'descr':'<f4','fortran_order':False,'shape':(4611686018427387904,3)}\n"
+                          ONE_LE_PARTICLE),
+     "4611686018427387904 x 3 values of 4 bytes cannot fit in the 12 bytes left"},
+    {"rows_2_64.npy", BIN("\x93NUMPY\x01\x00\x46\x00{'descr':'<f4','fortran_order':False,'shape':(18446744073709551616,3)}"
+                          ONE_LE_PARTICLE),
+     "'shape' holds something other than non-negative integers"},
+    {"dtype_object.npy", BIN("\x93NUMPY\x01\x00\x32\x00{'descr':'|O','fortran_order':False,'shape':(1,3)}"
+                             ONE_LE_PARTICLE),
+     "dtype '|O' is not supported"},
+
     /* ---- raw float32 ---- */
     {"empty.f32", "", 0, "empty file"},
     {"one_byte.f32", "\x01", 0, "1 bytes is not a multiple of 12"},

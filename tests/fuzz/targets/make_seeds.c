@@ -227,6 +227,26 @@ static int write_bgeo(const char *dir)
     return failed;
 }
 
+/* numpy .npy version 1.0, the header padded as numpy pads it (to 64 bytes with a newline), then the positions. */
+static int write_npy(const char *dir, bool fortran)
+{
+    char header[128];
+    int len = snprintf(header, sizeof header, "{'descr': '<f4', 'fortran_order': %s, 'shape': (%d, 3), }",
+                       fortran ? "True" : "False", SEED_PARTICLES);
+    fc_buf b;
+    fc_buf_init(&b);
+    append(&b, "\x93NUMPY\x01\x00\x76\x00", 10); /* header length 118: 10 + 118 = 128 */
+    append(&b, header, (size_t)len);
+    for (int i = len; i < 117; i++)
+        append_text(&b, " ");
+    append_text(&b, "\n");
+    for (int at = 0; at < 3 * SEED_PARTICLES; at++)
+        append_f32(&b, fortran ? POSITIONS[at % SEED_PARTICLES][at / SEED_PARTICLES] : POSITIONS[at / 3][at % 3], false);
+    int failed = save(dir, "fuzz_reader_npy", fortran ? "fortran.npy" : "c_order.npy", &b);
+    fc_buf_free(&b);
+    return failed;
+}
+
 /* ---- messages ---- */
 
 typedef fc_code (*message_writer)(fc_buf *out);
@@ -565,7 +585,7 @@ int main(int argc, char **argv)
     }
     const char *dir = argv[1];
     int failed = write_f32(dir) | write_binary_ply(dir, false) | write_binary_ply(dir, true) |
-                 write_binary_vtk(dir, false) | write_binary_vtk(dir, true) | write_bgeo(dir) | write_messages(dir) |
+                 write_binary_vtk(dir, false) | write_binary_vtk(dir, true) | write_bgeo(dir) | write_npy(dir, false) | write_npy(dir, true) | write_messages(dir) |
                  write_session_messages(dir) | write_settings_payloads(dir);
     return failed ? 1 : 0;
 }
