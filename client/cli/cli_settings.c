@@ -10,12 +10,6 @@
 /* The median is that of an evenly spread sample of at most this many particles. */
 #define DENSITY_SAMPLE_MAX 4096u
 
-void fc_cli_default_settings(fc_settings *s)
-{
-    fc_settings_default(s);
-    s->kernel = FC_KERNEL_ANISOTROPIC;
-}
-
 static int compare_floats(const void *a, const void *b)
 {
     float x = *(const float *)a, y = *(const float *)b;

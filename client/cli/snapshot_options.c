@@ -6,7 +6,6 @@
 #include <string.h>
 
 #include "cli_report.h"
-#include "cli_settings.h"
 #include "cli_values.h"
 #include "fc_error.h"
 #include "fc_frame.h"
@@ -259,7 +258,7 @@ void fc_snapshot_set_defaults(fc_snapshot_options *o)
     o->width = 1280;
     o->height = 720;
     o->fov_deg = FC_SNAPSHOT_DEFAULT_FOV;
-    fc_cli_default_settings(&o->settings);
+    fc_settings_default(&o->settings);
     o->aov = FC_AOV_COLOR;
     o->quality = FC_SNAPSHOT_DEFAULT_QUALITY;
 }
@@ -467,7 +466,7 @@ static void print_shading_help(FILE *to, const fc_settings *d)
 void fc_snapshot_print_settings_help(FILE *to)
 {
     fc_settings defaults;
-    fc_cli_default_settings(&defaults);
+    fc_settings_default(&defaults);
     print_surface_help(to, &defaults);
     print_shading_help(to, &defaults);
 }

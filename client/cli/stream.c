@@ -41,7 +41,7 @@ static int set_up_view(fc_client *c, const fc_stream_options *o, const fc_frame 
     if (fc_camera_validate(&cam, &why) != FC_OK)
         return fc_cli_fail(FC_EXIT_USAGE, "bad camera: %s", why.message);
     fc_settings settings;
-    fc_cli_default_settings(&settings);
+    fc_settings_default(&settings);
     settings.radius = o->radius;
     fc_cli_choices chosen;
     fc_cli_complete_settings(&settings, first, false, &chosen);

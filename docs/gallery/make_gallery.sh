@@ -3,7 +3,7 @@
 # this machine's GL (llvmpipe without a GPU) and the fluidcast CLI, on the demo
 # scene deploy/demo/drop_64k.f32 (65,536 particles) at 640x480, and on frames
 # 5, 11 and 16 of the splash simulation in ../shared/data/splash (its
-# suggested radius and camera, 640x360): kernel sphere | anisotropic and
+# suggested radius and camera, 640x360): the default (sphere kernel) | anisotropic and
 # shadow off | on. The VTK | fluidcast row comes from bench/peer/compare_images.sh.
 # Usage: docs/gallery/make_gallery.sh   (after deploy/build.sh)
 set -euo pipefail
@@ -48,8 +48,8 @@ if [ -d "$splash" ]; then
         --eye -0.3664,-1.0005,1.4229 --target 0.5,0.5,0.21 --up z --fov 40 --radius 0.0078571 "$@" \
         -o "$out/splash_f${f}_$name.png"
     }
-    look sphere --kernel sphere
-    look anisotropic
+    look sphere
+    look anisotropic --kernel anisotropic
     look shadow_off --shadow off
   done
 else

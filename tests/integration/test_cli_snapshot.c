@@ -203,14 +203,13 @@ static void test_jpeg_and_exr_magic(test_env *env)
 }
 
 /* Odd size: the centre pixel lies on the view axis, which meets the sphere of
- * the particle at (0,-0.5,0) at distance 4 - 0.5 - 0.05 from the eye (spheres:
- * the CLI's default ellipsoids move a lattice's surface particles inwards). */
+ * the particle at (0,-0.5,0) at distance 4 - 0.5 - 0.05 from the eye. */
 static void test_depth_aov(test_env *env)
 {
     cli_result r;
     run(env, &r, (const char *const[]){ "snapshot", scratch(env, "ball.f32"), "-o", scratch(env, "depth.exr"),
                                         "--server", env->server, "--size", "161x121", "--eye", "0,-4,0", "--target",
-                                        "0,0,0", "--radius", "0.05", "--aov", "depth", "--kernel", "sphere", NULL });
+                                        "0,0,0", "--radius", "0.05", "--aov", "depth", NULL });
     CHECK_MSG(r.status == 0, "exit %d: %s", r.status, r.err);
     fc_decoded_image img;
     if (!decode_file(scratch(env, "depth.exr"), "exr", 1, &img))
