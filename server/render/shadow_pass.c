@@ -15,8 +15,10 @@
  * across at the distances splashes stand above their floor. */
 #define MAP_BLUR 2u
 /* The sun's camera stands this many box radii away, looking at the box:
- * rays from it are parallel within about three degrees. */
-#define SUN_DISTANCE_RADII 20.0f
+ * rays from it are parallel within about half a degree, so a shadow falls
+ * where parallel sunlight puts it (at 20 radii they leaned up to three
+ * degrees at the box's edges and shadows landed 6% too far out). */
+#define SUN_DISTANCE_RADII 100.0f
 /* Light leaves the sun's beam through water by absorption (the fluid's
  * own, per channel) and by refraction at its surfaces, which bends it out
  * of the beam whatever its colour: this much per particle radius. */
