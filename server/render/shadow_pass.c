@@ -8,8 +8,7 @@
 #include "view.h"
 
 /* Texels per side of the map: the shadow is soft, so a coarse map serves,
- * and the splat's cost grows with its area (at 512 it cost more than the
- * camera's own splat of 1M particles on llvmpipe, bench/RESULTS.md). */
+ * and the splat's cost grows with its area (bench/RESULTS.md). */
 #define MAP_SIZE 256u
 /* The blur of the map, in its texels: the penumbra of a sun about a degree
  * across at the distances splashes stand above their floor. */
@@ -26,12 +25,14 @@
 
 fc_code fc_shadow_pass_create(const char *shader_dir, fc_shadow_pass *pass, fc_error *err)
 {
-    return fc_thickness_pass_create(shader_dir, &pass->thickness, err);
+    fc_code code = fc_depth_pass_create(shader_dir, &pass->splat, err);
+    return code == FC_OK ? fc_thickness_pass_create(shader_dir, &pass->blur, err) : code;
 }
 
 void fc_shadow_pass_destroy(fc_shadow_pass *pass)
 {
-    fc_thickness_pass_destroy(&pass->thickness);
+    fc_depth_pass_destroy(&pass->splat);
+    fc_thickness_pass_destroy(&pass->blur);
 }
 
 /* A camera on the sun's side of the box, framing its bounding sphere. */
@@ -82,10 +83,14 @@ fc_code fc_shadow_pass_run(fc_shadow_pass *pass, const fc_particle_buffer *parti
     fc_view view;
     fc_view_from_camera(&cam, lo, hi, reach, &view);
     static const float no_floor[4] = {0.0f, 0.0f, 0.0f, 1.0f};   /* nothing is cut off */
+    fc_pass_profile_begin(profile, "shadow splat");
+    fc_code code = fc_depth_pass_run(&pass->splat, particles, &view, settings->radius, no_floor, err);
+    fc_pass_profile_end(profile);
     fc_thickness_params params = {.radius = settings->radius, .scale = 1.0f, .blur = MAP_BLUR,
-                                  .floor_plane = no_floor, .profile = profile};
+                                  .floor_plane = no_floor, .profile = profile, .full_splat = &pass->splat.thickness};
     const fc_render_target *map = NULL;
-    fc_code code = fc_thickness_pass_run(&pass->thickness, particles, &view, &params, &map, err);
+    if (code == FC_OK)
+        code = fc_thickness_pass_run(&pass->blur, particles, &view, &params, &map, err);
     if (code != FC_OK)
         return code;
     map_transform(&view, env->shadow_transform);
@@ -101,10 +106,12 @@ fc_code fc_shadow_pass_run(fc_shadow_pass *pass, const fc_particle_buffer *parti
 
 void fc_shadow_pass_tally(const fc_shadow_pass *pass, fc_gpu_memory *m)
 {
-    fc_thickness_pass_tally(&pass->thickness, m);
+    fc_depth_pass_tally(&pass->splat, m);
+    fc_thickness_pass_tally(&pass->blur, m);
 }
 
 void fc_shadow_pass_trim(fc_shadow_pass *pass)
 {
-    fc_thickness_pass_trim(&pass->thickness);
+    fc_depth_pass_trim(&pass->splat);
+    fc_thickness_pass_trim(&pass->blur);
 }

@@ -6,13 +6,19 @@
 #ifndef FC_SHADOW_PASS_H
 #define FC_SHADOW_PASS_H
 
+#include "depth_pass.h"
 #include "environment.h"
 #include "gpu_memory.h"
 #include "pass_profile.h"
 #include "thickness_pass.h"
 
 typedef struct fc_shadow_pass {
-    fc_thickness_pass thickness;   /* its own targets: the camera's thickness is splatted after this */
+    /* Their own targets: the camera's are splatted after these. The depth
+     * pass splats the thickness (through its compute splat where sprites are
+     * small, as they are in the map: several times cheaper per particle on
+     * a CPU rasterizer), the thickness pass blurs it. */
+    fc_depth_pass splat;
+    fc_thickness_pass blur;
 } fc_shadow_pass;
 
 fc_code fc_shadow_pass_create(const char *shader_dir, fc_shadow_pass *pass, fc_error *err);
