@@ -10,6 +10,7 @@
 #include <unistd.h>
 
 #include "cli_report.h"
+#include "cli_settings.h"
 #include "cli_token.h"
 #include "fc_error.h"
 #include "fc_frame.h"
@@ -65,16 +66,24 @@ static int choose_view(render_job *job)
     else if (fc_sequence_camera(&o->view, &bounds, &up, &job->camera, &err) != FC_OK)
         status = fc_cli_fail(FC_EXIT_USAGE, "%s", err.message);
     if (status == FC_EXIT_OK) {
+        /* Completed from the first frame as snapshot completes them from its one. */
         job->settings = o->view.settings;
-        if (!(job->settings.radius > 0.0f))
-            job->settings.radius = fc_frame_estimate_radius(&first);
-        printf("render: %u frames, %s .. %s; camera framed on the bounds of %u of them\n",
-               (unsigned)job->inputs.count, job->inputs.paths[0], job->inputs.paths[job->inputs.count - 1],
-               (unsigned)bounds.framed);
+        fc_cli_choices chosen;
+        fc_cli_complete_settings(&job->settings, &first, o->view.has_density_threshold, &chosen);
+        printf("render: %u frames, %s .. %s", (unsigned)job->inputs.count, job->inputs.paths[0],
+               job->inputs.paths[job->inputs.count - 1]);
+        if (o->view.has_eye)
+            printf("; camera from --eye/--target\n");
+        else
+            printf("; camera framed on the bounds of %u of them\n", (unsigned)bounds.framed);
         if (!up.given)
             printf("up %s\n", up.note);
-        if (!(o->view.settings.radius > 0.0f))
+        if (chosen.radius)
             printf("radius %g (estimated from the first frame's particle spacing)\n", (double)job->settings.radius);
+        if (chosen.spray)
+            printf("spray: particles below density %g (half the first frame's median; --density-threshold to "
+                   "change)\n",
+                   (double)job->settings.density_threshold);
     }
     fc_frame_free(&first);
     return status;
