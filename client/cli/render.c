@@ -18,6 +18,7 @@
 #include "progress.h"
 #include "render_camera.h"
 #include "render_inputs.h"
+#include "render_interrupt.h"
 #include "render_options.h"
 #include "render_output.h"
 #include "render_reader.h"
@@ -184,7 +185,7 @@ static int render_all(render_job *job, fc_client *client)
     fc_progress_start(&progress, stdout, isatty(STDOUT_FILENO), job->todo_count);
     int status = FC_EXIT_OK;
     fc_read_frame item;
-    while (status == FC_EXIT_OK && fc_render_reader_next(reader, &item)) {
+    while (status == FC_EXIT_OK && !fc_render_interrupted() && fc_render_reader_next(reader, &item)) {
         if (item.code != FC_OK) {
             if (progress.tty)
                 putchar('\n');
@@ -197,6 +198,10 @@ static int render_all(render_job *job, fc_client *client)
     fc_render_reader_stop(reader);
     if (status == FC_EXIT_OK && progress.tty)
         putchar('\n');
+    int signal_number = fc_render_interrupted();
+    if (status == FC_EXIT_OK && signal_number && job->rendered < job->todo_count)
+        status = fc_cli_fail(FC_RENDER_INTERRUPT_STATUS_BASE + signal_number, "interrupted after %u of %u frames",
+                             (unsigned)job->rendered, (unsigned)job->todo_count);
     return status;
 }
 
@@ -210,7 +215,7 @@ static int finish_output(render_job *job, int status, double seconds)
         return status != FC_EXIT_OK ? status : fc_cli_fail(FC_EXIT_OUTPUT, "%s", err.message);
     if (status != FC_EXIT_OK) {
         if (video)
-            fprintf(stderr, "fluidcast: %s is finished with the %u frames rendered before the failure\n", out,
+            fprintf(stderr, "fluidcast: %s is finished with the %u frames rendered before it stopped\n", out,
                     (unsigned)job->rendered);
         return status;
     }
@@ -249,6 +254,7 @@ static int render(render_job *job)
         status = open_output(job);
     if (status == FC_EXIT_OK) {
         fflush(stdout);
+        fc_render_interrupt_install();
         status = render_all(job, client);
         status = finish_output(job, status, now_s() - start);
     }

@@ -248,7 +248,8 @@ void fc_render_print_help(FILE *to)
     fc_snapshot_print_settings_help(to);
     fputs("On a terminal a progress bar shows frames, fps and the time left; otherwise one\n"
           "line per frame. A frame that cannot be read stops the render with its name; a\n"
-          "video is finished so that the frames before it play.\n"
+          "video is finished so that the frames before it play. Ctrl-C (or SIGTERM)\n"
+          "finishes the frame in flight and the video, and exits with 130 (143).\n"
           "  -h, --help              show this help\n"
           "\n",
           to);

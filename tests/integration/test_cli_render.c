@@ -6,14 +6,20 @@
  * --skip-existing renders only the missing images and leaves the others
  * untouched; a missing or corrupt frame in the middle stops the render with
  * exit status 3 and its name, and the partial video plays with the frames
- * before it; --orbit 90 turns the view (the floor changes between the first
+ * before it, as it does after Ctrl-C; --orbit 90 turns the view (the floor changes between the first
  * and last frame) while the fixed camera keeps every pixel away from the
  * ball. */
+#define _GNU_SOURCE   /* memmem */
+#include <fcntl.h>
 #include <math.h>
+#include <signal.h>
+#include <spawn.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
+#include <sys/wait.h>
+#include <time.h>
 #include <unistd.h>
 
 #include "cli_runner.h"
@@ -308,7 +314,7 @@ static void test_missing_and_corrupt_frames(const test_env *env)
            NULL, &r);
     CHECK_MSG(r.status == 3, "missing frame: exit %d\n%s%s", r.status, r.out, r.err);
     CHECK_MSG(strstr(r.err, "frame 4 of 6") && strstr(r.err, in[3]), "stderr: %s", r.err);
-    CHECK_MSG(strstr(r.err, "part.mp4 is finished with the 3 frames rendered before the failure"), "stderr: %s",
+    CHECK_MSG(strstr(r.err, "part.mp4 is finished with the 3 frames rendered before it stopped"), "stderr: %s",
               r.err);
     video_frames v;
     CHECK_MSG(video_frames_read(path_in(env, "part.mp4", path), &v) && v.count == 3,
@@ -330,6 +336,71 @@ static void test_missing_and_corrupt_frames(const test_env *env)
            (const char *const[]){"--start", "4", "--end", "7", NULL}, &r);
     CHECK_MSG(r.status == 3 && strstr(r.err, "frame 3 of 4") && strstr(r.err, "ball_0006.f32"),
               "--end past the last file: exit %d: %s", r.status, r.err);
+}
+
+extern char **environ;
+
+/* Waits up to 30 s for `text` in the file at `path`. */
+static bool wait_for_text(const char *path, const char *text)
+{
+    for (int i = 0; i < 3000; i++) {
+        size_t size;
+        uint8_t *data = read_whole_file(path, &size);
+        bool found = data && memmem(data, size, text, strlen(text)) != NULL;
+        free(data);
+        if (found)
+            return true;
+        nanosleep(&(struct timespec){.tv_nsec = 10 * 1000 * 1000}, NULL);
+    }
+    return false;
+}
+
+/* SIGINT once the second frame is out: the render stops after the frame in
+ * flight with status 130, and the video plays. 48 frames (the six, eight
+ * times) take seconds, so the signal comes long before the end. */
+static void test_interrupt(const test_env *env)
+{
+    enum { REPEATS = 8 };
+    char in[FRAMES][PATH_CAP], out[PATH_CAP], log[PATH_CAP], err_log[PATH_CAP];
+    const char *argv[FRAMES * REPEATS + 16] = {FLUIDCAST_CLI_PATH, "render"};
+    int n = 2;
+    for (int i = 0; i < FRAMES; i++)
+        frame_input(env, i, in[i]);
+    for (int r = 0; r < REPEATS; r++)
+        for (int i = 0; i < FRAMES; i++)
+            argv[n++] = in[i];
+    const char *common[] = {"-o", path_in(env, "stopped.mp4", out), "--server", env->server, "--size", "160x120",
+                            "--up", "z", "--radius", "0.04", NULL};
+    for (int i = 0; common[i]; i++)
+        argv[n++] = common[i];
+    argv[n] = NULL;
+    posix_spawn_file_actions_t actions;
+    posix_spawn_file_actions_init(&actions);
+    posix_spawn_file_actions_addopen(&actions, STDOUT_FILENO, path_in(env, "stopped.out", log),
+                                     O_WRONLY | O_CREAT | O_TRUNC, 0600);
+    posix_spawn_file_actions_addopen(&actions, STDERR_FILENO, path_in(env, "stopped.err", err_log),
+                                     O_WRONLY | O_CREAT | O_TRUNC, 0600);
+    pid_t pid;
+    int status = 0;
+    CHECK(posix_spawn(&pid, FLUIDCAST_CLI_PATH, &actions, NULL, (char *const *)argv, environ) == 0);
+    posix_spawn_file_actions_destroy(&actions);
+    CHECK_MSG(wait_for_text(log, "frame 2/48 "), "the render did not get to its second frame");
+    kill(pid, SIGINT);
+    CHECK(waitpid(pid, &status, 0) == pid);
+    CHECK_MSG(WIFEXITED(status) && WEXITSTATUS(status) == 130, "interrupted render: status 0x%x", status);
+    size_t size;
+    uint8_t *bytes = read_whole_file(err_log, &size);
+    char err[CLI_CAPTURE_MAX] = "";
+    if (bytes)
+        memcpy(err, bytes, size < sizeof err - 1 ? size : sizeof err - 1);
+    free(bytes);
+    CHECK_MSG(strstr(err, "interrupted after") && strstr(err, "stopped.mp4 is finished with the"), "stderr: %s",
+              err);
+    video_frames v;
+    CHECK_MSG(video_frames_read(out, &v) && v.count >= 2 && v.count < FRAMES * REPEATS,
+              "the interrupted video decodes to %u frames", v.count);
+    printf("SIGINT after frame 2 of 48: exit 130, the video decodes to %u frames\n", v.count);
+    video_frames_free(&v);
 }
 
 static void test_orbit(const test_env *env)
@@ -409,6 +480,7 @@ int main(void)
     test_videos(&env, centroid);
     test_skip_existing(&env);
     test_missing_and_corrupt_frames(&env);
+    test_interrupt(&env);
     test_orbit(&env);
     CHECK_CODE(fc_test_daemon_stop(&daemon, FC_TEST_DAEMON_STOP_TIMEOUT_MS, &err), FC_OK);
     if (getenv("FLUIDCAST_TEST_KEEP"))   /* to look at the images and videos */
