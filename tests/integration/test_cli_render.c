@@ -434,6 +434,48 @@ static void test_orbit(const test_env *env)
     free(orbit_last.rgb);
 }
 
+/* Which files the inputs name, in which order: the first line says, before
+ * the connection to a server that is not there fails (exit 4). Files b_1,
+ * b_2 and b_10, unpadded. */
+static void expect_frames(const test_env *env, const char *input, const char *const *extra, const char *expected)
+{
+    char in[PATH_CAP], out[PATH_CAP], line[2 * PATH_CAP];
+    const char *args[16] = {"render", path_in(env, input, in), "-o", path_in(env, "never.mp4", out), "--server",
+                            "127.0.0.1:1", "--up", "z"};
+    int n = 8;
+    for (int i = 0; extra && extra[i] && n < 15; i++)
+        args[n++] = extra[i];
+    args[n] = NULL;
+    cli_result r;
+    cli_run(FLUIDCAST_CLI_PATH, env->dir, args, &r);
+    snprintf(line, sizeof line, "render: %s", expected);
+    CHECK_MSG(r.status == 4 && strstr(r.out, line), "%s: exit %d, expected \"%s\" in\n%s%s", input, r.status,
+              expected, r.out, r.err);
+}
+
+static void test_input_order(const test_env *env)
+{
+    char from[PATH_CAP], to[PATH_CAP], a[PATH_CAP], b[PATH_CAP];
+    const int numbers[] = {1, 2, 10};
+    CHECK(mkdir(path_in(env, "un", to), 0700) == 0);
+    for (int i = 0; i < 3; i++) {
+        snprintf(a, sizeof a, "un/b_%d.f32", numbers[i]);
+        CHECK(link(frame_input(env, i, from), path_in(env, a, to)) == 0);
+    }
+    path_in(env, "un/b_1.f32", a);
+    path_in(env, "un/b_10.f32", b);
+    char expected[3 * PATH_CAP];
+    snprintf(expected, sizeof expected, "3 frames, %s .. %s; camera framed on the bounds of 3 of them", a, b);
+    expect_frames(env, "un/b_*.f32", NULL, expected);   /* 10 after 2 */
+    path_in(env, "un/b_2.f32", b);
+    snprintf(expected, sizeof expected, "2 frames, %s .. %s;", a, b);
+    expect_frames(env, "un/b_%d.f32", NULL, expected);   /* from the lowest, up to the first missing */
+    path_in(env, "un/b_2.f32", a);
+    path_in(env, "un/b_10.f32", b);
+    snprintf(expected, sizeof expected, "2 frames, %s .. %s;", a, b);
+    expect_frames(env, "un/b_%d.f32", (const char *const[]){"--start", "2", "--step", "8", NULL}, expected);
+}
+
 static void expect_usage(const test_env *env, const char *out, const char *const *extra, const char *message)
 {
     char in[PATH_CAP], path[PATH_CAP];
@@ -475,6 +517,7 @@ int main(void)
     }
     snprintf(env.server, sizeof env.server, "127.0.0.1:%u", (unsigned)daemon.port);
     test_usage_errors(&env);
+    test_input_order(&env);
     double centroid[FRAMES];
     test_png_sequence(&env, centroid);
     test_videos(&env, centroid);
