@@ -20,6 +20,8 @@ PACKAGES=(
   glslang-tools
   # fuzzing (libFuzzer) in the test suite
   clang-14 libclang-rt-14-dev
+  # SpaceMouse over USB; its tests replay scripted devices under umockdev
+  libusb-1.0-0-dev umockdev libumockdev-dev
 )
 
 # The peer benchmark (bench/run_bench.sh, bench/peer/compare_images.sh) also needs VTK and a

@@ -7,6 +7,7 @@
 #include "info.h"
 #include "render.h"
 #include "snapshot.h"
+#include "spacemouse_dump.h"
 #include "stream.h"
 #include "watch.h"
 #include "wire.h"
@@ -28,6 +29,7 @@ static void print_help(FILE *to)
           "  watch --session NAME    follow a session's frames as a viewer\n"
           "  info                    the server's version, renderer, limits and sessions\n"
           "                          (fluidcast COMMAND --help for the options of each)\n"
+          "  spacemouse --dump       print a SpaceMouse's reports (USB, no spacenavd)\n"
           "\n"
           "every command:\n"
           "  --token-file PATH       send the token in PATH (its first line) to a daemon\n"
@@ -65,5 +67,7 @@ int main(int argc, char **argv)
         return fc_watch_main(argc - 2, argv + 2);
     if (strcmp(command, "info") == 0)
         return fc_info_main(argc - 2, argv + 2);
+    if (strcmp(command, "spacemouse") == 0)
+        return fc_spacemouse_main(argc - 2, argv + 2);
     return fc_cli_fail(FC_EXIT_USAGE, "unknown command \"%s\" (see fluidcast --help)", command);
 }
