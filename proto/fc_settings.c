@@ -58,6 +58,9 @@ void fc_settings_default(fc_settings *s)
         .kernel = FC_KERNEL_SPHERE,
         .shadow = 1,
         .exposure = 0.0f,
+        .color_by = FC_COLOR_BY_NONE,
+        .colormap = FC_COLORMAP_VIRIDIS,
+        .color_range = {0.0f, 1.0f},
     };
 }
 
@@ -151,6 +154,26 @@ static fc_code validate_effects(const fc_settings *s, fc_error *err)
     return FC_OK;
 }
 
+/* The range must map to the colormap with a finite, positive width (its
+ * width is a divisor in the shader) when it is used; without colouring it
+ * need only be finite, so zeroed settings stay valid. */
+static fc_code validate_coloring(const fc_settings *s, fc_error *err)
+{
+    if ((unsigned)s->color_by > FC_COLOR_BY_DENSITY)
+        return fc_error_set(err, FC_ERR_INVALID_VALUE, "unknown color_by %u", (unsigned)s->color_by);
+    if ((unsigned)s->colormap > FC_COLORMAP_TURBO)
+        return fc_error_set(err, FC_ERR_INVALID_VALUE, "unknown colormap %u", (unsigned)s->colormap);
+    float lo = s->color_range[0], hi = s->color_range[1];
+    if (!(isfinite(lo) && isfinite(hi) && isfinite(hi - lo)))
+        return fc_error_set(err, FC_ERR_INVALID_VALUE, "color_range [%g, %g] must be finite", (double)lo,
+                            (double)hi);
+    if (s->color_by != FC_COLOR_BY_NONE && !(lo < hi))
+        return fc_error_set(err, FC_ERR_INVALID_VALUE,
+                            "color_range [%g, %g]: min must be below max to colour by an attribute", (double)lo,
+                            (double)hi);
+    return FC_OK;
+}
+
 fc_code fc_settings_validate(const fc_settings *s, fc_error *err)
 {
     fc_code code = validate_shape(s, err);
@@ -158,5 +181,7 @@ fc_code fc_settings_validate(const fc_settings *s, fc_error *err)
         code = validate_shading(s, err);
     if (code == FC_OK)
         code = validate_effects(s, err);
+    if (code == FC_OK)
+        code = validate_coloring(s, err);
     return code;
 }

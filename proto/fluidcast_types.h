@@ -95,6 +95,26 @@ typedef enum fc_kernel {
                                     sheets and surfaces, long on jets, a sphere where it has few neighbours */
 } fc_kernel;
 
+/* What the fluid is coloured by (fc_settings.color_by): a per-particle
+ * attribute of the frame, mapped through a colormap. */
+typedef enum fc_color_by {
+    FC_COLOR_BY_NONE = 0,        /* the fluid colour of the settings */
+    FC_COLOR_BY_SPEED = 1,       /* |velocity|: the frame must carry velocities */
+    FC_COLOR_BY_DENSITY = 2      /* density: the frame must carry densities */
+} fc_color_by;
+
+/* Colormaps for fc_settings.colormap: matplotlib's perceptually uniform maps,
+ * Moreland's diverging coolwarm and Google's turbo (fc_colormap.h). */
+typedef enum fc_colormap {
+    FC_COLORMAP_VIRIDIS = 0,
+    FC_COLORMAP_PLASMA = 1,
+    FC_COLORMAP_INFERNO = 2,
+    FC_COLORMAP_MAGMA = 3,
+    FC_COLORMAP_CIVIDIS = 4,
+    FC_COLORMAP_COOLWARM = 5,
+    FC_COLORMAP_TURBO = 6
+} fc_colormap;
+
 /* Every parameter a user may tune. fc_settings_default() gives convincing water;
  * zero is "off" for the optional effects. */
 typedef struct fc_settings {
@@ -122,6 +142,11 @@ typedef struct fc_settings {
     fc_kernel kernel;          /* particle shape: spheres or anisotropic ellipsoids */
     uint32_t shadow;           /* 1: the fluid casts a soft shadow on the built-in floor, 0: none */
     float exposure;            /* stops of exposure before the filmic tone map (0 = as lit) */
+    fc_color_by color_by;      /* tint the fluid by a particle attribute; NONE: fluid_color. A frame without
+                                  the attribute cannot be rendered so (INVALID_VALUE naming it) */
+    fc_colormap colormap;      /* the colours the attribute's range runs through */
+    float color_range[2];      /* attribute values mapped to the colormap's ends: finite, min < max when
+                                  color_by is set; values outside take the end colours, so runs compare */
 } fc_settings;
 
 /* ---- Image request and reply -------------------------------------------*/

@@ -31,6 +31,9 @@ typedef enum setting_key {
     KEY_KERNEL = 19,
     KEY_SHADOW = 20,
     KEY_EXPOSURE = 21,
+    KEY_COLOR_BY = 22,
+    KEY_COLORMAP = 23,
+    KEY_COLOR_RANGE = 24,
     KEY_END
 } setting_key;
 
@@ -53,8 +56,11 @@ typedef struct key_spec {
     uint32_t enum_max;  /* VALUE_ENUM: the largest value */
 } key_spec;
 
-_Static_assert(sizeof(fc_smoothing) == sizeof(int) && sizeof(fc_kernel) == sizeof(int),
+_Static_assert(sizeof(fc_smoothing) == sizeof(int) && sizeof(fc_kernel) == sizeof(int) &&
+                   sizeof(fc_color_by) == sizeof(int) && sizeof(fc_colormap) == sizeof(int),
                "VALUE_ENUM fields are accessed as int");
+/* read_entry marks the keys seen in one u32. */
+_Static_assert(KEY_END <= 32, "more keys than bits in the seen mask");
 
 #define FIELD(key, field, words, kind) [key] = {#field, words, kind, offsetof(fc_settings, field), 0}
 #define ENUM_FIELD(key, field, max) [key] = {#field, 1, VALUE_ENUM, offsetof(fc_settings, field), max}
@@ -81,6 +87,9 @@ static const key_spec settings_keys[KEY_END] = {
     ENUM_FIELD(KEY_KERNEL, kernel, FC_KERNEL_ANISOTROPIC),
     FIELD(KEY_SHADOW, shadow, 1, VALUE_U32),
     FIELD(KEY_EXPOSURE, exposure, 1, VALUE_F32),
+    ENUM_FIELD(KEY_COLOR_BY, color_by, FC_COLOR_BY_DENSITY),
+    ENUM_FIELD(KEY_COLORMAP, colormap, FC_COLORMAP_TURBO),
+    FIELD(KEY_COLOR_RANGE, color_range, 2, VALUE_F32),
 };
 
 /* The field a key names, for reading (writer) and for filling in (reader). */

@@ -25,7 +25,8 @@ vec3 shading_normal(ivec2 p, vec3 centre, float z, surface_spans spans);
 bool inside_surface(surface_spans spans);
 bool fluid_here(out float z, out float z_floor);
 
-layout(binding = 1) uniform sampler2D thickness;         // world units, any resolution (bilinear filtering)
+layout(binding = 1) uniform sampler2D thickness;         // world units in r, any resolution (bilinear filtering);
+                                                         // coloured: the colour times the thickness in gba
 layout(binding = 2) uniform sampler2D background;        // the scene without fluid, linear RGB
 layout(binding = 4) uniform samplerCube environment_map; // world directions, linear RGB
 
@@ -42,6 +43,7 @@ layout(location = 13) uniform float shininess;           // α of eq. 13
 layout(location = 14) uniform float foam;                // settings.foam: how fast foam turns opaque
 layout(location = 15) uniform bool use_environment_map;  // else the procedural scene is reflected
 layout(location = 18) uniform vec2 foam_noise_range;     // mean |N| where foam starts and where it is complete
+layout(location = 47) uniform bool colored;              // the fluid's colour is the thickness's (colour by attribute)
 // Texture sizes, which may exceed the image in use (targets only grow): the
 // background holds a viewport-sized image in its lower-left corner, the
 // thickness one of thickness_size (half the viewport or less when blurred).
@@ -91,7 +93,13 @@ vec3 shade_fluid(ivec2 p, float z, vec3 behind_here)
     // Bilinear upsampling, clamped to the last texel centres in use as for
     // the background below.
     vec2 thickness_texel = clamp(gl_FragCoord.xy * thickness_per_pixel, vec2(0.5), thickness_size - 0.5);
-    float t = texture(thickness, thickness_texel * thickness_texel_uv).r;
+    vec4 thickness_sample = texture(thickness, thickness_texel * thickness_texel_uv);
+    float t = thickness_sample.r;
+    // Coloured by an attribute, the particles' colours splatted and blurred
+    // with the thickness give the mean colour along the ray, which thick
+    // fluid shows as it would show fluid_color (the way VTK's particle
+    // colours absorb): it follows the surface.
+    vec3 thick_color = colored ? thickness_sample.gba / max(t, 1e-30) : fluid_color;
 
     float cos_view = clamp(dot(n, v), 0.0, 1.0);
     float fresnel = fresnel_f0 + (1.0 - fresnel_f0) * pow(1.0 - cos_view, 5.0);
@@ -108,7 +116,7 @@ vec3 shade_fluid(ivec2 p, float z, vec3 behind_here)
     // texture holds stale pixels where an edge texel used to be repeated.
     vec2 shifted = clamp(gl_FragCoord.xy + shift, vec2(0.5), viewport - 0.5);
     vec3 behind = texture(background, shifted / background_texture_size).rgb;
-    vec3 refracted = mix(fluid_color, behind, exp(-absorption * t));
+    vec3 refracted = mix(thick_color, behind, exp(-absorption * t));
 
     vec3 reflected = reflected_radiance(to_world_point(centre), to_world_direction(reflect(-v, n)));
 

@@ -1,36 +1,18 @@
 #version 450 core
-// One axis of the separable, normalised Gaussian blur of the thickness
-// (Janisz 2012, §4.1.3) as a weighted sum of bilinear taps whose offsets and
-// weights thickness_filter.c finds once per frame: a software rasterizer pays
-// for every tap and every exp() of every pixel. Where the target is smaller
-// than the source, a tap lands between source texels and averages them, so
-// the downsampling to half resolution costs no pass of its own; at equal
-// sizes two neighbouring Gaussian weights share one tap between their texels.
+// One axis of the blur of the thickness (thickness_taps.frag.glsl): one channel.
 
 layout(binding = 0) uniform sampler2D source;
 
-const int max_taps = 64;   // MAX_TAPS in thickness_filter.c
-
-layout(location = 0) uniform vec2 axis;                  // (1, 0) or (0, 1): the blur axis
-layout(location = 1) uniform int tap_count;              // <= max_taps
-layout(location = 2) uniform vec2 source_per_target;     // source texels per target pixel, per axis
-layout(location = 3) uniform vec2 source_size;           // texels of the source image in use
-layout(location = 4) uniform vec2 source_texel_uv;       // 1 / the source texture's size (>= source_size)
-layout(location = 8) uniform vec2 taps[max_taps];        // (offset along axis in source texels, weight); weights sum to 1
+int blur_tap_count();
+float blur_tap_weight(int i);
+vec2 blur_tap_uv(int i);
 
 layout(location = 0) out float thickness;
 
 void main()
 {
-    vec2 centre = gl_FragCoord.xy * source_per_target;
     float sum = 0.0;
-    for (int i = 0; i < tap_count; i++) {
-        // Clamped to the last texel centres of the image in use, as the
-        // texture's edge would clamp it: past them lie stale texels. A merged
-        // tap past the edge then reads the edge texel with both weights,
-        // exactly what the two clamped taps would read.
-        vec2 texel = clamp(centre + taps[i].x * axis, vec2(0.5), source_size - 0.5);
-        sum += taps[i].y * texture(source, texel * source_texel_uv).r;
-    }
+    for (int i = 0; i < blur_tap_count(); i++)
+        sum += blur_tap_weight(i) * texture(source, blur_tap_uv(i)).r;
     thickness = sum;
 }

@@ -24,7 +24,8 @@ enum {
     LOC_THICKNESS_TEXEL_UV = 43,
     LOC_BACKGROUND_TEXTURE_SIZE = 44,
     LOC_THICKNESS_PER_PIXEL = 45,
-    LOC_THICKNESS_SIZE = 46
+    LOC_THICKNESS_SIZE = 46,
+    LOC_COLORED = 47
 };
 /* Texture units fixed by layout(binding) in the composite shaders (surface_normal.frag.glsl also has 3). */
 enum { UNIT_SURFACE_DEPTH = 0, UNIT_THICKNESS = 1, UNIT_BACKGROUND = 2, UNIT_ENVIRONMENT_MAP = 4 };
@@ -72,12 +73,19 @@ static float fresnel_f0(float ior)
 /* Absorption is given per particle radius of thickness (so a scene looks the
  * same in any unit) and applied per world unit; refraction is per pixel of
  * projected thickness (composite.frag.glsl), unit-free already. */
-static void apply_material(const fc_settings *settings)
+static void apply_material(const fc_settings *settings, bool colored)
 {
     const float per_radius = 1.0f / settings->radius;
+    float absorption[3] = {settings->absorption[0], settings->absorption[1], settings->absorption[2]};
+    /* Coloured, the fluid's colour comes from the particles: the absorption
+     * is made grey (the channels' mean), so that fluid of any thickness
+     * shows the attribute's colour over the background, not its colour
+     * shifted towards the water's channel that absorbs least. */
+    if (colored)
+        absorption[0] = absorption[1] = absorption[2] = (absorption[0] + absorption[1] + absorption[2]) / 3.0f;
+    glUniform1i(LOC_COLORED, colored);
     glUniform3fv(LOC_FLUID_COLOR, 1, settings->fluid_color);
-    glUniform3f(LOC_ABSORPTION, settings->absorption[0] * per_radius, settings->absorption[1] * per_radius,
-                settings->absorption[2] * per_radius);
+    glUniform3f(LOC_ABSORPTION, absorption[0] * per_radius, absorption[1] * per_radius, absorption[2] * per_radius);
     glUniform1f(LOC_FRESNEL_F0, fresnel_f0(settings->ior));
     glUniform1f(LOC_REFRACTION, settings->refraction);
     glUniform1f(LOC_SPECULAR, settings->specular);
@@ -174,7 +182,7 @@ fc_code fc_composite_pass_run(fc_composite_pass *pass, const fc_composite_inputs
     fc_environment_apply(env, view);
     glUniform3fv(LOC_LIGHT_VIEW, 1, env->light_view);
     glUniform4fv(LOC_FLOOR_PLANE, 1, env->floor_plane);
-    apply_material(settings);
+    apply_material(settings, in->colored);
     bind_inputs(in, view, settings->radius);
     fc_gl_draw_fullscreen(pass->empty_vertex_array);   /* the stencil keeps it to the fluid */
     glDisable(GL_STENCIL_TEST);

@@ -26,6 +26,7 @@ typedef struct fc_composite_inputs {
     const fc_render_target *background;
     const fc_render_target *noise;           /* N(x, y) of the noise pass; NULL: no noise (nor foam) */
     GLuint environment_map;                  /* cube map reflected in the fluid; 0 = the built-in scene */
+    bool colored;                            /* the thickness carries the fluid's colour (thickness_pass.h) */
 } fc_composite_inputs;
 
 fc_code fc_composite_pass_create(const char *shader_dir, fc_composite_pass *pass, fc_error *err);

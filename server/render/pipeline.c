@@ -9,9 +9,11 @@
 
 #include "anisotropy.h"
 #include "background_pass.h"
+#include "color_values.h"
 #include "composite_pass.h"
 #include "depth_pass.h"
 #include "environment.h"
+#include "fc_colormap.h"
 #include "fc_error.h"
 #include "fc_frame.h"
 #include "gl_util.h"
@@ -38,6 +40,8 @@
 struct fc_pipeline {
     fc_particle_buffer particles;         /* in draw order: the frame's, or surface particles first, then spray */
     fc_particle_attributes attributes;
+    fc_color_values color_values;         /* the attribute colour_by names, for renders that colour */
+    uint64_t uploads;                     /* frames uploaded so far: what the colour values were filled for */
     fc_anisotropy anisotropy;             /* the particles' ellipsoids, for FC_KERNEL_ANISOTROPIC */
     bool uploaded;
     fc_frame frame;                       /* the uploaded frame's arrays, which the caller keeps (pipeline.h) */
@@ -64,6 +68,7 @@ typedef struct render_job {
     fc_environment env;
     fc_particle_buffer surface;       /* the pipeline's particles without the spray (a prefix of them) */
     bool want_u8;
+    bool colored;                     /* the colour image, tinted by settings->color_by */
 } render_job;
 
 static double now_ms(void)
@@ -116,10 +121,12 @@ static fc_code create_passes(fc_pipeline *p, const char *dir, fc_error *err)
 }
 
 /* Whether the depth pass splats the thickness too: at full resolution, when
- * the image needs thickness. */
+ * the image needs thickness without a colour (the thickness pass splats the
+ * two together). */
 static bool splats_thickness(const render_job *job, fc_aov aov)
 {
-    return job->settings->thickness_scale == 1.0f && (aov == FC_AOV_COLOR || aov == FC_AOV_THICKNESS);
+    return job->settings->thickness_scale == 1.0f && !job->colored &&
+           (aov == FC_AOV_COLOR || aov == FC_AOV_THICKNESS);
 }
 
 /* Depth, and the thickness splat where splats_thickness: both are timed as the depth stage. */
@@ -132,6 +139,15 @@ static fc_code depth_stage(fc_pipeline *p, const render_job *job, fc_aov aov, fc
     fc_pass_profile_end(&p->profile);
     fc_stage_timer_end(&p->timer, FC_STAGE_DEPTH);
     return code;
+}
+
+/* The map's entries as linear RGB, which the shaders interpolate. */
+static void linear_colormap(fc_colormap map, float out[FC_COLORMAP_ENTRIES][3])
+{
+    const float(*table)[3] = fc_colormap_table(map);
+    for (int i = 0; i < FC_COLORMAP_ENTRIES; i++)
+        for (int c = 0; c < 3; c++)
+            out[i][c] = fc_srgb_to_linear(table[i][c]);
 }
 
 /* The thickness: splatted here at reduced resolution, else by the depth
@@ -150,6 +166,12 @@ static fc_code thickness_stage(fc_pipeline *p, const render_job *job, fc_aov aov
         .full_splat = &p->depth.thickness,
         .at_view_size = aov == FC_AOV_THICKNESS,
     };
+    float colormap[FC_COLORMAP_ENTRIES][3];
+    fc_thickness_color color = {&p->color_values, {s->color_range[0], s->color_range[1]}, colormap};
+    if (job->colored) {
+        linear_colormap(s->colormap, colormap);
+        params.color = &color;
+    }
     fc_stage_timer_begin(&p->timer, FC_STAGE_THICKNESS);
     fc_code code = fc_thickness_pass_run(&p->thickness, &job->surface, job->view, &params, result, err);
     fc_stage_timer_end(&p->timer, FC_STAGE_THICKNESS);
@@ -207,7 +229,7 @@ static fc_code composite_stage(fc_pipeline *p, const render_job *job, const fc_r
                                const fc_render_target *thickness, const fc_render_target **result, fc_error *err)
 {
     fc_composite_inputs inputs = {surface, thickness, &p->background.target, NULL,
-                                  job->scene ? job->scene->environment_map : 0};
+                                  job->scene ? job->scene->environment_map : 0, job->colored};
     bool want_u8 = job->want_u8;
     fc_environment env = job->env;   /* the shadow pass adds its map */
     fc_stage_timer_begin(&p->timer, FC_STAGE_COMPOSITE);
@@ -293,10 +315,11 @@ static fc_code render_stages(fc_pipeline *p, const render_job *job, fc_aov aov, 
 /* The job of a validated request: the view, the surface particles (all but
  * the spray) and the scene around them. */
 static void plan_job(const fc_pipeline *p, const fc_view *view, const fc_camera *camera, const fc_settings *settings,
-                     const fc_scene_textures *scene, bool want_u8, render_job *job)
+                     const fc_scene_textures *scene, fc_aov aov, bool want_u8, render_job *job)
 {
     *job = (render_job){.view = view, .settings = settings, .scene = scene, .surface = p->particles,
-                        .want_u8 = want_u8};
+                        .want_u8 = want_u8,
+                        .colored = aov == FC_AOV_COLOR && settings->color_by != FC_COLOR_BY_NONE};
     job->surface.count = fc_particle_attributes_surface_count(&p->attributes, settings->density_threshold);
     bool has_floor = !(scene && scene->background);
     fc_environment_for_view(view, camera, p->particles.lo, p->particles.hi, settings, has_floor, want_u8, &job->env);
@@ -313,6 +336,7 @@ static fc_code upload_frame(fc_pipeline *p, const fc_frame *frame, fc_error *err
     if (code == FC_OK) {
         fc_particle_buffer_fill(&p->particles, frame, NULL);
         p->frame = *frame;
+        p->uploads++;
     }
     return code;
 }
@@ -350,6 +374,16 @@ static fc_code shape_particles(fc_pipeline *p, const fc_settings *settings, fc_e
     return code;
 }
 
+/* The colour image with color_by set needs the attribute of each particle
+ * in draw order (after order_for): INVALID_VALUE when the frame lacks it. */
+static fc_code color_particles(fc_pipeline *p, const fc_settings *settings, fc_aov aov, fc_error *err)
+{
+    if (aov != FC_AOV_COLOR || settings->color_by == FC_COLOR_BY_NONE)
+        return FC_OK;
+    return fc_color_values_update(&p->color_values, &p->frame, fc_particle_attributes_draw_order(&p->attributes),
+                                  settings->color_by, p->uploads, err);
+}
+
 /* Renders a particle and a spray droplet into tiny images through every
  * stage and shading option. Drivers compile shader variants lazily at the
  * first draw, and some (llvmpipe) report a bogus duration for the first
@@ -380,7 +414,7 @@ static fc_code warm_up(fc_pipeline *p, fc_error *err)
         if (code != FC_OK)
             break;
         render_job job;
-        plan_job(p, &view, &camera, &settings, NULL, true, &job);
+        plan_job(p, &view, &camera, &settings, NULL, images[i], true, &job);
         const fc_render_target *result = NULL;
         code = render_stages(p, &job, images[i], &result, err);
     }
@@ -432,6 +466,7 @@ void fc_pipeline_destroy(fc_pipeline *p)
     fc_shadow_pass_destroy(&p->shadow);
     fc_depth_pass_destroy(&p->depth);
     fc_anisotropy_destroy(&p->anisotropy);
+    fc_color_values_release(&p->color_values);
     fc_particle_attributes_destroy(&p->attributes);
     fc_particle_buffer_destroy(&p->particles);
     free(p);
@@ -501,6 +536,8 @@ fc_code fc_pipeline_render_scene(fc_pipeline *p, const fc_camera *camera, const 
         code = order_for(p, settings, err);
     if (code == FC_OK)
         code = shape_particles(p, settings, err);
+    if (code == FC_OK)
+        code = color_particles(p, settings, aov, err);
     if (code != FC_OK)
         return code;
     /* The frame's amplitudes were given after the upload, or are calm. */
@@ -510,7 +547,7 @@ fc_code fc_pipeline_render_scene(fc_pipeline *p, const fc_camera *camera, const 
     fc_view_from_camera(camera, p->particles.lo, p->particles.hi, fc_anisotropy_reach(&p->particles, settings->radius),
                         &view);
     render_job job;
-    plan_job(p, &view, camera, settings, scene, want_u8 != 0, &job);
+    plan_job(p, &view, camera, settings, scene, aov, want_u8 != 0, &job);
     const fc_render_target *result = NULL;
     code = render_stages(p, &job, aov, &result, err);
     if (code != FC_OK)
@@ -583,6 +620,7 @@ void fc_pipeline_gpu_memory(const fc_pipeline *p, fc_gpu_memory *out)
     *out = (fc_gpu_memory){0};
     fc_particle_buffer_tally(&p->particles, out);
     fc_particle_attributes_tally(&p->attributes, out);
+    fc_color_values_tally(&p->color_values, out);
     fc_anisotropy_tally(&p->anisotropy, out);
     fc_depth_pass_tally(&p->depth, out);
     fc_thickness_pass_tally(&p->thickness, out);

@@ -7,7 +7,7 @@
 #include "gl_util.h"
 #include "shader_program.h"
 
-/* Uniform locations fixed by layout(location) in thickness_blur.frag.glsl. */
+/* Uniform locations fixed by layout(location) in thickness_taps.frag.glsl. */
 enum {
     LOC_AXIS = 0,
     LOC_TAP_COUNT = 1,
@@ -16,7 +16,7 @@ enum {
     LOC_SOURCE_TEXEL_UV = 4,
     LOC_TAPS = 8
 };
-/* The length of taps[] in thickness_blur.frag.glsl (max_taps). */
+/* The length of taps[] in thickness_taps.frag.glsl (max_taps). */
 #define MAX_TAPS 64
 /* The kernel is cut at this many standard deviations, where weights are about 1%. */
 #define KERNEL_SIGMAS 3.0f
@@ -29,16 +29,29 @@ typedef struct blur_tap {
     float weight;
 } blur_tap;
 
-fc_code fc_thickness_filter_create(const char *shader_dir, fc_thickness_filter *f, fc_error *err)
+/* A filter whose targets have `format` and whose blur sums the channels
+ * `blur_file` reads. */
+static fc_code create(const char *shader_dir, GLenum format, const char *blur_file, fc_thickness_filter *f,
+                      fc_error *err)
 {
     *f = (fc_thickness_filter){
-        .across = fc_render_target_init(GL_R32F, false, true),
-        .result = fc_render_target_init(GL_R32F, false, true),
-        .upsampled = fc_render_target_init(GL_R32F, false, true),
+        .across = fc_render_target_init(format, false, true),
+        .result = fc_render_target_init(format, false, true),
+        .upsampled = fc_render_target_init(format, false, true),
     };
     glCreateVertexArrays(1, &f->empty_vertex_array);
-    const char *files[] = {"fullscreen.vert.glsl", "thickness_blur.frag.glsl"};
+    const char *files[] = {"fullscreen.vert.glsl", "thickness_taps.frag.glsl", blur_file};
     return fc_program_build(shader_dir, files, sizeof files / sizeof files[0], &f->program, err);
+}
+
+fc_code fc_thickness_filter_create(const char *shader_dir, fc_thickness_filter *f, fc_error *err)
+{
+    return create(shader_dir, GL_R32F, "thickness_blur.frag.glsl", f, err);
+}
+
+fc_code fc_thickness_filter_create_color(const char *shader_dir, fc_thickness_filter *f, fc_error *err)
+{
+    return create(shader_dir, GL_RGBA32F, "thickness_color_blur.frag.glsl", f, err);
 }
 
 void fc_thickness_filter_destroy(fc_thickness_filter *f)

@@ -13,12 +13,16 @@
 typedef struct fc_thickness_filter {
     GLuint program;
     GLuint empty_vertex_array;
+    /* R32F (RGBA32F for the filter of fc_thickness_filter_create_color) */
     fc_render_target across;      /* R32F, resampled and blurred along x, at the blur's resolution */
     fc_render_target result;      /* R32F, blurred along both axes, at the blur's resolution */
     fc_render_target upsampled;   /* R32F, at the image's size: only for the thickness AOV */
 } fc_thickness_filter;
 
 fc_code fc_thickness_filter_create(const char *shader_dir, fc_thickness_filter *f, fc_error *err);
+/* The same filter for the thickness with its colour (RGBA32F: thickness, then
+ * colour x thickness; thickness_color.frag.glsl), every channel blurred alike. */
+fc_code fc_thickness_filter_create_color(const char *shader_dir, fc_thickness_filter *f, fc_error *err);
 void fc_thickness_filter_destroy(fc_thickness_filter *f);
 
 /* Resamples `source` (bilinear R32F) to width x height, averaging the source

@@ -3,10 +3,11 @@
 
 #include <math.h>
 
+#include "fc_colormap.h"
 #include "gl_util.h"
 
-/* Uniform location fixed by layout(location) in thickness_chord.glsl. */
-enum { LOC_FLOOR_PLANE = 10 };
+/* Uniform locations fixed by layout(location) in thickness_chord.glsl and thickness_color.frag.glsl. */
+enum { LOC_FLOOR_PLANE = 10, LOC_COLOR_RANGE = 11, LOC_COLORMAP = 16 };
 /* The blur runs at this fraction of the image's resolution (or the splat's,
  * where lower): thickness is a low-frequency quantity (Janisz 2012, §4.1.3). */
 #define BLUR_SCALE 0.5f
@@ -14,15 +15,24 @@ enum { LOC_FLOOR_PLANE = 10 };
 fc_code fc_thickness_pass_create(const char *shader_dir, fc_thickness_pass *pass, fc_error *err)
 {
     pass->splat = fc_render_target_init(GL_R32F, false, true);
+    pass->color_splat = fc_render_target_init(GL_RGBA32F, false, true);
     fc_code code = fc_sphere_sprites_create_shaped(shader_dir, "thickness_chord.glsl", "thickness.frag.glsl",
                                                    &pass->sprites, err);
     if (code == FC_OK)
         code = fc_thickness_filter_create(shader_dir, &pass->filter, err);
+    if (code == FC_OK)
+        code = fc_sphere_sprites_create_shaped(shader_dir, "thickness_chord.glsl", "thickness_color.frag.glsl",
+                                               &pass->color_sprites, err);
+    if (code == FC_OK)
+        code = fc_thickness_filter_create_color(shader_dir, &pass->color_filter, err);
     return code;
 }
 
 void fc_thickness_pass_destroy(fc_thickness_pass *pass)
 {
+    fc_thickness_filter_destroy(&pass->color_filter);
+    fc_sphere_sprites_destroy(&pass->color_sprites);
+    fc_render_target_release(&pass->color_splat);
     fc_thickness_filter_destroy(&pass->filter);
     fc_sphere_sprites_destroy(&pass->sprites);
     fc_render_target_release(&pass->splat);
@@ -34,23 +44,36 @@ static uint32_t scaled(uint32_t size, float scale)
     return n > 0 ? n : 1;
 }
 
-static fc_code splat(fc_thickness_pass *pass, const fc_particle_buffer *particles, const fc_view *view,
-                     const fc_thickness_params *params, fc_error *err)
+/* The colour's uniforms on the program that draws `particles`, and its values bound. */
+static void apply_color(const fc_sphere_sprites *sprites, const fc_particle_buffer *particles,
+                        const fc_thickness_color *color)
 {
-    fc_code code = fc_render_target_resize(&pass->splat, view->width, view->height, err);
+    GLuint program = fc_sphere_sprites_program(sprites, particles);
+    glProgramUniform2f(program, LOC_COLOR_RANGE, color->range[0], color->range[1]);
+    glProgramUniform3fv(program, LOC_COLORMAP, FC_COLORMAP_ENTRIES, &color->colormap[0][0]);
+    fc_color_values_bind(color->values);
+}
+
+/* Every particle adds its chord (times its colour, when coloured) into `target`. */
+static fc_code splat(fc_thickness_pass *pass, const fc_particle_buffer *particles, const fc_view *view,
+                     const fc_thickness_params *params, fc_render_target *target, fc_error *err)
+{
+    fc_code code = fc_render_target_resize(target, view->width, view->height, err);
     if (code != FC_OK)
         return code;
-    fc_render_target_bind(&pass->splat);
-    const GLfloat empty = 0.0f;
-    glClearNamedFramebufferfv(pass->splat.framebuffer, GL_COLOR, 0, &empty);
+    const fc_sphere_sprites *sprites = params->color ? &pass->color_sprites : &pass->sprites;
+    fc_render_target_bind(target);
+    const GLfloat empty[4] = {0.0f, 0.0f, 0.0f, 0.0f};
+    glClearNamedFramebufferfv(target->framebuffer, GL_COLOR, 0, empty);
     glDisable(GL_DEPTH_TEST);
     glDisable(GL_FRAMEBUFFER_SRGB);
     glEnable(GL_BLEND);
     glBlendEquation(GL_FUNC_ADD);
     glBlendFunc(GL_ONE, GL_ONE);
-    glProgramUniform4fv(fc_sphere_sprites_program(&pass->sprites, particles), LOC_FLOOR_PLANE, 1,
-                        params->floor_plane);
-    fc_sphere_sprites_draw(&pass->sprites, particles, view, params->radius);
+    glProgramUniform4fv(fc_sphere_sprites_program(sprites, particles), LOC_FLOOR_PLANE, 1, params->floor_plane);
+    if (params->color)
+        apply_color(sprites, particles, params->color);
+    fc_sphere_sprites_draw(sprites, particles, view, params->radius);
     glDisable(GL_BLEND);
     return fc_gl_check("thickness pass", err);
 }
@@ -80,17 +103,18 @@ static float residual_sigma(uint32_t blur, float splat_scale, float blur_scale)
 static fc_code blur(fc_thickness_pass *pass, const fc_render_target *splatted, const fc_view *view,
                     const fc_thickness_params *params, const fc_render_target **result, fc_error *err)
 {
+    fc_thickness_filter *filter = params->color ? &pass->color_filter : &pass->filter;
     *result = splatted;
     fc_code code = FC_OK;
     if (params->blur > 0) {
         float blur_scale = fminf(params->scale, BLUR_SCALE);
         float sigma = residual_sigma(params->blur, params->scale, blur_scale);
-        code = fc_thickness_filter_run(&pass->filter, splatted, sigma, scaled(view->width, blur_scale),
+        code = fc_thickness_filter_run(filter, splatted, sigma, scaled(view->width, blur_scale),
                                        scaled(view->height, blur_scale), result, err);
     }
     bool reduced = (*result)->width != view->width || (*result)->height != view->height;
     if (code == FC_OK && params->at_view_size && reduced)
-        code = fc_thickness_filter_upsample(&pass->filter, *result, view->width, view->height, result, err);
+        code = fc_thickness_filter_upsample(filter, *result, view->width, view->height, result, err);
     return code;
 }
 
@@ -104,13 +128,15 @@ fc_code fc_thickness_pass_run(fc_thickness_pass *pass, const fc_particle_buffer 
     reduced.width = scaled(view->width, scale);
     reduced.height = scaled(view->height, scale);
     fc_pass_profile *profile = params->profile;
-    const fc_render_target *splatted = params->full_splat;
+    /* The depth pass splats the thickness alone, never its colour. */
+    const fc_render_target *splatted = params->color ? NULL : params->full_splat;
     fc_code code = FC_OK;
     if (scale != 1.0f || !splatted) {
-        fc_pass_profile_begin(profile, "thickness splat");
-        code = splat(pass, particles, &reduced, params, err);
+        fc_render_target *target = params->color ? &pass->color_splat : &pass->splat;
+        fc_pass_profile_begin(profile, params->color ? "thickness + colour splat" : "thickness splat");
+        code = splat(pass, particles, &reduced, params, target, err);
         fc_pass_profile_end(profile);
-        splatted = &pass->splat;
+        splatted = target;
     }
     *result = splatted;
     if (code != FC_OK)
@@ -121,18 +147,32 @@ fc_code fc_thickness_pass_run(fc_thickness_pass *pass, const fc_particle_buffer 
     return code;
 }
 
+static void tally_filter(const fc_thickness_filter *filter, fc_gpu_memory *m)
+{
+    fc_render_target_tally(&filter->across, m);
+    fc_render_target_tally(&filter->result, m);
+    fc_render_target_tally(&filter->upsampled, m);
+}
+
+static void trim_filter(fc_thickness_filter *filter)
+{
+    fc_render_target_release(&filter->across);
+    fc_render_target_release(&filter->result);
+    fc_render_target_release(&filter->upsampled);
+}
+
 void fc_thickness_pass_tally(const fc_thickness_pass *pass, fc_gpu_memory *m)
 {
     fc_render_target_tally(&pass->splat, m);
-    fc_render_target_tally(&pass->filter.across, m);
-    fc_render_target_tally(&pass->filter.result, m);
-    fc_render_target_tally(&pass->filter.upsampled, m);
+    tally_filter(&pass->filter, m);
+    fc_render_target_tally(&pass->color_splat, m);
+    tally_filter(&pass->color_filter, m);
 }
 
 void fc_thickness_pass_trim(fc_thickness_pass *pass)
 {
     fc_render_target_release(&pass->splat);
-    fc_render_target_release(&pass->filter.across);
-    fc_render_target_release(&pass->filter.result);
-    fc_render_target_release(&pass->filter.upsampled);
+    trim_filter(&pass->filter);
+    fc_render_target_release(&pass->color_splat);
+    trim_filter(&pass->color_filter);
 }

@@ -11,6 +11,7 @@
 #include <stdbool.h>
 #include <stdint.h>
 
+#include "color_values.h"
 #include "pass_profile.h"
 #include "render_target.h"
 #include "sphere_sprites.h"
@@ -20,7 +21,20 @@ typedef struct fc_thickness_pass {
     fc_sphere_sprites sprites;
     fc_render_target splat;   /* R32F thickness at the pass's resolution */
     fc_thickness_filter filter;
+    /* Colouring by an attribute: the thickness and its colour (RGBA32F:
+     * thickness, colour x thickness; thickness_color.frag.glsl), splatted and
+     * blurred alike. Its targets are allocated by the first render that colours. */
+    fc_sphere_sprites color_sprites;
+    fc_render_target color_splat;
+    fc_thickness_filter color_filter;
 } fc_thickness_pass;
+
+/* What colours the thickness: each particle's value, and the map from values to colours. */
+typedef struct fc_thickness_color {
+    const fc_color_values *values;
+    float range[2];                              /* values at the map's ends */
+    const float (*colormap)[3];                  /* FC_COLORMAP_ENTRIES linear RGB colours */
+} fc_thickness_color;
 
 typedef struct fc_thickness_params {
     float radius;                 /* sphere radius, world units */
@@ -32,6 +46,8 @@ typedef struct fc_thickness_params {
     const fc_render_target *full_splat;   /* the thickness already splatted at the view's size (the depth
                                              pass does), used at scale 1; NULL: the pass splats */
     bool at_view_size;            /* the result resampled to the view's size (the thickness AOV) */
+    const fc_thickness_color *color;   /* non-NULL: the result holds the thickness in r and the colour times
+                                          the thickness in gba, always splatted by the pass (full_splat unused) */
 } fc_thickness_params;
 
 fc_code fc_thickness_pass_create(const char *shader_dir, fc_thickness_pass *pass, fc_error *err);

@@ -116,7 +116,7 @@ static void run_frame_rows(hx_env *env)
 enum { KEY_RADIUS = 1, KEY_SMOOTHING, KEY_ITERATIONS, KEY_COLOR, KEY_ABSORPTION, KEY_IOR, KEY_FILTER_RADIUS,
        KEY_SMOOTH_SCALE, KEY_REFRACTION, KEY_SPECULAR, KEY_SHININESS, KEY_THICKNESS_SCALE, KEY_THICKNESS_BLUR,
        KEY_NOISE, KEY_FOAM, KEY_FOAM_TAU, KEY_FOAM_DECAY, KEY_DENSITY_THRESHOLD,
-       KEY_KERNEL, KEY_SHADOW, KEY_EXPOSURE };
+       KEY_KERNEL, KEY_SHADOW, KEY_EXPOSURE, KEY_COLOR_BY, KEY_COLORMAP, KEY_COLOR_RANGE };
 
 typedef struct settings_row {
     const char *name;
@@ -168,7 +168,17 @@ static const settings_row settings_rows[] = {
     {"shadow 2", KEY_SHADOW, 1, {2}, FC_ERR_INVALID_VALUE},
     {"exposure +Inf", KEY_EXPOSURE, 1, {PLUS_INF}, FC_ERR_INVALID_VALUE},
     {"exposure NaN", KEY_EXPOSURE, 1, {QUIET_NAN}, FC_ERR_INVALID_VALUE},
-    {"unknown setting key 22", 22, 1, {0}, FC_ERR_INVALID_VALUE},
+    {"color_by 3", KEY_COLOR_BY, 1, {3}, FC_ERR_INVALID_VALUE},
+    {"color_by 2^32-1", KEY_COLOR_BY, 1, {UINT32_MAX}, FC_ERR_INVALID_VALUE},
+    {"colormap 7", KEY_COLORMAP, 1, {7}, FC_ERR_INVALID_VALUE},
+    {"colormap 2^31", KEY_COLORMAP, 1, {0x80000000u}, FC_ERR_INVALID_VALUE},
+    {"color_range min NaN", KEY_COLOR_RANGE, 2, {QUIET_NAN, 0}, FC_ERR_INVALID_VALUE},
+    {"color_range max +Inf", KEY_COLOR_RANGE, 2, {0, PLUS_INF}, FC_ERR_INVALID_VALUE},
+    {"color_range -FLT_MAX..FLT_MAX: width overflows", KEY_COLOR_RANGE, 2, {0xff7fffffu, 0x7f7fffffu},
+     FC_ERR_INVALID_VALUE},
+    {"color_range with 1 word", KEY_COLOR_RANGE, 1, {0}, FC_ERR_MALFORMED},
+    {"color_range with 3 words", KEY_COLOR_RANGE, 3, {0, 0x3f800000u, 0}, FC_ERR_MALFORMED},
+    {"unknown setting key 25", 25, 1, {0}, FC_ERR_INVALID_VALUE},
     {"unknown setting key 65535", 0xffff, 1, {0}, FC_ERR_INVALID_VALUE},
     {"ior with 2 words", KEY_IOR, 2, {0x3fa00000u, 0}, FC_ERR_MALFORMED},
     {"fluid_color with 1 word", KEY_COLOR, 1, {0}, FC_ERR_MALFORMED},

@@ -1,6 +1,7 @@
 /* test_settings.c — the render settings: their defaults, the domain of every
  * field (fc_settings_validate and SETTINGS both refuse with INVALID_VALUE), and
  * every SETTINGS key (PROTOCOL.md's table) against hand-encoded bytes. */
+#include <float.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -67,6 +68,8 @@ static void test_defaults(void)
     CHECK(s.noise == 0.0f && s.foam == 0.0f && s.foam_tau == 0.5f && s.foam_decay == 0.85f);
     CHECK(s.density_threshold == 0.0f);
     CHECK(s.kernel == FC_KERNEL_SPHERE && s.shadow == 1 && s.exposure == 0.0f);
+    CHECK(s.color_by == FC_COLOR_BY_NONE && s.colormap == FC_COLORMAP_VIRIDIS);
+    CHECK(s.color_range[0] == 0.0f && s.color_range[1] == 1.0f);
 }
 
 /* ---- every key, one at a time ---- */
@@ -99,6 +102,9 @@ static void expect_density_threshold(fc_settings *s) { s->density_threshold = 60
 static void expect_kernel(fc_settings *s) { s->kernel = FC_KERNEL_ANISOTROPIC; }
 static void expect_shadow(fc_settings *s) { s->shadow = 0; }
 static void expect_exposure(fc_settings *s) { s->exposure = -1.5f; }
+static void expect_color_by(fc_settings *s) { s->color_by = FC_COLOR_BY_DENSITY; }
+static void expect_colormap(fc_settings *s) { s->colormap = FC_COLORMAP_TURBO; }
+static void expect_color_range(fc_settings *s) { memcpy(s->color_range, (float[2]){-2.0f, 0.5f}, 8); }
 
 static const key_case key_cases[] = {
     {1, 1, {0x3E000000u}, expect_radius},                             /* 0.125f */
@@ -122,6 +128,9 @@ static const key_case key_cases[] = {
     {19, 1, {1}, expect_kernel},
     {20, 1, {0}, expect_shadow},
     {21, 1, {0xBFC00000u}, expect_exposure},                          /* -1.5f */
+    {22, 1, {2}, expect_color_by},
+    {23, 1, {6}, expect_colormap},
+    {24, 2, {0xC0000000u, 0x3F000000u}, expect_color_range},          /* -2, 0.5 */
 };
 #define KEY_COUNT (sizeof key_cases / sizeof key_cases[0])
 
@@ -153,7 +162,8 @@ static void test_encoder_layout(void)
     fc_buf_init(&b);
     fc_error err;
     CHECK_CODE(fc_wire_write_settings(&b, 9, &s, &err), FC_OK);
-    const size_t payload_size = 4 + KEY_COUNT * 4 + 4 * 25;   /* 25 words: two colours of 3, nineteen of 1 */
+    /* 29 words: two colours of 3, twenty-one of 1, a range of 2 */
+    const size_t payload_size = 4 + KEY_COUNT * 4 + 4 * 29;
     CHECK_MSG(b.len == FC_WIRE_HEADER_SIZE + payload_size, "%zu bytes", b.len);
     if (b.len != FC_WIRE_HEADER_SIZE + payload_size) {
         fc_buf_free(&b);
@@ -233,13 +243,18 @@ static const domain_case rejected[] = {
     {21, 0x41880000u, "exposure"},           /* 17 */
     {21, 0xC1880000u, "exposure"},           /* -17 */
     {21, 0x7FC00000u, "exposure"},           /* NaN */
+    {22, 3, "color_by"},
+    {22, 0xFFFFFFFFu, "color_by"},
+    {23, 7, "colormap"},
+    {24, 0x7FC00000u, "color_range"},        /* NaN, 0 */
+    {24, 0xFF800000u, "color_range"},        /* -inf, 0 */
 };
 
 /* The entry for case c: colours carry the value in their first word. */
 static payload domain_payload(const domain_case *c)
 {
     uint32_t words[3] = {c->bits, 0, 0};
-    uint16_t count = (c->key == 4 || c->key == 5) ? 3 : 1;
+    uint16_t count = (c->key == 4 || c->key == 5) ? 3 : c->key == 24 ? 2 : 1;
     return one_entry(c->key, words, count);
 }
 
@@ -303,6 +318,7 @@ static void test_domain_edges_accepted(void)
         {18, 0},          {18, 0x7F7FFFFFu},
         {19, 0},          {19, 1},          {20, 0},          {20, 1},                   /* sphere, anisotropic, off, on */
         {21, 0x41800000u}, {21, 0xC1800000u},                                            /* 16, -16 */
+        {22, 0},          {22, 1},          {22, 2},          {23, 0},    {23, 6},       /* none .. density, maps */
     };
     for (size_t i = 0; i < sizeof edges / sizeof edges[0]; i++) {
         fc_settings s;
@@ -313,15 +329,59 @@ static void test_domain_edges_accepted(void)
     }
 }
 
+/* color_range: finite words and a finite width always; min < max once an
+ * attribute colours (zeroed settings, which colour nothing, stay valid). */
+static void test_color_range_domain(void)
+{
+    const struct {
+        float lo, hi;
+        fc_color_by by;
+        fc_code expected;
+    } cases[] = {
+        {0.0f, INFINITY, FC_COLOR_BY_NONE, FC_ERR_INVALID_VALUE},
+        {-FLT_MAX, FLT_MAX, FC_COLOR_BY_NONE, FC_ERR_INVALID_VALUE},    /* the width overflows */
+        {1.0f, 1.0f, FC_COLOR_BY_SPEED, FC_ERR_INVALID_VALUE},
+        {3.0f, 2.0f, FC_COLOR_BY_DENSITY, FC_ERR_INVALID_VALUE},
+        {3.0f, 2.0f, FC_COLOR_BY_NONE, FC_OK},
+        {0.0f, 0.0f, FC_COLOR_BY_NONE, FC_OK},
+        {-1e30f, 1e30f, FC_COLOR_BY_SPEED, FC_OK},
+        {0.0f, 1e-30f, FC_COLOR_BY_SPEED, FC_OK},
+    };
+    for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) {
+        fc_settings s, before;
+        fc_settings_default(&s);
+        s.color_by = cases[i].by;
+        before = s;
+        const uint32_t words[2] = {f32_bits(cases[i].lo), f32_bits(cases[i].hi)};
+        payload p = one_entry(24, words, 2);
+        fc_error err;
+        fc_code code = read_payload(&p, &s, &err);
+        CHECK_MSG(code == cases[i].expected, "range case %zu: %s", i, code == FC_OK ? "accepted" : err.message);
+        if (code != FC_OK) {
+            CHECK_MSG(strstr(err.message, "color_range") != NULL, "\"%s\" does not name color_range", err.message);
+            CHECK(memcmp(&s, &before, sizeof s) == 0);
+        }
+    }
+    /* Setting the attribute onto an empty range is refused as well. */
+    fc_settings s;
+    fc_settings_default(&s);
+    s.color_range[1] = 0.0f;
+    const uint32_t speed = FC_COLOR_BY_SPEED;
+    payload p = one_entry(22, &speed, 1);
+    fc_error err;
+    CHECK_CODE(read_payload(&p, &s, &err), FC_ERR_INVALID_VALUE);
+    CHECK(s.color_by == FC_COLOR_BY_NONE);
+}
+
 static void test_unknown_key_after_the_table(void)
 {
     const uint32_t zero = 0;
-    payload p = one_entry(22, &zero, 1);
+    payload p = one_entry(25, &zero, 1);
     fc_settings s;
     fc_settings_default(&s);
     fc_error err;
     CHECK_CODE(read_payload(&p, &s, &err), FC_ERR_INVALID_VALUE);
-    CHECK_MSG(strstr(err.message, "22") != NULL, "\"%s\" does not name key 22", err.message);
+    CHECK_MSG(strstr(err.message, "25") != NULL, "\"%s\" does not name key 25", err.message);
     /* A scale is one word: two is a layout error, not a domain error. */
     const uint32_t two_words[2] = {f32_bits(1.0f), f32_bits(1.0f)};
     p = one_entry(8, two_words, 2);
@@ -338,6 +398,7 @@ int main(void)
     test_validate_rejects_unknown_smoothing();
     test_every_smoothing_accepted();
     test_domain_edges_accepted();
+    test_color_range_domain();
     test_unknown_key_after_the_table();
     return test_result();
 }

@@ -327,9 +327,16 @@ static void test_settings_rules(void)
     CHECK(s.iterations == 7);
     s = before;
 
-    const uint32_t unknown_key[] = {1, 22, 1, 0};
+    const uint32_t unknown_key[] = {1, 25, 1, 0};
     CHECK_CODE(read_settings_built("whhw", unknown_key, &s, &err), FC_ERR_INVALID_VALUE);
-    CHECK_MSG(strstr(err.message, "22") != NULL, "\"%s\" does not name key 22", err.message);
+    CHECK_MSG(strstr(err.message, "25") != NULL, "\"%s\" does not name key 25", err.message);
+    /* Colouring by speed over an empty range: each entry alone is valid, the merged settings are not. */
+    const uint32_t empty_range[] = {2, 22, 1, FC_COLOR_BY_SPEED, 24, 2, f32_bits(2.0f), f32_bits(2.0f)};
+    CHECK_CODE(read_settings_built("whhwhhww", empty_range, &s, &err), FC_ERR_INVALID_VALUE);
+    CHECK_MSG(strstr(err.message, "color_range") != NULL, "\"%s\" does not name color_range", err.message);
+    CHECK(memcmp(&s, &before, sizeof s) == 0);
+    const uint32_t range_one_word[] = {1, 24, 1, 0};
+    CHECK_CODE(read_settings_built("whhw", range_one_word, &s, &err), FC_ERR_MALFORMED);
     const uint32_t key_zero[] = {1, 0, 1, 0};
     CHECK_CODE(read_settings_built("whhw", key_zero, &s, &err), FC_ERR_INVALID_VALUE);
     const uint32_t wrong_words[] = {1, 1, 2, f32_bits(1), f32_bits(1)};
@@ -360,6 +367,8 @@ static void test_settings_rules(void)
         {4, {0, f32_bits(1.5f), 0}, 3},      {4, {f32_bits(-0.1f), 0, 0}, 3},
         {5, {0, 0, f32_bits(INFINITY)}, 3},  {5, {f32_bits(-1), 0, 0}, 3},
         {6, {f32_bits(0.99f)}, 1},           {6, {f32_bits(3.01f)}, 1},
+        {22, {3}, 1},                        {23, {7}, 1},
+        {24, {f32_bits(NAN), 0}, 2},         {24, {0, f32_bits(-INFINITY)}, 2},
     };
     for (size_t i = 0; i < sizeof out_of_domain / sizeof out_of_domain[0]; i++) {
         uint32_t values[9] = {2, 2, 1, FC_SMOOTHING_NONE, out_of_domain[i].key, out_of_domain[i].n};
