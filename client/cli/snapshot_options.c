@@ -475,7 +475,7 @@ void fc_snapshot_print_help(FILE *to)
 {
     fputs("usage: fluidcast snapshot INPUT -o OUT [options]\n"
           "\n"
-          "Sends the particles in INPUT (.f32, .ply, .vtk, .csv) to a fluidcastd server,\n"
+          "Sends the particles in INPUT (.f32, .ply, .vtk, .vtu, .vtp, .pvd, .csv, .npy,\n.bgeo) to a fluidcastd server,\n"
           "renders them as fluid and writes the image the server encoded to OUT. The\n"
           "format follows OUT's extension: .png, .jpg/.jpeg or .exr. Options take their\n"
           "value as the next argument or after '=' (--ior=1.5).\n"

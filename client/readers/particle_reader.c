@@ -24,6 +24,9 @@ static const struct {
     { "bgeo.gz", FC_FILE_BGEO },
     { "bgeo.sc", FC_FILE_BGEO },
     { "npy", FC_FILE_NPY },
+    { "vtu", FC_FILE_VTK_XML },
+    { "vtp", FC_FILE_VTK_XML },
+    { "pvd", FC_FILE_PVD },
 };
 
 /* Whether the name ends with "." extension, case-insensitively. */
@@ -48,7 +51,7 @@ fc_file_format fc_file_format_from_path(const char *path)
 
 static fc_code unknown_format(const char *name, fc_error *err)
 {
-    return fc_error_set(err, FC_ERR_PARSE, "%s: unknown particle file format (expected .f32, .ply, .vtk, .csv, .bgeo or .npy)",
+    return fc_error_set(err, FC_ERR_PARSE, "%s: unknown particle file format (expected .f32, .ply, .vtk, .vtu, .vtp, .pvd, .csv, .bgeo or .npy)",
                         name);
 }
 
@@ -67,6 +70,11 @@ static fc_code read_format(fc_cursor *c, fc_file_format format, fc_frame *frame,
         return fc_read_bgeo(c, frame, err);
     case FC_FILE_NPY:
         return fc_read_npy(c, frame, err);
+    case FC_FILE_VTK_XML:
+        return fc_read_vtkxml(c, frame, err);
+    case FC_FILE_PVD:
+        return fc_error_set(err, FC_ERR_PARSE, "%s: a .pvd collection names other files: read it by its path, "
+                            "or give one of its datasets", c->name);
     case FC_FILE_UNKNOWN:
         break;
     }
@@ -121,6 +129,47 @@ static fc_code load_file(const char *path, uint8_t **data, size_t *size, fc_erro
     return FC_OK;
 }
 
+/* The first DataSet of the collection at `path`, as a path: relative names are relative to the .pvd's directory. */
+static fc_code pvd_dataset_path(const char *path, char *dataset, size_t dataset_size, fc_error *err)
+{
+    uint8_t *data = NULL;
+    size_t size = 0;
+    fc_code code = load_file(path, &data, &size, err);
+    if (code != FC_OK)
+        return code;
+    char file[4096];
+    fc_cursor c;
+    fc_cursor_init(&c, data, size, path);
+    code = size == 0 ? fc_error_set(err, FC_ERR_PARSE, "%s: empty file", path)
+                     : fc_pvd_first_dataset(&c, file, sizeof file, err);
+    free(data);
+    if (code != FC_OK)
+        return code;
+    const char *slash = strrchr(path, '/');
+    int dir_len = file[0] == '/' || slash == NULL ? 0 : (int)(slash + 1 - path);
+    if (snprintf(dataset, dataset_size, "%.*s%s", dir_len, path, file) >= (int)dataset_size)
+        return fc_error_set(err, FC_ERR_PARSE, "%s: first DataSet's path is too long", path);
+    fc_file_format format = fc_file_format_from_path(dataset);
+    if (format == FC_FILE_PVD || format == FC_FILE_UNKNOWN)
+        return fc_error_set(err, FC_ERR_PARSE, "%s: first DataSet '%s' is not a particle file (.vtu, .vtp, ...)", path,
+                            file);
+    return FC_OK;
+}
+
+/* A .pvd stands for its first dataset; its errors are reported under the .pvd's name too. */
+static fc_code read_pvd(const char *path, fc_frame *frame, fc_error *err)
+{
+    char dataset[4096 + 256];
+    fc_code code = pvd_dataset_path(path, dataset, sizeof dataset, err);
+    if (code != FC_OK)
+        return code;
+    fc_error inner = { FC_OK, "" };
+    code = fc_read_particles(dataset, frame, &inner);
+    if (code != FC_OK)
+        return fc_error_set(err, code, "%s: its first DataSet: %s", path, inner.message);
+    return FC_OK;
+}
+
 fc_code fc_read_particles(const char *path, fc_frame *frame, fc_error *err)
 {
     if (frame == NULL || path == NULL)
@@ -129,6 +178,8 @@ fc_code fc_read_particles(const char *path, fc_frame *frame, fc_error *err)
     fc_file_format format = fc_file_format_from_path(path);
     if (format == FC_FILE_UNKNOWN)
         return unknown_format(path, err);
+    if (format == FC_FILE_PVD)
+        return read_pvd(path, frame, err);
     uint8_t *data = NULL;
     size_t size = 0;
     fc_code code = load_file(path, &data, &size, err);

@@ -2,7 +2,8 @@
  * Formats: raw little-endian float32 xyz (.f32), PLY (ascii, binary little/big
  * endian), legacy VTK (ascii and binary POLYDATA / UNSTRUCTURED_GRID), CSV with a
  * header line, Houdini classic BGEO (partio's .bgeo, gzip'd or not), numpy .npy (N, 3) float
- * arrays. A bad file gets FC_ERR_PARSE (or FC_ERR_IO) with a message naming
+ * arrays, VTK XML .vtu/.vtp (ascii, binary, appended raw or base64, zlib-compressed) and
+ * .pvd collections (by path: the first dataset listed). A bad file gets FC_ERR_PARSE (or FC_ERR_IO) with a message naming
  * the file and what is wrong; never a crash. */
 #ifndef FC_PARTICLE_READER_H
 #define FC_PARTICLE_READER_H
@@ -20,18 +21,23 @@ typedef enum fc_file_format {
     FC_FILE_VTK,
     FC_FILE_CSV,
     FC_FILE_BGEO,
-    FC_FILE_NPY
+    FC_FILE_NPY,
+    FC_FILE_VTK_XML,
+    FC_FILE_PVD
 } fc_file_format;
 
-/* From the file name's extension (case-insensitive): .f32 .ply .vtk .csv .npy, .bgeo
+/* From the file name's extension (case-insensitive): .f32 .ply .vtk .csv .npy .vtu .vtp .pvd, .bgeo
  * (also .bgeo.gz, .bhclassic, and .bgeo.sc so that its reader can refuse it clearly) */
 fc_file_format fc_file_format_from_path(const char *path);
 
 /* Reads `path` (format from its extension) into *frame (zeroed first; free with
- * fc_frame_free). Positions always; density, velocity and ids when the file has them. */
+ * fc_frame_free). Positions always; density, velocity and ids when the file has them.
+ * A .pvd collection reads the first DataSet it lists (a .vtu or .vtp, relative to
+ * the .pvd's directory). */
 fc_code fc_read_particles(const char *path, fc_frame *frame, fc_error *err);
 
-/* Same, from a buffer in memory; `name` is used in error messages. */
+/* Same, from a buffer in memory; `name` is used in error messages. FC_FILE_PVD is
+ * refused here: a collection names other files, which only a path can resolve. */
 fc_code fc_read_particles_mem(const uint8_t *data, size_t size, fc_file_format format,
                               const char *name, fc_frame *frame, fc_error *err);
 

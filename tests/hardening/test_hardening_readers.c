@@ -31,6 +31,11 @@ typedef struct broken_file {
 #define ONE_LE_PARTICLE "\x00\x00\x80\x3f" "\x00\x00\x00\x40" "\x00\x00\x40\x40"   /* 1 2 3 */
 #define VTK_ASCII "# vtk DataFile Version 3.0\nbroken\nASCII\nDATASET POLYDATA\n"
 #define VTK_BINARY "# vtk DataFile Version 3.0\nbroken\nBINARY\nDATASET POLYDATA\n"
+#define VTU_HEAD "<VTKFile type=\"UnstructuredGrid\"><UnstructuredGrid>"
+#define VTU_ZLIB_HEAD "<VTKFile type=\"UnstructuredGrid\" compressor=\"vtkZLibDataCompressor\"><UnstructuredGrid>"
+#define VTU_POINTS(format) "<Points><DataArray type=\"Float32\" NumberOfComponents=\"3\" format=\"" format "\">"
+#define VTU_TAIL "</DataArray></Points></Piece></UnstructuredGrid></VTKFile>"
+#define NEST16 "<a><a><a><a><a><a><a><a><a><a><a><a><a><a><a><a>"
 #define BGEO_ZEROS(n) BGEO_ZEROS_##n
 #define BGEO_ZEROS_3 "\0\0\0\0\0\0\0\0\0\0\0\0"
 #define BGEO_ZEROS_6 BGEO_ZEROS_3 BGEO_ZEROS_3
@@ -189,6 +194,30 @@ static const broken_file files[] = {
     {"dtype_object.npy", BIN("\x93NUMPY\x01\x00\x32\x00{'descr':'|O','fortran_order':False,'shape':(1,3)}"
                              ONE_LE_PARTICLE),
      "dtype '|O' is not supported"},
+
+    /* ---- VTK XML ---- */
+    {"empty.vtu", "", 0, "empty file"},
+    {"not_xml.vtu", "\x01\x02\x03", 0, "XML: "},
+    {"cut_in_tag.vtu", "<VTKFile type=\"UnstructuredGrid\"><UnstructuredGrid><Piece NumberOfPo", 0, "XML: "},
+    {"points_2_62.vtu", VTU_HEAD "<Piece NumberOfPoints=\"4611686018427387904\">" VTU_POINTS("ascii") "1 2 3" VTU_TAIL, 0,
+     "NumberOfPoints 4611686018427387904 x 3 components cannot fit"},
+    {"points_2_64.vtu", VTU_HEAD "<Piece NumberOfPoints=\"18446744073709551616\">" VTU_POINTS("ascii") "1 2 3" VTU_TAIL, 0,
+     "Piece lacks a non-negative integer NumberOfPoints"},
+    {"components_2_64.vtu", VTU_HEAD "<Piece NumberOfPoints=\"1\"><Points><DataArray type=\"Float32\" "
+                            "NumberOfComponents=\"99999999999999999999\" format=\"ascii\">1 2 3" VTU_TAIL, 0,
+     "NumberOfComponents '99999999999999999999' is not a count"},
+    {"header_u32_max.vtu", VTU_HEAD "<Piece NumberOfPoints=\"1\">" VTU_POINTS("binary") "/////wAAgD8AAABAAABAQA==" VTU_TAIL, 0,
+     "header says 4294967295 bytes, the array holds 12"},
+    {"blocks_u32_max.vtu", VTU_ZLIB_HEAD "<Piece NumberOfPoints=\"1\">" VTU_POINTS("binary") "/////wCAAAAMAAAA" VTU_TAIL, 0,
+     "4294967295 compressed blocks cannot fit in the data left"},
+    {"nested_deep.vtu", VTU_HEAD "<Piece NumberOfPoints=\"1\">" NEST16 NEST16 NEST16 NEST16 "<a>", 0,
+     "elements nested more than 64 deep"},
+    {"raw_offset_u64_max.vtu", VTU_HEAD "<Piece NumberOfPoints=\"1\"><Points><DataArray type=\"Float32\" NumberOfComponents=\"3\" "
+                               "format=\"appended\" offset=\"18446744073709551615\"/></Points></Piece></UnstructuredGrid>"
+                               "<AppendedData encoding=\"raw\">_0123456789abcdef", 0,
+     "offset 18446744073709551615 is past the appended data's 16 bytes"},
+    /* From memory a collection is refused as such, from disk for listing no dataset. */
+    {"collection.pvd", "<VTKFile type=\"Collection\"><Collection></Collection></VTKFile>", 0, "collection"},
 
     /* ---- raw float32 ---- */
     {"empty.f32", "", 0, "empty file"},
