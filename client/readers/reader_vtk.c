@@ -48,9 +48,10 @@ static const struct {
     { "vtktypefloat32", FC_SCALAR_F32 }, { "vtktypefloat64", FC_SCALAR_F64 },
 };
 
-static const char *const vtk_density_names[] = { "density", "rho", NULL };
+/* Rhop and Idp are DualSPHysics' names (its Vel is a 3-component SCALARS). */
+static const char *const vtk_density_names[] = { "density", "rho", "rhop", NULL };
 static const char *const vtk_velocity_names[] = { "velocity", "vel", "v", NULL };
-static const char *const vtk_id_names[] = { "id", "ids", NULL };
+static const char *const vtk_id_names[] = { "id", "ids", "idp", NULL };
 
 static bool vtk_is_one_of(fc_span name, const char *const *names)
 {

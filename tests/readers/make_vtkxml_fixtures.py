@@ -1,6 +1,7 @@
 #!/usr/bin/env python3
-"""Writes the VTK XML files test_reader_vtkxml reads, with VTK's own writers
-(vtkXMLUnstructuredGridWriter, vtkXMLPolyDataWriter) in every data mode.
+"""Writes the VTK files test_reader_vtkxml reads, with VTK's own writers
+(vtkXMLUnstructuredGridWriter, vtkXMLPolyDataWriter) in every data mode, and
+legacy .vtk from vtkUnstructuredGridWriter and vtkPolyDataWriter.
 
 Usage: make_vtkxml_fixtures.py DIR [N]
 Writes DIR/*.vtu, *.vtp, series.pvd and DIR/manifest.txt (one file per line with
@@ -99,6 +100,25 @@ def main():
                             print("make_vtkxml_fixtures: writing %s failed" % name)
                             return 1
                         written.append(name)
+    # Legacy .vtk from VTK's legacy writers, ascii and binary, file versions 4.2 and 5.1 (the default).
+    for polydata in (False, True):
+        for binary in (False, True):
+            for version in (42, 51):
+                data = build(vtk, False, polydata, ("velocity", "density", "id"))
+                writer = vtk.vtkPolyDataWriter() if polydata else vtk.vtkUnstructuredGridWriter()
+                writer.SetInputData(data)
+                if binary:
+                    writer.SetFileTypeToBinary()
+                else:
+                    writer.SetFileTypeToASCII()
+                if version == 42:
+                    writer.SetFileVersion(42)
+                name = "legacy_%s_%s_%d.vtk" % ("poly" if polydata else "grid", "binary" if binary else "ascii", version)
+                writer.SetFileName(os.path.join(out, name))
+                if writer.Write() != 1:
+                    print("make_vtkxml_fixtures: writing %s failed" % name)
+                    return 1
+                written.append(name)
     # Big-endian, as a writer on such a machine would produce.
     writer = vtk.vtkXMLUnstructuredGridWriter()
     writer.SetInputData(build(vtk, False, False, ("velocity", "density", "id")))

@@ -1,6 +1,7 @@
 /* test_reader_vtk.c — legacy VTK, ASCII and BINARY (big-endian), POLYDATA and
  * UNSTRUCTURED_GRID (legacy and 5.1 cell layouts): exact values from SCALARS
- * with lookup tables, VECTORS and FIELD arrays, every skipped section kind, and
+ * with lookup tables, VECTORS and FIELD arrays, SPlisHSPlasH's and DualSPHysics'
+ * layouts, every skipped section kind, and
  * broken files. */
 #include "reader_test_support.h"
 
@@ -113,6 +114,51 @@ static bytes grid(bool binary, bool v51)
     return b;
 }
 
+/* As SPlisHSPlasH's VTK exporter writes: version 4.1, BINARY, UNSTRUCTURED_GRID of
+ * vertex cells, the particle data as FIELD arrays (id, velocity, density). */
+static bytes splishsplash(void)
+{
+    bytes b = { NULL, 0, 0 };
+    bytes_printf(&b, "# vtk DataFile Version 4.1\nSPlisHSPlasH particle data\nBINARY\nDATASET UNSTRUCTURED_GRID\n");
+    bytes_printf(&b, "POINTS 3 float\n");
+    put_positions(&b, true, T_F32);
+    bytes_printf(&b, "CELLS 3 6\n");
+    put(&b, true, T_I32, (const double[]){ 1, 0, 1, 1, 1, 2 }, 6);
+    bytes_printf(&b, "CELL_TYPES 3\n");
+    put(&b, true, T_I32, (const double[]){ 1, 1, 1 }, 3);
+    bytes_printf(&b, "POINT_DATA 3\nFIELD FieldData 3\nid 1 3 unsigned_int\n");
+    put_ids(&b, true);
+    bytes_printf(&b, "velocity 3 3 float\n");
+    put_velocity(&b, true);
+    bytes_printf(&b, "density 1 3 float\n");
+    put(&b, true, T_F32, DENSITY, 3);
+    return b;
+}
+
+/* As DualSPHysics writes its particle VTK: POLYDATA with vertices, the attributes as
+ * SCALARS named Idp, Vel (3 components) and Rhop, plus Type and Mk. */
+static bytes dualsphysics(bool binary)
+{
+    bytes b = { NULL, 0, 0 };
+    bytes_printf(&b, "# vtk DataFile Version 3.0\nDualSPHysics particles\n%s\nDATASET POLYDATA\n",
+                 binary ? "BINARY" : "ASCII");
+    bytes_printf(&b, "POINTS 3 float\n");
+    put_positions(&b, binary, T_F32);
+    bytes_printf(&b, "VERTICES 3 6\n");
+    put(&b, binary, T_I32, (const double[]){ 1, 0, 1, 1, 1, 2 }, 6);
+    bytes_printf(&b, "POINT_DATA 3\nSCALARS Idp unsigned_int\nLOOKUP_TABLE default\n");
+    put_ids(&b, binary);
+    bytes_printf(&b, "SCALARS Vel float 3\nLOOKUP_TABLE default\n");
+    put_velocity(&b, binary);
+    bytes_printf(&b, "SCALARS Rhop float\nLOOKUP_TABLE default\n");
+    put(&b, binary, T_F32, DENSITY, 3);
+    bytes_printf(&b, "SCALARS Type unsigned_char\nLOOKUP_TABLE default\n");
+    put(&b, binary, T_U8, (const double[]){ 3, 3, 0 }, 3);
+    bytes_printf(&b, "SCALARS Mk unsigned_char\nLOOKUP_TABLE default\n");
+    put(&b, binary, T_U8, (const double[]){ 11, 11, 1 }, 3);
+    return b;
+}
+
 static void check_particles(const bytes *b, const char *what)
 {
     fc_frame frame;
@@ -142,6 +188,18 @@ static void test_good_files(void)
             check_particles(&b, binary ? "grid-binary.vtk" : "grid-ascii.vtk");
             bytes_free(&b);
         }
+    }
+}
+
+static void test_writers_layouts(void)
+{
+    bytes b = splishsplash();
+    check_particles(&b, "ParticleData_Fluid_1.vtk");
+    bytes_free(&b);
+    for (int binary = 0; binary < 2; binary++) {
+        b = dualsphysics(binary);
+        check_particles(&b, binary ? "PartFluid_0001-binary.vtk" : "PartFluid_0001-ascii.vtk");
+        bytes_free(&b);
     }
 }
 
@@ -263,6 +321,7 @@ static void test_truncations_and_mutations(void)
 int main(void)
 {
     test_good_files();
+    test_writers_layouts();
     test_positions_only();
     test_ascii_errors();
     test_binary_errors();

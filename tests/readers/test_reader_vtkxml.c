@@ -1,7 +1,8 @@
 /* test_reader_vtkxml.c — VTK XML .vtu/.vtp and .pvd collections: every file
  * make_vtkxml_fixtures.py wrote with VTK's own writers (when python3-vtk9 is
  * there: ascii, inline binary, appended base64 and raw, zlib in several blocks,
- * UInt32 and UInt64 headers, Float32 and Float64 points, big-endian, a .pvd), and
+ * UInt32 and UInt64 headers, Float32 and Float64 points, big-endian, a .pvd; and
+ * legacy .vtk, ascii and binary, versions 4.2 and 5.1, for reader_vtk.c), and
  * files built byte by byte for the refusals, truncations and random corruption. */
 #include <zlib.h>
 #include "reader_test_support.h"
@@ -48,7 +49,7 @@ static void test_vtk_files(const char *dir)
         files++;
     }
     fclose(manifest);
-    CHECK(files >= 50);
+    CHECK(files >= 61);
     /* The collection stands for its first dataset, found relative to the .pvd. */
     snprintf(path, sizeof path, "%s/series.pvd", dir);
     fc_frame frame;
