@@ -11,6 +11,7 @@
 typedef struct fc_cli_choices {
     bool radius;   /* the radius was estimated from the particle spacing */
     bool spray;    /* the spray threshold was set from the frame's densities */
+    bool color_range;   /* the colour range was set from the frame's attribute */
 } fc_cli_choices;
 
 /* Completes the settings from a frame (the first of a sequence): a radius
@@ -22,5 +23,12 @@ typedef struct fc_cli_choices {
  * about a third of the rest density) are drawn as white spray instead of as
  * clear beads that hardly show. */
 void fc_cli_complete_settings(fc_settings *s, const fc_frame *frame, bool threshold_given, fc_cli_choices *chosen);
+
+/* Unless the user gave a range, a frame coloured by an attribute it has gets
+ * the 2nd to 98th percentile of that attribute (over an evenly spread sample
+ * of at most 65536 particles) as its colour range, so that a few outliers do
+ * not squeeze every other particle into one colour; a constant attribute v
+ * gets [v, v + 1]. Sets chosen->color_range when it did. */
+void fc_cli_complete_color_range(fc_settings *s, const fc_frame *frame, bool range_given, fc_cli_choices *chosen);
 
 #endif

@@ -85,6 +85,10 @@ static int write_image(const fc_snapshot_options *o, const fc_image_result *imag
     if (chosen->spray)
         printf("spray: particles below density %g (half the median; --density-threshold to change)\n",
                (double)settings->density_threshold);
+    if (chosen->color_range)
+        printf("color range: %s %.9g:%.9g (2nd-98th percentile of the frame; --range %.9g:%.9g to fix it)\n",
+               settings->color_by == FC_COLOR_BY_SPEED ? "speed" : "density", (double)settings->color_range[0],
+               (double)settings->color_range[1], (double)settings->color_range[0], (double)settings->color_range[1]);
     return FC_EXIT_OK;
 }
 
@@ -107,6 +111,7 @@ static int snapshot(const fc_snapshot_options *o, fc_frame *frame)
     fc_settings settings = o->settings;
     fc_cli_choices chosen;
     fc_cli_complete_settings(&settings, frame, o->has_density_threshold, &chosen);
+    fc_cli_complete_color_range(&settings, frame, o->has_color_range, &chosen);
     fc_image_result image = { 0 };
     status = render_remotely(o, &scene, frame, &cam, &settings, &image);
     if (status == FC_EXIT_OK)

@@ -7,6 +7,7 @@
 
 #include "cli_report.h"
 #include "cli_values.h"
+#include "fc_colormap.h"
 #include "fc_error.h"
 #include "fc_frame.h"
 #include "output_file.h"
@@ -155,6 +156,55 @@ static fc_code set_density_threshold(fc_snapshot_options *o, const option_spec *
     return set_float_setting(o, spec, value, err);
 }
 
+/* ---- colour by attribute ---- */
+
+static fc_code set_color_by(fc_snapshot_options *o, const option_spec *spec, const char *value, fc_error *err)
+{
+    static const char *const names[] = {"speed", "density", NULL};
+    static const fc_color_by values[] = {FC_COLOR_BY_SPEED, FC_COLOR_BY_DENSITY};
+    int index;
+    fc_code code = fc_cli_parse_choice(spec->name, value, names, &index, err);
+    if (code == FC_OK)
+        o->settings.color_by = values[index];
+    return code;
+}
+
+static fc_code set_colormap(fc_snapshot_options *o, const option_spec *spec, const char *value, fc_error *err)
+{
+    o->has_colormap = true;
+    if (!fc_colormap_parse(value, &o->settings.colormap))
+        return fc_error_set(err, FC_ERR_USAGE,
+                            "%s needs viridis, plasma, inferno, magma, cividis, coolwarm or turbo, not \"%s\"",
+                            spec->name, value);
+    return FC_OK;
+}
+
+/* "MIN:MAX", two finite floats with MIN < MAX (the part before the last
+ * ':' is MIN, so negative values need no quoting beyond the shell's). */
+static fc_code set_range(fc_snapshot_options *o, const option_spec *spec, const char *value, fc_error *err)
+{
+    o->has_color_range = true;
+    const char *colon = strrchr(value, ':');
+    char min_text[64];
+    size_t min_len = colon ? (size_t)(colon - value) : 0;
+    if (!colon || min_len == 0 || min_len >= sizeof min_text)
+        return fc_error_set(err, FC_ERR_USAGE, "%s needs MIN:MAX, not \"%s\"", spec->name, value);
+    memcpy(min_text, value, min_len);
+    min_text[min_len] = '\0';
+    float range[2];
+    fc_code code = fc_cli_parse_float(spec->name, min_text, &range[0], err);
+    if (code == FC_OK)
+        code = fc_cli_parse_float(spec->name, colon + 1, &range[1], err);
+    if (code != FC_OK)
+        return code;
+    if (!(range[0] < range[1]) || !isfinite(range[1] - range[0]))
+        return fc_error_set(err, FC_ERR_USAGE, "%s needs MIN below MAX (and a finite width), not \"%s\"",
+                            spec->name, value);
+    o->settings.color_range[0] = range[0];
+    o->settings.color_range[1] = range[1];
+    return FC_OK;
+}
+
 static fc_code set_iterations(fc_snapshot_options *o, const option_spec *spec, const char *value, fc_error *err)
 {
     o->has_iterations = true;
@@ -229,6 +279,9 @@ static const option_spec options[] = {
     SETTING("--foam-tau", set_float_setting, foam_tau),
     SETTING("--foam-decay", set_float_setting, foam_decay),
     SETTING("--density-threshold", set_density_threshold, density_threshold),
+    {"--color-by", set_color_by, 0},
+    {"--colormap", set_colormap, 0},
+    {"--range", set_range, 0},
     {"--background", set_background, 0},
     {"--cubemap", set_cubemap, 0},
     {"--aov", set_aov, 0},
@@ -300,6 +353,17 @@ fc_code fc_snapshot_check_camera(const fc_snapshot_options *o, fc_error *err)
     return FC_OK;
 }
 
+fc_code fc_snapshot_check_coloring(const fc_snapshot_options *o, fc_error *err)
+{
+    if (o->settings.color_by != FC_COLOR_BY_NONE)
+        return FC_OK;
+    if (o->has_colormap)
+        return fc_error_set(err, FC_ERR_USAGE, "--colormap applies with --color-by speed|density");
+    if (o->has_color_range)
+        return fc_error_set(err, FC_ERR_USAGE, "--range applies with --color-by speed|density");
+    return FC_OK;
+}
+
 static fc_code check_combinations(fc_snapshot_options *o, fc_error *err)
 {
     if (!o->input)
@@ -313,7 +377,8 @@ static fc_code check_combinations(fc_snapshot_options *o, fc_error *err)
         return fc_error_set(err, FC_ERR_USAGE, "--aov writes float channels: the output must be .exr");
     if (o->has_quality && o->format != FC_FORMAT_JPEG)
         return fc_error_set(err, FC_ERR_USAGE, "--quality applies to .jpg/.jpeg output only");
-    return fc_snapshot_check_camera(o, err);
+    code = fc_snapshot_check_coloring(o, err);
+    return code != FC_OK ? code : fc_snapshot_check_camera(o, err);
 }
 
 fc_code fc_snapshot_take_option(fc_snapshot_options *o, int argc, char **argv, int *i, bool *known, fc_error *err)
@@ -463,12 +528,32 @@ static void print_shading_help(FILE *to, const fc_settings *d)
             (unsigned)d->thickness_blur, d->shadow ? "on" : "off", (double)d->exposure);
 }
 
+static void print_color_help(FILE *to)
+{
+    fputs("colour by attribute:\n"
+          "  --color-by speed|density\n"
+          "                          tint the fluid by each particle's speed (needs\n"
+          "                          velocities) or density (needs densities): the\n"
+          "                          colours are splatted and blurred with the thickness\n"
+          "                          and thick fluid shows them; a frame without the\n"
+          "                          attribute is an error\n"
+          "  --colormap NAME         viridis (default), plasma, inferno, magma, cividis,\n"
+          "                          coolwarm or turbo\n"
+          "  --range MIN:MAX         attribute values at the map's ends, MIN < MAX;\n"
+          "                          values outside take the end colours. Default: the\n"
+          "                          first frame's 2nd to 98th percentile, printed, so\n"
+          "                          that later runs can fix it and compare\n"
+          "\n",
+          to);
+}
+
 void fc_snapshot_print_settings_help(FILE *to)
 {
     fc_settings defaults;
     fc_settings_default(&defaults);
     print_surface_help(to, &defaults);
     print_shading_help(to, &defaults);
+    print_color_help(to);
 }
 
 void fc_snapshot_print_help(FILE *to)

@@ -31,6 +31,8 @@ typedef struct fc_snapshot_options {
     bool has_quality;
     bool has_iterations;      /* --iterations given: --smoothing keeps it */
     bool has_density_threshold;   /* --density-threshold given: no spray threshold from the frame's densities */
+    bool has_colormap;             /* --colormap given (it needs --color-by) */
+    bool has_color_range;          /* --range given: no range from the first frame's percentiles */
     uint32_t quality;
 } fc_snapshot_options;
 
@@ -58,7 +60,10 @@ fc_code fc_snapshot_take_option(fc_snapshot_options *o, int argc, char **argv, i
  * --up, --fov and --size, as fc_snapshot_parse does. */
 fc_code fc_snapshot_check_camera(const fc_snapshot_options *o, fc_error *err);
 
-/* The help of the render settings: the "fluid surface" and "shading" sections. */
+/* --colormap and --range need --color-by: FC_ERR_USAGE naming the option otherwise. */
+fc_code fc_snapshot_check_coloring(const fc_snapshot_options *o, fc_error *err);
+
+/* The help of the render settings: the "fluid surface", "shading" and "colour by attribute" sections. */
 void fc_snapshot_print_settings_help(FILE *to);
 
 #endif

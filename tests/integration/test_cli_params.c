@@ -4,7 +4,8 @@
  * leave the smoothed depth exactly equal to the raw depth, a density threshold
  * above every particle's density leaves no surface, a solid-colour background
  * fills the corners), bad values are usage errors (exit 2) naming the flag, and
- * images the server cannot use are its INVALID_VALUE (exit 5). Images are
+ * images the server cannot use are its INVALID_VALUE (exit 5), as is colouring
+ * by an attribute the frame lacks. Images are
  * 64x48 so every render takes a fraction of a second with software GL. */
 #include <stdio.h>
 #include <stdlib.h>
@@ -406,13 +407,37 @@ static void test_bad_values_are_usage_errors(const test_env *env)
         {"--refraction", "1001"},     {"--specular", "11"},            {"--shininess", "0.5"},
         {"--thickness-scale", "2"},   {"--thickness-blur", "33"},      {"--smoothing", "gaussian"},
         {"--aov", "colour"},          {"--cubemap", "a.png,b.png"},    {"--radius", "0"},
-        {"--noise", "lots"},
+        {"--noise", "lots"},          {"--color-by", "pressure"},      {"--range", "2:1"},
+        {"--range", "1"},             {"--range", "a:1"},              {"--range", "0:inf"},
+        {"--range", ":1"},            {"--colormap", "jet"},           {"--colormap", "turbo"},
     };
     for (size_t i = 0; i < sizeof bad / sizeof bad[0]; i++)
         expect_exit(env, 2, "ball.f32", FLAGS(bad[i][0], bad[i][1]), bad[i][0]);
     char path[PATH_SIZE];
     expect_exit(env, 3, "ball.f32", FLAGS("--background", scratch(env, "missing.png", path)), "missing.png");
     expect_exit(env, 3, "ball.f32", FLAGS("--cubemap", env->dir), "has no px");
+}
+
+/* --color-by: speed on a frame with velocities changes the image and
+ * prints the range it chose (the 2nd to 98th percentile; every particle of
+ * ballv.csv moves at 3, and a constant v gets [v, v + 1]); --range fixes it and moves the colours; density colours too;
+ * a frame without the attribute is the server's INVALID_VALUE naming it
+ * (exit 5), and --range or --colormap without --color-by a usage error. */
+static void test_color_by(const test_env *env)
+{
+    CHECK(render_difference(env, "ballv.csv", "plain.png", NO_FLAGS, FLAGS("--color-by", "speed")) > BALL_PIXELS_MIN);
+    cli_result r;
+    run_snapshot(env, "ballv.csv", "speed.png", FLAGS("--color-by", "speed", "--colormap", "turbo"), &r);
+    CHECK_MSG(r.status == 0 && strstr(r.out, "color range: speed 3:4 ") && strstr(r.out, "--range 3:4"),
+              "exit %d, stdout: %s", r.status, r.out);
+    run_snapshot(env, "ballv.csv", "speed.png", FLAGS("--color-by", "speed", "--range", "0:5"), &r);
+    CHECK_MSG(r.status == 0 && !strstr(r.out, "color range"), "exit %d, stdout: %s", r.status, r.out);
+    /* Every surface particle has density 1000: the middle of viridis against its bottom. */
+    CHECK(render_difference(env, "ballv.csv", "dens.png", FLAGS("--color-by", "density", "--range", "0:2000"),
+                            FLAGS("--color-by", "density", "--range", "1500:2000")) > BALL_PIXELS_MIN);
+    expect_exit(env, 5, "ball.csv", FLAGS("--color-by", "speed"), "velocities");
+    expect_exit(env, 5, "ball.f32", FLAGS("--color-by", "density"), "densities");
+    expect_exit(env, 2, "ballv.csv", FLAGS("--range", "0:1"), "--range");
 }
 
 /* Images the server cannot use are its INVALID_VALUE, reported as a server error. */
@@ -461,6 +486,7 @@ int main(void)
     test_background(&env);
     test_cubemap(&env);
     test_server_rejects_images(&env);
+    test_color_by(&env);
     CHECK_CODE(fc_test_daemon_stop(&daemon, FC_TEST_DAEMON_STOP_TIMEOUT_MS, &err), FC_OK);
     remove_scratch(&env);
     return test_result();
