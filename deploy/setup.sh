@@ -22,6 +22,8 @@ PACKAGES=(
   clang-14 libclang-rt-14-dev
   # SpaceMouse over USB; its tests replay scripted devices under umockdev
   libusb-1.0-0-dev umockdev libumockdev-dev
+  # the Python binding (python/fluidcast) and its tests under Debian's python3
+  python3-numpy python3-pytest
 )
 
 # The peer benchmark (bench/run_bench.sh, bench/peer/compare_images.sh) also needs VTK and a

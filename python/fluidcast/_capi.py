@@ -1,0 +1,235 @@
+"""ctypes mirrors of the structs in fluidcast_types.h and fluidcast.h, and the
+prototypes of every libfluidcast function.
+
+Field for field, in the headers' order and with their names. Each struct class
+carries its C name in ``_c_name_``; the test suite compiles a C program from
+these classes (offsetof and sizeof of every field, sizeof of every struct) and
+compares, so a change to a header that is not made here fails the tests.
+
+C enums are ``int``-sized in the platform ABI; they are declared ``c_int`` here.
+"""
+
+from ctypes import (POINTER, Structure, c_char, c_char_p, c_float, c_int, c_size_t, c_uint8, c_uint32,
+                    c_uint64, c_void_p)
+
+from . import _library
+from ._enums import ERROR_MESSAGE_MAX, STAGE_COUNT
+
+c_enum = c_int
+
+
+class FcError(Structure):
+    """fc_error: a code and a NUL-terminated reason."""
+    _c_name_ = "fc_error"
+    _fields_ = [
+        ("code", c_enum),
+        ("message", c_char * ERROR_MESSAGE_MAX),
+    ]
+
+
+class FcFrame(Structure):
+    """fc_frame: particle arrays, NULL when absent (positions always present)."""
+    _c_name_ = "fc_frame"
+    _fields_ = [
+        ("count", c_uint64),
+        ("positions", POINTER(c_float)),   # 3*count, x y z interleaved
+        ("density", POINTER(c_float)),     # count, or NULL
+        ("velocity", POINTER(c_float)),    # 3*count, or NULL
+        ("ids", POINTER(c_uint32)),        # count, or NULL
+    ]
+
+
+class FcCamera(Structure):
+    """fc_camera: look-at camera with a vertical field of view and the image size."""
+    _c_name_ = "fc_camera"
+    _fields_ = [
+        ("eye", c_float * 3),
+        ("target", c_float * 3),
+        ("up", c_float * 3),
+        ("fov_y_deg", c_float),
+        ("width", c_uint32),
+        ("height", c_uint32),
+    ]
+
+
+class FcSettings(Structure):
+    """fc_settings: every render parameter (see fluidcast_types.h for each field's meaning)."""
+    _c_name_ = "fc_settings"
+    _fields_ = [
+        ("radius", c_float),
+        ("smoothing", c_enum),             # fc_smoothing
+        ("iterations", c_uint32),
+        ("filter_radius", c_uint32),
+        ("smooth_scale", c_float),
+        ("fluid_color", c_float * 3),
+        ("absorption", c_float * 3),
+        ("ior", c_float),
+        ("refraction", c_float),
+        ("specular", c_float),
+        ("shininess", c_float),
+        ("thickness_scale", c_float),
+        ("thickness_blur", c_uint32),
+        ("noise", c_float),
+        ("foam", c_float),
+        ("foam_tau", c_float),
+        ("foam_decay", c_float),
+        ("density_threshold", c_float),
+        ("kernel", c_enum),                # fc_kernel
+        ("shadow", c_uint32),
+        ("exposure", c_float),
+        ("color_by", c_enum),              # fc_color_by
+        ("colormap", c_enum),              # fc_colormap
+        ("color_range", c_float * 2),
+    ]
+
+
+class FcRenderRequest(Structure):
+    """fc_render_request: image format, JPEG quality, AOV."""
+    _c_name_ = "fc_render_request"
+    _fields_ = [
+        ("format", c_enum),                # fc_image_format
+        ("quality", c_uint32),
+        ("aov", c_enum),                   # fc_aov
+    ]
+
+
+class FcConnectOptions(Structure):
+    """fc_connect_options: client name, timeouts, token."""
+    _c_name_ = "fc_connect_options"
+    _fields_ = [
+        ("client_name", c_char_p),
+        ("connect_timeout_ms", c_uint32),
+        ("reply_timeout_ms", c_uint32),
+        ("token", c_char_p),
+    ]
+
+
+class FcServerInfo(Structure):
+    """fc_server_info: what the server announced in its WELCOME."""
+    _c_name_ = "fc_server_info"
+    _fields_ = [
+        ("protocol_version", c_uint32),
+        ("server_version", c_char * 32),
+        ("renderer", c_char * 128),
+        ("max_particles", c_uint64),
+        ("max_width", c_uint32),
+        ("max_height", c_uint32),
+        ("max_message", c_uint32),
+        ("capabilities", c_uint32),
+    ]
+
+
+class FcImageResult(Structure):
+    """fc_image_result: an encoded image; data owned by the result (fc_image_result_free)."""
+    _c_name_ = "fc_image_result"
+    _fields_ = [
+        ("width", c_uint32),
+        ("height", c_uint32),
+        ("format", c_enum),                # fc_image_format
+        ("aov", c_enum),                   # fc_aov
+        ("stage_ms", c_float * STAGE_COUNT),
+        ("data", POINTER(c_uint8)),
+        ("size", c_size_t),
+    ]
+
+
+class FcSessionStatus(Structure):
+    """fc_session_status: a named session's state."""
+    _c_name_ = "fc_session_status"
+    _fields_ = [
+        ("name", c_char * 65),
+        ("producers", c_uint32),
+        ("viewers", c_uint32),
+        ("frames", c_uint64),
+        ("last_frame", c_uint64),
+    ]
+
+
+class FcStreamImage(Structure):
+    """fc_stream_image: one image of a subscribed session, or its end."""
+    _c_name_ = "fc_stream_image"
+    _fields_ = [
+        ("image", FcImageResult),
+        ("frame_number", c_uint64),
+        ("sequence", c_uint64),
+        ("missed", c_uint32),
+        ("refresh", c_int),
+        ("view_change", c_int),
+        ("ended", c_int),
+    ]
+
+
+class FcUploadOptions(Structure):
+    """fc_upload_options: FC_UPLOAD_* encoding bits and the zstd level."""
+    _c_name_ = "fc_upload_options"
+    _fields_ = [
+        ("encoding", c_uint32),
+        ("zstd_level", c_int),
+    ]
+
+
+class FcUploadStats(Structure):
+    """fc_upload_stats: bytes a frame takes plain and bytes actually sent."""
+    _c_name_ = "fc_upload_stats"
+    _fields_ = [
+        ("raw_bytes", c_uint64),
+        ("wire_bytes", c_uint64),
+    ]
+
+
+#: Every struct mirrored, for the layout test.
+STRUCTS = (FcError, FcFrame, FcCamera, FcSettings, FcRenderRequest, FcConnectOptions, FcServerInfo,
+           FcImageResult, FcSessionStatus, FcStreamImage, FcUploadOptions, FcUploadStats)
+
+lib, library_path = _library.load()
+
+c_client_p = c_void_p  # fc_client *, opaque
+_E = POINTER(FcError)
+
+# name: (restype, argtypes), as declared in fluidcast.h
+_PROTOTYPES = {
+    "fc_client_connect": (c_enum, [c_char_p, POINTER(FcConnectOptions), POINTER(c_client_p), _E]),
+    "fc_client_server_info": (None, [c_client_p, POINTER(FcServerInfo)]),
+    "fc_client_send_frame": (c_enum, [c_client_p, POINTER(FcFrame), _E]),
+    "fc_client_set_camera": (c_enum, [c_client_p, POINTER(FcCamera), _E]),
+    "fc_client_set_settings": (c_enum, [c_client_p, POINTER(FcSettings), _E]),
+    "fc_client_set_background_bytes": (c_enum, [c_client_p, c_void_p, c_size_t, _E]),
+    "fc_client_set_background_file": (c_enum, [c_client_p, c_char_p, _E]),
+    "fc_client_set_environment_bytes": (c_enum, [c_client_p, POINTER(c_void_p), POINTER(c_size_t), _E]),
+    "fc_client_set_environment_files": (c_enum, [c_client_p, POINTER(c_char_p), _E]),
+    "fc_client_render": (c_enum, [c_client_p, POINTER(FcRenderRequest), POINTER(FcImageResult), _E]),
+    "fc_image_result_free": (None, [POINTER(FcImageResult)]),
+    "fc_client_close": (None, [c_client_p]),
+    "fc_client_publish": (c_enum, [c_client_p, c_char_p, POINTER(FcSessionStatus), _E]),
+    "fc_client_subscribe": (c_enum, [c_client_p, c_char_p, POINTER(FcRenderRequest), c_uint32, c_uint32,
+                                     POINTER(FcSessionStatus), _E]),
+    "fc_client_next_image": (c_enum, [c_client_p, POINTER(FcStreamImage), _E]),
+    "fc_stream_image_free": (None, [POINTER(FcStreamImage)]),
+    "fc_client_leave_session": (c_enum, [c_client_p, _E]),
+    "fc_client_list_sessions": (c_enum, [c_client_p, POINTER(POINTER(FcSessionStatus)), POINTER(c_uint32), _E]),
+    "fc_session_list_free": (None, [POINTER(FcSessionStatus)]),
+    "fc_client_upload_frame": (c_enum, [c_client_p, POINTER(FcFrame), POINTER(FcUploadOptions),
+                                        POINTER(FcUploadStats), _E]),
+    "fc_client_send_chunk": (c_enum, [c_client_p, c_uint64, c_uint32, c_uint32, POINTER(FcFrame),
+                                      POINTER(FcUploadOptions), POINTER(FcUploadStats), _E]),
+    "fc_client_poll_errors": (c_enum, [c_client_p, _E]),
+}
+
+
+def _declare():
+    missing = []
+    for name, (restype, argtypes) in _PROTOTYPES.items():
+        try:
+            fn = getattr(lib, name)
+        except AttributeError:
+            missing.append(name)
+            continue
+        fn.restype = restype
+        fn.argtypes = argtypes
+        globals()[name] = fn
+    if missing:
+        raise ImportError("fluidcast: %s lacks %s (a libfluidcast older than this binding?)"
+                          % (library_path, ", ".join(missing)))
+
+
+_declare()
