@@ -186,6 +186,7 @@ static int run(const fc_daemon_options *options, const fc_auth_token *token, con
         .gpu = options->gpu,
         .shader_dir = options->shader_dir,
         .encoders = options->encoders ? options->encoders : fc_encoder_pool_default_threads(),
+        .png_compression = options->png_compression,
         .log = log,
         .lose_context_at_render = lose_context_at_render,
     };

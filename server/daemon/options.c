@@ -6,6 +6,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "encode/image_encoder.h"
 #include "fc_error.h"
 
 enum { MAX_ENCODERS = 64 };
@@ -23,6 +24,7 @@ void fc_daemon_options_default(fc_daemon_options *o)
     o->limits.max_message = FC_DEFAULT_MAX_MESSAGE;
     o->chunk_timeout_ms = FC_DEFAULT_CHUNK_TIMEOUT_MS;
     o->refresh_ms = FC_DEFAULT_REFRESH_MS;
+    o->png_compression = FC_PNG_DEFAULT_COMPRESSION;
     o->max_sessions = FC_DEFAULT_MAX_SESSIONS;
     o->max_connections = FC_DEFAULT_MAX_CONNECTIONS;
     o->idle_timeout_ms = FC_DEFAULT_IDLE_TIMEOUT_MS;
@@ -62,6 +64,8 @@ void fc_daemon_options_print_help(FILE *out, const char *program)
             "                          PNG refresh of the same frame follows; 0 = never\n"
             "                          (default %u)\n"
             "  --encoders N            image encoder threads (default min(4, cores))\n"
+            "  --png-compression N     PNG's zlib level: 0 (fastest, largest) .. 9 (smallest,\n"
+            "                          slowest) (default %u)\n"
             "  --max-sessions N        named sessions at once (default %u)\n"
             "  --max-connections N     client connections at once; more are answered with\n"
             "                          ERROR LIMIT and closed (default %u)\n"
@@ -88,7 +92,7 @@ void fc_daemon_options_print_help(FILE *out, const char *program)
             "SIGINT or SIGTERM stops the daemon cleanly (exit status 0).\n",
             program, FC_DEFAULT_LISTEN_HOST, FC_DEFAULT_PORT, FC_DEFAULT_MAX_PARTICLES,
             FC_DEFAULT_MAX_IMAGE_SIDE, FC_DEFAULT_MAX_IMAGE_SIDE, FC_DEFAULT_MAX_MESSAGE,
-            FC_DEFAULT_CHUNK_TIMEOUT_MS, FC_DEFAULT_REFRESH_MS, FC_DEFAULT_MAX_SESSIONS,
+            FC_DEFAULT_CHUNK_TIMEOUT_MS, FC_DEFAULT_REFRESH_MS, FC_PNG_DEFAULT_COMPRESSION, FC_DEFAULT_MAX_SESSIONS,
             FC_DEFAULT_MAX_CONNECTIONS, FC_DEFAULT_IDLE_TIMEOUT_MS, FC_DEFAULT_READ_TIMEOUT_MS,
             (unsigned long long)FC_DEFAULT_MAX_SESSION_MEMORY);
 }
@@ -168,7 +172,8 @@ static bool is_known_option(const char *name)
                                         "--port-file",     "--max-particles", "--max-image", "--max-message",
                                         "--unix",          "--chunk-timeout-ms", "--refresh-ms", "--encoders",
                                         "--max-sessions", "--max-connections", "--idle-timeout-ms",
-                                        "--read-timeout-ms", "--token-file", "--max-session-memory"};
+                                        "--read-timeout-ms", "--token-file", "--max-session-memory",
+                                        "--png-compression"};
     for (size_t i = 0; i < sizeof known / sizeof known[0]; i++)
         if (strcmp(name, known[i]) == 0)
             return true;
@@ -215,7 +220,7 @@ static fc_code apply_hardening_option(const char *name, const char *value, fc_da
 /* Applies one of the options of sessions and streaming. */
 static fc_code apply_stream_option(const char *name, const char *value, fc_daemon_options *o, fc_error *err)
 {
-    uint64_t n;
+    uint64_t n = 0;
     if (strcmp(name, "--unix") == 0) {
         o->unix_path = value;
         return FC_OK;
@@ -232,6 +237,13 @@ static fc_code apply_stream_option(const char *name, const char *value, fc_daemo
         if (parse_count(name, value, MAX_ENCODERS, &n, err) != FC_OK)
             return FC_ERR_USAGE;
         o->encoders = (uint32_t)n;
+        return FC_OK;
+    }
+    if (strcmp(name, "--png-compression") == 0) {
+        if (strcmp(value, "0") != 0 && parse_count(name, value, FC_PNG_MAX_COMPRESSION, &n, err) != FC_OK)
+            return fc_error_set(err, FC_ERR_USAGE, "%s '%s': expected a whole number from 0 to %u", name, value,
+                                FC_PNG_MAX_COMPRESSION);
+        o->png_compression = (uint32_t)n;
         return FC_OK;
     }
     if (strcmp(name, "--max-sessions") == 0) {

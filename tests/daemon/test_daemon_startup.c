@@ -39,6 +39,8 @@ int main(void)
     expect_exit(bad_limit, 2);
     static const char *const no_memory[] = {"--max-session-memory", "0", NULL};
     expect_exit(no_memory, 2);
+    static const char *const png_level[] = {"--png-compression", "10", NULL};
+    expect_exit(png_level, 2);
     /* The lost-context test hook takes a render number or nothing. */
     static const char *const bad_hook[] = {"FLUIDCASTD_TEST_LOSE_CONTEXT=soon", NULL};
     expect_exit_with("FLUIDCASTD_TEST_LOSE_CONTEXT=soon", &(fc_test_daemon_setup){.environment = bad_hook}, 2);

@@ -13,6 +13,7 @@ enum { MAX_DEFAULT_ENCODERS = 4 };
 struct fc_encoder_pool {
     fc_job_queue todo;
     fc_job_queue *done;
+    uint32_t png_compression;
     pthread_t *threads;
     unsigned started;
 };
@@ -42,12 +43,13 @@ static fc_code build_message(fc_render_job *job, const fc_buf *encoded)
 }
 
 /* Encodes the image and builds the message; on failure job->error says why. */
-static void encode_job(fc_render_job *job, fc_buf *encoded)
+static void encode_job(const fc_encoder_pool *pool, fc_render_job *job, fc_buf *encoded)
 {
     double start = fc_monotonic_ms();
     job->stage_ms[FC_STAGE_QUEUE] += (float)(start - job->rendered_ms);
     fc_buf_reset(encoded);
-    if (fc_encode_image(&job->image, job->request.format, job->request.quality, encoded, &job->error) != FC_OK)
+    if (fc_encode_image_png_level(&job->image, job->request.format, job->request.quality, pool->png_compression,
+                                  encoded, &job->error) != FC_OK)
         return;
     double end = fc_monotonic_ms();
     job->stage_ms[FC_STAGE_ENCODE] = (float)(end - start);
@@ -64,7 +66,7 @@ static void *encoder_main(void *arg)
     fc_buf_init(&encoded);
     fc_render_job *job;
     while ((job = fc_job_queue_pop(&pool->todo)) != NULL) {
-        encode_job(job, &encoded);
+        encode_job(pool, job, &encoded);
         fc_image_free(&job->image);
         fc_job_queue_push(pool->done, job);
     }
@@ -72,13 +74,15 @@ static void *encoder_main(void *arg)
     return NULL;
 }
 
-fc_code fc_encoder_pool_create(unsigned threads, fc_job_queue *done, fc_encoder_pool **out, fc_error *err)
+fc_code fc_encoder_pool_create(unsigned threads, uint32_t png_compression, fc_job_queue *done,
+                               fc_encoder_pool **out, fc_error *err)
 {
     *out = NULL;
     fc_encoder_pool *pool = calloc(1, sizeof *pool);
     if (!pool)
         return fc_error_set(err, FC_ERR_NOMEM, "encoder pool: out of memory");
     pool->done = done;
+    pool->png_compression = png_compression;
     fc_code code = fc_job_queue_init(&pool->todo, -1, err);
     if (code != FC_OK) {
         free(pool);

@@ -7,9 +7,11 @@
 
 typedef struct fc_encoder_pool fc_encoder_pool;
 
-/* Starts `threads` encoders; each finished job (message built, or error set)
- * goes to `done`, which must outlive the pool. */
-fc_code fc_encoder_pool_create(unsigned threads, fc_job_queue *done, fc_encoder_pool **out, fc_error *err);
+/* Starts `threads` encoders, writing PNGs at zlib level `png_compression`
+ * (0..9); each finished job (message built, or error set) goes to `done`,
+ * which must outlive the pool. */
+fc_code fc_encoder_pool_create(unsigned threads, uint32_t png_compression, fc_job_queue *done,
+                               fc_encoder_pool **out, fc_error *err);
 /* Stops the threads after the jobs already submitted, and frees the pool. */
 void fc_encoder_pool_destroy(fc_encoder_pool *pool);
 

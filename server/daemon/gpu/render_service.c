@@ -200,7 +200,7 @@ static fc_code start_threads(fc_render_service *rs, fc_error *err)
     fc_code code = wait_for_gl(rs, err);
     if (code != FC_OK)
         return code;
-    return fc_encoder_pool_create(rs->config.encoders, &rs->done, &rs->encoders, err);
+    return fc_encoder_pool_create(rs->config.encoders, rs->config.png_compression, &rs->done, &rs->encoders, err);
 }
 
 fc_code fc_render_service_create(const fc_render_service_config *config, fc_render_service **out,
