@@ -22,6 +22,8 @@ PACKAGES=(
   clang-14 libclang-rt-14-dev
   # SpaceMouse over USB; its tests replay scripted devices under umockdev
   libusb-1.0-0-dev umockdev libumockdev-dev
+  # fluidcast view: its SDL2 window; its tests run it under xvfb-run
+  libsdl2-dev xvfb xauth
   # the Python binding (python/fluidcast) and its tests under Debian's python3
   python3-numpy python3-pytest
 )

@@ -9,6 +9,7 @@
 #include "snapshot.h"
 #include "spacemouse_dump.h"
 #include "stream.h"
+#include "view.h"
 #include "watch.h"
 #include "wire.h"
 
@@ -27,6 +28,9 @@ static void print_help(FILE *to)
           "  stream FILES...         push a sequence of particle files as frames, into a\n"
           "                          session (--session) and/or rendered back (--out-dir)\n"
           "  watch --session NAME    follow a session's frames as a viewer\n"
+          "  view FILES... | --session NAME\n"
+          "                          an interactive window: play a sequence or follow a\n"
+          "                          session, camera on mouse and SpaceMouse\n"
           "  info                    the server's version, renderer, limits and sessions\n"
           "                          (fluidcast COMMAND --help for the options of each)\n"
           "  spacemouse --dump       print a SpaceMouse's reports (USB, no spacenavd)\n"
@@ -65,6 +69,8 @@ int main(int argc, char **argv)
         return fc_stream_main(argc - 2, argv + 2);
     if (strcmp(command, "watch") == 0)
         return fc_watch_main(argc - 2, argv + 2);
+    if (strcmp(command, "view") == 0)
+        return fc_view_main(argc - 2, argv + 2);
     if (strcmp(command, "info") == 0)
         return fc_info_main(argc - 2, argv + 2);
     if (strcmp(command, "spacemouse") == 0)

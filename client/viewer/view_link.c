@@ -1,0 +1,280 @@
+/* view_link.c — the network worker: a sequence's frames rendered on request,
+ * or a session's images as they come. */
+#include "view_link.h"
+
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+
+#include "cli_report.h"
+#include "fc_error.h"
+#include "fc_frame.h"
+#include "output_file.h"
+#include "particle_reader.h"
+
+/* What the worker remembers of what it sent, to send only changes. */
+typedef struct link_state {
+    uint32_t loaded;              /* frame index on the server; UINT32_MAX: none */
+    bool settings_sent;
+    fc_settings settings;
+    uint32_t screenshot_done;
+    double sent_ms;               /* when the last camera/settings went out */
+} link_state;
+
+static double now_ms(void)
+{
+    struct timespec t;
+    clock_gettime(CLOCK_MONOTONIC, &t);
+    return t.tv_sec * 1e3 + t.tv_nsec / 1e6;
+}
+
+static void give_up(fc_view_link *link, int exit_status, const char *fmt, const char *detail)
+{
+    char message[FC_ERROR_MESSAGE_MAX];
+    snprintf(message, sizeof message, fmt, detail);
+    fc_view_slots_fail(link->slots, exit_status, message);
+    link->config.wake(link->config.wake_ctx);
+}
+
+static int client_exit(const fc_error *err) { return fc_cli_exit_for_client_error(err->code); }
+
+/* The camera the daemon renders with: the window's, halved while moving. */
+static fc_camera render_camera(const fc_view_request *r)
+{
+    fc_camera cam = r->camera;
+    if (r->preview) {
+        cam.width = cam.width / 2 ? cam.width / 2 : 1;
+        cam.height = cam.height / 2 ? cam.height / 2 : 1;
+    }
+    return cam;
+}
+
+static void log_camera(const fc_view_link *link, const fc_view_request *r, const fc_camera *c)
+{
+    if (!link->config.log_camera)
+        return;
+    printf("camera %llu: eye %.6f %.6f %.6f target %.6f %.6f %.6f up %.6f %.6f %.6f size %ux%u%s\n",
+           (unsigned long long)r->generation, (double)c->eye[0], (double)c->eye[1], (double)c->eye[2],
+           (double)c->target[0], (double)c->target[1], (double)c->target[2], (double)c->up[0], (double)c->up[1],
+           (double)c->up[2], (unsigned)c->width, (unsigned)c->height, r->preview ? " preview" : "");
+    fflush(stdout);
+}
+
+/* Camera (when the viewer has one) and changed settings. */
+static fc_code send_view(fc_view_link *link, link_state *st, const fc_view_request *r, fc_error *err)
+{
+    if (!st->settings_sent || memcmp(&st->settings, &r->settings, sizeof r->settings) != 0) {
+        fc_code code = fc_client_set_settings(link->client, &r->settings, err);
+        if (code != FC_OK)
+            return code;
+        st->settings = r->settings;
+        st->settings_sent = true;
+    }
+    st->sent_ms = now_ms();
+    if (!r->has_camera)
+        return FC_OK;
+    fc_camera cam = render_camera(r);
+    log_camera(link, r, &cam);
+    return fc_client_set_camera(link->client, &cam, err);
+}
+
+/* RAW colour is RGBA8 rows, top to bottom: decoding is checking the size. */
+static fc_code decode(fc_image_result *img, fc_view_image *out, fc_error *err)
+{
+    if (img->format != FC_FORMAT_RAW || img->size != (size_t)img->width * img->height * 4u)
+        return fc_error_set(err, FC_ERR_PROTOCOL, "expected %ux%u RGBA8, got %zu bytes", (unsigned)img->width,
+                            (unsigned)img->height, img->size);
+    out->rgba = img->data;
+    out->width = img->width;
+    out->height = img->height;
+    memcpy(out->stage_ms, img->stage_ms, sizeof out->stage_ms);
+    img->data = NULL;
+    img->size = 0;
+    return FC_OK;
+}
+
+static fc_code push_frame(fc_view_link *link, link_state *st, uint32_t index, fc_error *err)
+{
+    fc_frame frame = {0};
+    fc_code code = FC_OK;
+    if (index == 0 && link->config.first_frame.count)
+        frame = link->config.first_frame; /* kept: the sequence loops back to it */
+    else
+        code = fc_read_particles(link->config.files[index], &frame, err);
+    if (code == FC_OK)
+        code = fc_frame_validate(&frame, err);
+    if (code == FC_OK)
+        code = fc_client_send_frame(link->client, &frame, err);
+    if (frame.positions != link->config.first_frame.positions)
+        fc_frame_free(&frame);
+    if (code == FC_OK)
+        st->loaded = index;
+    return code;
+}
+
+/* The lossless screenshot: a PNG rendered at the current camera, full size. */
+static fc_code screenshot(fc_view_link *link, const fc_view_request *r, fc_error *err)
+{
+    fc_view_request full = *r;
+    full.preview = false;
+    fc_camera cam = render_camera(&full);
+    fc_code code = fc_client_set_camera(link->client, &cam, err);
+    fc_image_result img = {0};
+    fc_render_request png = {.format = FC_FORMAT_PNG, .quality = 90, .aov = FC_AOV_COLOR};
+    if (code == FC_OK)
+        code = fc_client_render(link->client, &png, &img, err);
+    char path[64];
+    snprintf(path, sizeof path, "fluidcast-view-%04u.png", (unsigned)r->screenshot);
+    if (code == FC_OK)
+        code = fc_output_write(path, img.data, img.size, err);
+    if (code == FC_OK)
+        printf("screenshot: %s (%ux%u PNG)\n", path, (unsigned)img.width, (unsigned)img.height), fflush(stdout);
+    fc_image_result_free(&img);
+    return code;
+}
+
+static fc_code render_files(fc_view_link *link, link_state *st, const fc_view_request *r, fc_error *err)
+{
+    fc_code code = FC_OK;
+    if (r->frame_index != st->loaded)
+        code = push_frame(link, st, r->frame_index, err);
+    if (code == FC_OK && r->screenshot != st->screenshot_done) {
+        st->screenshot_done = r->screenshot;
+        if ((code = screenshot(link, r, err)) != FC_OK)
+            return code;
+    }
+    if (code == FC_OK)
+        code = send_view(link, st, r, err);
+    fc_image_result img = {0};
+    fc_render_request raw = {.format = FC_FORMAT_RAW, .quality = 90, .aov = FC_AOV_COLOR};
+    if (code == FC_OK)
+        code = fc_client_render(link->client, &raw, &img, err);
+    fc_view_image out = {.generation = r->generation, .frame_index = r->frame_index, .preview = r->preview};
+    if (code == FC_OK)
+        code = decode(&img, &out, err);
+    fc_image_result_free(&img);
+    if (code != FC_OK)
+        return code;
+    out.round_trip_ms = now_ms() - st->sent_ms;
+    fc_view_slots_put_image(link->slots, &out);
+    link->config.wake(link->config.wake_ctx);
+    return FC_OK;
+}
+
+static void run_files(fc_view_link *link)
+{
+    link_state st = {.loaded = UINT32_MAX};
+    uint64_t done = 0;
+    fc_view_request r;
+    bool stop = false;
+    while (fc_view_slots_wait_request(link->slots, done, -1, &r, &stop)) {
+        done = r.generation;
+        fc_error err;
+        if (render_files(link, &st, &r, &err) != FC_OK) {
+            give_up(link, client_exit(&err), "%s", err.message);
+            return;
+        }
+    }
+}
+
+/* A session: images come when the producer publishes (or after a view
+ * change); a changed camera goes out between images. */
+static void run_session(fc_view_link *link)
+{
+    fc_error err;
+    fc_render_request raw = {.format = FC_FORMAT_RAW, .quality = 90, .aov = FC_AOV_COLOR};
+    if (fc_client_subscribe(link->client, link->config.session, &raw, link->config.width, link->config.height,
+                            NULL, &err) != FC_OK) {
+        give_up(link, client_exit(&err), "%s", err.message);
+        return;
+    }
+    link_state st = {.loaded = UINT32_MAX};
+    uint64_t done = 0, shown = 0;
+    for (;;) {
+        fc_view_request r;
+        bool stop = false;
+        if (fc_view_slots_wait_request(link->slots, done, 0, &r, &stop)) {
+            done = r.generation;
+            if (send_view(link, &st, &r, &err) != FC_OK)
+                break;
+            shown = r.generation;
+        }
+        if (stop)
+            return;
+        fc_stream_image img;
+        if (fc_client_next_image(link->client, &img, &err) != FC_OK)
+            break;
+        if (img.ended) {
+            fc_stream_image_free(&img);
+            give_up(link, FC_EXIT_OK, "session %s ended", link->config.session);
+            return;
+        }
+        fc_view_image out = {.generation = shown, .frame_number = img.frame_number, .preview = r.preview};
+        fc_code code = decode(&img.image, &out, &err);
+        fc_stream_image_free(&img);
+        if (code != FC_OK)
+            break;
+        out.round_trip_ms = img.view_change ? now_ms() - st.sent_ms : -1.0;
+        fc_view_slots_put_image(link->slots, &out);
+        link->config.wake(link->config.wake_ctx);
+    }
+    give_up(link, client_exit(&err), "%s", err.message);
+}
+
+static void *worker(void *arg)
+{
+    fc_view_link *link = arg;
+    if (link->config.session)
+        run_session(link);
+    else
+        run_files(link);
+    pthread_mutex_lock(&link->slots->lock);
+    link->finished = true;
+    pthread_mutex_unlock(&link->slots->lock);
+    return NULL;
+}
+
+fc_code fc_view_link_start(fc_view_link *link, const fc_view_link_config *config, fc_view_slots *slots,
+                           fc_client *client, fc_error *err)
+{
+    memset(link, 0, sizeof *link);
+    link->config = *config;
+    link->slots = slots;
+    link->client = client;
+    if (pthread_create(&link->thread, NULL, worker, link) != 0) {
+        fc_frame_free(&link->config.first_frame);
+        fc_client_close(client);
+        return fc_error_set(err, FC_ERR_NOMEM, "cannot start the network thread");
+    }
+    link->running = true;
+    return FC_OK;
+}
+
+static bool finished(fc_view_link *link)
+{
+    pthread_mutex_lock(&link->slots->lock);
+    bool f = link->finished;
+    pthread_mutex_unlock(&link->slots->lock);
+    return f;
+}
+
+bool fc_view_link_stop(fc_view_link *link, int timeout_ms)
+{
+    if (!link->running)
+        return true;
+    fc_view_slots_stop(link->slots);
+    for (int waited = 0; !finished(link) && waited < timeout_ms; waited += 10)
+        nanosleep(&(struct timespec){0, 10000000L}, NULL);
+    if (!finished(link)) {
+        /* Blocked in a session's wait for the next image: the process's exit ends it. */
+        pthread_detach(link->thread);
+        link->running = false;
+        return false;
+    }
+    pthread_join(link->thread, NULL);
+    fc_client_close(link->client);
+    fc_frame_free(&link->config.first_frame);
+    link->running = false;
+    return true;
+}

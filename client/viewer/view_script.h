@@ -1,0 +1,47 @@
+/* view_script.h — the viewer's test hook (--test-script): a list of
+ * ';'-separated commands that drive the window through the same SDL events a
+ * user makes, so tests under Xvfb exercise the real event handling:
+ *     wait            until the image on screen answers the latest request at
+ *                     full size (the camera has been still and it arrived)
+ *     drag DX DY      a left-button drag by DX, DY pixels from the centre
+ *     pan DX DY       the same with the right button
+ *     key K           a key press (one character: r f s n p q, or "space")
+ *     shot FILE.bmp   writes what the window shows
+ *     sleep MS        lets MS milliseconds pass (events keep being handled)
+ *     quit            ends the viewer (exit status 0)
+ * Not meant for users; documented in --help as a test hook. */
+#ifndef FC_VIEW_SCRIPT_H
+#define FC_VIEW_SCRIPT_H
+
+#include <stdbool.h>
+
+#include "fluidcast_types.h"
+
+typedef enum fc_view_step_kind {
+    FC_VIEW_STEP_DONE = 0,        /* the script is over */
+    FC_VIEW_STEP_WAIT,
+    FC_VIEW_STEP_DRAG,
+    FC_VIEW_STEP_PAN,
+    FC_VIEW_STEP_KEY,
+    FC_VIEW_STEP_SHOT,
+    FC_VIEW_STEP_SLEEP,
+    FC_VIEW_STEP_QUIT
+} fc_view_step_kind;
+
+typedef struct fc_view_step {
+    fc_view_step_kind kind;
+    int dx, dy;                   /* drag, pan; dx: milliseconds of sleep */
+    int key;                      /* SDL keycode */
+    char path[256];
+} fc_view_step;
+
+/* Parses the whole script up front, so a typo fails before the window opens.
+ * *steps (free()) gets *count steps. */
+fc_code fc_view_script_parse(const char *text, fc_view_step **steps, int *count, fc_error *err);
+
+/* Queues the SDL events of a drag with `button` (SDL_BUTTON_LEFT/RIGHT)
+ * starting at (x, y), in ten motions. */
+void fc_view_script_push_drag(int button, int x, int y, int dx, int dy);
+void fc_view_script_push_key(int key);
+
+#endif

@@ -1,0 +1,341 @@
+/* test_viewer.c — `fluidcast view` in an X server (run under xvfb-run by
+ * CTest) against the real daemon, driven through its --test-script hook:
+ *   draw        the first image is drawn: the window's centre shows the
+ *               fluid (blue), its corners the floor and sky (grey)
+ *   drag        a left drag of 80 px in a 240 px high window turns the eye
+ *               about the pivot by -80/240*pi about up (the scene's front
+ *               to the right), the picture changes, and the p key writes a
+ *               full-size PNG
+ *   spacemouse  under umockdev-run with tests/input's Compact holding +X:
+ *               the camera pans (its target moves against the view's right)
+ * Usage: test_viewer MODE FLUIDCAST_CLI TESTS_INPUT_DIR [GALLERY_PNG] */
+#include <fcntl.h>
+#include <math.h>
+#include <spawn.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include "fc_error.h"
+#include "fc_frame.h"
+#include "support/daemon_process.h"
+#include "support/image_decode.h"
+#include "test_util.h"
+
+/* A check the rest of the test depends on: failing, it ends the test. */
+#define REQUIRE_MSG(cond, ...)          \
+    do {                                \
+        if (!(cond)) {                  \
+            CHECK_MSG(cond, __VA_ARGS__); \
+            return 1;                   \
+        }                               \
+    } while (0)
+#define REQUIRE(cond) REQUIRE_MSG(cond, "%s", "")
+
+extern char **environ;
+
+#define WIDTH 320
+#define HEIGHT 240
+#define DRAG_PX 80
+
+/* A slab of particles, long along x, so that turning it changes its picture. */
+static bool write_slab(const char *path)
+{
+    FILE *f = fopen(path, "wb");
+    if (!f)
+        return false;
+    const float s = 0.0625f;
+    for (int i = -12; i <= 12; i++)
+        for (int j = -4; j <= 4; j++)
+            for (int k = -4; k <= 4; k++)
+                if (i * i / 144.0 + j * j / 16.0 + k * k / 16.0 <= 1.0) {
+                    float p[3] = {i * s, j * s, k * s};
+                    fwrite(p, sizeof p, 1, f);
+                }
+    return fclose(f) == 0;
+}
+
+/* Runs argv with stdout and stderr to out_path; the exit status or -1. */
+static int run(const char *const *argv, const char *out_path)
+{
+    posix_spawn_file_actions_t actions;
+    posix_spawn_file_actions_init(&actions);
+    posix_spawn_file_actions_addopen(&actions, STDOUT_FILENO, out_path, O_WRONLY | O_CREAT | O_TRUNC, 0600);
+    posix_spawn_file_actions_adddup2(&actions, STDOUT_FILENO, STDERR_FILENO);
+    pid_t pid;
+    int status = 0, result = -1;
+    if (posix_spawnp(&pid, argv[0], &actions, NULL, (char *const *)argv, environ) == 0 &&
+        waitpid(pid, &status, 0) == pid && WIFEXITED(status))
+        result = WEXITSTATUS(status);
+    posix_spawn_file_actions_destroy(&actions);
+    return result;
+}
+
+static char *read_text(const char *path)
+{
+    FILE *f = fopen(path, "rb");
+    if (!f)
+        return NULL;
+    fseek(f, 0, SEEK_END);
+    long n = ftell(f);
+    fseek(f, 0, SEEK_SET);
+    char *text = malloc((size_t)n + 1);
+    if (text && fread(text, 1, (size_t)n, f) != (size_t)n)
+        n = 0;
+    if (text)
+        text[n] = '\0';
+    fclose(f);
+    return text;
+}
+
+typedef struct logged_camera {
+    float eye[3], target[3], up[3];
+    unsigned width, height;
+    bool preview;
+} logged_camera;
+
+/* The last full-size camera logged before `before` (NULL: the end), or the first one (first true). */
+static bool find_camera(const char *log, const char *before, bool first, logged_camera *out)
+{
+    bool found = false;
+    for (const char *p = strstr(log, "camera "); p && (!before || p < before); p = strstr(p + 1, "\ncamera ")) {
+        if (*p == '\n')
+            p++;
+        logged_camera c = {0};
+        const char *eol = strchr(p, '\n');
+        const char *tag = strstr(p, "preview");
+        c.preview = tag && (!eol || tag < eol);
+        if (sscanf(p, "camera %*u: eye %f %f %f target %f %f %f up %f %f %f size %ux%u", &c.eye[0], &c.eye[1],
+                   &c.eye[2], &c.target[0], &c.target[1], &c.target[2], &c.up[0], &c.up[1], &c.up[2], &c.width,
+                   &c.height) == 11 &&
+            !c.preview) {
+            *out = c;
+            found = true;
+            if (first)
+                return true;
+        }
+    }
+    return found;
+}
+
+static bool decode_bmp(const char *path, fc_decoded_image *img)
+{
+    size_t size = 0;
+    FILE *f = fopen(path, "rb");
+    if (!f)
+        return false;
+    fseek(f, 0, SEEK_END);
+    size = (size_t)ftell(f);
+    fseek(f, 0, SEEK_SET);
+    uint8_t *data = malloc(size);
+    bool ok = data && fread(data, 1, size, f) == size;
+    fclose(f);
+    fc_error err;
+    ok = ok && fc_decode_image(data, size, "bmp", 0, img, &err) == FC_OK;
+    if (!ok)
+        fprintf(stderr, "%s: cannot decode\n", path);
+    free(data);
+    return ok;
+}
+
+/* Mean blue-minus-red over a square of side `side` at (x0, y0): the fluid is
+ * blue, the floor and sky grey. */
+static double blueness(const fc_decoded_image *img, int x0, int y0, int side)
+{
+    double sum = 0;
+    const uint8_t *px = img->pixels;
+    for (int y = y0; y < y0 + side; y++)
+        for (int x = x0; x < x0 + side; x++) {
+            const uint8_t *p = px + ((size_t)y * img->width + x) * img->channels;
+            sum += (double)p[2] - (double)p[0];
+        }
+    return sum / (side * side);
+}
+
+static double mean_abs_difference(const fc_decoded_image *a, const fc_decoded_image *b)
+{
+    double sum = 0;
+    size_t n = (size_t)a->width * a->height * a->channels;
+    for (size_t i = 0; i < n; i++)
+        sum += fabs((double)((uint8_t *)a->pixels)[i] - (double)((uint8_t *)b->pixels)[i]);
+    return sum / (double)n;
+}
+
+typedef struct scene {
+    char dir[64];
+    char slab[128];
+    char server[32];
+    const char *cli;
+    const char *input_dir;
+    const char *gallery;
+} scene;
+
+static int test_draw(const scene *s, const char *log, const char *shot)
+{
+    REQUIRE_MSG(strstr(log, "shot: ") != NULL, "no screenshot taken:\n%s", log);
+    fc_decoded_image img = {0};
+    REQUIRE(decode_bmp(shot, &img));
+    REQUIRE(img.width == WIDTH && img.height == HEIGHT);
+    double centre = blueness(&img, WIDTH / 2 - 10, HEIGHT / 2 - 10, 20);
+    double corners = (blueness(&img, 0, 0, 10) + blueness(&img, WIDTH - 10, 0, 10) +
+                      blueness(&img, 0, HEIGHT - 10, 10) + blueness(&img, WIDTH - 10, HEIGHT - 10, 10)) / 4;
+    printf("draw: blue - red at the centre %.1f, at the corners %.1f\n", centre, corners);
+    REQUIRE_MSG(centre > corners + 40.0, "the centre (%.1f) is not the fluid against the corners (%.1f)", centre,
+              corners);
+    fc_decoded_image_free(&img);
+    if (s->gallery) {
+        const char *argv[] = {"oiiotool", shot, "-o", s->gallery, NULL};
+        char out[160];
+        snprintf(out, sizeof out, "%s/oiiotool.out", s->dir);
+        if (run(argv, out) == 0)
+            printf("gallery: %s\n", s->gallery);
+    }
+    return 0;
+}
+
+/* Angle of v's projection on the plane normal to up, about up. */
+static double azimuth(const float v[3], const float up[3])
+{
+    /* a basis of the plane: any vector not along up, made normal to it */
+    double a[3] = {fabsf(up[0]) < 0.9f ? 1 : 0, fabsf(up[0]) < 0.9f ? 0 : 1, 0};
+    double d = a[0] * up[0] + a[1] * up[1] + a[2] * up[2];
+    for (int i = 0; i < 3; i++)
+        a[i] -= d * up[i];
+    double b[3] = {up[1] * a[2] - up[2] * a[1], up[2] * a[0] - up[0] * a[2], up[0] * a[1] - up[1] * a[0]};
+    return atan2(v[0] * b[0] + v[1] * b[1] + v[2] * b[2], v[0] * a[0] + v[1] * a[1] + v[2] * a[2]);
+}
+
+static int test_drag(const scene *s, const char *log, const char *before, const char *after)
+{
+    const char *second_shot = strstr(log, "shot: ");
+    second_shot = second_shot ? strstr(second_shot + 1, "shot: ") : NULL;
+    REQUIRE_MSG(second_shot != NULL, "two screenshots expected:\n%s", log);
+    logged_camera c0, c1;
+    REQUIRE(find_camera(log, NULL, true, &c0));
+    REQUIRE(find_camera(log, second_shot, false, &c1));
+    float o0[3], o1[3];
+    for (int i = 0; i < 3; i++)
+        o0[i] = c0.eye[i] - c0.target[i], o1[i] = c1.eye[i] - c1.target[i];
+    double turn = azimuth(o1, c0.up) - azimuth(o0, c0.up);
+    turn = remainder(turn, 2 * M_PI);
+    double expected = -(double)DRAG_PX / HEIGHT * M_PI;
+    printf("drag: the eye turned %.4f rad about up (expected %.4f)\n", turn, expected);
+    CHECK_NEAR(turn, expected, 0.01);
+    CHECK_NEAR(sqrt(o0[0] * o0[0] + o0[1] * o0[1] + o0[2] * o0[2]),
+               sqrt(o1[0] * o1[0] + o1[1] * o1[1] + o1[2] * o1[2]), 1e-3);
+    REQUIRE(c1.width == WIDTH && c1.height == HEIGHT);
+    REQUIRE_MSG(strstr(log, "preview") != NULL, "no half-size preview while dragging:\n%s", log);
+    fc_decoded_image a = {0}, b = {0};
+    REQUIRE(decode_bmp(before, &a) && decode_bmp(after, &b));
+    double diff = mean_abs_difference(&a, &b);
+    printf("drag: mean absolute difference of the pictures %.1f\n", diff);
+    REQUIRE(diff > 5.0);
+    fc_decoded_image_free(&a);
+    fc_decoded_image_free(&b);
+    char png[128];
+    snprintf(png, sizeof png, "%s/fluidcast-view-0001.png", s->dir);
+    REQUIRE_MSG(access(png, R_OK) == 0, "p wrote no %s", png);
+    return 0;
+}
+
+static int test_spacemouse(const char *log)
+{
+    logged_camera c0, c1;
+    REQUIRE_MSG(strstr(log, "SpaceMouse: SpaceMouse Compact") != NULL, "no SpaceMouse found:\n%.2000s", log);
+    REQUIRE(find_camera(log, NULL, true, &c0));
+    /* the last camera sent, preview or not */
+    const char *last = NULL;
+    for (const char *p = strstr(log, "camera "); p; p = strstr(p + 1, "\ncamera "))
+        last = *p == '\n' ? p + 1 : p;
+    REQUIRE(last && sscanf(last, "camera %*u: eye %f %f %f target %f %f %f", &c1.eye[0], &c1.eye[1], &c1.eye[2],
+                         &c1.target[0], &c1.target[1], &c1.target[2]) == 6);
+    /* +X held: the scene moves right, so the pivot moves along -right */
+    double f[3], right[3], moved = 0;
+    for (int i = 0; i < 3; i++)
+        f[i] = c0.target[i] - c0.eye[i];
+    right[0] = f[1] * c0.up[2] - f[2] * c0.up[1];
+    right[1] = f[2] * c0.up[0] - f[0] * c0.up[2];
+    right[2] = f[0] * c0.up[1] - f[1] * c0.up[0];
+    double n = sqrt(right[0] * right[0] + right[1] * right[1] + right[2] * right[2]);
+    for (int i = 0; i < 3; i++)
+        moved += (c1.target[i] - c0.target[i]) * right[i] / n;
+    printf("spacemouse: the pivot moved %.3f along the view's right\n", moved);
+    REQUIRE(moved < -0.05);
+    return 0;
+}
+
+static int run_viewer(const scene *s, const char *mode, char **log)
+{
+    char script[512], a[128], b[128], out[128];
+    snprintf(a, sizeof a, "%s/before.bmp", s->dir);
+    snprintf(b, sizeof b, "%s/after.bmp", s->dir);
+    snprintf(out, sizeof out, "%s/view.out", s->dir);
+    const char *argv[24];
+    int n = 0;
+    char ioctl[256], device[256];
+    if (strcmp(mode, "spacemouse") == 0) {
+        snprintf(device, sizeof device, "%s/compact.umockdev", s->input_dir);
+        snprintf(ioctl, sizeof ioctl, "/dev/bus/usb/001/005=%s/compact_hold.ioctl", s->input_dir);
+        const char *pre[] = {"umockdev-run", "--device", device, "--ioctl", ioctl, "--"};
+        for (size_t i = 0; i < sizeof pre / sizeof pre[0]; i++)
+            argv[n++] = pre[i];
+        snprintf(script, sizeof script, "sleep 1500; quit");
+    } else if (strcmp(mode, "draw") == 0) {
+        snprintf(script, sizeof script, "wait; shot %s; quit", a);
+    } else {
+        snprintf(script, sizeof script, "wait; shot %s; drag %d 0; wait; shot %s; key p; wait; quit", a, DRAG_PX, b);
+    }
+    char size[32];
+    snprintf(size, sizeof size, "%dx%d", WIDTH, HEIGHT);
+    const char *rest[] = {s->cli, "view", s->slab, "--server", s->server, "--size", size, "--log-camera",
+                          "--test-script", script};
+    for (size_t i = 0; i < sizeof rest / sizeof rest[0]; i++)
+        argv[n++] = rest[i];
+    if (strcmp(mode, "spacemouse") != 0)
+        argv[n++] = "--no-spacemouse";
+    argv[n] = NULL;
+    int status = run(argv, out);
+    *log = read_text(out);
+    REQUIRE_MSG(status == 0 && *log, "the viewer exited with %d:\n%s", status, *log ? *log : "");
+    if (strcmp(mode, "draw") == 0)
+        return test_draw(s, *log, a);
+    if (strcmp(mode, "drag") == 0)
+        return test_drag(s, *log, a, b);
+    return test_spacemouse(*log);
+}
+
+int main(int argc, char **argv)
+{
+    if (argc < 4) {
+        fprintf(stderr, "usage: test_viewer draw|drag|spacemouse FLUIDCAST_CLI TESTS_INPUT_DIR [GALLERY_PNG]\n");
+        return 2;
+    }
+    const char *mode = argv[1];
+    if (strcmp(mode, "spacemouse") == 0 && system("command -v umockdev-run >/dev/null 2>&1") != 0) {
+        printf("umockdev-run not found (apt-get install umockdev): skipped\n");
+        return 77;
+    }
+    scene s = {.dir = "/tmp/fc_view_XXXXXX", .cli = argv[2], .input_dir = argv[3], .gallery = argc > 4 ? argv[4] : NULL};
+    REQUIRE(mkdtemp(s.dir) != NULL);
+    REQUIRE(chdir(s.dir) == 0); /* the p key writes its PNG here */
+    snprintf(s.slab, sizeof s.slab, "%s/slab.f32", s.dir);
+    REQUIRE(write_slab(s.slab));
+    fc_test_daemon d;
+    fc_error err;
+    REQUIRE_MSG(fc_test_daemon_start(&d, NULL, FC_TEST_DAEMON_START_TIMEOUT_MS, &err) == FC_OK, "%s", err.message);
+    snprintf(s.server, sizeof s.server, "127.0.0.1:%u", (unsigned)d.port);
+    char *log = NULL;
+    int status = run_viewer(&s, mode, &log);
+    free(log);
+    CHECK(fc_test_daemon_stop(&d, FC_TEST_DAEMON_STOP_TIMEOUT_MS, &err) == FC_OK);
+    char cleanup[160];
+    snprintf(cleanup, sizeof cleanup, "rm -rf '%s'", s.dir);
+    if (status == 0 && system(cleanup) != 0)
+        fprintf(stderr, "could not remove %s\n", s.dir);
+    status = status ? status : test_result();
+    if (status == 0)
+        printf("ok\n");
+    return status;
+}
