@@ -97,6 +97,10 @@ static void show_image(viewer *v, fc_view_image *img)
     v->have_image = true;
     fc_view_hud_count(&v->hud, now);
     fc_view_control_image_shown(&v->ctl, img->frame_index, now);
+    if (img->pick && v->opt.log_camera)
+        printf("pick %u: %s %.6f %.6f %.6f\n", (unsigned)img->pick, img->picked ? "fluid at" : "no fluid",
+               (double)img->pivot[0], (double)img->pivot[1], (double)img->pivot[2]);
+    fc_view_control_picked(&v->ctl, img, now);
     char what[96], line[400];
     if (v->opt.session)
         snprintf(what, sizeof what, "%s frame %llu", v->opt.session, (unsigned long long)img->frame_number);
@@ -162,6 +166,7 @@ static void script_step(viewer *v)
     case FC_VIEW_STEP_DRAG: fc_view_script_push_drag(SDL_BUTTON_LEFT, width / 2, height / 2, s->dx, s->dy); break;
     case FC_VIEW_STEP_PAN: fc_view_script_push_drag(SDL_BUTTON_RIGHT, width / 2, height / 2, s->dx, s->dy); break;
     case FC_VIEW_STEP_KEY: fc_view_script_push_key(s->key); break;
+    case FC_VIEW_STEP_DCLICK: fc_view_script_push_double_click(width / 2 + s->dx, height / 2 + s->dy); break;
     case FC_VIEW_STEP_SHOT:
         if (fc_view_window_save_bmp(&v->win, s->path, &err) != FC_OK)
             fprintf(stderr, "fluidcast: %s\n", err.message);

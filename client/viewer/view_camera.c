@@ -116,3 +116,34 @@ fc_code fc_view_turntable(fc_camera *cam, int dx, int dy, int window_height, fc_
     *cam = moved;
     return FC_OK;
 }
+
+bool fc_view_unproject(const fc_camera *cam, float u, float v, float depth, float out[3])
+{
+    double forward[3], up[3], right[3], view_up[3];
+    for (int i = 0; i < 3; i++) {
+        forward[i] = (double)cam->target[i] - (double)cam->eye[i];
+        up[i] = cam->up[i];
+    }
+    normalize(forward);
+    cross(forward, up, right);
+    double n = sqrt(dot(right, right));
+    if (!(n > 1e-9) || cam->height == 0)
+        return false;
+    for (int i = 0; i < 3; i++)
+        right[i] /= n;
+    cross(right, forward, view_up);
+    double half = tan(cam->fov_y_deg * M_PI / 360.0), aspect = (double)cam->width / cam->height;
+    double x = (2.0 * u - 1.0) * half * aspect, y = (1.0 - 2.0 * v) * half;
+    for (int i = 0; i < 3; i++)
+        out[i] = (float)(cam->eye[i] + depth * (forward[i] + x * right[i] + y * view_up[i]));
+    return true;
+}
+
+void fc_view_set_pivot(fc_camera *cam, const float pivot[3])
+{
+    for (int i = 0; i < 3; i++) {
+        float shift = pivot[i] - cam->target[i];
+        cam->eye[i] += shift;
+        cam->target[i] = pivot[i];
+    }
+}

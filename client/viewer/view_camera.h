@@ -5,6 +5,8 @@
 #ifndef FC_VIEW_CAMERA_H
 #define FC_VIEW_CAMERA_H
 
+#include <stdbool.h>
+
 #include "fluidcast_types.h"
 #include "spacemouse_camera.h"
 #include "spacemouse_motion.h"
@@ -25,6 +27,14 @@ fc_sm_camera_delta fc_view_drag_delta(fc_view_drag kind, fc_sm_mode mode, const 
  * (a free trackball rolls the view after a few circles). A tilt that would
  * look straight along up is refused (FC_ERR_USAGE, camera unchanged). */
 fc_code fc_view_turntable(fc_camera *cam, int dx, int dy, int window_height, fc_error *err);
+
+/* The world point at linear view depth `depth` (along the view axis) under
+ * the window position (u, v) in [0, 1], v down. False for a degenerate camera. */
+bool fc_view_unproject(const fc_camera *cam, float u, float v, float depth, float out[3]);
+
+/* Moves eye and target together so that the target (the pivot) is `pivot`:
+ * the view recentres on it, at the same distance and direction. */
+void fc_view_set_pivot(fc_camera *cam, const float pivot[3]);
 
 /* The delta of `clicks` wheel clicks (positive: away from the user, closer). */
 fc_sm_camera_delta fc_view_wheel_delta(fc_sm_mode mode, float clicks);

@@ -23,6 +23,8 @@ void fc_view_control_init(fc_view_control *c, fc_view_slots *slots, const fc_cam
     c->sent.settings = *settings;
     c->playing = file_count > 1;
     c->window_height = (int)home->height;
+    c->window_width = (int)home->width;
+    c->session = !has_camera;
 }
 
 /* Any camera change: a preview now, the full image once still. */
@@ -105,6 +107,24 @@ static void key(fc_view_control *c, SDL_Keycode k, double now_ms)
     }
 }
 
+/* Double-click: the worker reads the depth under the cursor and the next
+ * image brings the point back (fc_view_control_picked). */
+static void ask_pick(fc_view_control *c, int x, int y)
+{
+    c->sent.pick++;
+    c->sent.pick_x = c->window_width > 1 ? (float)x / (float)(c->window_width - 1) : 0.5f;
+    c->sent.pick_y = c->window_height > 1 ? (float)y / (float)(c->window_height - 1) : 0.5f;
+    send(c, c->moving);
+}
+
+void fc_view_control_picked(fc_view_control *c, const fc_view_image *img, double now_ms)
+{
+    if (img->pick == 0 || img->pick != c->sent.pick || !img->picked)
+        return;
+    fc_view_set_pivot(&c->sent.camera, img->pivot);
+    moved(c, now_ms);
+}
+
 static void motion(fc_view_control *c, const SDL_MouseMotionEvent *m, double now_ms)
 {
     if (!c->drag_button || (m->xrel == 0 && m->yrel == 0))
@@ -125,7 +145,9 @@ void fc_view_control_event(fc_view_control *c, const SDL_Event *e, double now_ms
     case SDL_QUIT: c->quit = true; break;
     case SDL_KEYDOWN: key(c, e->key.keysym.sym, now_ms); break;
     case SDL_MOUSEBUTTONDOWN:
-        if (!c->drag_button)
+        if (e->button.button == SDL_BUTTON_LEFT && e->button.clicks == 2 && !c->session)
+            ask_pick(c, e->button.x, e->button.y);
+        else if (!c->drag_button)
             c->drag_button = e->button.button;
         break;
     case SDL_MOUSEBUTTONUP:
@@ -148,6 +170,7 @@ void fc_view_control_resized(fc_view_control *c, int width, int height, double n
     if (width < 1 || height < 1)
         return;
     c->window_height = height;
+    c->window_width = width;
     if ((uint32_t)width == c->sent.camera.width && (uint32_t)height == c->sent.camera.height)
         return;
     c->sent.camera.width = (uint32_t)width;

@@ -33,7 +33,8 @@ typedef struct fc_view_control {
     double moved_ms;
     bool resize_pending;
     double resized_ms;
-    int window_height;            /* for the drag's scale */
+    int window_width, window_height; /* for the drag's scale and picking */
+    bool session;                 /* following a session: no particles here, no picking */
     int drag_button;              /* 0: no drag */
     bool quit;
 } fc_view_control;
@@ -49,6 +50,9 @@ void fc_view_control_image_shown(fc_view_control *c, uint32_t frame_index, doubl
 
 /* Time-driven work: the full image once still, a settled resize, playback. */
 void fc_view_control_tick(fc_view_control *c, double now_ms);
+
+/* An image answered a double-click: recentre on the picked point, if any. */
+void fc_view_control_picked(fc_view_control *c, const fc_view_image *img, double now_ms);
 
 /* The camera was moved by another input (the SpaceMouse). */
 void fc_view_control_camera_moved(fc_view_control *c, const fc_camera *cam, double now_ms);

@@ -12,6 +12,7 @@
 #include "fc_frame.h"
 #include "output_file.h"
 #include "particle_reader.h"
+#include "view_camera.h"
 
 /* What the worker remembers of what it sent, to send only changes. */
 typedef struct link_state {
@@ -19,6 +20,7 @@ typedef struct link_state {
     bool settings_sent;
     fc_settings settings;
     uint32_t screenshot_done;
+    uint32_t pick_done;
     double sent_ms;               /* when the last camera/settings went out */
 } link_state;
 
@@ -134,6 +136,34 @@ static fc_code screenshot(fc_view_link *link, const fc_view_request *r, fc_error
     return code;
 }
 
+/* The point under the cursor: one quarter-size depth AOV (linear view depth
+ * along the view axis, 0 where there is no fluid), read at the pixel and
+ * taken back along the pixel's ray. Cheap next to a colour render. */
+static fc_code pick(fc_view_link *link, const fc_view_request *r, fc_view_image *out, fc_error *err)
+{
+    fc_camera cam = r->camera;
+    cam.width = cam.width / 4 ? cam.width / 4 : 1;
+    cam.height = cam.height / 4 ? cam.height / 4 : 1;
+    fc_code code = fc_client_set_camera(link->client, &cam, err);
+    fc_image_result img = {0};
+    fc_render_request depth = {.format = FC_FORMAT_RAW, .quality = 90, .aov = FC_AOV_DEPTH};
+    if (code == FC_OK)
+        code = fc_client_render(link->client, &depth, &img, err);
+    if (code == FC_OK && img.size != (size_t)img.width * img.height * sizeof(float))
+        code = fc_error_set(err, FC_ERR_PROTOCOL, "depth AOV of %zu bytes for %ux%u", img.size,
+                            (unsigned)img.width, (unsigned)img.height);
+    if (code == FC_OK) {
+        uint32_t x = (uint32_t)(r->pick_x * (float)(img.width - 1) + 0.5f);
+        uint32_t y = (uint32_t)(r->pick_y * (float)(img.height - 1) + 0.5f);
+        float d;
+        memcpy(&d, img.data + ((size_t)y * img.width + x) * sizeof d, sizeof d);
+        out->pick = r->pick;
+        out->picked = d > 0.0f && fc_view_unproject(&r->camera, r->pick_x, r->pick_y, d, out->pivot);
+    }
+    fc_image_result_free(&img);
+    return code;
+}
+
 static fc_code render_files(fc_view_link *link, link_state *st, const fc_view_request *r, fc_error *err)
 {
     fc_code code = FC_OK;
@@ -144,13 +174,17 @@ static fc_code render_files(fc_view_link *link, link_state *st, const fc_view_re
         if ((code = screenshot(link, r, err)) != FC_OK)
             return code;
     }
+    fc_view_image out = {.generation = r->generation, .frame_index = r->frame_index, .preview = r->preview};
+    if (code == FC_OK && r->pick != st->pick_done) {
+        st->pick_done = r->pick;
+        code = pick(link, r, &out, err);
+    }
     if (code == FC_OK)
         code = send_view(link, st, r, err);
     fc_image_result img = {0};
     fc_render_request raw = {.format = FC_FORMAT_RAW, .quality = 90, .aov = FC_AOV_COLOR};
     if (code == FC_OK)
         code = fc_client_render(link->client, &raw, &img, err);
-    fc_view_image out = {.generation = r->generation, .frame_index = r->frame_index, .preview = r->preview};
     if (code == FC_OK)
         code = decode(&img, &out, err);
     fc_image_result_free(&img);

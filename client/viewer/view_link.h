@@ -5,6 +5,9 @@
  * takes the newest request from the request slot when the previous image is
  * in, so a fast drag coalesces into the camera of its end.
  *
+ * A double-click's pick renders a quarter-size depth AOV first and returns
+ * the point under the cursor with the next image.
+ *
  * Images are asked for as RAW RGBA8, so "decoding" is checking the size and
  * taking the rows: no image codec on the client (PNG is used for the lossless
  * screenshot, written as the server encoded it). */

@@ -28,9 +28,9 @@ static fc_code parse_step(const char *text, fc_view_step *s, fc_error *err)
         s->kind = FC_VIEW_STEP_WAIT;
     else if (n >= 1 && strcmp(word, "quit") == 0)
         s->kind = FC_VIEW_STEP_QUIT;
-    else if ((strcmp(word, "drag") == 0 || strcmp(word, "pan") == 0) &&
+    else if ((strcmp(word, "drag") == 0 || strcmp(word, "pan") == 0 || strcmp(word, "dclick") == 0) &&
              sscanf(text, " %*s %d %d", &s->dx, &s->dy) == 2)
-        s->kind = word[0] == 'd' ? FC_VIEW_STEP_DRAG : FC_VIEW_STEP_PAN;
+        s->kind = word[1] == 'c' ? FC_VIEW_STEP_DCLICK : word[0] == 'd' ? FC_VIEW_STEP_DRAG : FC_VIEW_STEP_PAN;
     else if (strcmp(word, "sleep") == 0 && sscanf(text, " %*s %d", &s->dx) == 1 && s->dx >= 0)
         s->kind = FC_VIEW_STEP_SLEEP;
     else if (n == 2 && strcmp(word, "key") == 0 && (s->key = key_named(arg)) >= 0)
@@ -68,13 +68,13 @@ fc_code fc_view_script_parse(const char *text, fc_view_step **steps, int *count,
     return FC_OK;
 }
 
-static void push_button(Uint32 type, int button, int x, int y)
+static void push_button(Uint32 type, int button, int x, int y, int clicks)
 {
     SDL_Event e = {0};
     e.button.type = type;
     e.button.button = (Uint8)button;
     e.button.state = type == SDL_MOUSEBUTTONDOWN ? SDL_PRESSED : SDL_RELEASED;
-    e.button.clicks = 1;
+    e.button.clicks = (Uint8)clicks;
     e.button.x = x;
     e.button.y = y;
     SDL_PushEvent(&e);
@@ -82,7 +82,7 @@ static void push_button(Uint32 type, int button, int x, int y)
 
 void fc_view_script_push_drag(int button, int x, int y, int dx, int dy)
 {
-    push_button(SDL_MOUSEBUTTONDOWN, button, x, y);
+    push_button(SDL_MOUSEBUTTONDOWN, button, x, y, 1);
     int done_x = 0, done_y = 0;
     for (int i = 1; i <= DRAG_MOTIONS; i++) {
         SDL_Event e = {0};
@@ -96,7 +96,7 @@ void fc_view_script_push_drag(int button, int x, int y, int dx, int dy)
         e.motion.y = y + done_y;
         SDL_PushEvent(&e);
     }
-    push_button(SDL_MOUSEBUTTONUP, button, x + dx, y + dy);
+    push_button(SDL_MOUSEBUTTONUP, button, x + dx, y + dy, 1);
 }
 
 void fc_view_script_push_key(int key)
@@ -106,4 +106,12 @@ void fc_view_script_push_key(int key)
     e.key.state = SDL_PRESSED;
     e.key.keysym.sym = key;
     SDL_PushEvent(&e);
+}
+
+void fc_view_script_push_double_click(int x, int y)
+{
+    push_button(SDL_MOUSEBUTTONDOWN, SDL_BUTTON_LEFT, x, y, 1);
+    push_button(SDL_MOUSEBUTTONUP, SDL_BUTTON_LEFT, x, y, 1);
+    push_button(SDL_MOUSEBUTTONDOWN, SDL_BUTTON_LEFT, x, y, 2);
+    push_button(SDL_MOUSEBUTTONUP, SDL_BUTTON_LEFT, x, y, 2);
 }

@@ -5,6 +5,7 @@
  *                     full size (the camera has been still and it arrived)
  *     drag DX DY      a left-button drag by DX, DY pixels from the centre
  *     pan DX DY       the same with the right button
+ *     dclick DX DY    a left double-click DX, DY pixels from the centre
  *     key K           a key press (one character: r f s n p q, or "space")
  *     shot FILE.bmp   writes what the window shows
  *     sleep MS        lets MS milliseconds pass (events keep being handled)
@@ -23,6 +24,7 @@ typedef enum fc_view_step_kind {
     FC_VIEW_STEP_DRAG,
     FC_VIEW_STEP_PAN,
     FC_VIEW_STEP_KEY,
+    FC_VIEW_STEP_DCLICK,
     FC_VIEW_STEP_SHOT,
     FC_VIEW_STEP_SLEEP,
     FC_VIEW_STEP_QUIT
@@ -43,5 +45,6 @@ fc_code fc_view_script_parse(const char *text, fc_view_step **steps, int *count,
  * starting at (x, y), in ten motions. */
 void fc_view_script_push_drag(int button, int x, int y, int dx, int dy);
 void fc_view_script_push_key(int key);
+void fc_view_script_push_double_click(int x, int y);
 
 #endif

@@ -20,6 +20,8 @@ typedef struct fc_view_request {
     uint32_t frame_index;         /* which file of a sequence */
     bool preview;                 /* the camera is moving: render at half size */
     uint32_t screenshot;          /* > 0: also write a PNG numbered so (p key) */
+    uint32_t pick;                /* > 0: find the fluid under (pick_x, pick_y), numbered so (double-click) */
+    float pick_x, pick_y;         /* in [0, 1] across the window, y down */
 } fc_view_request;
 
 typedef struct fc_view_image {
@@ -31,6 +33,9 @@ typedef struct fc_view_image {
     bool preview;
     float stage_ms[FC_STAGE_COUNT];
     double round_trip_ms;         /* request sent -> image decoded */
+    uint32_t pick;                /* the pick this answers (0: none) */
+    bool picked;                  /* fluid was under it, at pivot */
+    float pivot[3];
 } fc_view_image;
 
 void fc_view_image_free(fc_view_image *image);

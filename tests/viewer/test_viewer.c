@@ -6,6 +6,10 @@
  *               about the pivot by -80/240*pi about up (the scene's front
  *               to the right), the picture changes, and the p key writes a
  *               full-size PNG
+ *   pick        a double-click at the window's centre makes the fluid's front
+ *               surface on the view axis the pivot: the view recentres on it
+ *               (eye and target move together); one in a corner (floor, no
+ *               fluid) leaves the camera alone
  *   spacemouse  under umockdev-run with tests/input's Compact holding +X:
  *               the camera pans (its target moves against the view's right)
  * Usage: test_viewer MODE FLUIDCAST_CLI TESTS_INPUT_DIR [GALLERY_PNG] */
@@ -266,6 +270,37 @@ static int test_spacemouse(const char *log)
     return 0;
 }
 
+static double distance(const float a[3], const float b[3])
+{
+    return sqrt((a[0] - b[0]) * (a[0] - b[0]) + (a[1] - b[1]) * (a[1] - b[1]) + (a[2] - b[2]) * (a[2] - b[2]));
+}
+
+static int test_pick(const char *log)
+{
+    const char *p1 = strstr(log, "pick 1: fluid at ");
+    const char *p2 = strstr(log, "pick 2: no fluid");
+    REQUIRE_MSG(p1 && p2, "expected a pick on the fluid, then one off it:\n%s", log);
+    float pivot[3];
+    REQUIRE(sscanf(p1, "pick 1: fluid at %f %f %f", &pivot[0], &pivot[1], &pivot[2]) == 3);
+    logged_camera c0, c1, c2;
+    REQUIRE(find_camera(log, NULL, true, &c0));
+    REQUIRE(find_camera(log, p2, false, &c1));
+    REQUIRE(find_camera(log, NULL, false, &c2));
+    /* on the view axis, in front of the centre by less than the slab's half-length (0.75; its surface
+     * along this axis is about 0.29 + a particle radius in front) */
+    double to_centre = distance(c0.eye, c0.target), to_pivot = distance(c0.eye, pivot);
+    double off_axis = distance(pivot, c0.target) - (to_centre - to_pivot);
+    printf("pick: pivot %.3f from the eye (centre %.3f), %.4f off the axis\n", to_pivot, to_centre, off_axis);
+    CHECK(to_pivot < to_centre - 0.1 && to_pivot > to_centre - 0.5);
+    CHECK_NEAR(off_axis, 0.0, 0.02);
+    /* recentred: the target is the pivot, the eye moved with it */
+    CHECK_NEAR(distance(c1.target, pivot), 0.0, 1e-4);
+    for (int i = 0; i < 3; i++)
+        CHECK_NEAR(c1.eye[i] - c1.target[i], c0.eye[i] - c0.target[i], 1e-4);
+    CHECK_NEAR(distance(c2.target, c1.target) + distance(c2.eye, c1.eye), 0.0, 1e-6);
+    return 0;
+}
+
 static int run_viewer(const scene *s, const char *mode, char **log)
 {
     char script[512], a[128], b[128], out[128];
@@ -282,6 +317,9 @@ static int run_viewer(const scene *s, const char *mode, char **log)
         for (size_t i = 0; i < sizeof pre / sizeof pre[0]; i++)
             argv[n++] = pre[i];
         snprintf(script, sizeof script, "sleep 1500; quit");
+    } else if (strcmp(mode, "pick") == 0) {
+        snprintf(script, sizeof script, "wait; dclick 0 0; wait; dclick %d %d; wait; quit", -WIDTH / 2 + 4,
+                 HEIGHT / 2 - 4);
     } else if (strcmp(mode, "draw") == 0) {
         snprintf(script, sizeof script, "wait; shot %s; quit", a);
     } else {
@@ -303,13 +341,15 @@ static int run_viewer(const scene *s, const char *mode, char **log)
         return test_draw(s, *log, a);
     if (strcmp(mode, "drag") == 0)
         return test_drag(s, *log, a, b);
+    if (strcmp(mode, "pick") == 0)
+        return test_pick(*log);
     return test_spacemouse(*log);
 }
 
 int main(int argc, char **argv)
 {
     if (argc < 4) {
-        fprintf(stderr, "usage: test_viewer draw|drag|spacemouse FLUIDCAST_CLI TESTS_INPUT_DIR [GALLERY_PNG]\n");
+        fprintf(stderr, "usage: test_viewer draw|drag|pick|spacemouse FLUIDCAST_CLI TESTS_INPUT_DIR [GALLERY_PNG]\n");
         return 2;
     }
     const char *mode = argv[1];
