@@ -14,6 +14,8 @@ PACKAGES=(
   libzstd-dev
   # particle readers: gzip'd .bgeo and compressed .vtu (zlib), VTK XML (expat)
   zlib1g-dev libexpat1-dev
+  # fluidcast snapshot --legend: text with FreeType and a DejaVu font
+  libfreetype-dev fonts-dejavu-core
   # fluidcast render to .mp4/.webm (libavcodec with libx264 and libvpx)
   libavcodec-dev libavformat-dev libavutil-dev libswscale-dev
   # shader validation in the test suite

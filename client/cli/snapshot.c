@@ -13,6 +13,7 @@
 #include "fluidcast.h"
 #include "output_file.h"
 #include "snapshot_camera.h"
+#include "snapshot_legend.h"
 #include "snapshot_options.h"
 #include "snapshot_scene.h"
 #include "up_choice.h"
@@ -92,6 +93,17 @@ static int write_image(const fc_snapshot_options *o, const fc_image_result *imag
     return FC_EXIT_OK;
 }
 
+/* The legend is drawn here rather than by the server, which sends the fluid alone. */
+static int add_legend(const fc_snapshot_options *o, const fc_settings *settings, fc_image_result *image)
+{
+    fc_legend_box box;
+    fc_error err;
+    if (fc_snapshot_add_legend(image, settings, o->quality, &box, &err) != FC_OK)
+        return fc_cli_fail(FC_EXIT_OUTPUT, "legend: %s", err.message);
+    printf("legend: columns %d..%d, rows %d..%d\n", box.x0, box.x1 - 1, box.y0, box.y1 - 1);
+    return FC_EXIT_OK;
+}
+
 static int snapshot(const fc_snapshot_options *o, fc_frame *frame)
 {
     fc_snapshot_scene scene;
@@ -114,6 +126,8 @@ static int snapshot(const fc_snapshot_options *o, fc_frame *frame)
     fc_cli_complete_color_range(&settings, frame, o->has_color_range, &chosen);
     fc_image_result image = { 0 };
     status = render_remotely(o, &scene, frame, &cam, &settings, &image);
+    if (status == FC_EXIT_OK && o->legend)
+        status = add_legend(o, &settings, &image);
     if (status == FC_EXIT_OK)
         status = write_image(o, &image, &settings, &chosen, &up);
     fc_image_result_free(&image);

@@ -361,6 +361,8 @@ fc_code fc_snapshot_check_coloring(const fc_snapshot_options *o, fc_error *err)
         return fc_error_set(err, FC_ERR_USAGE, "--colormap applies with --color-by speed|density");
     if (o->has_color_range)
         return fc_error_set(err, FC_ERR_USAGE, "--range applies with --color-by speed|density");
+    if (o->legend)
+        return fc_error_set(err, FC_ERR_USAGE, "--legend applies with --color-by speed|density");
     return FC_OK;
 }
 
@@ -373,6 +375,8 @@ static fc_code check_combinations(fc_snapshot_options *o, fc_error *err)
     fc_code code = fc_output_format_from_path(o->output, &o->format, err);
     if (code != FC_OK)
         return code;
+    if (o->legend && o->aov != FC_AOV_COLOR)
+        return fc_error_set(err, FC_ERR_USAGE, "--legend goes on the colour image, not an --aov");
     if (o->aov != FC_AOV_COLOR && o->format != FC_FORMAT_EXR)
         return fc_error_set(err, FC_ERR_USAGE, "--aov writes float channels: the output must be .exr");
     if (o->has_quality && o->format != FC_FORMAT_JPEG)
@@ -404,6 +408,11 @@ fc_code fc_snapshot_parse(int argc, char **argv, fc_snapshot_options *out, fc_er
         if (strcmp(arg, "--help") == 0 || strcmp(arg, "-h") == 0) {
             out->help = true;
             return FC_OK;
+        }
+        /* snapshot's own flag, outside the table the render command shares. */
+        if (strcmp(arg, "--legend") == 0) {
+            out->legend = true;
+            continue;
         }
         if (arg[0] != '-' || arg[1] == '\0') {
             if (out->input)
@@ -543,6 +552,9 @@ static void print_color_help(FILE *to)
           "                          values outside take the end colours. Default: the\n"
           "                          first frame's 2nd to 98th percentile, printed, so\n"
           "                          that later runs can fix it and compare\n"
+          "  --legend                draw a colour bar with the attribute's name and five\n"
+          "                          tick labels into the image's top-right corner\n"
+          "                          (snapshot only; drawn by the client with FreeType)\n"
           "\n",
           to);
 }

@@ -33,6 +33,7 @@ typedef struct fc_snapshot_options {
     bool has_density_threshold;   /* --density-threshold given: no spray threshold from the frame's densities */
     bool has_colormap;             /* --colormap given (it needs --color-by) */
     bool has_color_range;          /* --range given: no range from the first frame's percentiles */
+    bool legend;                   /* --legend: a colour bar drawn into the image (snapshot_legend.h) */
     uint32_t quality;
 } fc_snapshot_options;
 

@@ -440,6 +440,58 @@ static void test_color_by(const test_env *env)
     expect_exit(env, 2, "ballv.csv", FLAGS("--range", "0:1"), "--range");
 }
 
+/* Runs a 160x120 snapshot of ballv.csv coloured by speed with `extra` and decodes it. */
+static bool legend_render(const test_env *env, const char *output, const char *const *extra, cli_result *r,
+                          fc_decoded_image *img)
+{
+    const char *flags[MAX_ARGS] = {"--color-by", "speed", "--range", "0:5", "--size", "160x120"};
+    size_t n = 6;
+    for (size_t i = 0; extra[i]; i++)
+        flags[n++] = extra[i];
+    flags[n] = NULL;
+    run_snapshot(env, "ballv.csv", output, flags, r);
+    CHECK_MSG(r->status == 0, "%s: exit %d: %s", output, r->status, r->err);
+    char path[PATH_SIZE];
+    size_t size = 0;
+    uint8_t *data = r->status == 0 ? read_whole_file(scratch(env, output, path), &size) : NULL;
+    fc_error err;
+    fc_code code = data ? fc_decode_image(data, size, "png", false, img, &err) : FC_ERR_IO;
+    free(data);
+    CHECK_MSG(code == FC_OK, "decoding %s", output);
+    return code == FC_OK;
+}
+
+/* --legend: its pixels (it reports where its box is) lie only in that box,
+ * and they fill much of it; it needs --color-by. */
+static void test_legend(const test_env *env)
+{
+    cli_result plain_run, legend_run;
+    fc_decoded_image plain, legend;
+    if (!legend_render(env, "nolegend.png", NO_FLAGS, &plain_run, &plain))
+        return;
+    if (legend_render(env, "legend.png", FLAGS("--legend"), &legend_run, &legend)) {
+        int x0 = -1, x1 = -1, y0 = -1, y1 = -1;
+        const char *line = strstr(legend_run.out, "legend: ");
+        CHECK_MSG(line && sscanf(line, "legend: columns %d..%d, rows %d..%d", &x0, &x1, &y0, &y1) == 4,
+                  "stdout: %s", legend_run.out);
+        size_t inside = 0, outside = 0;
+        for (uint32_t y = 0; y < plain.height; y++)
+            for (uint32_t x = 0; x < plain.width; x++) {
+                bool differs = memcmp(pixel(&plain, x, y), pixel(&legend, x, y), plain.channels) != 0;
+                bool in_box = (int)x >= x0 && (int)x <= x1 && (int)y >= y0 && (int)y <= y1;
+                inside += differs && in_box;
+                outside += differs && !in_box;
+            }
+        CHECK_MSG(outside == 0, "%zu legend pixels outside its box", outside);
+        CHECK_MSG(x0 >= 0 && inside * 2 > (size_t)(x1 - x0 + 1) * (size_t)(y1 - y0 + 1),
+                  "%zu pixels changed in the box %d..%d x %d..%d", inside, x0, x1, y0, y1);
+        fc_decoded_image_free(&legend);
+    }
+    fc_decoded_image_free(&plain);
+    expect_exit(env, 2, "ballv.csv", FLAGS("--legend"), "--legend");
+    expect_exit(env, 2, "ballv.csv", FLAGS("--color-by", "speed", "--legend", "--aov", "depth"), "--legend");
+}
+
 /* Images the server cannot use are its INVALID_VALUE, reported as a server error. */
 static void test_server_rejects_images(const test_env *env)
 {
@@ -487,6 +539,7 @@ int main(void)
     test_cubemap(&env);
     test_server_rejects_images(&env);
     test_color_by(&env);
+    test_legend(&env);
     CHECK_CODE(fc_test_daemon_stop(&daemon, FC_TEST_DAEMON_STOP_TIMEOUT_MS, &err), FC_OK);
     remove_scratch(&env);
     return test_result();
