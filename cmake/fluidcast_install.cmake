@@ -1,0 +1,46 @@
+# What `cmake --install` puts beside the targets' own install() rules (the
+# binaries in client/cli and server/daemon, the libraries and headers in
+# client/lib): the pkg-config file, the CMake package config, the SpaceMouse
+# udev rule and, when it exists, the Python package. Included at the end of the
+# top-level CMakeLists.txt, after every target is defined. tests/install checks
+# the result, and cmake/fluidcast_packaging.cmake packs it into a .deb.
+include(CMakePackageConfigHelpers)
+
+# Where find_package looks: <prefix>/<libdir>/cmake/fluidcast.
+set(FLUIDCAST_CMAKE_DIR ${CMAKE_INSTALL_LIBDIR}/cmake/fluidcast)
+set(FLUIDCAST_UDEV_RULES_DIR lib/udev/rules.d CACHE STRING
+    "where the udev rule is installed, relative to the prefix (udev reads /usr/lib/udev/rules.d)")
+set(FLUIDCAST_PYTHON_DIR lib/python3/dist-packages CACHE STRING
+    "where the Python package is installed, relative to the prefix (Debian's path for python3)")
+
+# pkg-config: fluidcast.pc
+foreach(dir LIBDIR INCLUDEDIR)
+  if(IS_ABSOLUTE "${CMAKE_INSTALL_${dir}}")
+    set(FC_PC_${dir} "${CMAKE_INSTALL_${dir}}")
+  else()
+    set(FC_PC_${dir} "\${prefix}/${CMAKE_INSTALL_${dir}}")
+  endif()
+endforeach()
+configure_file(${CMAKE_CURRENT_LIST_DIR}/fluidcast.pc.in ${CMAKE_BINARY_DIR}/fluidcast.pc @ONLY)
+install(FILES ${CMAKE_BINARY_DIR}/fluidcast.pc DESTINATION ${CMAKE_INSTALL_LIBDIR}/pkgconfig)
+
+# CMake: find_package(fluidcast) -> fluidcast::fluidcast, fluidcast::fluidcast_static
+install(EXPORT fluidcastTargets NAMESPACE fluidcast:: DESTINATION ${FLUIDCAST_CMAKE_DIR})
+configure_package_config_file(${CMAKE_CURRENT_LIST_DIR}/fluidcastConfig.cmake.in
+  ${CMAKE_BINARY_DIR}/fluidcastConfig.cmake
+  INSTALL_DESTINATION ${FLUIDCAST_CMAKE_DIR}
+  PATH_VARS CMAKE_INSTALL_INCLUDEDIR)
+write_basic_package_version_file(${CMAKE_BINARY_DIR}/fluidcastConfigVersion.cmake
+  COMPATIBILITY SameMajorVersion)
+install(FILES ${CMAKE_BINARY_DIR}/fluidcastConfig.cmake ${CMAKE_BINARY_DIR}/fluidcastConfigVersion.cmake
+  DESTINATION ${FLUIDCAST_CMAKE_DIR})
+
+# The SpaceMouse rule (TAG+="uaccess"): udev applies it on the next plug-in.
+install(FILES ${PROJECT_SOURCE_DIR}/deploy/udev/70-fluidcast-spacemouse.rules
+  DESTINATION ${FLUIDCAST_UDEV_RULES_DIR})
+
+# The Python package, once python/fluidcast exists (reconfigure to pick it up).
+if(EXISTS ${PROJECT_SOURCE_DIR}/python/fluidcast/__init__.py)
+  install(DIRECTORY ${PROJECT_SOURCE_DIR}/python/fluidcast DESTINATION ${FLUIDCAST_PYTHON_DIR}
+    PATTERN "__pycache__" EXCLUDE PATTERN "*.pyc" EXCLUDE PATTERN "tests" EXCLUDE)
+endif()

@@ -1,0 +1,224 @@
+#!/usr/bin/env bash
+# tests/install: what `cmake --install` and `cpack -G DEB` deliver, used the way
+# a user outside the tree uses them (deploy/README.md, "Install").
+#   1. cmake --install into DESTDIR=WORK/root; the binaries, libfluidcast.so with
+#      its SONAME links, libfluidcast.a, the headers, fluidcast.pc, the CMake
+#      package and the udev rule are there; every header compiles alone.
+#   2. A consumer (tests/install/consumer) and examples/producer.c build against
+#      that tree only, shared and static, with pkg-config and with find_package.
+#   3. fluidcastd from the tree renders for each of them (a PNG each).
+#   4. cpack -G DEB: name, Depends, files; dpkg -x and run what it holds, and
+#      apt-get's simulation resolves its Depends on this system.
+# Never installs anything onto this machine.
+#
+# usage: test_install.sh BUILD_DIR SOURCE_DIR WORK_DIR CMAKE CPACK CC PREFIX BINDIR LIBDIR INCLUDEDIR VERSION
+set -euo pipefail
+[ $# -eq 11 ] || { echo "usage: $0 BUILD SOURCE WORK CMAKE CPACK CC PREFIX BINDIR LIBDIR INCLUDEDIR VERSION" >&2; exit 2; }
+BUILD=$1 SRC=$2 WORK=$3 CMAKE=$4 CPACK=$5 CC=$6 PREFIX=$7 BINDIR=$8 LIBDIR=$9 INCLUDEDIR=${10} VERSION=${11}
+abs() { case $1 in /*) echo "$1" ;; *) echo "$PREFIX/$1" ;; esac; }
+BINDIR=$(abs "$BINDIR") LIBDIR=$(abs "$LIBDIR") INCLUDEDIR=$(abs "$INCLUDEDIR")
+SOMAJOR=${VERSION%%.*}
+
+step() { echo "== $(date +%T) $*"; }
+fail() { echo "FAIL: $*" >&2; exit 1; }
+need_file() { [ -f "$1" ] || fail "missing $1"; }
+# grep -q at the end of a pipe may stop reading early and fail the pipe (pipefail): read it all.
+matches() { grep "$@" > /dev/null; }
+
+DAEMON_PID=""
+stop_daemon() {
+    if [ -n "$DAEMON_PID" ]; then
+        kill "$DAEMON_PID" 2>/dev/null || true
+        wait "$DAEMON_PID" 2>/dev/null || true
+        DAEMON_PID=""
+    fi
+}
+trap stop_daemon EXIT
+
+rm -rf "$WORK"
+mkdir -p "$WORK"
+ROOT=$WORK/root
+
+step "cmake --install $BUILD (DESTDIR=$ROOT)"
+DESTDIR=$ROOT "$CMAKE" --install "$BUILD" > "$WORK/install.log"
+R=$ROOT
+for f in "$R$BINDIR/fluidcastd" "$R$BINDIR/fluidcast"; do
+    [ -x "$f" ] || fail "missing executable $f"
+done
+need_file "$R$LIBDIR/libfluidcast.so.$VERSION"
+[ "$(readlink "$R$LIBDIR/libfluidcast.so.$SOMAJOR")" = "libfluidcast.so.$VERSION" ] ||
+    fail "libfluidcast.so.$SOMAJOR is not a link to libfluidcast.so.$VERSION"
+[ "$(readlink "$R$LIBDIR/libfluidcast.so")" = "libfluidcast.so.$SOMAJOR" ] ||
+    fail "libfluidcast.so is not a link to libfluidcast.so.$SOMAJOR"
+readelf -d "$R$LIBDIR/libfluidcast.so.$VERSION" | matches "SONAME.*\[libfluidcast.so.$SOMAJOR\]" ||
+    fail "libfluidcast's SONAME is not libfluidcast.so.$SOMAJOR"
+need_file "$R$LIBDIR/libfluidcast.a"
+HEADERS="fluidcast.h fluidcast_types.h fc_error.h fc_frame.h"
+for h in $HEADERS; do need_file "$R$INCLUDEDIR/fluidcast/$h"; done
+need_file "$R$LIBDIR/pkgconfig/fluidcast.pc"
+for f in fluidcastConfig.cmake fluidcastConfigVersion.cmake fluidcastTargets.cmake; do
+    need_file "$R$LIBDIR/cmake/fluidcast/$f"
+done
+need_file "$R$PREFIX/lib/udev/rules.d/70-fluidcast-spacemouse.rules"
+# The Python package, when this build was configured with python/fluidcast present.
+PYPKG=""
+if grep -rqs "python/fluidcast" "$BUILD/cmake_install.cmake"; then
+    PYPKG=$R$PREFIX/lib/python3/dist-packages/fluidcast
+    need_file "$PYPKG/__init__.py"
+fi
+# Nothing installed may point back into the build or source tree.
+if grep -rlF -e "$BUILD" -e "$SRC/" "$R$LIBDIR/pkgconfig" "$R$LIBDIR/cmake" "$R$INCLUDEDIR/fluidcast"; then
+    fail "installed files name the build or source tree"
+fi
+for f in "$R$BINDIR/fluidcastd" "$R$BINDIR/fluidcast" "$R$LIBDIR/libfluidcast.so.$VERSION"; do
+    if readelf -d "$f" | grep -E 'RPATH|RUNPATH' | matches -F "$BUILD"; then fail "$f keeps the build tree's RPATH"; fi
+done
+# The library holds the protocol functions its headers declare.
+# (Listed to files first: grep -q ending a pipe early fails it under pipefail.)
+nm -D --defined-only "$R$LIBDIR/libfluidcast.so.$VERSION" > "$WORK/nm-shared.txt"
+nm --defined-only "$R$LIBDIR/libfluidcast.a" > "$WORK/nm-static.txt" 2>/dev/null
+for sym in fc_frame_alloc fc_frame_estimate_radius fc_camera_frame_bounds fc_settings_default fc_code_name \
+           fc_client_connect fc_client_upload_frame; do
+    grep -qw "T $sym" "$WORK/nm-shared.txt" || fail "libfluidcast.so lacks $sym"
+    grep -qw "T $sym" "$WORK/nm-static.txt" || fail "libfluidcast.a lacks $sym"
+done
+
+step "each installed header compiles with only the installed headers"
+for h in $HEADERS; do
+    printf '#include "%s"\n#include "%s"\nint main(void) { return 0; }\n' "$h" "$h" > "$WORK/header_$h.c"
+    "$CC" -std=c11 -Wall -Wextra -Werror -pedantic -I"$R$INCLUDEDIR/fluidcast" -fsyntax-only "$WORK/header_$h.c" ||
+        fail "$h does not compile on its own"
+done
+
+EX=$SRC/examples
+CONSUMER=$SRC/tests/install/consumer
+step "build with pkg-config (PKG_CONFIG_SYSROOT_DIR=$R)"
+pc() {
+    PKG_CONFIG_PATH="$R$LIBDIR/pkgconfig" PKG_CONFIG_SYSROOT_DIR="$R" \
+        PKG_CONFIG_ALLOW_SYSTEM_CFLAGS=1 PKG_CONFIG_ALLOW_SYSTEM_LIBS=1 pkg-config "$@"
+}
+[ "$(pc --modversion fluidcast)" = "$VERSION" ] || fail "pkg-config --modversion fluidcast is not $VERSION"
+CFLAGS_FC=$(pc --cflags fluidcast)
+LIBS_FC=$(pc --libs fluidcast)
+LIBS_STATIC=$(pc --static --libs fluidcast)
+echo "cflags: $CFLAGS_FC"; echo "libs: $LIBS_FC"; echo "static libs: $LIBS_STATIC"
+case " $LIBS_STATIC " in *" -lzstd "*) ;; *) fail "pkg-config --static --libs lacks -lzstd" ;; esac
+# shellcheck disable=SC2086
+{
+    "$CC" -std=c11 -Wall -Wextra -Werror -D_POSIX_C_SOURCE=200809L $CFLAGS_FC -o "$WORK/consumer_pc_shared" \
+          "$CONSUMER/consumer.c" $LIBS_FC -lm
+    "$CC" -std=c11 -Wall -Wextra -Werror -D_POSIX_C_SOURCE=200809L $CFLAGS_FC -o "$WORK/producer_pc_shared" \
+          "$EX/producer.c" "$EX/sloshing_block.c" $LIBS_FC -lm
+    # The archive itself where the .pc says -lfluidcast; its private libraries from Libs.private.
+    "$CC" -std=c11 -Wall -Wextra -Werror -D_POSIX_C_SOURCE=200809L $CFLAGS_FC -o "$WORK/consumer_pc_static" \
+          "$CONSUMER/consumer.c" ${LIBS_STATIC/-lfluidcast/-l:libfluidcast.a}
+}
+readelf -d "$WORK/consumer_pc_shared" | matches "NEEDED.*libfluidcast.so.$SOMAJOR" || fail "consumer_pc_shared does not need libfluidcast.so.$SOMAJOR"
+if readelf -d "$WORK/consumer_pc_static" | matches "NEEDED.*libfluidcast"; then fail "consumer_pc_static needs libfluidcast.so"; fi
+
+step "build with CMake (find_package(fluidcast), CMAKE_PREFIX_PATH=$R$PREFIX)"
+"$CMAKE" -S "$CONSUMER" -B "$WORK/cmake-consumer" -DCMAKE_C_COMPILER="$CC" -DCMAKE_PREFIX_PATH="$R$PREFIX" \
+         -DFC_EXAMPLES_DIR="$EX" -DCMAKE_FIND_USE_PACKAGE_REGISTRY=OFF > "$WORK/cmake-consumer.log" ||
+    { cat "$WORK/cmake-consumer.log"; fail "the consumer project does not configure"; }
+grep -q "fluidcast_DIR:PATH=$R$LIBDIR/cmake/fluidcast" "$WORK/cmake-consumer/CMakeCache.txt" ||
+    fail "find_package(fluidcast) did not find the installed tree: $(grep fluidcast_DIR "$WORK/cmake-consumer/CMakeCache.txt")"
+"$CMAKE" --build "$WORK/cmake-consumer" -j2 > "$WORK/cmake-build.log" ||
+    { cat "$WORK/cmake-build.log"; fail "the consumer project does not build"; }
+CB=$WORK/cmake-consumer
+readelf -d "$CB/consumer_shared" | matches "NEEDED.*libfluidcast.so.$SOMAJOR" || fail "consumer_shared does not need libfluidcast.so"
+if readelf -d "$CB/consumer_static" | matches "NEEDED.*libfluidcast"; then fail "consumer_static needs libfluidcast.so"; fi
+
+# Starts DAEMON (a fluidcastd) on a free loopback port; sets ADDR.
+start_daemon() {
+    local daemon=$1 libdir=$2 portfile=$WORK/port.$RANDOM
+    (cd "$WORK" && exec env LD_LIBRARY_PATH="$libdir" "$daemon" --listen 127.0.0.1:0 --port-file "$portfile" \
+        --gpu software --log-level warn) &
+    DAEMON_PID=$!
+    for _ in $(seq 1 300); do
+        [ -s "$portfile" ] && break
+        kill -0 "$DAEMON_PID" 2>/dev/null || fail "$daemon exited before announcing its port"
+        sleep 0.1
+    done
+    [ -s "$portfile" ] || fail "$daemon did not announce its port within 30 s"
+    ADDR=127.0.0.1:$(cat "$portfile")
+}
+check_png() {
+    [ "$(head -c 8 "$1" | od -An -tx1 | tr -d ' \n')" = 89504e470d0a1a0a ] || fail "$1 is not a PNG"
+}
+
+step "render through the installed fluidcastd"
+start_daemon "$R$BINDIR/fluidcastd" "$R$LIBDIR"
+echo "daemon at $ADDR (pid $DAEMON_PID)"
+for prog in "$WORK/consumer_pc_shared" "$WORK/consumer_pc_static" "$CB/consumer_shared" "$CB/consumer_static"; do
+    LD_LIBRARY_PATH="$R$LIBDIR" "$prog" "$ADDR" "$prog.png" || fail "$prog did not render"
+    check_png "$prog.png"
+done
+for prog in "$WORK/producer_pc_shared" "$CB/producer_shared" "$CB/producer_static"; do
+    LD_LIBRARY_PATH="$R$LIBDIR" "$prog" "$ADDR" "install-$(basename "$prog")" 3 || fail "$prog failed"
+done
+LD_LIBRARY_PATH="$R$LIBDIR" "$R$BINDIR/fluidcast" info --server "$ADDR" > "$WORK/info.txt" ||
+    fail "the installed fluidcast info failed"
+stop_daemon
+if [ -n "$PYPKG" ]; then
+    step "the installed Python package"
+    if python3 -c "import numpy" 2>/dev/null; then
+        FLUIDCAST_LIBRARY="$R$LIBDIR/libfluidcast.so.$SOMAJOR" PYTHONPATH="$(dirname "$PYPKG")" python3 -c \
+            "import fluidcast, sys; assert fluidcast.__file__.startswith(sys.argv[1]), fluidcast.__file__" "$PYPKG" ||
+            fail "the installed Python package does not import"
+    else
+        echo "no numpy here: compiling it only"
+        python3 -c "import py_compile, sys; [py_compile.compile(f, doraise=True) for f in sys.argv[1:]]" \
+            "$PYPKG"/*.py || fail "the installed Python package does not compile"
+        rm -rf "$PYPKG/__pycache__"
+    fi
+fi
+
+step "cpack -G DEB"
+ARCH=$(dpkg --print-architecture)
+DEB=$WORK/pkg/fluidcast_${VERSION}_$ARCH.deb
+# As `cd build && cpack -G DEB` does, except for cpack's first step, the "preinstall"
+# target (make all over the whole tree): the suite's build is complete, and a
+# test must not rebuild or relink binaries that other tests are running. A
+# generator without a preinstall target (Ninja; only its name is used) skips it.
+(cd "$WORK" && "$CPACK" -G DEB --config "$BUILD/CPackConfig.cmake" -B "$WORK/pkg" -D CPACK_CMAKE_GENERATOR=Ninja \
+    > "$WORK/cpack.log" 2>&1) ||
+    { cat "$WORK/cpack.log"; fail "cpack -G DEB failed"; }
+need_file "$DEB"
+dpkg-deb -I "$DEB" > "$WORK/deb-info.txt"
+cat "$WORK/deb-info.txt"
+for field in Package Version Architecture Maintainer Section Description Depends; do
+    grep -q "^ $field: ." "$WORK/deb-info.txt" || fail "the .deb has no $field"
+done
+for dep in libc6 libzstd1 libegl1; do
+    grep "^ Depends:" "$WORK/deb-info.txt" | matches -w "$dep" || fail "Depends lacks $dep"
+done
+dpkg-deb -c "$DEB" | awk '{print $6}' > "$WORK/deb-files.txt"
+for f in "$BINDIR/fluidcastd" "$BINDIR/fluidcast" "$LIBDIR/libfluidcast.so.$VERSION" "$LIBDIR/libfluidcast.so.$SOMAJOR" \
+         "$LIBDIR/libfluidcast.so" "$LIBDIR/libfluidcast.a" "$INCLUDEDIR/fluidcast/fluidcast.h" \
+         "$INCLUDEDIR/fluidcast/fluidcast_types.h" "$LIBDIR/pkgconfig/fluidcast.pc" \
+         "$LIBDIR/cmake/fluidcast/fluidcastConfig.cmake" "$PREFIX/lib/udev/rules.d/70-fluidcast-spacemouse.rules"; do
+    grep -qx "\.$f" "$WORK/deb-files.txt" || fail "the .deb lacks $f"
+done
+
+step "dpkg -x the .deb and run what it holds"
+X=$WORK/extracted
+dpkg -x "$DEB" "$X"
+LD_LIBRARY_PATH="$X$LIBDIR" "$X$BINDIR/fluidcast" --version | tee "$WORK/version.txt"
+grep -q "$VERSION" "$WORK/version.txt" || fail "fluidcast --version does not say $VERSION"
+LD_LIBRARY_PATH="$X$LIBDIR" "$X$BINDIR/fluidcastd" --help | matches -- "--port-file" || fail "fluidcastd --help"
+start_daemon "$X$BINDIR/fluidcastd" "$X$LIBDIR"
+LD_LIBRARY_PATH="$X$LIBDIR" "$CB/consumer_shared" "$ADDR" "$WORK/from_deb.png" || fail "no render from the .deb's daemon and library"
+check_png "$WORK/from_deb.png"
+stop_daemon
+
+if command -v apt-get > /dev/null; then
+    step "apt-get install --simulate ./$(basename "$DEB")"
+    # Simulation only, without the dpkg lock: nothing is installed here.
+    if apt-get install --simulate -o Debug::NoLocking=1 "$DEB" > "$WORK/apt.txt" 2>&1; then
+        grep -E "^(Inst|Conf) fluidcast " "$WORK/apt.txt" || fail "apt-get would not install fluidcast: $(cat "$WORK/apt.txt")"
+    else
+        cat "$WORK/apt.txt"
+        fail "apt-get cannot resolve the .deb's dependencies"
+    fi
+fi
+echo "PASS"
