@@ -2,6 +2,7 @@
 #include "cli_settings.h"
 
 #include <math.h>
+#include <stdio.h>
 #include <stdlib.h>
 
 #include "fc_frame.h"
@@ -87,4 +88,11 @@ void fc_cli_complete_settings(fc_settings *s, const fc_frame *frame, bool thresh
             chosen->spray = true;
         }
     }
+}
+
+void fc_cli_print_color_range(const fc_settings *s)
+{
+    printf("color range: %s %.9g:%.9g (2nd-98th percentile of the frame; --range %.9g:%.9g to fix it)\n",
+           s->color_by == FC_COLOR_BY_SPEED ? "speed" : "density", (double)s->color_range[0],
+           (double)s->color_range[1], (double)s->color_range[0], (double)s->color_range[1]);
 }

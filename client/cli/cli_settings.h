@@ -31,4 +31,7 @@ void fc_cli_complete_settings(fc_settings *s, const fc_frame *frame, bool thresh
  * gets [v, v + 1]. Sets chosen->color_range when it did. */
 void fc_cli_complete_color_range(fc_settings *s, const fc_frame *frame, bool range_given, fc_cli_choices *chosen);
 
+/* Prints the colour range fc_cli_complete_color_range chose, as a --range to paste. */
+void fc_cli_print_color_range(const fc_settings *s);
+
 #endif

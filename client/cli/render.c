@@ -71,6 +71,8 @@ static int choose_view(render_job *job)
         job->settings = o->view.settings;
         fc_cli_choices chosen;
         fc_cli_complete_settings(&job->settings, &first, o->view.has_density_threshold, &chosen);
+        /* A fixed range for the whole sequence, so that its frames compare. */
+        fc_cli_complete_color_range(&job->settings, &first, o->view.has_color_range, &chosen);
         printf("render: %u frames, %s .. %s", (unsigned)job->inputs.count, job->inputs.paths[0],
                job->inputs.paths[job->inputs.count - 1]);
         if (o->view.has_eye)
@@ -85,6 +87,8 @@ static int choose_view(render_job *job)
             printf("spray: particles below density %g (half the first frame's median; --density-threshold to "
                    "change)\n",
                    (double)job->settings.density_threshold);
+        if (chosen.color_range)
+            fc_cli_print_color_range(&job->settings);
     }
     fc_frame_free(&first);
     return status;

@@ -87,9 +87,7 @@ static int write_image(const fc_snapshot_options *o, const fc_image_result *imag
         printf("spray: particles below density %g (half the median; --density-threshold to change)\n",
                (double)settings->density_threshold);
     if (chosen->color_range)
-        printf("color range: %s %.9g:%.9g (2nd-98th percentile of the frame; --range %.9g:%.9g to fix it)\n",
-               settings->color_by == FC_COLOR_BY_SPEED ? "speed" : "density", (double)settings->color_range[0],
-               (double)settings->color_range[1], (double)settings->color_range[0], (double)settings->color_range[1]);
+        fc_cli_print_color_range(settings);
     return FC_EXIT_OK;
 }
 

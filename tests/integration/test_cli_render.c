@@ -501,6 +501,36 @@ static void remove_tree(const char *dir)
         fprintf(stderr, "cannot remove %s\n", dir);
 }
 
+/* A sequence coloured by speed without --range gets one range for all its
+ * frames from the first frame's speeds (2nd-98th percentile), printed before
+ * the connection is made; with --range nothing is chosen. The first frame's
+ * 100 particles move at 1..100 (particle i at i + 1), so the range is near 3:98. */
+static void test_color_range_from_the_first_frame(const test_env *env)
+{
+    char path[PATH_CAP], out[PATH_CAP];
+    FILE *f = fopen(path_in(env, "in/moving.csv", path), "w");
+    CHECK(f != NULL);
+    if (!f)
+        return;
+    fputs("x,y,z,vx,vy,vz\n", f);
+    for (int i = 0; i < 100; i++)
+        fprintf(f, "%d,%d,0,%d,0,0\n", i % 10, i / 10, i + 1);
+    CHECK(fclose(f) == 0);
+    const char *chosen[] = {"render", path, "-o", path_in(env, "never.mp4", out), "--server", "127.0.0.1:1",
+                            "--up", "z", "--color-by", "speed", NULL};
+    cli_result r;
+    cli_run(FLUIDCAST_CLI_PATH, env->dir, chosen, &r);
+    double lo = 0, hi = 0;
+    const char *line = strstr(r.out, "color range: speed ");
+    CHECK_MSG(r.status == 4 && line && sscanf(line, "color range: speed %lf:%lf", &lo, &hi) == 2,
+              "exit %d:\n%s%s", r.status, r.out, r.err);
+    CHECK_MSG(lo >= 2.0 && lo <= 4.0 && hi >= 97.0 && hi <= 99.0, "range %g:%g", lo, hi);
+    const char *given[] = {"render", path, "-o", out, "--server", "127.0.0.1:1", "--up", "z", "--color-by", "speed",
+                           "--range", "0:10", NULL};
+    cli_run(FLUIDCAST_CLI_PATH, env->dir, given, &r);
+    CHECK_MSG(r.status == 4 && !strstr(r.out, "color range:"), "exit %d:\n%s", r.status, r.out);
+}
+
 int main(void)
 {
     test_env env = {.dir = "/tmp/fluidcast-cli-render-XXXXXX"};
@@ -518,6 +548,7 @@ int main(void)
     snprintf(env.server, sizeof env.server, "127.0.0.1:%u", (unsigned)daemon.port);
     test_usage_errors(&env);
     test_input_order(&env);
+    test_color_range_from_the_first_frame(&env);
     double centroid[FRAMES];
     test_png_sequence(&env, centroid);
     test_videos(&env, centroid);
