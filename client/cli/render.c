@@ -120,20 +120,6 @@ static int client_failure(const render_job *job, const fc_error *err)
     return fc_cli_fail(fc_cli_exit_for_client_error(err->code), "%s: %s", job->o->view.server, err->message);
 }
 
-static fc_code send_scene(fc_client *client, const fc_snapshot_scene *scene, fc_error *err)
-{
-    fc_code code = FC_OK;
-    if (scene->background)
-        code = fc_client_set_background_file(client, scene->background, err);
-    if (code == FC_OK && scene->has_cubemap) {
-        const char *faces[6];
-        for (int i = 0; i < 6; i++)
-            faces[i] = scene->faces[i];
-        code = fc_client_set_environment_files(client, faces, err);
-    }
-    return code;
-}
-
 static int connect_and_set_up(render_job *job, fc_client **client)
 {
     fc_snapshot_scene scene;
@@ -143,7 +129,8 @@ static int connect_and_set_up(render_job *job, fc_client **client)
     fc_connect_options connect_options = {.client_name = "fluidcast render", .token = fc_cli_token()};
     if (fc_client_connect(job->o->view.server, &connect_options, client, &err) != FC_OK)
         return fc_cli_fail(fc_cli_exit_for_client_error(err.code), "%s", err.message);
-    if (send_scene(*client, &scene, &err) != FC_OK || fc_client_set_settings(*client, &job->settings, &err) != FC_OK)
+    if (fc_snapshot_scene_send(*client, &scene, &err) != FC_OK ||
+        fc_client_set_settings(*client, &job->settings, &err) != FC_OK)
         return client_failure(job, &err);
     return FC_EXIT_OK;
 }

@@ -27,22 +27,6 @@ static int resolve_scene(const fc_snapshot_options *o, fc_snapshot_scene *scene)
     return FC_EXIT_OK;
 }
 
-/* The scene images go before the frame: a rejection then names the image
- * before a large upload, and they apply to the render either way. */
-static fc_code send_scene(fc_client *client, const fc_snapshot_scene *scene, fc_error *err)
-{
-    fc_code code = FC_OK;
-    if (scene->background)
-        code = fc_client_set_background_file(client, scene->background, err);
-    if (code == FC_OK && scene->has_cubemap) {
-        const char *faces[6];
-        for (int i = 0; i < 6; i++)
-            faces[i] = scene->faces[i];
-        code = fc_client_set_environment_files(client, faces, err);
-    }
-    return code;
-}
-
 static int client_failure(const char *server, const fc_error *err)
 {
     return fc_cli_fail(fc_cli_exit_for_client_error(err->code), "%s: %s", server, err->message);
@@ -61,7 +45,7 @@ static int render_remotely(const fc_snapshot_options *o, const fc_snapshot_scene
     fc_render_request request = { .format = o->format, .quality = o->quality, .aov = o->aov };
     int status = FC_EXIT_OK;
     /* Rejections of the scene images, FRAME, CAMERA and SETTINGS arrive as the render's error. */
-    if (send_scene(client, scene, &err) != FC_OK || fc_client_send_frame(client, frame, &err) != FC_OK ||
+    if (fc_snapshot_scene_send(client, scene, &err) != FC_OK || fc_client_send_frame(client, frame, &err) != FC_OK ||
         fc_client_set_camera(client, cam, &err) != FC_OK ||
         fc_client_set_settings(client, settings, &err) != FC_OK ||
         fc_client_render(client, &request, image, &err) != FC_OK)

@@ -86,3 +86,17 @@ fc_code fc_snapshot_scene_resolve(const fc_snapshot_options *o, fc_snapshot_scen
     scene->has_cubemap = code == FC_OK;
     return code;
 }
+
+fc_code fc_snapshot_scene_send(fc_client *client, const fc_snapshot_scene *scene, fc_error *err)
+{
+    fc_code code = FC_OK;
+    if (scene->background)
+        code = fc_client_set_background_file(client, scene->background, err);
+    if (code == FC_OK && scene->has_cubemap) {
+        const char *faces[6];
+        for (int i = 0; i < 6; i++)
+            faces[i] = scene->faces[i];
+        code = fc_client_set_environment_files(client, faces, err);
+    }
+    return code;
+}

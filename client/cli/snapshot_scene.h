@@ -6,6 +6,7 @@
 
 #include <stdbool.h>
 
+#include "fluidcast.h"
 #include "fluidcast_types.h"
 #include "snapshot_options.h"
 
@@ -23,5 +24,10 @@ typedef struct fc_snapshot_scene {
  * FC_ERR_USAGE when a list does not hold six names; FC_ERR_IO naming the file
  * (or the face missing from the directory) when one cannot be read. */
 fc_code fc_snapshot_scene_resolve(const fc_snapshot_options *o, fc_snapshot_scene *scene, fc_error *err);
+
+/* Sends the scene's images on `client` (nothing for the built-in scene).
+ * They go before the frame: a rejection then names the image before a large
+ * upload, and they apply to every later render either way. */
+fc_code fc_snapshot_scene_send(fc_client *client, const fc_snapshot_scene *scene, fc_error *err);
 
 #endif
