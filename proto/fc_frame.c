@@ -7,8 +7,6 @@
 
 #include "fc_error.h"
 
-#define FC_ATTR_ALL (FC_ATTR_DENSITY | FC_ATTR_VELOCITY | FC_ATTR_IDS)
-
 /* NULL when count * values * bytes would not fit size_t: a size never wraps to a small block. */
 static void *alloc_array(uint64_t count, size_t values_per_particle, size_t bytes_per_value)
 {
@@ -35,6 +33,8 @@ fc_code fc_frame_alloc(fc_frame *frame, uint64_t count, uint32_t attributes, fc_
         ok = (frame->velocity = alloc_array(count, 3, sizeof(float))) != NULL;
     if (ok && (attributes & FC_ATTR_IDS))
         ok = (frame->ids = alloc_array(count, 1, sizeof(uint32_t))) != NULL;
+    if (ok && (attributes & FC_ATTR_RADIUS))
+        ok = (frame->radius = alloc_array(count, 1, sizeof(float))) != NULL;
     if (!ok) {
         fc_frame_free(frame);
         return fc_error_set(err, FC_ERR_NOMEM, "cannot allocate a frame of %llu particles",
@@ -52,6 +52,8 @@ size_t fc_frame_particle_bytes(uint32_t attributes)
         bytes += 3 * sizeof(float);
     if (attributes & FC_ATTR_IDS)
         bytes += sizeof(uint32_t);
+    if (attributes & FC_ATTR_RADIUS)
+        bytes += sizeof(float);
     return bytes;
 }
 
@@ -76,8 +78,12 @@ void fc_frame_point_into_block(fc_frame *frame, uint8_t *block, uint64_t count, 
         frame->velocity = (float *)block;
         block += 3 * n * sizeof(float);
     }
-    if (attributes & FC_ATTR_IDS)
+    if (attributes & FC_ATTR_IDS) {
         frame->ids = (uint32_t *)block;
+        block += n * sizeof(uint32_t);
+    }
+    if (attributes & FC_ATTR_RADIUS)
+        frame->radius = (float *)block;
 }
 
 void fc_frame_free(fc_frame *frame)
@@ -86,6 +92,7 @@ void fc_frame_free(fc_frame *frame)
     free(frame->density);
     free(frame->velocity);
     free(frame->ids);
+    free(frame->radius);
     memset(frame, 0, sizeof *frame);
 }
 
@@ -98,6 +105,8 @@ uint32_t fc_frame_attributes(const fc_frame *frame)
         attributes |= FC_ATTR_VELOCITY;
     if (frame->ids)
         attributes |= FC_ATTR_IDS;
+    if (frame->radius)
+        attributes |= FC_ATTR_RADIUS;
     return attributes;
 }
 
@@ -127,6 +136,34 @@ static bool all_finite(const float *values, size_t n)
     return bad == 0;
 }
 
+/* Whether every radius is in (0, FC_FRAME_MAX_RADIUS]; NaN fails both
+ * comparisons. Branch-free like all_finite, for the same reason. */
+static bool all_radii_valid(const float *radius, size_t n)
+{
+    uint32_t bad = 0;
+    for (size_t i = 0; i < n; i++)
+        bad |= !(radius[i] > 0.0f && radius[i] <= FC_FRAME_MAX_RADIUS);
+    return bad == 0;
+}
+
+/* FC_ERR_INVALID_VALUE naming the first particle whose radius is not a usable splat size. */
+static fc_code validate_radii(const fc_frame *frame, fc_error *err)
+{
+    if (frame->count <= SIZE_MAX && all_radii_valid(frame->radius, (size_t)frame->count))
+        return FC_OK;
+    for (uint64_t i = 0; i < frame->count; i++) {
+        float r = frame->radius[i];
+        if (!isfinite(r))
+            return fc_error_set(err, FC_ERR_INVALID_VALUE, "particle %llu has a non-finite radius",
+                                (unsigned long long)i);
+        if (!(r > 0.0f && r <= FC_FRAME_MAX_RADIUS))
+            return fc_error_set(err, FC_ERR_INVALID_VALUE,
+                                "particle %llu has radius %g, outside (0, 1e6]",
+                                (unsigned long long)i, (double)r);
+    }
+    return FC_OK;
+}
+
 fc_code fc_frame_validate(const fc_frame *frame, fc_error *err)
 {
     const struct {
@@ -151,7 +188,7 @@ fc_code fc_frame_validate(const fc_frame *frame, fc_error *err)
             return fc_error_set(err, FC_ERR_INVALID_VALUE, "particle %llu has a non-finite %s",
                                 (unsigned long long)bad, arrays[a].what);
     }
-    return FC_OK;
+    return frame->radius ? validate_radii(frame, err) : FC_OK;
 }
 
 void fc_frame_bounds(const fc_frame *frame, float lo[3], float hi[3])

@@ -13,8 +13,16 @@ extern "C" {
 enum {
     FC_ATTR_DENSITY = 1u << 0,
     FC_ATTR_VELOCITY = 1u << 1,
-    FC_ATTR_IDS = 1u << 2
+    FC_ATTR_IDS = 1u << 2,
+    FC_ATTR_RADIUS = 1u << 3
 };
+
+/* Every attribute bit this version knows. */
+#define FC_ATTR_ALL (FC_ATTR_DENSITY | FC_ATTR_VELOCITY | FC_ATTR_IDS | FC_ATTR_RADIUS)
+
+/* The largest per-particle radius a frame may carry, as the radius setting
+ * (PROTOCOL.md 7.3, 7.5): beyond it a splat covers no useful picture. */
+#define FC_FRAME_MAX_RADIUS 1e6f
 
 /* Allocates the arrays of a frame of `count` particles: positions always, the
  * others when their bit is in `attributes`. Contents are uninitialised.
@@ -24,11 +32,11 @@ enum {
 fc_code fc_frame_alloc(fc_frame *frame, uint64_t count, uint32_t attributes, fc_error *err);
 
 /* Bytes per particle of the arrays an attribute mask asks for: 12 (positions)
- * to 32; FRAME's S (PROTOCOL.md 7.3). Unknown bits add nothing. */
+ * to 36; FRAME's S (PROTOCOL.md 7.3). Unknown bits add nothing. */
 size_t fc_frame_particle_bytes(uint32_t attributes);
 
 /* Bytes of one block that holds all of a frame's arrays back to back, in
- * FRAME's order (positions, density, velocity, ids); 0 when that would not
+ * FRAME's order (positions, density, velocity, ids, radius); 0 when that would not
  * fit size_t. */
 size_t fc_frame_block_size(uint64_t count, uint32_t attributes);
 
@@ -43,9 +51,16 @@ void fc_frame_free(fc_frame *frame);
 /* Attribute mask of the arrays present. */
 uint32_t fc_frame_attributes(const fc_frame *frame);
 
-/* Checks every position (and velocity/density when present) is finite.
+/* Checks every position (and velocity/density when present) is finite, and
+ * every radius (when present) finite, > 0 and <= FC_FRAME_MAX_RADIUS.
  * FC_ERR_INVALID_VALUE naming the first offending particle otherwise. */
 fc_code fc_frame_validate(const fc_frame *frame, fc_error *err);
+
+/* The median of the frame's per-particle radii (the upper median for an even
+ * count), found in O(count) on a copy; 0 when the frame has no radii.
+ * FC_ERR_NOMEM when the copy cannot be made. Radii must be valid
+ * (fc_frame_validate). */
+fc_code fc_frame_median_radius(const fc_frame *frame, float *median, fc_error *err);
 
 /* Axis-aligned bounds of the positions. count must be > 0. */
 void fc_frame_bounds(const fc_frame *frame, float lo[3], float hi[3]);

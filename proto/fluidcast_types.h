@@ -65,6 +65,9 @@ typedef struct fc_frame {
     float *density;        /* count floats, or NULL */
     float *velocity;       /* 3*count floats, or NULL */
     uint32_t *ids;         /* count persistent particle ids, or NULL */
+    float *radius;         /* count per-particle splat radii in world units, each finite, > 0 and <= 1e6
+                              (FC_FRAME_MAX_RADIUS), or NULL: every particle then takes the settings' radius.
+                              A settings radius > 0 overrides these (PROTOCOL.md 5) */
 } fc_frame;
 
 /* ---- Camera --------------------------------------------------------------

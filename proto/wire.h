@@ -107,7 +107,7 @@ typedef struct fc_wire_span {
     size_t size;
 } fc_wire_span;
 /* At most this many particle arrays follow FRAME's fixed fields. */
-#define FC_WIRE_FRAME_ARRAYS 4
+#define FC_WIRE_FRAME_ARRAYS 5
 /* FRAME for a sender that hands the particle arrays to the socket where they
  * lie (sendmsg) instead of copying them into the message: appends the header
  * and fixed fields to `out` and lists the arrays, to be sent right after out's

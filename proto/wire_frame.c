@@ -8,7 +8,7 @@
 #include "wire_frame_io.h"
 
 #define FRAME_FIXED_SIZE 16u
-#define FRAME_ATTR_ALL (FC_ATTR_DENSITY | FC_ATTR_VELOCITY | FC_ATTR_IDS)
+#define FRAME_ATTR_ALL FC_ATTR_ALL
 
 /* The particle arrays of m in wire order. */
 static size_t frame_arrays(const fc_frame *m, size_t count, fc_wire_span arrays[FC_WIRE_FRAME_ARRAYS])
@@ -21,6 +21,8 @@ static size_t frame_arrays(const fc_frame *m, size_t count, fc_wire_span arrays[
         arrays[n++] = (fc_wire_span){m->velocity, 3 * count * sizeof(float)};
     if (m->ids)
         arrays[n++] = (fc_wire_span){m->ids, count * sizeof(uint32_t)};
+    if (m->radius)
+        arrays[n++] = (fc_wire_span){m->radius, count * sizeof(float)};
     return n;
 }
 
@@ -158,6 +160,8 @@ fc_code wire_get_frame_attributes(wire_reader *r, const fc_frame *frame, fc_erro
         wire_get_f32_array(r, frame->velocity, 3 * particles, "velocity");
     if (frame->ids)
         wire_get_u32_array(r, frame->ids, particles, "ids");
+    if (frame->radius)
+        wire_get_f32_array(r, frame->radius, particles, "radius");
     wire_expect_end(r);
     return r->code != FC_OK ? r->code : fc_frame_validate(frame, err);
 }
@@ -176,6 +180,8 @@ fc_code wire_frame_from_view(const fc_frame *view, fc_frame *out, fc_error *err)
         memcpy(frame.velocity, view->velocity, 3 * n * sizeof(float));
     if (view->ids)
         memcpy(frame.ids, view->ids, n * sizeof(uint32_t));
+    if (view->radius)
+        memcpy(frame.radius, view->radius, n * sizeof(float));
     *out = frame;
     return FC_OK;
 }

@@ -15,9 +15,9 @@
 
 #define QUANT_FIXED_SIZE 40u             /* count, attributes, reserved, lo[3], hi[3] */
 #define QUANT_STEPS 65535.0
-#define MAX_PARTICLE_BYTES 32u           /* position, density, velocity, id */
+#define MAX_PARTICLE_BYTES 36u           /* position, density, velocity, id, radius */
 #define INNER_FIXED_MAX 64u              /* the largest fixed part of an inner layout, rounded up */
-#define ATTR_ALL (FC_ATTR_DENSITY | FC_ATTR_VELOCITY | FC_ATTR_IDS)
+#define ATTR_ALL FC_ATTR_ALL
 
 double fc_quantize_error_bound(float lo, float hi)
 {
@@ -62,6 +62,9 @@ static void put_quantized(fc_buf *b, const fc_frame *frame)
         wire_put_f32_array(b, frame->velocity, 3 * count);
     if (frame->ids)
         wire_put_u32_array(b, frame->ids, count);
+    /* Radii travel as they are, never quantised: a splat's size is not a position. */
+    if (frame->radius)
+        wire_put_f32_array(b, frame->radius, count);
 }
 
 /* Bytes per particle of the arrays after the positions. */

@@ -96,10 +96,16 @@ fc_code fc_client_connect(const char *host_port, const fc_connect_options *optio
  * must be valid; never fails. */
 void fc_client_server_info(const fc_client *client, fc_server_info *out);
 
-/* Sends a particle frame; it replaces the previous one on the server. The server
- * answers only when it rejects the frame (non-finite values, too many particles,
- * more memory than the server lets one connection hold): that ERROR is reported
- * by the next fc_client_render. The frame is not retained: its arrays go to the
+/* Sends a particle frame; it replaces the previous one on the server. Every
+ * array the frame has travels (density, velocity, ids, radius; NULL = absent).
+ * With frame->radius each particle is splatted at its own radius, unless the
+ * settings' radius is > 0, which overrides them all (PROTOCOL.md 5). A server
+ * that predates per-particle radii refuses such a frame with MALFORMED
+ * ("unknown attribute bits 0x8"); send it again without radii for that server.
+ * The server answers only when it rejects the frame (non-finite values, a
+ * radius outside (0, 1e6], too many particles, more memory than the server
+ * lets one connection hold): that ERROR is reported by the next
+ * fc_client_render. The frame is not retained: its arrays go to the
  * socket from where the caller keeps them, without a copy, before this returns.
  * Errors: FC_ERR_TOO_LARGE (without sending) when the encoded frame exceeds the
  * server's message limit, FC_ERR_USAGE for an empty or NULL frame, plus the
@@ -264,7 +270,8 @@ void fc_session_list_free(fc_session_status *sessions);
 /* How a frame travels (fc_client_upload_frame, fc_client_send_chunk). */
 #define FC_UPLOAD_ZSTD 0x1u          /* zstd-compress the particle data (lossless) */
 #define FC_UPLOAD_QUANTIZE16 0x2u    /* positions as 16-bit offsets in the frame's bounding box: each
-                                        coordinate is off by at most (box extent / 65535 / 2) */
+                                        coordinate is off by at most (box extent / 65535 / 2);
+                                        densities, velocities, ids and radii travel exact */
 
 typedef struct fc_upload_options {
     uint32_t encoding;           /* FC_UPLOAD_* bits; 0 = plain floats, uncompressed */

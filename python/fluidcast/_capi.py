@@ -36,6 +36,7 @@ class FcFrame(Structure):
         ("density", POINTER(c_float)),     # count, or NULL
         ("velocity", POINTER(c_float)),    # 3*count, or NULL
         ("ids", POINTER(c_uint32)),        # count, or NULL
+        ("radius", POINTER(c_float)),      # count, per-particle radii, or NULL
     ]
 
 

@@ -352,24 +352,26 @@ class Client:
 
     # -- frame, camera, settings --
 
-    def send_frame(self, positions, density=None, velocity=None, ids=None):
+    def send_frame(self, positions, density=None, velocity=None, ids=None, radius=None):
         """Sends a particle frame; it replaces the previous one (fc_client_send_frame).
 
         Arguments are numpy arrays (see :class:`Frame`): positions (N, 3)
         float32, density (N,) float32, velocity (N, 3) float32, ids (N,)
-        uint32, the optional ones None when absent; or a prepared
+        uint32, radius (N,) float32 per-particle splat radii in world units
+        (each finite, > 0 and <= 1e6; a settings ``radius`` > 0 overrides
+        them), the optional ones None when absent; or a prepared
         :class:`Frame` as ``positions``. Arrays that already are C-contiguous
         float32 (uint32 for ids) are sent from where they are, without a copy;
         others (float64, strided views) are converted to a copy first.
 
         The server answers only a rejection (non-finite values, too many
-        particles), reported by the next :meth:`render`. Raises
+        particles, a radius outside (0, 1e6]), reported by the next :meth:`render`. Raises
         :class:`Error`: ``Code.TOO_LARGE`` (nothing sent) beyond the server's
         message limit, ``Code.USAGE`` for an empty frame, connection errors.
         Returns the :class:`Frame` that was sent (its ``copied`` says what was
         converted).
         """
-        frame = as_frame(positions, density, velocity, ids)
+        frame = as_frame(positions, density, velocity, ids, radius)
         self._call(_capi.fc_client_send_frame, ctypes.byref(frame.c_frame))
         return frame
 
@@ -587,18 +589,18 @@ class Client:
             _capi.fc_session_list_free(entries)
 
     def upload_frame(self, positions, density=None, velocity=None, ids=None, zstd=False, quantize16=False,
-                     zstd_level=0):
+                     zstd_level=0, radius=None):
         """Sends a frame like :meth:`send_frame`, encoded for the wire (fc_client_upload_frame).
 
         ``zstd=True`` compresses the particle data with zstd (lossless) at
         ``zstd_level`` (0: 3); ``quantize16=True`` sends positions as 16-bit
         offsets in the frame's bounding box (each coordinate off by at most
-        extent / 65535 / 2). Returns :class:`UploadStats` (plain size, bytes
+        extent / 65535 / 2; radii are never quantised). Returns :class:`UploadStats` (plain size, bytes
         sent). Raises ``Code.USAGE`` for an encoding the server did not grant
         (see ``server_info.capabilities``) or, with quantize16, non-finite
         positions; otherwise errors as for :meth:`send_frame`.
         """
-        frame = as_frame(positions, density, velocity, ids)
+        frame = as_frame(positions, density, velocity, ids, radius)
         options = _upload_options(zstd, quantize16, zstd_level)
         stats = FcUploadStats()
         self._call(_capi.fc_client_upload_frame, ctypes.byref(frame.c_frame), ctypes.byref(options),
@@ -606,7 +608,7 @@ class Client:
         return UploadStats(stats.raw_bytes, stats.wire_bytes)
 
     def send_chunk(self, frame_number, index, count, positions, density=None, velocity=None, ids=None, zstd=False,
-                   quantize16=False, zstd_level=0):
+                   quantize16=False, zstd_level=0, radius=None):
         """Sends chunk ``index`` of ``count`` of frame ``frame_number`` of the published session (fc_client_send_chunk).
 
         For a simulation split over ``count`` ranks, each publishing to the
@@ -620,7 +622,7 @@ class Client:
         ``Code.INCOMPLETE`` (chunks missing at the server's timeout),
         ``Code.BAD_STATE`` (not publishing).
         """
-        frame = as_frame(positions, density, velocity, ids)
+        frame = as_frame(positions, density, velocity, ids, radius)
         options = _upload_options(zstd, quantize16, zstd_level)
         stats = FcUploadStats()
         frame_number = int(frame_number)

@@ -49,10 +49,13 @@ class Frame:
         density: shape (N,), or None.
         velocity: shape (N, 3), world units per frame, or None.
         ids: shape (N,), persistent particle ids as uint32 (fc_frame's ``uint32_t *ids``), or None.
+        radius: shape (N,), per-particle splat radii in world units (fc_frame's ``float *radius``), or None.
+            The server refuses a radius that is not finite, not > 0 or above 1e6 (INVALID_VALUE naming the
+            particle); a settings ``radius`` > 0 overrides every particle's.
 
     No copy is made of an array that is already C-contiguous and aligned with
-    the element type the C frame holds (float32 for positions, density and
-    velocity, uint32 for ids): the fc_frame points into the array itself, and
+    the element type the C frame holds (float32 for positions, density,
+    velocity and radius, uint32 for ids): the fc_frame points into the array itself, and
     libfluidcast writes it to the socket from there. Any other array is
     converted once, into a new array: float64 positions are rounded to
     float32 (about 7 significant digits: keep coordinates near the origin),
@@ -64,11 +67,11 @@ class Frame:
     changes what a later send of this Frame sends.
     """
 
-    def __init__(self, positions, density=None, velocity=None, ids=None):
+    def __init__(self, positions, density=None, velocity=None, ids=None, radius=None):
         self.positions, c_pos = _as_array("positions", positions, np.float32, 3, None)
         n = self.positions.shape[0]
         copied = ["positions"] if c_pos else []
-        self.density = self.velocity = self.ids = None
+        self.density = self.velocity = self.ids = self.radius = None
         if density is not None:
             self.density, c = _as_array("density", density, np.float32, None, n)
             copied += ["density"] if c else []
@@ -78,6 +81,9 @@ class Frame:
         if ids is not None:
             self.ids, c = _as_array("ids", ids, np.uint32, None, n)
             copied += ["ids"] if c else []
+        if radius is not None:
+            self.radius, c = _as_array("radius", radius, np.float32, None, n)
+            copied += ["radius"] if c else []
         #: names of the arrays that had to be converted (copied), e.g. ("positions",) for float64 input
         self.copied = tuple(copied)
         self.count = n
@@ -87,22 +93,23 @@ class Frame:
 
         #: the fc_frame handed to libfluidcast; its pointers address the arrays above
         self.c_frame = FcFrame(n, pointer(self.positions, ctypes.c_float), pointer(self.density, ctypes.c_float),
-                               pointer(self.velocity, ctypes.c_float), pointer(self.ids, ctypes.c_uint32))
+                               pointer(self.velocity, ctypes.c_float), pointer(self.ids, ctypes.c_uint32),
+                               pointer(self.radius, ctypes.c_float))
 
     def __len__(self):
         return self.count
 
     def __repr__(self):
-        present = [k for k in ("density", "velocity", "ids") if getattr(self, k) is not None]
+        present = [k for k in ("density", "velocity", "ids", "radius") if getattr(self, k) is not None]
         return "<fluidcast.Frame %d particles%s%s>" % (
             self.count, " with " + ", ".join(present) if present else "",
             " (copied: %s)" % ", ".join(self.copied) if self.copied else "")
 
 
-def as_frame(positions, density=None, velocity=None, ids=None):
+def as_frame(positions, density=None, velocity=None, ids=None, radius=None):
     """A Frame from arrays, or ``positions`` itself when it is a Frame (the others must be None)."""
     if isinstance(positions, Frame):
-        if density is not None or velocity is not None or ids is not None:
+        if density is not None or velocity is not None or ids is not None or radius is not None:
             raise TypeError("pass either a Frame or arrays, not both")
         return positions
-    return Frame(positions, density, velocity, ids)
+    return Frame(positions, density, velocity, ids, radius)

@@ -1,5 +1,6 @@
 /* test_hardening_values.c — values outside their domains against the real
- * fluidcastd: non-finite particle data, empty and oversized frames, radii,
+ * fluidcastd: non-finite particle data, per-particle radii outside (0, 1e6],
+ * empty and oversized frames, radii,
  * cameras and image sizes, every setting's domain, unknown and duplicate
  * setting keys, and RENDER formats/AOVs (PROTOCOL.md 6.1, 7.3-7.6).
  *
@@ -9,6 +10,7 @@
  * update left every setting unchanged. */
 #include <math.h>
 #include <string.h>
+#include <unistd.h>
 
 #include "fc_frame.h"
 #include "hardening_harness.h"
@@ -36,20 +38,20 @@ static uint32_t bits_of(float v)
 
 /* ---- FRAME ---- */
 
-enum { POSITIONS, DENSITY, VELOCITY, NO_POISON };
+enum { POSITIONS, DENSITY, VELOCITY, RADIUS, NO_POISON };
 
 typedef struct frame_row {
     const char *name;
     uint64_t count;
     uint32_t attributes;
-    int poisoned_array;         /* POSITIONS, DENSITY, VELOCITY or NO_POISON */
+    int poisoned_array;         /* POSITIONS, DENSITY, VELOCITY, RADIUS or NO_POISON */
     size_t poisoned_value;      /* index into that array */
     uint32_t poison;            /* the value's bits */
     fc_code expected;
 } frame_row;
 
-/* Grid positions 0.1 apart, densities 1000, velocities 0, ids counting up;
- * one value replaced by the row's poison. */
+/* Grid positions 0.1 apart, densities 1000, velocities 0, ids counting up,
+ * radii 0.05 (attribute bit 3); one value replaced by the row's poison. */
 static void write_frame(fc_buf *out, const frame_row *row)
 {
     size_t at = hx_begin(out, FC_MSG_FRAME, HX_BAD_ID);
@@ -67,6 +69,8 @@ static void write_frame(fc_buf *out, const frame_row *row)
         hx_u32(out, row->poisoned_array == VELOCITY && row->poisoned_value == i ? row->poison : 0u);
     for (size_t i = 0; (row->attributes & 4u) && i < row->count; i++)
         hx_u32(out, (uint32_t)i);
+    for (size_t i = 0; (row->attributes & 8u) && i < row->count; i++)
+        hx_u32(out, row->poisoned_array == RADIUS && row->poisoned_value == i ? row->poison : bits_of(0.05f));
     hx_end(out, at);
 }
 
@@ -82,7 +86,16 @@ static const frame_row frame_rows[] = {
     {"FRAME: Inf density", 8, 1, DENSITY, 7, PLUS_INF, FC_ERR_INVALID_VALUE},
     {"FRAME: zero particles", 0, 0, NO_POISON, 0, 0, FC_ERR_INVALID_VALUE},
     {"FRAME: one particle beyond the quota", MAX_PARTICLES + 1, 0, NO_POISON, 0, 0, FC_ERR_LIMIT},
-    {"FRAME: exactly the quota, every attribute", MAX_PARTICLES, 7, NO_POISON, 0, 0, FC_OK},
+    {"FRAME: NaN radius", 8, 8, RADIUS, 5, QUIET_NAN, FC_ERR_INVALID_VALUE},
+    {"FRAME: +Inf radius", 8, 15, RADIUS, 7, PLUS_INF, FC_ERR_INVALID_VALUE},
+    {"FRAME: zero radius", 8, 12, RADIUS, 0, 0u, FC_ERR_INVALID_VALUE},
+    {"FRAME: negative zero radius", 8, 8, RADIUS, 1, 0x80000000u, FC_ERR_INVALID_VALUE},
+    {"FRAME: negative radius", 8, 9, RADIUS, 2, 0xbf800000u, FC_ERR_INVALID_VALUE},
+    {"FRAME: radius 2e6 beyond 1e6", 8, 8, RADIUS, 3, 0x49f42400u, FC_ERR_INVALID_VALUE},
+    {"FRAME: radius exactly 1e6", 8, 8, RADIUS, 3, 0x49742400u, FC_OK},
+    {"FRAME: the smallest positive radius", 8, 8, RADIUS, 6, 0x00000001u, FC_OK},
+    {"FRAME: attribute bit 4 unknown", 8, 16, NO_POISON, 0, 0, FC_ERR_MALFORMED},
+    {"FRAME: exactly the quota, every attribute", MAX_PARTICLES, 15, NO_POISON, 0, 0, FC_OK},
     {"FRAME: x = FLT_MAX is finite", 8, 0, POSITIONS, 0, 0x7f7fffffu, FC_OK},
 };
 
@@ -109,6 +122,25 @@ static void run_frame_rows(hx_env *env)
     }
     hx_run_case(env, &(hx_case){"FRAME: 2^62 particles beyond the quota", HX_GREETED, count_2_62, FC_ERR_LIMIT,
                                 HX_STAYS_OPEN, false});
+}
+
+/* A bad radius is answered with a reason naming the particle, and the
+ * connection renders on with its previous frame. */
+static void run_radius_reason(hx_env *env)
+{
+    printf("case: FRAME: the reason names the particle with a bad radius\n");
+    int fd = hx_connect_greeted(env, 0);
+    if (fd < 0)
+        return;
+    const frame_row row = {"", 8, 8, RADIUS, 5, 0xc0000000u, FC_ERR_INVALID_VALUE}; /* -2 */
+    fc_buf bytes;
+    fc_buf_init(&bytes);
+    write_frame(&bytes, &row);
+    hx_send_buf(fd, &bytes);
+    hx_expect_error_mentioning(fd, HX_BAD_ID, FC_ERR_INVALID_VALUE, "particle 5 has radius -2, outside (0, 1e6]");
+    hx_expect_renders(fd, 100);
+    fc_buf_free(&bytes);
+    close(fd);
 }
 
 /* ---- SETTINGS ---- */
@@ -405,6 +437,7 @@ int main(void)
     hx_env env;
     if (!hx_env_start(&env, daemon_args))
         return hx_exit_status(test_result());
+    run_radius_reason(&env);
     run_frame_rows(&env);
     run_settings_rows(&env);
     hx_run_cases(&env, settings_structure_cases, sizeof settings_structure_cases / sizeof settings_structure_cases[0]);

@@ -11,15 +11,26 @@
 
 static void test_alloc_follows_attributes(void)
 {
-    for (uint32_t attributes = 0; attributes < 8; attributes++) {
+    for (uint32_t attributes = 0; attributes <= FC_ATTR_ALL; attributes++) {
         fc_frame f;
         fc_error err;
         CHECK_CODE(fc_frame_alloc(&f, 10, attributes, &err), FC_OK);
         CHECK(f.count == 10 && f.positions != NULL);
         CHECK(fc_frame_attributes(&f) == attributes);
         f.positions[29] = 1.0f; /* the last element exists (ASan would object otherwise) */
+        if (f.radius)
+            f.radius[9] = 1.0f;
         fc_frame_free(&f);
-        CHECK(f.count == 0 && !f.positions && !f.density && !f.velocity && !f.ids);
+        CHECK(f.count == 0 && !f.positions && !f.density && !f.velocity && !f.ids && !f.radius);
+
+        /* One block holds the arrays back to back in FRAME's order, the radii last. */
+        size_t size = fc_frame_block_size(10, attributes);
+        CHECK(size == 10 * fc_frame_particle_bytes(attributes));
+        uint8_t block[10 * 36];
+        fc_frame_point_into_block(&f, block, 10, attributes);
+        CHECK(fc_frame_attributes(&f) == attributes);
+        if (attributes & FC_ATTR_RADIUS)
+            CHECK((uint8_t *)f.radius == block + size - 40);
     }
     fc_frame zeroed = {0};
     fc_frame_free(&zeroed);
@@ -31,7 +42,7 @@ static void test_alloc_refusals(void)
     fc_error err;
     CHECK_CODE(fc_frame_alloc(&f, 0, 0, &err), FC_ERR_USAGE);
     CHECK(f.count == 0 && !f.positions);
-    CHECK_CODE(fc_frame_alloc(&f, 1, 1u << 3, &err), FC_ERR_USAGE);
+    CHECK_CODE(fc_frame_alloc(&f, 1, 1u << 4, &err), FC_ERR_USAGE);
     /* 3 * count floats overflows size_t: refused, never wrapped to a small allocation. */
     CHECK_CODE(fc_frame_alloc(&f, UINT64_MAX / 4, 0, &err), FC_ERR_NOMEM);
     CHECK(f.count == 0 && !f.positions);
@@ -61,6 +72,40 @@ static void test_validate(void)
 
     fc_frame empty = {0};
     CHECK_CODE(fc_frame_validate(&empty, &err), FC_ERR_INVALID_VALUE);
+}
+
+/* The median radius: element count/2 of the sorted radii, the frame untouched. */
+static void test_median_radius(void)
+{
+    enum { N = 1001 };
+    fc_frame f;
+    fc_error err;
+    float median = -1;
+    CHECK_CODE(fc_frame_alloc(&f, N, 0, &err), FC_OK);
+    CHECK_CODE(fc_frame_median_radius(&f, &median, &err), FC_OK);
+    CHECK(median == 0.0f); /* no radii */
+    fc_frame_free(&f);
+
+    CHECK_CODE(fc_frame_alloc(&f, N, FC_ATTR_RADIUS, &err), FC_OK);
+    /* 0.001 .. 1.001 in a scrambled order (i * 389 mod 1001 visits every residue). */
+    for (uint32_t i = 0; i < N; i++)
+        f.radius[i] = 0.001f * (float)((i * 389u) % N + 1);
+    float first = f.radius[0], last = f.radius[N - 1];
+    CHECK_CODE(fc_frame_median_radius(&f, &median, &err), FC_OK);
+    CHECK_MSG(median == 0.001f * 501, "median %g", (double)median);
+    CHECK(f.radius[0] == first && f.radius[N - 1] == last);
+
+    /* Many equal values and an even count: the upper median. */
+    f.count = 6;
+    const float six[6] = {2, 1, 2, 2, 9, 1};
+    memcpy(f.radius, six, sizeof six);
+    CHECK_CODE(fc_frame_median_radius(&f, &median, &err), FC_OK);
+    CHECK_MSG(median == 2.0f, "median %g", (double)median);
+    f.count = 1;
+    CHECK_CODE(fc_frame_median_radius(&f, &median, &err), FC_OK);
+    CHECK(median == 2.0f);
+    f.count = N;
+    fc_frame_free(&f);
 }
 
 static void test_bounds(void)
@@ -253,6 +298,7 @@ int main(void)
     test_alloc_follows_attributes();
     test_alloc_refusals();
     test_validate();
+    test_median_radius();
     test_bounds();
     test_settings_default_and_domains();
     test_camera_validate();

@@ -198,7 +198,14 @@ static void test_frame_rules(void)
     CHECK(frame.count == 2 && frame.positions && !frame.density && !frame.velocity && !frame.ids);
     fc_frame_free(&frame);
 
-    CHECK_CODE(read_frame_fixed(2, 1u << 3, 0, 24, 2, &frame, &err), FC_ERR_MALFORMED);
+    /* Bit 3 is the radius (PROTOCOL.md 7.3); bit 4 and up are unknown. */
+    CHECK_CODE(read_frame_fixed(2, 1u << 4, 0, 24, 2, &frame, &err), FC_ERR_MALFORMED);
+    CHECK(strstr(err.message, "unknown attribute bits 0x10") != NULL);
+    CHECK_CODE(read_frame_fixed(2, 1u << 31, 0, 24, 2, &frame, &err), FC_ERR_MALFORMED);
+    /* Bit 3 with its 4 bytes per particle: the layout holds, the zero radii are out of their domain. */
+    CHECK_CODE(read_frame_fixed(2, FC_ATTR_RADIUS, 0, 24, 2, &frame, &err), FC_ERR_MALFORMED);
+    CHECK_CODE(read_frame_fixed(2, FC_ATTR_RADIUS, 0, 32, 2, &frame, &err), FC_ERR_INVALID_VALUE);
+    CHECK_MSG(strstr(err.message, "particle 0 has radius 0") != NULL, "\"%s\"", err.message);
     CHECK_CODE(read_frame_fixed(2, 0, 1, 24, 2, &frame, &err), FC_ERR_MALFORMED);
     CHECK_CODE(read_frame_fixed(0, 0, 0, 0, 2, &frame, &err), FC_ERR_INVALID_VALUE);
     CHECK_CODE(read_frame_fixed(3, 0, 0, 36, 2, &frame, &err), FC_ERR_LIMIT);
@@ -247,6 +254,55 @@ static void test_frame_non_finite_values(void)
         CHECK_CODE(fc_wire_read_frame(b.data + FC_WIRE_HEADER_SIZE, b.len - FC_WIRE_HEADER_SIZE, 2, &out, &err),
                    FC_ERR_INVALID_VALUE);
         CHECK(out.positions == NULL && out.count == 0);
+        fc_buf_free(&b);
+        fc_frame_free(&in);
+    }
+}
+
+/* Radii outside (0, 1e6] are refused, naming the first particle that has one;
+ * the limits themselves are accepted. */
+static void test_frame_radius_domain(void)
+{
+    const struct {
+        float value;
+        fc_code expected;
+        const char *what;
+    } cases[] = {
+        {NAN, FC_ERR_INVALID_VALUE, "particle 2 has a non-finite radius"},
+        {INFINITY, FC_ERR_INVALID_VALUE, "particle 2 has a non-finite radius"},
+        {-INFINITY, FC_ERR_INVALID_VALUE, "particle 2 has a non-finite radius"},
+        {0.0f, FC_ERR_INVALID_VALUE, "particle 2 has radius 0, outside (0, 1e6]"},
+        {-0.0f, FC_ERR_INVALID_VALUE, "particle 2 has radius -0, outside (0, 1e6]"},
+        {-1.0f, FC_ERR_INVALID_VALUE, "particle 2 has radius -1, outside (0, 1e6]"},
+        {1.0000001e6f, FC_ERR_INVALID_VALUE, "particle 2 has radius 1e+06, outside (0, 1e6]"},
+        {3e38f, FC_ERR_INVALID_VALUE, "particle 2 has radius 3e+38, outside (0, 1e6]"},
+        {1e6f, FC_OK, NULL},
+        {0x1p-149f, FC_OK, NULL}, /* the smallest positive float: tiny, but a size */
+    };
+    for (size_t c = 0; c < sizeof cases / sizeof cases[0]; c++) {
+        fc_frame in = {0}, out = {0};
+        fc_error err = {0};
+        CHECK_CODE(fc_frame_alloc(&in, 4, FC_ATTR_RADIUS | FC_ATTR_IDS, &err), FC_OK);
+        memset(in.positions, 0, 12 * sizeof(float));
+        for (int i = 0; i < 4; i++) {
+            in.ids[i] = (uint32_t)i;
+            in.radius[i] = 0.5f;
+        }
+        in.radius[2] = cases[c].value;
+        in.radius[3] = NAN; /* a later bad radius: the first one is named */
+        if (cases[c].expected == FC_OK)
+            in.radius[3] = 0.5f;
+        CHECK_CODE(fc_frame_validate(&in, &err), cases[c].expected);
+        fc_buf b;
+        fc_buf_init(&b);
+        CHECK_CODE(fc_wire_write_frame(&b, 1, &in, &err), FC_OK);
+        CHECK_CODE(fc_wire_read_frame(b.data + FC_WIRE_HEADER_SIZE, b.len - FC_WIRE_HEADER_SIZE, 4, &out, &err),
+                   cases[c].expected);
+        if (cases[c].what)
+            CHECK_MSG(strstr(err.message, cases[c].what) != NULL, "case %zu: \"%s\"", c, err.message);
+        CHECK(cases[c].expected == FC_OK ? out.radius != NULL && out.radius[2] == cases[c].value
+                                         : out.positions == NULL && out.count == 0);
+        fc_frame_free(&out);
         fc_buf_free(&b);
         fc_frame_free(&in);
     }
@@ -474,6 +530,7 @@ int main(void)
     test_header_rules();
     test_frame_rules();
     test_frame_non_finite_values();
+    test_frame_radius_domain();
     test_camera_rules();
     test_settings_rules();
     test_render_rules();

@@ -69,6 +69,53 @@ static void test_frame_bytes(void)
     fc_buf_free(&b);
 }
 
+/* PROTOCOL.md 7.3's second example: ids and radii (bit 3) after the positions,
+ * in the order of the attribute table; the radii are f32 like the positions. */
+static void test_frame_radius_bytes(void)
+{
+    const uint8_t expected[] = {
+        'F', 'C', 'S', 'T', 0x03, 0x00, 0x00, 0x00, 0x07, 0x00, 0x00, 0x00, 0x38, 0x00, 0x00, 0x00, /* header */
+        0x02, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, /* count 2 */
+        0x0C, 0x00, 0x00, 0x00,                         /* attributes: ids | radius */
+        0x00, 0x00, 0x00, 0x00,                         /* reserved */
+        0x00, 0x00, 0x80, 0x3F, 0x00, 0x00, 0x00, 0x40, 0x00, 0x00, 0x40, 0x40, /* 1 2 3 */
+        0x00, 0x00, 0x80, 0xBF, 0x00, 0x00, 0x00, 0x3F, 0x00, 0x00, 0x00, 0x00, /* -1 0.5 0 */
+        0x07, 0x00, 0x00, 0x00, 0x09, 0x00, 0x00, 0x00,                         /* ids 7 9 */
+        0x00, 0x00, 0x00, 0x3F, 0x00, 0x00, 0x00, 0x40,                         /* radius 0.5 2 */
+    };
+    float positions[6] = {1, 2, 3, -1, 0.5f, 0};
+    uint32_t ids[2] = {7, 9};
+    float radius[2] = {0.5f, 2.0f};
+    fc_frame frame = {.count = 2, .positions = positions, .ids = ids, .radius = radius};
+    CHECK(fc_frame_attributes(&frame) == (FC_ATTR_IDS | FC_ATTR_RADIUS) && FC_ATTR_RADIUS == 8);
+    CHECK(fc_frame_particle_bytes(FC_ATTR_ALL) == 36 && fc_frame_particle_bytes(FC_ATTR_RADIUS) == 16);
+    fc_buf b;
+    fc_buf_init(&b);
+    fc_error err;
+    CHECK_CODE(fc_wire_write_frame(&b, 7, &frame, &err), FC_OK);
+    CHECK_MSG(b.len == sizeof expected, "%zu bytes, expected %zu", b.len, sizeof expected);
+    CHECK(b.len == sizeof expected && memcmp(b.data, expected, sizeof expected) == 0);
+    fc_frame out = {0};
+    CHECK_CODE(fc_wire_read_frame(expected + FC_WIRE_HEADER_SIZE, sizeof expected - FC_WIRE_HEADER_SIZE, 2, &out,
+                                  &err),
+               FC_OK);
+    CHECK(out.radius && out.radius[0] == 0.5f && out.radius[1] == 2.0f && out.ids && out.ids[1] == 9);
+    CHECK(!out.density && !out.velocity);
+    fc_frame_free(&out);
+
+    /* The parts a zero-copy sender hands to the socket: the radii stay where the caller keeps them. */
+    fc_buf head;
+    fc_buf_init(&head);
+    fc_wire_span arrays[FC_WIRE_FRAME_ARRAYS];
+    size_t count = 0;
+    CHECK_CODE(fc_wire_write_frame_parts(&head, 7, &frame, arrays, &count, &err), FC_OK);
+#if defined(__BYTE_ORDER__) && __BYTE_ORDER__ == __ORDER_LITTLE_ENDIAN__
+    CHECK(count == 3 && arrays[2].data == radius && arrays[2].size == sizeof radius);
+#endif
+    fc_buf_free(&head);
+    fc_buf_free(&b);
+}
+
 /* The same FRAME as test_frame_bytes as parts: the head in the buffer, the
  * arrays left where the frame keeps them, together the same bytes. */
 static void test_frame_parts(void)
@@ -170,7 +217,7 @@ static void test_frame_roundtrip_all_attributes(void)
     enum { N = 5 };
     fc_frame in, out = {0};
     fc_error err;
-    CHECK_CODE(fc_frame_alloc(&in, N, FC_ATTR_DENSITY | FC_ATTR_VELOCITY | FC_ATTR_IDS, &err), FC_OK);
+    CHECK_CODE(fc_frame_alloc(&in, N, FC_ATTR_ALL, &err), FC_OK);
     for (int i = 0; i < N; i++) {
         for (int k = 0; k < 3; k++) {
             in.positions[3 * i + k] = 0.25f * i - k;
@@ -178,16 +225,18 @@ static void test_frame_roundtrip_all_attributes(void)
         }
         in.density[i] = 998.0f + i;
         in.ids[i] = 0xFFFFFFF0u + (uint32_t)i;
+        in.radius[i] = i == 0 ? 1e6f : 0x1p-126f * (float)(i + 1); /* the largest and tiny normal radii */
     }
     fc_buf b;
     fc_buf_init(&b);
     CHECK_CODE(fc_wire_write_frame(&b, 42, &in, &err), FC_OK);
     size_t n;
     const uint8_t *p = single_payload(&b, FC_MSG_FRAME, 42, &n);
-    CHECK(n == 16 + N * 32);
+    CHECK(n == 16 + N * 36);
     CHECK_CODE(fc_wire_read_frame(p, n, N, &out, &err), FC_OK);
     CHECK(out.count == N);
-    CHECK(fc_frame_attributes(&out) == (FC_ATTR_DENSITY | FC_ATTR_VELOCITY | FC_ATTR_IDS));
+    CHECK(fc_frame_attributes(&out) == FC_ATTR_ALL);
+    CHECK(out.radius && memcmp(out.radius, in.radius, sizeof(float) * N) == 0);
     CHECK(out.positions && memcmp(out.positions, in.positions, sizeof(float) * 3 * N) == 0);
     CHECK(out.velocity && memcmp(out.velocity, in.velocity, sizeof(float) * 3 * N) == 0);
     CHECK(out.density && memcmp(out.density, in.density, sizeof(float) * N) == 0);
@@ -199,7 +248,7 @@ static void test_frame_roundtrip_all_attributes(void)
 
 static void test_frame_roundtrip_each_attribute_set(void)
 {
-    for (uint32_t attributes = 0; attributes < 8; attributes++) {
+    for (uint32_t attributes = 0; attributes <= FC_ATTR_ALL; attributes++) {
         fc_frame in, out = {0};
         fc_error err;
         CHECK_CODE(fc_frame_alloc(&in, 3, attributes, &err), FC_OK);
@@ -213,6 +262,8 @@ static void test_frame_roundtrip_each_attribute_set(void)
                 in.density[i] = 10.0f + i;
             if (in.ids)
                 in.ids[i] = 100u + (uint32_t)i;
+            if (in.radius)
+                in.radius[i] = 0.25f * (float)(i + 1);
         }
         fc_buf b;
         fc_buf_init(&b);
@@ -229,6 +280,9 @@ static void test_frame_roundtrip_each_attribute_set(void)
             CHECK(out.velocity && out.velocity[8] == -8.0f);
         if (attributes & FC_ATTR_IDS)
             CHECK(out.ids && out.ids[2] == 102u);
+        if (attributes & FC_ATTR_RADIUS)
+            CHECK(out.radius && out.radius[0] == 0.25f && out.radius[2] == 0.75f);
+        CHECK(n == 16 + 3 * fc_frame_particle_bytes(attributes));
         fc_frame_free(&in);
         fc_frame_free(&out);
         fc_buf_free(&b);
@@ -491,6 +545,7 @@ int main(void)
 {
     test_header_bytes();
     test_frame_bytes();
+    test_frame_radius_bytes();
     test_frame_parts();
     test_hello_bytes();
     test_hello_roundtrip();

@@ -116,6 +116,20 @@ def test_nan_position_raises_invalid_value_with_the_servers_message(client):
     assert png_size(client.render()) == SIZE
 
 
+def test_per_particle_radius_out_of_domain_names_the_particle(client):
+    radius = np.full(500, 0.05, np.float32)
+    radius[77] = 0.0
+    client.send_frame(ball(500), radius=radius)
+    look_at_ball(client)
+    with pytest.raises(fluidcast.Error) as e:
+        client.render()
+    assert e.value.code is fluidcast.Code.INVALID_VALUE
+    assert "particle 77 has radius 0, outside (0, 1e6]" in e.value.message
+    radius[77] = 0.05
+    client.send_frame(ball(500), radius=radius)
+    assert png_size(client.render()) == SIZE
+
+
 def test_negative_radius_raises_invalid_value(client):
     client.send_frame(ball(500))
     look_at_ball(client)

@@ -55,7 +55,18 @@ def test_float64_strided_and_other_ints_are_converted_once():
     assert frame.copied == ("positions",) and frame.positions.dtype == np.float32
     assert fluidcast.Frame(ball(10).tolist()).copied == ("positions",)
     absent = fluidcast.Frame(ball(10)).c_frame
-    assert not absent.density and not absent.velocity and not absent.ids
+    assert not absent.density and not absent.velocity and not absent.ids and not absent.radius
+
+
+def test_radius_is_used_in_place_or_converted():
+    radius = np.full(100, 0.05, np.float32)
+    frame = fluidcast.Frame(ball(100), radius=radius)
+    assert frame.copied == () and frame.radius is radius
+    assert address(frame.c_frame.radius) == radius.ctypes.data
+    frame = fluidcast.Frame(ball(100), radius=np.full(100, 0.05))   # float64: converted once
+    assert frame.copied == ("radius",) and frame.radius.dtype == np.float32
+    assert frame.c_frame.radius[99] == np.float32(0.05)
+    assert "radius" in repr(frame)
 
 
 @pytest.mark.parametrize("kwargs, error", [
@@ -67,6 +78,8 @@ def test_float64_strided_and_other_ints_are_converted_once():
     (dict(positions=np.zeros((4, 3)), ids=np.array([0, 1, 2, -1])), ValueError),
     (dict(positions=np.zeros((4, 3)), ids=np.array([0, 1, 2, 1 << 32])), ValueError),
     (dict(positions=np.zeros((4, 3)), ids=np.zeros(4)), TypeError),
+    (dict(positions=np.zeros((4, 3)), radius=np.ones(3)), ValueError),
+    (dict(positions=np.zeros((4, 3)), radius=np.ones((4, 1))), ValueError),
     (dict(positions=np.zeros((4, 3), complex)), TypeError),
     (dict(positions=np.array([["a", "b", "c"]])), TypeError),
 ])

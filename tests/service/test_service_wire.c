@@ -417,6 +417,74 @@ static void test_corrupted_zstd(void)
     fc_buf_free(&b);
 }
 
+/* Radii (attribute bit 3) in every packed encoding: after the ids, never
+ * quantised, bit for bit; a bad radius refused as in FRAME. */
+static void test_packed_radius(void)
+{
+    enum { N = 9 }; /* odd: the quantised positions are padded */
+    fc_frame in;
+    fc_error err;
+    CHECK_CODE(fc_frame_alloc(&in, N, FC_ATTR_IDS | FC_ATTR_RADIUS, &err), FC_OK);
+    for (uint32_t i = 0; i < N; i++) {
+        for (int k = 0; k < 3; k++)
+            in.positions[3 * i + k] = 0.37f * (float)i - (float)k;
+        in.ids[i] = 1000 + i;
+        in.radius[i] = 0.0123456789f * (float)(i + 1) + 1e-7f * (float)i; /* off any 16-bit grid */
+    }
+    const uint32_t encodings[] = {0, FC_PACK_ZSTD, FC_PACK_QUANTIZE16, FC_PACK_ZSTD | FC_PACK_QUANTIZE16};
+    for (size_t e = 0; e < sizeof encodings / sizeof encodings[0]; e++) {
+        fc_buf b;
+        fc_buf_init(&b);
+        if (encodings[e] == 0) {
+            /* The plain inner layout is the FRAME payload itself. */
+            fc_buf plain;
+            fc_buf_init(&plain);
+            CHECK_CODE(fc_wire_write_frame(&plain, 1, &in, &err), FC_OK);
+            fc_frame out = {0};
+            CHECK_CODE(fc_wire_read_frame(payload_of(&plain), payload_len(&plain), N, &out, &err), FC_OK);
+            CHECK(out.radius && memcmp(out.radius, in.radius, sizeof(float) * N) == 0);
+            fc_frame_free(&out);
+            fc_buf_free(&plain);
+            fc_buf_free(&b);
+            continue;
+        }
+        CHECK_CODE(fc_wire_write_frame_packed(&b, 1, &in, encodings[e], 0, &err), FC_OK);
+        if (encodings[e] == FC_PACK_QUANTIZE16) {
+            /* 16 packed + 40 fixed + 6 N + 2 padding + 4 N ids, then the radii as f32, exactly. */
+            const uint8_t *p = payload_of(&b);
+            size_t radii_at = 16 + 40 + 6 * N + 2 + 4 * N;
+            CHECK_MSG(payload_len(&b) == radii_at + 4 * N, "payload %zu", payload_len(&b));
+            CHECK(le32(p + 16 + 8) == (FC_ATTR_IDS | FC_ATTR_RADIUS));
+            CHECK(payload_len(&b) == radii_at + 4 * N && memcmp(p + radii_at, in.radius, 4 * N) == 0);
+        }
+        fc_frame out = {0};
+        CHECK_CODE(fc_wire_read_frame_packed(payload_of(&b), payload_len(&b), FC_PACK_ALL, BIG_LIMIT, &out, &err),
+                   FC_OK);
+        CHECK_MSG(out.radius && memcmp(out.radius, in.radius, sizeof(float) * N) == 0, "encoding %u",
+                  encodings[e]);
+        CHECK(out.ids && memcmp(out.ids, in.ids, sizeof(uint32_t) * N) == 0);
+        fc_frame_free(&out);
+        fc_buf_free(&b);
+    }
+
+    /* A negative radius in a quantised, compressed chunk: INVALID_VALUE naming the particle. */
+    in.radius[4] = -2.0f;
+    fc_buf b;
+    fc_buf_init(&b);
+    fc_chunk_header h = {.frame_number = 3, .index = 0, .count = 1};
+    CHECK_CODE(fc_wire_write_chunk(&b, 6, &h, &in, FC_PACK_ZSTD | FC_PACK_QUANTIZE16, 0, &err), FC_ERR_USAGE);
+    CHECK(strstr(err.message, "particle 4 has radius -2") != NULL);
+    CHECK_CODE(fc_wire_write_chunk(&b, 6, &h, &in, FC_PACK_ZSTD, 0, &err), FC_OK);
+    fc_chunk_header out_h;
+    fc_frame out = {0};
+    CHECK_CODE(fc_wire_read_chunk(payload_of(&b), payload_len(&b), FC_PACK_ALL, BIG_LIMIT, &out_h, &out, &err),
+               FC_ERR_INVALID_VALUE);
+    CHECK_MSG(strstr(err.message, "particle 4 has radius -2, outside (0, 1e6]") != NULL, "%s", err.message);
+    CHECK(out.count == 0);
+    fc_frame_free(&in);
+    fc_buf_free(&b);
+}
+
 static void test_chunk(void)
 {
     fc_frame part = lattice(7);
@@ -455,5 +523,6 @@ int main(void)
     test_packed_rejections();
     test_corrupted_zstd();
     test_chunk();
+    test_packed_radius();
     return test_result();
 }

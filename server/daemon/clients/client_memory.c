@@ -15,6 +15,8 @@ uint64_t fc_memory_of_frame(const fc_frame *frame)
         per_particle += 3 * sizeof(float);
     if (frame->ids)
         per_particle += sizeof(uint32_t);
+    if (frame->radius)
+        per_particle += sizeof(float);
     return frame->count * per_particle;
 }
 

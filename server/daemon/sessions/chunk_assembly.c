@@ -106,6 +106,8 @@ static void copy_part(fc_frame *whole, uint64_t at, const fc_frame *part)
         memcpy(whole->velocity + 3 * at, part->velocity, 3 * n * sizeof(float));
     if (whole->ids)
         memcpy(whole->ids + at, part->ids, n * sizeof(uint32_t));
+    if (whole->radius)
+        memcpy(whole->radius + at, part->radius, n * sizeof(float));
 }
 
 /* Concatenates the parts in index order into a block of out and frees the slot. */

@@ -44,7 +44,8 @@ static bool same_attributes(const fc_frame *a, const fc_frame *b)
 {
     size_t n = (size_t)a->count;
     return a->count == b->count && same_array(a->density, b->density, 4 * n) &&
-           same_array(a->velocity, b->velocity, 12 * n) && same_array(a->ids, b->ids, 4 * n);
+           same_array(a->velocity, b->velocity, 12 * n) && same_array(a->ids, b->ids, 4 * n) &&
+           same_array(a->radius, b->radius, 4 * n);
 }
 
 static bool frames_identical(const fc_frame *a, const fc_frame *b)

@@ -24,6 +24,8 @@ static const float DENSITY[SEED_PARTICLES] = {1000.0f, 998.5f, 1002.25f, 999.0f}
 static const float VELOCITY[SEED_PARTICLES][3] = {
     {0.0f, 0.0f, -9.81f}, {1.0f, 2.0f, 3.0f}, {-0.5f, 0.25f, 0.0f}, {0.0f, 0.0f, 0.0f}};
 static const uint32_t IDS[SEED_PARTICLES] = {0, 1, 7, 4294967295u};
+/* Per-particle radii (FRAME attribute bit 3): the smallest and largest accepted, and two in between. */
+static const float RADIUS[SEED_PARTICLES] = {0.05f, 0.1f, 0x1p-149f, 1e6f};
 
 /* A complete 1x1 RGB PNG: what BACKGROUND and ENVIRONMENT carry (the codec frames the files, never decodes them). */
 static const uint8_t PNG_1X1[] = {
@@ -295,6 +297,21 @@ static fc_code write_frame_all(fc_buf *out)
     return fc_wire_write_frame(out, 2, &frame, NULL);
 }
 
+/* Positions and per-particle radii only, then every attribute. */
+static fc_code write_frame_radius(fc_buf *out)
+{
+    fc_frame frame = seed_frame(false);
+    frame.radius = (float *)RADIUS;
+    return fc_wire_write_frame(out, 2, &frame, NULL);
+}
+
+static fc_code write_frame_all_radius(fc_buf *out)
+{
+    fc_frame frame = seed_frame(true);
+    frame.radius = (float *)RADIUS;
+    return fc_wire_write_frame(out, 2, &frame, NULL);
+}
+
 static fc_code write_camera(fc_buf *out)
 {
     fc_camera m = {.eye = {3, -4, 2}, .target = {0, 0, 0}, .up = {0, 0, 1}, .fov_y_deg = 40, .width = 64, .height = 48};
@@ -459,6 +476,24 @@ static fc_code write_frame_packed_quantized(fc_buf *out)
     return write_frame_packed(out, FC_PACK_QUANTIZE16);
 }
 
+/* Radii after the ids in the quantised layout, and in a zstd'd plain one. */
+static fc_code write_frame_packed_radius(fc_buf *out, uint32_t encoding)
+{
+    fc_frame frame = seed_frame(true);
+    frame.radius = (float *)RADIUS;
+    return fc_wire_write_frame_packed(out, 6, &frame, encoding, 0, NULL);
+}
+
+static fc_code write_frame_packed_radius_quantized(fc_buf *out)
+{
+    return write_frame_packed_radius(out, FC_PACK_QUANTIZE16);
+}
+
+static fc_code write_frame_packed_radius_zstd(fc_buf *out)
+{
+    return write_frame_packed_radius(out, FC_PACK_ZSTD);
+}
+
 static fc_code write_frame_packed_positions(fc_buf *out)
 {
     fc_frame frame = seed_frame(false);
@@ -500,6 +535,7 @@ static int write_messages(const char *dir)
     static const seed_file singles[] = {
         {"hello.bin", write_hello},     {"welcome.bin", write_welcome},
         {"frame.bin", write_frame_positions}, {"frame_attributes.bin", write_frame_all},
+        {"frame_radius.bin", write_frame_radius}, {"frame_attributes_radius.bin", write_frame_all_radius},
         {"camera.bin", write_camera},   {"settings.bin", write_settings},
         {"render.bin", write_render},   {"image.bin", write_image},
         {"error.bin", write_error},     {"goodbye.bin", write_goodbye},
@@ -530,6 +566,8 @@ static int write_session_messages(const char *dir)
         {"frame_packed.bin", write_frame_packed_plain},
         {"frame_packed_zstd.bin", write_frame_packed_zstd},
         {"frame_packed_quantized.bin", write_frame_packed_quantized},
+        {"frame_packed_radius_quantized.bin", write_frame_packed_radius_quantized},
+        {"frame_packed_radius_zstd.bin", write_frame_packed_radius_zstd},
         {"frame_packed_positions_zstd_quantized.bin", write_frame_packed_positions},
     };
     static const message_writer producer[] = {write_publish, write_chunk_plain, write_chunk_packed,
