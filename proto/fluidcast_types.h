@@ -152,6 +152,32 @@ typedef struct fc_settings {
                                   color_by is set; values outside take the end colours, so runs compare */
 } fc_settings;
 
+/* ---- Meshes ---------------------------------------------------------------
+ * A triangle mesh drawn with the fluid (MESH, PROTOCOL.md section 12): a
+ * solver's tank, obstacle or rigid body. The arrays are the caller's; the
+ * codec copies them into the message. */
+#define FC_MESH_HIDE_NEAR 2u     /* fc_mesh.flags: faces whose normal points toward the camera are not drawn,
+                                    so a tank's near walls do not hide the fluid inside */
+
+typedef struct fc_mesh {
+    uint32_t id;               /* several meshes per connection, each replaced by the next MESH of its id */
+    uint32_t flags;            /* FC_MESH_HIDE_NEAR or 0 */
+    uint32_t vertex_count;     /* V */
+    uint32_t triangle_count;   /* T; 0 (with V 0) removes mesh `id` */
+    const float *vertices;     /* 3V floats, x y z, in the mesh's own frame */
+    const uint32_t *indices;   /* 3T vertex indices, counter-clockwise seen from outside (< V) */
+    const float *normals;      /* 3V floats, one per vertex; NULL: flat faces from the winding */
+    float color[3];            /* linear RGB, each in [0, 1] */
+    float opacity;             /* [0, 1]; 1 opaque, below 1 glass drawn over the fluid */
+    float transform[12];       /* 3x4 row-major: world = R v + t with rows (r0 r1 r2 t); identity to start */
+} fc_mesh;
+
+/* A new rigid (or any affine) placement of mesh `id` (MESH_TRANSFORM). */
+typedef struct fc_mesh_transform {
+    uint32_t id;
+    float transform[12];       /* as fc_mesh.transform */
+} fc_mesh_transform;
+
 /* ---- Image request and reply -------------------------------------------*/
 typedef enum fc_image_format {
     FC_FORMAT_PNG = 1,

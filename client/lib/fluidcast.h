@@ -156,10 +156,45 @@ fc_code fc_client_set_environment_bytes(fc_client *client, const void *const dat
  * cannot be read, FC_ERR_USAGE for a NULL path or an empty file. */
 fc_code fc_client_set_environment_files(fc_client *client, const char *const paths[6], fc_error *err);
 
+/* ---- Meshes ----------------------------------------------------------------
+ * Triangle meshes drawn with the fluid (PROTOCOL.md section 12): a tank, an
+ * obstacle, a rigid body. Each has an id; sending a mesh of an id already sent
+ * replaces it. The server draws opaque meshes (opacity 1) into the scene before
+ * the fluid, which they hide where they are in front of it and which refracts
+ * them; glass (opacity below 1) is blended over the fluid, tinting it. With
+ * FC_MESH_HIDE_NEAR the faces turned toward the camera are not drawn, so a
+ * tank's near walls do not hide the fluid in it. A producer's meshes (after
+ * fc_client_publish) belong to its session and show in every viewer's images;
+ * anyone else's belong to its connection. At most 64 meshes per connection,
+ * 2^24 vertices and 2^24 triangles per mesh. Like settings, the server answers
+ * only a rejection, which the next fc_client_render reports: FC_ERR_LIMIT for a
+ * 65th mesh or one beyond the connection's memory limit, FC_ERR_BAD_STATE for
+ * moving a mesh never sent. Errors returned directly, without sending:
+ * FC_ERR_INVALID_VALUE for an index >= vertex_count (naming the triangle), a
+ * vertex or normal that is not finite, a colour or opacity outside [0, 1];
+ * FC_ERR_LIMIT beyond the counts above; FC_ERR_TOO_LARGE beyond the server's
+ * message limit; FC_ERR_USAGE; plus the connection errors. */
+
+/* Fills *mesh with no arrays, id 0, no flags, light grey (0.8), opacity 1 and
+ * the identity transform: set the arrays and counts, then send it. */
+void fc_mesh_defaults(fc_mesh *mesh);
+
+/* Sends `mesh` (its arrays are copied into the message; the caller keeps them).
+ * A mesh with triangle_count 0 and vertex_count 0 removes mesh `id`. */
+fc_code fc_client_upload_mesh(fc_client *client, const fc_mesh *mesh, fc_error *err);
+
+/* Removes mesh `id` (no error if there is none). */
+fc_code fc_client_remove_mesh(fc_client *client, uint32_t id, fc_error *err);
+
+/* Places meshes already sent anew, all in one message (a simulation's rigid
+ * bodies, once per frame): `count` entries of distinct ids, at most 64. The
+ * server moves all of them or, if one id was never sent, none. */
+fc_code fc_client_move_meshes(fc_client *client, const fc_mesh_transform *entries, uint32_t count, fc_error *err);
+
 /* Asks for an image of the current frame, camera and settings and waits for it.
  * On success *out holds the image (the caller frees it with fc_image_result_free).
  * On failure *out is empty (data NULL, size 0) and safe to free. When the server
- * rejected an earlier message of this client (a FRAME, CAMERA, SETTINGS or scene image) that
+ * rejected an earlier message of this client (a FRAME, CAMERA, SETTINGS, scene image or mesh) that
  * error is returned, since it is the cause, even if an image followed; the reply
  * to this request is consumed either way so the connection stays in step. */
 fc_code fc_client_render(fc_client *client, const fc_render_request *request,

@@ -147,7 +147,7 @@ static void unknown_type_with_payload(fc_buf *out)
 
 static void reserved_core_type(fc_buf *out)
 {
-    hx_header(out, 12, 0, HX_BAD_ID, 0);
+    hx_header(out, 14, 0, HX_BAD_ID, 0);
 }
 
 static void largest_type(fc_buf *out)
@@ -328,7 +328,7 @@ static const hx_case cases[] = {
     {"unknown type before HELLO", HX_RAW, unknown_type_with_payload, FC_ERR_UNKNOWN_TYPE, HX_CLOSES, false},
     {"unknown type: payload skipped", HX_GREETED, unknown_type_with_payload, FC_ERR_UNKNOWN_TYPE, HX_STAYS_OPEN,
      false},
-    {"type 12, reserved", HX_GREETED, reserved_core_type, FC_ERR_UNKNOWN_TYPE, HX_STAYS_OPEN, false},
+    {"type 14, reserved", HX_GREETED, reserved_core_type, FC_ERR_UNKNOWN_TYPE, HX_STAYS_OPEN, false},
     {"type 65535", HX_GREETED, largest_type, FC_ERR_UNKNOWN_TYPE, HX_STAYS_OPEN, false},
     {"type 0", HX_GREETED, type_zero, FC_ERR_UNKNOWN_TYPE, HX_STAYS_OPEN, false},
     {"extension type not negotiated", HX_GREETED, extension_not_negotiated, FC_ERR_UNKNOWN_TYPE, HX_STAYS_OPEN,

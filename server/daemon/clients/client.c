@@ -3,6 +3,7 @@
  * timers). */
 #include "clients/client.h"
 
+#include <stdio.h>
 #include <string.h>
 
 #include "clients/client_internal.h"
@@ -10,6 +11,7 @@
 #include "fc_error.h"
 #include "fc_frame.h"
 #include "monotonic.h"
+#include "wire_mesh.h"
 #include "wire_session.h"
 
 void fc_client_init(fc_client *c, const char *peer, fc_daemon_context *ctx, uint64_t connection_id, fc_buf *out)
@@ -31,17 +33,19 @@ void fc_client_free(fc_client *c)
     fc_foam_track_unref(c->foam);
     c->foam = NULL;
     fc_scene_uploads_free(&c->scene);
+    fc_mesh_set_free(&c->meshes);
 }
 
 static bool is_defined_type(uint16_t type)
 {
-    return type >= FC_MSG_HELLO && type <= FC_MSG_ENVIRONMENT;
+    return type >= FC_MSG_HELLO && type <= FC_MSG_MESH_TRANSFORM;
 }
 
 static const char *message_name(uint16_t type)
 {
     static const char *const names[] = {"HELLO", "WELCOME", "FRAME",   "CAMERA",     "SETTINGS",   "RENDER",
-                                        "IMAGE", "ERROR",   "GOODBYE", "BACKGROUND", "ENVIRONMENT"};
+                                        "IMAGE", "ERROR",   "GOODBYE", "BACKGROUND", "ENVIRONMENT",
+                                        "MESH",  "MESH_TRANSFORM"};
     return is_defined_type(type) ? names[type - FC_MSG_HELLO] : "unknown";
 }
 
@@ -143,6 +147,60 @@ static fc_client_verdict handle_scene_image(fc_client *c, fc_daemon_context *ctx
         return reply_error(c, ctx, h, &err, FC_CLIENT_CONTINUE, out);
     }
     fc_scene_uploads_replace(slot, part);
+    fc_viewer_view_changed(c, fc_monotonic_ms());
+    return FC_CLIENT_CONTINUE;
+}
+
+/* The meshes a MESH or MESH_TRANSFORM changes: a producer's are its
+ * session's, shown by every viewer; anyone else's are its own. */
+static fc_mesh_set *mesh_set_of(fc_client *c)
+{
+    return c->role == FC_ROLE_PRODUCER ? &c->session->meshes : &c->meshes;
+}
+
+/* MESH: decoded and checked now, so a bad mesh is answered at once; the mesh
+ * it replaces is given up only once the new one is known to fit. */
+static fc_client_verdict handle_mesh(fc_client *c, fc_daemon_context *ctx, const fc_msg_header *h,
+                                     const uint8_t *payload, fc_buf *out)
+{
+    fc_error err;
+    fc_mesh_set *set = mesh_set_of(c);
+    fc_mesh_geometry *g = NULL;
+    uint32_t id = 0;
+    fc_code code = fc_mesh_geometry_decode(payload, h->length, &g, &id, &err);
+    int at = code == FC_OK ? fc_mesh_set_find(set, id) : -1;
+    if (code == FC_OK && g)
+        code = fc_mesh_set_check_room(set, id, &err);
+    if (code == FC_OK && g) {
+        char what[64];
+        snprintf(what, sizeof what, "MESH %u", (unsigned)id);
+        code = fc_client_memory_admit(c, at >= 0 ? fc_mesh_geometry_bytes(set->entries[at].geometry) : 0,
+                                      fc_mesh_geometry_bytes(g), what, &err);
+    }
+    if (code != FC_OK) {
+        fc_mesh_geometry_unref(g);
+        return reply_error(c, ctx, h, &err, FC_CLIENT_CONTINUE, out);
+    }
+    if (g)
+        fc_mesh_set_put(set, g);
+    else
+        fc_mesh_set_remove(set, id);
+    fc_viewer_view_changed(c, fc_monotonic_ms());
+    return FC_CLIENT_CONTINUE;
+}
+
+/* MESH_TRANSFORM: all entries move, or none. */
+static fc_client_verdict handle_mesh_transform(fc_client *c, fc_daemon_context *ctx, const fc_msg_header *h,
+                                               const uint8_t *payload, fc_buf *out)
+{
+    fc_error err;
+    fc_mesh_transform entries[FC_MESH_MAX_COUNT];
+    uint32_t count = 0;
+    fc_code code = fc_wire_read_mesh_transforms(payload, h->length, entries, &count, &err);
+    if (code == FC_OK)
+        code = fc_mesh_set_move(mesh_set_of(c), entries, count, &err);
+    if (code != FC_OK)
+        return reply_error(c, ctx, h, &err, FC_CLIENT_CONTINUE, out);
     fc_viewer_view_changed(c, fc_monotonic_ms());
     return FC_CLIENT_CONTINUE;
 }
@@ -261,6 +319,10 @@ fc_client_verdict fc_client_handle(fc_client *c, fc_daemon_context *ctx, const f
     case FC_MSG_BACKGROUND:
     case FC_MSG_ENVIRONMENT:
         return handle_scene_image(c, ctx, header, payload, out);
+    case FC_MSG_MESH:
+        return handle_mesh(c, ctx, header, payload, out);
+    case FC_MSG_MESH_TRANSFORM:
+        return handle_mesh_transform(c, ctx, header, payload, out);
     default:
         if (fc_client_is_session_message(header->type))
             return fc_client_handle_session_message(c, ctx, header, message, received_ms, out);

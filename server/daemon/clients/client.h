@@ -24,6 +24,7 @@
 #include "gpu/render_job.h"
 #include "sessions/session_member.h"
 #include "uploads/foam_track.h"
+#include "uploads/mesh_uploads.h"
 #include "uploads/scene_uploads.h"
 
 typedef enum fc_client_state {
@@ -52,6 +53,7 @@ typedef struct fc_client {
     fc_camera camera;
     fc_settings settings;
     fc_scene_uploads scene;        /* BACKGROUND / ENVIRONMENT images for this connection's renders */
+    fc_mesh_set meshes;            /* its own MESHes (a producer's go to its session) */
     fc_client_role role;
     struct fc_session *session;    /* the named session published or subscribed to; NULL when none */
     fc_session_member member;      /* how that session tells this client (client_sessions.c) */

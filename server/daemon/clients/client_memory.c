@@ -45,9 +45,10 @@ static uint64_t memory_of_assembly(const fc_chunk_assembly *a)
 uint64_t fc_client_memory_held(const fc_client *c)
 {
     uint64_t bytes = memory_of_shared(c->frame) + fc_memory_of_scene_part(c->scene.background) +
-                     fc_memory_of_scene_part(c->scene.environment) + c->out->len;
+                     fc_memory_of_scene_part(c->scene.environment) + fc_mesh_set_bytes(&c->meshes) + c->out->len;
     if (c->role == FC_ROLE_PRODUCER)
-        bytes += memory_of_shared(c->session->latest) + memory_of_assembly(&c->session->chunks);
+        bytes += memory_of_shared(c->session->latest) + memory_of_assembly(&c->session->chunks) +
+                 fc_mesh_set_bytes(&c->session->meshes);
     return bytes;
 }
 

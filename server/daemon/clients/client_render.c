@@ -44,6 +44,10 @@ fc_code fc_client_submit_render(fc_client *c, fc_shared_frame *frame, const fc_r
     job->request = order->request;
     job->background = c->scene.background ? fc_scene_part_ref(c->scene.background) : NULL;
     job->environment = c->scene.environment ? fc_scene_part_ref(c->scene.environment) : NULL;
+    /* A session's meshes (its producers') first, then the connection's own. */
+    if (c->session)
+        fc_mesh_set_append(&job->meshes, &c->session->meshes);
+    fc_mesh_set_append(&job->meshes, &c->meshes);
     job->received_ms = order->received_ms;
     if (c->has_camera) {
         job->camera = c->camera;

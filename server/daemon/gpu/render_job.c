@@ -22,6 +22,7 @@ void fc_render_job_free(fc_render_job *job)
     fc_shared_frame_unref(job->frame);
     fc_scene_part_unref(job->background);
     fc_scene_part_unref(job->environment);
+    fc_mesh_set_free(&job->meshes);
     fc_image_free(&job->image);
     fc_buf_free(&job->message);
     free(job);

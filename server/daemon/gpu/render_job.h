@@ -10,6 +10,7 @@
 #include <stdint.h>
 
 #include "image.h"
+#include "uploads/mesh_uploads.h"
 #include "uploads/scene_uploads.h"
 #include "uploads/shared_frame.h"
 #include "wire.h"
@@ -35,6 +36,7 @@ typedef struct fc_render_job {
     fc_render_request request;
     fc_scene_part *background;       /* the client's scene images: references, NULL = built-in */
     fc_scene_part *environment;
+    fc_mesh_set meshes;              /* the meshes to draw, placed as at the request: references */
     /* timeline (fc_monotonic_ms) */
     double received_ms;              /* what FC_STAGE_TOTAL counts from */
     double submitted_ms;             /* queued for the GL thread */

@@ -31,6 +31,7 @@ void fc_session_destroy(fc_session *s)
     fc_chunk_assembly_free(&s->chunks);
     fc_shared_frame_unref(s->latest);
     fc_foam_track_unref(s->foam);
+    fc_mesh_set_free(&s->meshes);
     free(s->viewers);
     free(s);
 }

@@ -12,6 +12,7 @@
 #include "sessions/chunk_assembly.h"
 #include "sessions/session_member.h"
 #include "uploads/foam_track.h"
+#include "uploads/mesh_uploads.h"
 #include "uploads/shared_frame.h"
 #include "wire_session.h"
 
@@ -27,6 +28,7 @@ typedef struct fc_session {
     uint64_t sequence;            /* complete frames published so far */
     fc_foam_track *foam;          /* foam history of its frames, shared by every viewer */
     fc_chunk_assembly chunks;
+    fc_mesh_set meshes;           /* its producers' MESHes, drawn in every viewer's images */
 } fc_session;
 
 struct fc_frame_pool;

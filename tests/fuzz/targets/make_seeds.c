@@ -13,6 +13,7 @@
 #include "fc_error.h"
 #include "fc_frame.h"
 #include "wire.h"
+#include "wire_mesh.h"
 #include "wire_scene.h"
 #include "wire_session.h"
 
@@ -580,6 +581,47 @@ static int write_session_messages(const char *dir)
            save_messages(dir, target, "viewer.bin", viewer, COUNT(viewer));
 }
 
+/* A 4-vertex quad (two triangles), with normals and hide-near when `normals`. */
+static fc_code write_mesh_quad(fc_buf *out, bool normals)
+{
+    static const float vertices[12] = {0, 0, 0, 1, 0, 0, 1, 1, 0, 0, 1, 0};
+    static const float up[12] = {0, 0, 1, 0, 0, 1, 0, 0, 1, 0, 0, 1};
+    static const uint32_t indices[6] = {0, 1, 2, 0, 2, 3};
+    fc_mesh m = {.id = 3, .flags = normals ? FC_MESH_HIDE_NEAR : 0, .vertex_count = 4, .triangle_count = 2,
+                 .vertices = vertices, .indices = indices, .normals = normals ? up : NULL,
+                 .color = {0.2f, 0.4f, 0.6f}, .opacity = normals ? 0.3f : 1.0f};
+    fc_mesh_identity(m.transform);
+    return fc_wire_write_mesh(out, 12, &m, NULL);
+}
+
+static fc_code write_mesh_plain(fc_buf *out) { return write_mesh_quad(out, false); }
+static fc_code write_mesh_normals(fc_buf *out) { return write_mesh_quad(out, true); }
+static fc_code write_mesh_removal(fc_buf *out) { return fc_wire_write_mesh_removal(out, 13, 3, NULL); }
+
+static fc_code write_mesh_transforms(fc_buf *out)
+{
+    fc_mesh_transform e[2] = {{.id = 3}, {.id = 4}};
+    fc_mesh_identity(e[0].transform);
+    fc_mesh_identity(e[1].transform);
+    e[1].transform[11] = -2.5f;
+    return fc_wire_write_mesh_transforms(out, 14, e, 2, NULL);
+}
+
+static int write_mesh_messages(const char *dir)
+{
+    static const seed_file singles[] = {
+        {"mesh.bin", write_mesh_plain},
+        {"mesh_normals.bin", write_mesh_normals},
+        {"mesh_removal.bin", write_mesh_removal},
+        {"mesh_transform.bin", write_mesh_transforms},
+    };
+    static const message_writer sequence[] = {write_mesh_plain, write_mesh_normals, write_mesh_transforms,
+                                              write_mesh_removal};
+    const char *target = "fuzz_wire_mesh";
+    return save_singles(dir, target, singles, COUNT(singles)) |
+           save_messages(dir, target, "sequence.bin", sequence, COUNT(sequence));
+}
+
 /* fuzz_wire_settings takes bare payloads: the SETTINGS message without its header. */
 static int write_settings_payloads(const char *dir)
 {
@@ -624,6 +666,6 @@ int main(int argc, char **argv)
     const char *dir = argv[1];
     int failed = write_f32(dir) | write_binary_ply(dir, false) | write_binary_ply(dir, true) |
                  write_binary_vtk(dir, false) | write_binary_vtk(dir, true) | write_bgeo(dir) | write_npy(dir, false) | write_npy(dir, true) | write_messages(dir) |
-                 write_session_messages(dir) | write_settings_payloads(dir);
+                 write_session_messages(dir) | write_settings_payloads(dir) | write_mesh_messages(dir);
     return failed ? 1 : 0;
 }
