@@ -48,6 +48,7 @@ const char *e2e_format_name(fc_image_format f)
     case FC_FORMAT_JPEG: return "jpeg";
     case FC_FORMAT_EXR: return "exr";
     case FC_FORMAT_RAW: return "raw";
+    case FC_FORMAT_H264: return "h264";
     }
     return "?";
 }

@@ -16,7 +16,7 @@ PACKAGES=(
   zlib1g-dev libexpat1-dev
   # fluidcast snapshot --legend: text with FreeType and a DejaVu font
   libfreetype-dev fonts-dejavu-core
-  # fluidcast render to .mp4/.webm (libavcodec with libx264 and libvpx)
+  # fluidcast render to .mp4/.webm (libavcodec with libx264 and libvpx); fluidcastd's H.264 streams
   libavcodec-dev libavformat-dev libavutil-dev libswscale-dev
   # shader validation in the test suite
   glslang-tools

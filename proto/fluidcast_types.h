@@ -183,7 +183,9 @@ typedef enum fc_image_format {
     FC_FORMAT_PNG = 1,
     FC_FORMAT_JPEG = 2,
     FC_FORMAT_EXR = 3,
-    FC_FORMAT_RAW = 4          /* uncompressed rows, top to bottom: RGBA8 for colour, float32 for AOVs */
+    FC_FORMAT_RAW = 4,         /* uncompressed rows, top to bottom: RGBA8 for colour, float32 for AOVs */
+    FC_FORMAT_H264 = 5         /* colour only: one H.264 access unit, Annex B byte stream (PROTOCOL.md 10.7);
+                                  a RENDER's is a self-contained IDR frame */
 } fc_image_format;
 
 /* What the image shows: the shaded colour or one arbitrary output variable. */

@@ -169,7 +169,7 @@ fc_code fc_wire_read_camera(const uint8_t *p, size_t n, fc_camera *m, fc_error *
 
 static bool is_known_format(uint32_t format)
 {
-    return format >= FC_FORMAT_PNG && format <= FC_FORMAT_RAW;
+    return format >= FC_FORMAT_PNG && format <= FC_FORMAT_H264;
 }
 
 static bool is_known_aov(uint32_t aov)
@@ -201,8 +201,8 @@ fc_code fc_wire_read_render(const uint8_t *p, size_t n, fc_render_request *m, fc
         return fc_error_set(err, FC_ERR_INVALID_VALUE, "RENDER: quality %u is outside 0..100", quality);
     if (!is_known_aov(aov))
         return fc_error_set(err, FC_ERR_INVALID_VALUE, "RENDER: unknown aov %u", aov);
-    /* PNG and JPEG hold 8-bit colour; depth and thickness are unbounded floats. */
-    if (aov != FC_AOV_COLOR && (format == FC_FORMAT_PNG || format == FC_FORMAT_JPEG))
+    /* PNG, JPEG and H.264 hold 8-bit colour; depth and thickness are unbounded floats. */
+    if (aov != FC_AOV_COLOR && (format == FC_FORMAT_PNG || format == FC_FORMAT_JPEG || format == FC_FORMAT_H264))
         return fc_error_set(err, FC_ERR_INVALID_VALUE, "RENDER: aov %u needs EXR or RAW, not format %u", aov,
                             format);
     m->format = (fc_image_format)format;

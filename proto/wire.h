@@ -119,6 +119,9 @@ fc_code fc_wire_write_frame_parts(fc_buf *out, uint32_t request_id, const fc_fra
 fc_code fc_wire_write_camera(fc_buf *out, uint32_t request_id, const fc_camera *m, fc_error *err);
 /* Writes every field of *m as key/value entries. */
 fc_code fc_wire_write_settings(fc_buf *out, uint32_t request_id, const fc_settings *m, fc_error *err);
+/* A SETTINGS without entries: it changes nothing; a viewer sends it to ask for
+ * an H.264 key frame (PROTOCOL.md 10.7). */
+fc_code fc_wire_write_settings_none(fc_buf *out, uint32_t request_id, fc_error *err);
 fc_code fc_wire_write_render(fc_buf *out, uint32_t request_id, const fc_render_request *m, fc_error *err);
 fc_code fc_wire_write_image(fc_buf *out, uint32_t request_id, const fc_image_reply *m, fc_error *err);
 /* code must be a wire code (1..99). */

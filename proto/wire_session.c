@@ -132,6 +132,10 @@ fc_code fc_wire_read_subscribe(const uint8_t *p, size_t n, fc_subscribe *m, fc_e
     if ((sub.width == 0) != (sub.height == 0))
         return fc_error_set(err, FC_ERR_INVALID_VALUE, "SUBSCRIBE: size %ux%u: give both or neither",
                             (unsigned)sub.width, (unsigned)sub.height);
+    /* 4:2:0 video halves both sides. */
+    if (sub.request.format == FC_FORMAT_H264 && (sub.width % 2 || sub.height % 2))
+        return fc_error_set(err, FC_ERR_INVALID_VALUE, "SUBSCRIBE: H.264 needs an even size, not %ux%u",
+                            (unsigned)sub.width, (unsigned)sub.height);
     *m = sub;
     return FC_OK;
 }

@@ -53,7 +53,9 @@ enum {
 /* STREAM_IMAGE flags. */
 enum {
     FC_STREAM_REFRESH = 1u << 0,   /* lossless re-send of a frame already shown lossy */
-    FC_STREAM_VIEW = 1u << 1       /* re-render of the current frame after this viewer's camera/settings changed */
+    FC_STREAM_VIEW = 1u << 1,      /* re-render of the current frame after this viewer's camera/settings changed */
+    FC_STREAM_KEYFRAME = 1u << 2   /* H.264 only: the access unit is an IDR frame (with SPS and PPS), where a
+                                      decoder may start */
 };
 
 /* What SESSION_STATE and each SESSION_LIST entry say about a session. */

@@ -128,6 +128,13 @@ fc_code fc_wire_write_settings(fc_buf *out, uint32_t request_id, const fc_settin
     return wire_end_message(out, start, err);
 }
 
+fc_code fc_wire_write_settings_none(fc_buf *out, uint32_t request_id, fc_error *err)
+{
+    size_t start = wire_begin_message(out, FC_MSG_SETTINGS, request_id, 4);
+    wire_put_u32(out, 0);
+    return wire_end_message(out, start, err);
+}
+
 /* Reads one entry's value into *s; the entry header is already read and checked. */
 static void read_value(wire_reader *r, setting_key key, fc_settings *s)
 {

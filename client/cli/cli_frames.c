@@ -28,6 +28,7 @@ const char *fc_cli_format_extension(fc_image_format format)
     case FC_FORMAT_JPEG: return "jpg";
     case FC_FORMAT_EXR: return "exr";
     case FC_FORMAT_RAW: return "raw";
+    case FC_FORMAT_H264: return "h264";
     }
     return "bin";
 }

@@ -39,6 +39,7 @@ const char *fc_output_format_name(fc_image_format format)
     case FC_FORMAT_JPEG: return "JPEG";
     case FC_FORMAT_EXR: return "EXR";
     case FC_FORMAT_RAW: return "RAW";
+    case FC_FORMAT_H264: return "H.264";
     }
     return "unknown";
 }

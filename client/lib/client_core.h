@@ -22,6 +22,7 @@ struct fc_client {
     bool subscribed;
     uint32_t subscribe_id;     /* request id of the SUBSCRIBE: its images and end echo it */
     uint32_t stream_skipped;   /* images dropped while waiting for other replies, not yet reported */
+    bool stream_lost_unit;     /* an H.264 image was among them: a key frame is due (client_stream.c) */
     bool stream_ended;         /* the session's end arrived while waiting for something else */
 };
 

@@ -19,8 +19,12 @@ bool fc_client_absorb_stream(fc_client *c, const fc_msg_header *header)
         fc_image_reply image;
         fc_error why;
         /* The dropped image and the ones it had missed are all missed now. */
-        if (fc_wire_read_stream_image(c->rx.data, c->rx.len, &tag, &image, &why) == FC_OK)
+        if (fc_wire_read_stream_image(c->rx.data, c->rx.len, &tag, &image, &why) == FC_OK) {
             c->stream_skipped += tag.missed + 1;
+            /* Later access units refer to this one: the decoder needs a key frame. */
+            if (image.format == FC_FORMAT_H264)
+                c->stream_lost_unit = true;
+        }
         return true;
     }
     if (header->type == FC_MSG_SESSION_END) {
@@ -87,8 +91,31 @@ static fc_code take_stream_image(fc_client *c, fc_stream_image *out, fc_error *e
     out->missed = tag.missed + c->stream_skipped;
     out->refresh = (tag.flags & FC_STREAM_REFRESH) != 0;
     out->view_change = (tag.flags & FC_STREAM_VIEW) != 0;
+    out->keyframe = (tag.flags & FC_STREAM_KEYFRAME) != 0;
     c->stream_skipped = 0;
     return FC_OK;
+}
+
+fc_code fc_client_request_keyframe(fc_client *client, fc_error *err)
+{
+    fc_code code = fc_client_check_usable(client, err);
+    if (code != FC_OK)
+        return code;
+    if (!client->subscribed)
+        return fc_error_set(err, FC_ERR_USAGE, "this client is not subscribed to a session");
+    fc_buf_reset(&client->tx);
+    code = fc_wire_write_settings_none(&client->tx, fc_client_next_request_id(client), err);
+    return code != FC_OK ? code : fc_client_send_tx(client, err);
+}
+
+/* An H.264 unit was dropped: asks for a key frame once the stream goes on
+ * without one (the request is sent between messages, so it cannot interleave). */
+static fc_code recover_lost_unit(fc_client *c, const fc_stream_image *image, fc_error *err)
+{
+    if (!c->stream_lost_unit || image->image.format != FC_FORMAT_H264)
+        return FC_OK;
+    c->stream_lost_unit = false;
+    return image->keyframe ? FC_OK : fc_client_request_keyframe(c, err);
 }
 
 static void end_of_stream(fc_client *c, fc_stream_image *out)
@@ -121,8 +148,10 @@ fc_code fc_client_next_image(fc_client *client, fc_stream_image *out, fc_error *
         if (code != FC_OK)
             return code;
         bool ours = header.request_id == client->subscribe_id;
-        if (header.type == FC_MSG_STREAM_IMAGE && ours)
-            return take_stream_image(client, out, err);
+        if (header.type == FC_MSG_STREAM_IMAGE && ours) {
+            code = take_stream_image(client, out, err);
+            return code != FC_OK ? code : recover_lost_unit(client, out, err);
+        }
         if (header.type == FC_MSG_SESSION_END && ours) {
             end_of_stream(client, out);
             return FC_OK;

@@ -74,7 +74,8 @@ typedef struct fc_server_info {
 typedef struct fc_image_result {
     uint32_t width;
     uint32_t height;
-    fc_image_format format;       /* the encoding of `data` (PNG, JPEG, EXR or RAW bytes) */
+    fc_image_format format;       /* the encoding of `data` (PNG, JPEG, EXR or RAW bytes, or an H.264 access unit:
+                                     a RENDER's is an IDR frame decodable alone, a stream's see fc_client_subscribe) */
     fc_aov aov;                   /* what the image shows */
     float stage_ms[FC_STAGE_COUNT]; /* server-side duration of each stage; negative = not measured */
     uint8_t *data;                /* the encoded image bytes, exactly as received */
@@ -259,9 +260,21 @@ fc_code fc_client_publish(fc_client *client, const char *name, fc_session_status
  * camera (fc_client_set_camera; until one is sent, each frame is framed
  * automatically at width x height, 0 x 0 for the server's default 1280x720) and
  * settings, in `format` (format, quality and aov as for fc_client_render), and
- * read with fc_client_next_image. When it uses JPEG, a lossless PNG of the last
- * frame follows once nothing has changed for a while (server option
- * --refresh-ms). Changing camera or settings re-renders the current frame.
+ * read with fc_client_next_image. When it uses JPEG or H.264, a lossless PNG of
+ * the last frame follows once nothing has changed for a while (server option
+ * --refresh-ms, flag `refresh`).
+ *
+ * FC_FORMAT_H264 makes the images a video stream (PROTOCOL.md 10.7): each
+ * image's data is one H.264 access unit in Annex B byte-stream format, handed
+ * over unchanged, to be fed in order to one decoder (libavcodec's h264, for
+ * instance) that starts at a key frame: the first image is one (`keyframe`,
+ * an IDR frame with its SPS and PPS), and so is the first after a change of
+ * size. Frames the server skipped (`missed`) were never encoded, so the
+ * stream stays decodable; an image this library dropped while waiting for
+ * another reply was, so it asks the server for a key frame then
+ * (fc_client_request_keyframe) and the images before it may decode with
+ * errors. REFRESH images are PNG files, not part of the stream. H.264 needs
+ * an even width and height. Changing camera or settings re-renders the current frame.
  * fc_client_render still works: it renders the session's newest frame and its
  * image is never dropped. Errors as for fc_client_publish, plus those of a
  * RENDER for the format and FC_ERR_LIMIT for a size beyond the server's. */
@@ -277,6 +290,7 @@ typedef struct fc_stream_image {
     int refresh;                 /* nonzero: a lossless copy of a frame already shown lossy */
     int view_change;             /* nonzero: the same frame again, after this viewer's camera/settings changed */
     int ended;                   /* nonzero: the session is over (its producers left); no image, no more follow */
+    int keyframe;                /* H.264: nonzero when the access unit is an IDR frame (a decoder may start) */
 } fc_stream_image;
 
 /* Waits for the next image of the subscribed session (or its end). Stream
@@ -288,6 +302,13 @@ typedef struct fc_stream_image {
  * viewer (the subscription stays either way); the connection errors. */
 fc_code fc_client_next_image(fc_client *client, fc_stream_image *out, fc_error *err);
 void fc_stream_image_free(fc_stream_image *image);
+
+/* Asks the server to make this viewer's next H.264 image a key frame (an
+ * empty SETTINGS): the current frame comes again as an IDR frame, flagged
+ * `view_change` and `keyframe`, after the image already in flight. For a
+ * decoder that lost its place. Other formats just get the current frame
+ * again. FC_ERR_USAGE when not subscribed; the connection errors. */
+fc_code fc_client_request_keyframe(fc_client *client, fc_error *err);
 
 /* Leaves the session: a producer stops publishing (the session ends for its
  * viewers once its last producer has left or disconnected), a viewer stops

@@ -113,8 +113,9 @@ class StreamImage(Image):
     session published up to this one), ``missed`` (frames published since this
     viewer's previous image that it never got), ``refresh`` (a lossless copy of
     a frame already shown lossy), ``view_change`` (the same frame again after
-    this viewer's camera or settings changed) and ``ended`` (the session is
-    over: no image, and none follow).
+    this viewer's camera or settings changed), ``keyframe`` (H.264: the access
+    unit is an IDR frame, where a decoder may start) and ``ended`` (the session
+    is over: no image, and none follow).
     """
 
     def __init__(self, stream):
@@ -125,6 +126,7 @@ class StreamImage(Image):
         self.refresh = bool(stream.refresh)
         self.view_change = bool(stream.view_change)
         self.ended = bool(stream.ended)
+        self.keyframe = bool(stream.keyframe)
 
     def __repr__(self):
         if self.ended:

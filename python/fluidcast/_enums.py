@@ -45,6 +45,7 @@ class Format(enum.IntEnum):
     JPEG = 2
     EXR = 3
     RAW = 4  #: uncompressed rows, top to bottom: RGBA8 for colour, little-endian float32 for AOVs
+    H264 = 5  #: colour only: one H.264 access unit (Annex B); a RENDER's is an IDR frame of its own
 
 
 class Aov(enum.IntEnum):

@@ -196,6 +196,8 @@ fc_code encode_checked(const fc_image &img, fc_image_format format, uint32_t qua
         return encode_exr(img, out, err);
     case FC_FORMAT_RAW:
         return append_bytes(out, img.pixels, pixel_bytes(img), err);
+    case FC_FORMAT_H264:
+        break;   /* a video stream's frame, not a file: h264_encoder.h */
     }
     return fc_error_set(err, FC_ERR_USAGE, "encode: unknown image format %d", (int)format);
 }

@@ -25,6 +25,7 @@ extern "C" {
  *   EXR:  F32 as float32 channels (R,G,B,A; R,G,B for the normal AOV; a single "Z" channel for the
  *         other AOVs); U8 converted to float.
  *   RAW:  the pixel rows as they are.
+ * H.264 is a stream, not a file: h264_encoder.h (FC_ERR_USAGE here).
  * FC_ERR_ENCODE with OpenImageIO's message on failure. */
 fc_code fc_encode_image(const fc_image *img, fc_image_format format, uint32_t quality,
                         fc_buf *out, fc_error *err);

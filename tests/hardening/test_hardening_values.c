@@ -375,7 +375,8 @@ typedef struct render_row {
 
 static const render_row render_rows[] = {
     {"format 0", true, true, 0, 0, FC_AOV_COLOR, FC_ERR_INVALID_VALUE},
-    {"format 5", true, true, 5, 0, FC_AOV_COLOR, FC_ERR_INVALID_VALUE},
+    {"format 6", true, true, 6, 0, FC_AOV_COLOR, FC_ERR_INVALID_VALUE},
+    {"depth AOV as H.264", true, true, FC_FORMAT_H264, 0, FC_AOV_DEPTH, FC_ERR_INVALID_VALUE},
     {"aov 6", true, true, FC_FORMAT_EXR, 0, 6, FC_ERR_INVALID_VALUE},
     {"aov 2^32-1", true, true, FC_FORMAT_RAW, 0, UINT32_MAX, FC_ERR_INVALID_VALUE},
     {"depth AOV as PNG", true, true, FC_FORMAT_PNG, 0, FC_AOV_DEPTH, FC_ERR_INVALID_VALUE},

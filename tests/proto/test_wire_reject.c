@@ -462,7 +462,9 @@ static void test_render_rules(void)
     CHECK_CODE(read_render_values(FC_FORMAT_RAW, 0, FC_AOV_DEPTH, &err), FC_OK);
     CHECK_CODE(read_render_values(FC_FORMAT_EXR, 100, FC_AOV_SMOOTHED_DEPTH, &err), FC_OK);
     CHECK_CODE(read_render_values(0, 0, FC_AOV_COLOR, &err), FC_ERR_INVALID_VALUE);
-    CHECK_CODE(read_render_values(5, 0, FC_AOV_COLOR, &err), FC_ERR_INVALID_VALUE);
+    CHECK_CODE(read_render_values(FC_FORMAT_H264, 0, FC_AOV_COLOR, &err), FC_OK);
+    CHECK_CODE(read_render_values(6, 0, FC_AOV_COLOR, &err), FC_ERR_INVALID_VALUE);
+    CHECK_CODE(read_render_values(FC_FORMAT_H264, 0, FC_AOV_NORMAL, &err), FC_ERR_INVALID_VALUE);
     CHECK_CODE(read_render_values(FC_FORMAT_JPEG, 101, FC_AOV_COLOR, &err), FC_ERR_INVALID_VALUE);
     CHECK_CODE(read_render_values(FC_FORMAT_EXR, 0, 6, &err), FC_ERR_INVALID_VALUE);
     CHECK_CODE(read_render_values(FC_FORMAT_PNG, 0, FC_AOV_DEPTH, &err), FC_ERR_INVALID_VALUE);

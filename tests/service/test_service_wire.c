@@ -112,6 +112,19 @@ static void test_subscribe(void)
     CHECK_CODE(fc_wire_read_subscribe(bad, sizeof bad, &out, &err), FC_OK);
     CHECK(out.width == 0 && out.height == 0);
     CHECK_CODE(fc_wire_read_subscribe(p, 24, &out, &err), FC_ERR_MALFORMED);
+    /* H.264 (4:2:0) needs an even size; 0 x 0 is the even default. */
+    memcpy(bad, p, sizeof bad);
+    wire_store_le(bad, FC_FORMAT_H264, 4);
+    CHECK_CODE(fc_wire_read_subscribe(bad, sizeof bad, &out, &err), FC_OK);
+    wire_store_le(bad + 12, 321, 4);
+    CHECK_CODE(fc_wire_read_subscribe(bad, sizeof bad, &out, &err), FC_ERR_INVALID_VALUE);
+    wire_store_le(bad + 12, 320, 4);
+    wire_store_le(bad + 16, 201, 4);
+    CHECK_CODE(fc_wire_read_subscribe(bad, sizeof bad, &out, &err), FC_ERR_INVALID_VALUE);
+    wire_store_le(bad + 12, 0, 4);
+    wire_store_le(bad + 16, 0, 4);
+    CHECK_CODE(fc_wire_read_subscribe(bad, sizeof bad, &out, &err), FC_OK);
+    CHECK(out.request.format == FC_FORMAT_H264);
     fc_buf_free(&b);
 }
 

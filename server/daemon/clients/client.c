@@ -116,6 +116,9 @@ static fc_client_verdict handle_camera(fc_client *c, fc_daemon_context *ctx, con
     return FC_CLIENT_CONTINUE;
 }
 
+/* The payload of a SETTINGS without entries: its count alone. */
+enum { SETTINGS_EMPTY_SIZE = 4 };
+
 /* Entries merge into the current settings; the codec leaves them untouched on any error. */
 static fc_client_verdict handle_settings(fc_client *c, fc_daemon_context *ctx, const fc_msg_header *h,
                                          const uint8_t *payload, fc_buf *out)
@@ -123,7 +126,11 @@ static fc_client_verdict handle_settings(fc_client *c, fc_daemon_context *ctx, c
     fc_error err;
     if (fc_wire_read_settings(payload, h->length, &c->settings, &err) != FC_OK)
         return reply_error(c, ctx, h, &err, FC_CLIENT_CONTINUE, out);
-    fc_viewer_view_changed(c, fc_monotonic_ms());
+    /* An empty SETTINGS changes nothing: a viewer sends it to ask for a key frame (PROTOCOL.md 10.7). */
+    if (h->length == SETTINGS_EMPTY_SIZE)
+        fc_viewer_keyframe_requested(c, fc_monotonic_ms());
+    else
+        fc_viewer_view_changed(c, fc_monotonic_ms());
     return FC_CLIENT_CONTINUE;
 }
 

@@ -42,6 +42,8 @@ typedef struct fc_render_order {
     uint32_t request_id;
     fc_render_request request;
     fc_stream_tag tag;             /* FC_JOB_STREAM only */
+    fc_h264_stream *video;         /* an H.264 viewer's stream (the job takes a reference); NULL: none */
+    bool force_keyframe;           /* H.264: the image must be an IDR frame */
     double received_ms;            /* what FC_STAGE_TOTAL counts from */
     uint32_t auto_width;           /* camera size when the client has no CAMERA */
     uint32_t auto_height;

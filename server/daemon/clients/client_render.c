@@ -40,6 +40,8 @@ fc_code fc_client_submit_render(fc_client *c, fc_shared_frame *frame, const fc_r
     job->request_id = order->request_id;
     job->kind = order->kind;
     job->tag = order->tag;
+    job->video = order->video ? fc_h264_stream_ref(order->video) : NULL;
+    job->force_keyframe = order->force_keyframe;
     job->settings = c->settings;
     job->request = order->request;
     job->background = c->scene.background ? fc_scene_part_ref(c->scene.background) : NULL;

@@ -43,6 +43,13 @@ static fc_render_order order_for(const struct fc_client *c, image_reason reason,
         order.request.format = FC_FORMAT_PNG;
         order.received_ms = now_ms;
     }
+    /* Frames the viewer missed were never encoded for it, so its decoder is
+     * still in step with the encoder: only a lost access unit or the
+     * client's request needs an IDR (a new stream or size makes one anyway). */
+    if (order.request.format == FC_FORMAT_H264) {
+        order.video = v->video;
+        order.force_keyframe = v->keyframe_wanted;
+    }
     return order;
 }
 
@@ -57,9 +64,11 @@ static void dispatch(struct fc_client *c, image_reason reason, double now_ms)
     }
     v->busy = true;
     v->view_changed = false;
+    if (order.request.format == FC_FORMAT_H264)
+        v->keyframe_wanted = false;
     v->last_sequence = c->session->sequence;
     double refresh_ms = c->ctx->refresh_ms;
-    bool lossy = order.request.format == FC_FORMAT_JPEG;
+    bool lossy = order.request.format == FC_FORMAT_JPEG || order.request.format == FC_FORMAT_H264;
     v->refresh_due_ms = lossy && refresh_ms > 0.0 ? now_ms + refresh_ms : 0.0;
 }
 
@@ -100,6 +109,9 @@ void fc_viewer_start(struct fc_client *c, uint32_t subscribe_id, const fc_subscr
     v->request = sub->request;
     v->auto_width = auto_width;
     v->auto_height = auto_height;
+    /* Without memory for the stream every image is an IDR frame of its own (fc_h264_encode_single). */
+    if (v->request.format == FC_FORMAT_H264)
+        v->video = fc_h264_stream_create(v->request.quality);
     /* Missed frames count from the subscription: a frame already there is the first image, not a loss. */
     const fc_session *session = c->session;
     v->last_sequence = session->latest ? session->sequence - 1 : session->sequence;
@@ -113,6 +125,14 @@ void fc_viewer_view_changed(struct fc_client *c, double now_ms)
     c->viewer.view_changed = true;
     c->viewer.view_changed_ms = now_ms;
     pump(c, now_ms);
+}
+
+void fc_viewer_keyframe_requested(struct fc_client *c, double now_ms)
+{
+    if (!is_viewer(c))
+        return;
+    c->viewer.keyframe_wanted = true;
+    fc_viewer_view_changed(c, now_ms);
 }
 
 void fc_viewer_leave(struct fc_client *c, uint32_t request_id)
@@ -130,11 +150,14 @@ void fc_viewer_job_done(struct fc_client *c, const fc_render_job *job)
     c->viewer.queued = true;
     fc_error err;
     if (job->error.code != FC_OK) {
+        c->viewer.keyframe_wanted = true;
         fc_client_send_error(c, job->request_id, &job->error);
         return;
     }
     if (fc_client_queue_message(c, &job->message, "the STREAM_IMAGE", &err) != FC_OK) {
-        /* The image is lost like one a slow viewer misses; the ERROR says why. */
+        /* The image is lost like one a slow viewer misses; the ERROR says why.
+         * An H.264 viewer lost an access unit its next frames would refer to. */
+        c->viewer.keyframe_wanted = true;
         fc_client_send_error(c, job->request_id, &err);
         return;
     }
@@ -175,6 +198,8 @@ void fc_viewer_detach(struct fc_client *c)
     fc_session *session = c->session;
     c->session = NULL;
     c->role = FC_ROLE_NONE;
+    /* The encoder goes with the last reference: now, or when the image in flight is done. */
+    fc_h264_stream_unref(c->viewer.video);
     memset(&c->viewer, 0, sizeof c->viewer);
     fc_session_remove_viewer(session, &c->member);
 }

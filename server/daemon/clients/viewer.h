@@ -10,6 +10,7 @@
 #include <stdbool.h>
 #include <stdint.h>
 
+#include "gpu/h264_stream.h"
 #include "gpu/render_job.h"
 #include "wire_session.h"
 
@@ -21,6 +22,9 @@ typedef struct fc_viewer {
     uint32_t auto_width;           /* size of the automatic camera (until a CAMERA arrives) */
     uint32_t auto_height;
     uint64_t last_sequence;        /* session sequence number of the last frame sent */
+    fc_h264_stream *video;         /* H.264 streams: the viewer's encoder (one reference); NULL otherwise */
+    bool keyframe_wanted;          /* H.264: the next image must be an IDR frame (an access unit was lost,
+                                      or the client asked) */
     bool busy;                     /* an image is being made or still waits in the output queue */
     bool queued;                   /* ...and it has reached the output queue */
     size_t queued_bytes;           /* the size of that image's message */
@@ -38,6 +42,10 @@ void fc_viewer_start(struct fc_client *c, uint32_t subscribe_id, const fc_subscr
                      uint32_t auto_height);
 /* CAMERA or SETTINGS changed: the current frame is rendered again for this viewer. */
 void fc_viewer_view_changed(struct fc_client *c, double now_ms);
+/* The client asked for a key frame (an empty SETTINGS, PROTOCOL.md 10.7): an
+ * H.264 viewer's next image is an IDR frame; the current frame is sent again
+ * as one. Other viewers just get the current frame again. */
+void fc_viewer_keyframe_requested(struct fc_client *c, double now_ms);
 /* The client sent SESSION_END: no more images; SESSION_END answers request_id
  * once the image in flight (if any) has gone out. */
 void fc_viewer_leave(struct fc_client *c, uint32_t request_id);

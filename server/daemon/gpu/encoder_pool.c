@@ -6,6 +6,7 @@
 
 #include "encode/image_encoder.h"
 #include "fc_error.h"
+#include "gpu/h264_stream.h"
 #include "monotonic.h"
 
 enum { MAX_DEFAULT_ENCODERS = 4 };
@@ -42,14 +43,32 @@ static fc_code build_message(fc_render_job *job, const fc_buf *encoded)
     return fc_wire_write_image(&job->message, job->request_id, &reply, &job->error);
 }
 
+/* H.264: the next access unit of the viewer's stream, or an IDR frame of its own for a RENDER. */
+static fc_code encode_h264(fc_render_job *job, fc_buf *encoded)
+{
+    if (!job->video) {
+        job->tag.flags |= FC_STREAM_KEYFRAME;
+        return fc_h264_encode_single(&job->image, job->request.quality, encoded, &job->error);
+    }
+    bool keyframe;
+    fc_code code = fc_h264_stream_encode(job->video, &job->image, job->force_keyframe, encoded, &keyframe,
+                                         &job->error);
+    if (keyframe)
+        job->tag.flags |= FC_STREAM_KEYFRAME;
+    return code;
+}
+
 /* Encodes the image and builds the message; on failure job->error says why. */
 static void encode_job(const fc_encoder_pool *pool, fc_render_job *job, fc_buf *encoded)
 {
     double start = fc_monotonic_ms();
     job->stage_ms[FC_STAGE_QUEUE] += (float)(start - job->rendered_ms);
     fc_buf_reset(encoded);
-    if (fc_encode_image_png_level(&job->image, job->request.format, job->request.quality, pool->png_compression,
-                                  encoded, &job->error) != FC_OK)
+    fc_code code = job->request.format == FC_FORMAT_H264
+                       ? encode_h264(job, encoded)
+                       : fc_encode_image_png_level(&job->image, job->request.format, job->request.quality,
+                                                   pool->png_compression, encoded, &job->error);
+    if (code != FC_OK)
         return;
     double end = fc_monotonic_ms();
     job->stage_ms[FC_STAGE_ENCODE] = (float)(end - start);

@@ -20,6 +20,7 @@ void fc_render_job_free(fc_render_job *job)
     if (!job)
         return;
     fc_shared_frame_unref(job->frame);
+    fc_h264_stream_unref(job->video);
     fc_scene_part_unref(job->background);
     fc_scene_part_unref(job->environment);
     fc_mesh_set_free(&job->meshes);

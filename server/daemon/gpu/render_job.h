@@ -9,6 +9,7 @@
 #include <stdbool.h>
 #include <stdint.h>
 
+#include "gpu/h264_stream.h"
 #include "image.h"
 #include "uploads/mesh_uploads.h"
 #include "uploads/scene_uploads.h"
@@ -28,6 +29,9 @@ typedef struct fc_render_job {
     uint32_t request_id;
     fc_job_kind kind;
     fc_stream_tag tag;               /* FC_JOB_STREAM only */
+    fc_h264_stream *video;           /* an H.264 viewer's stream (a reference, dropped by fc_render_job_free);
+                                        NULL: an H.264 image stands alone (RENDER) */
+    bool force_keyframe;             /* the H.264 image must be an IDR frame */
     /* what to render */
     fc_shared_frame *frame;          /* one reference, dropped by fc_render_job_free */
     fc_camera camera;

@@ -18,7 +18,7 @@ void fuzz_require_image_in_payload(const fc_image_reply *image, fuzz_payload in)
 {
     FUZZ_REQUIRE(image->size <= in.n && image->data == in.p + (in.n - image->size),
                  "image data is not the payload's tail");
-    FUZZ_REQUIRE(image->format >= FC_FORMAT_PNG && image->format <= FC_FORMAT_RAW, "format %d", (int)image->format);
+    FUZZ_REQUIRE(image->format >= FC_FORMAT_PNG && image->format <= FC_FORMAT_H264, "format %d", (int)image->format);
     FUZZ_REQUIRE(image->aov >= FC_AOV_COLOR && image->aov <= FC_AOV_NOISE, "aov %d", (int)image->aov);
 }
 

@@ -86,10 +86,10 @@ static fc_code decode_render(fuzz_payload in, fc_error *err)
     fc_render_request m;
     fc_code code = fc_wire_read_render(in.p, in.n, &m, err);
     if (code == FC_OK) {
-        FUZZ_REQUIRE(m.format >= FC_FORMAT_PNG && m.format <= FC_FORMAT_RAW, "format %d", (int)m.format);
+        FUZZ_REQUIRE(m.format >= FC_FORMAT_PNG && m.format <= FC_FORMAT_H264, "format %d", (int)m.format);
         FUZZ_REQUIRE(m.quality >= 1 && m.quality <= 100, "quality %u", m.quality);
         FUZZ_REQUIRE(m.aov >= FC_AOV_COLOR && m.aov <= FC_AOV_NOISE, "aov %d", (int)m.aov);
-        /* PNG and JPEG hold 8-bit colour only. */
+        /* PNG, JPEG and H.264 hold 8-bit colour only. */
         FUZZ_REQUIRE(m.aov == FC_AOV_COLOR || m.format == FC_FORMAT_EXR || m.format == FC_FORMAT_RAW,
                      "aov %d accepted in format %d", (int)m.aov, (int)m.format);
     }

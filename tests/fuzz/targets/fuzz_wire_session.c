@@ -62,6 +62,8 @@ static fc_code decode_subscribe(fuzz_payload in, fc_error *err)
     FUZZ_REQUIRE(m.request.quality >= 1 && m.request.quality <= 100, "quality %u", m.request.quality);
     FUZZ_REQUIRE(m.request.aov <= FC_AOV_NOISE, "aov %d", (int)m.request.aov);
     FUZZ_REQUIRE((m.width == 0) == (m.height == 0), "size %ux%u", m.width, m.height);
+    FUZZ_REQUIRE(m.request.format != FC_FORMAT_H264 || (m.width % 2 == 0 && m.height % 2 == 0),
+                 "H.264 at an odd size %ux%u", m.width, m.height);
     fc_error check = {FC_OK, ""};
     fc_buf encoded;
     fc_buf_init(&encoded);

@@ -407,6 +407,14 @@ static fc_code write_subscribe(fc_buf *out)
     return fc_wire_write_subscribe(out, 2, &m, NULL);
 }
 
+static fc_code write_subscribe_h264(fc_buf *out)
+{
+    fc_subscribe m = {.request = {.format = FC_FORMAT_H264, .quality = 0, .aov = FC_AOV_COLOR},
+                      .width = 64, .height = 48};
+    snprintf(m.name, sizeof m.name, "%s", SESSION_NAME);
+    return fc_wire_write_subscribe(out, 2, &m, NULL);
+}
+
 static fc_code write_session_state(fc_buf *out)
 {
     fc_session_info m = seed_session_info(SESSION_NAME, 2, 3);
@@ -438,6 +446,19 @@ static fc_code write_stream_image(fc_buf *out)
 {
     fc_stream_tag tag = {.frame_number = 41, .sequence = 3, .missed = 1, .flags = 0};
     fc_image_reply image = seed_image();
+    return fc_wire_write_stream_image(out, 2, &tag, &image, NULL);
+}
+
+/* An H.264 key frame's shape: SPS, PPS and IDR slice NAL units behind Annex B start codes. */
+static fc_code write_stream_image_h264(fc_buf *out)
+{
+    static const uint8_t unit[] = {0, 0, 0, 1, 0x67, 0x64, 0x00, 0x0a, 0, 0, 0, 1, 0x68, 0xee, 0x3c,
+                                   0, 0, 1, 0x65, 0x88, 0x84, 0x00};
+    fc_stream_tag tag = {.frame_number = 42, .sequence = 4, .missed = 0, .flags = FC_STREAM_KEYFRAME};
+    fc_image_reply image = seed_image();
+    image.format = FC_FORMAT_H264;
+    image.data = unit;
+    image.size = sizeof unit;
     return fc_wire_write_stream_image(out, 2, &tag, &image, NULL);
 }
 
@@ -562,6 +583,8 @@ static int write_session_messages(const char *dir)
         {"list_sessions.bin", write_list_sessions},
         {"session_list.bin", write_session_list},
         {"stream_image.bin", write_stream_image},
+        {"subscribe_h264.bin", write_subscribe_h264},
+        {"stream_image_h264.bin", write_stream_image_h264},
         {"chunk.bin", write_chunk_plain},
         {"chunk_zstd_quantized.bin", write_chunk_packed},
         {"frame_packed.bin", write_frame_packed_plain},
