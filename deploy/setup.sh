@@ -28,6 +28,8 @@ PACKAGES=(
   libsdl2-dev xvfb xauth
   # the Python binding (python/fluidcast) and its tests under Debian's python3
   python3-numpy python3-pytest
+  # "srv:" addresses: a real DNS server (dnsmasq, its binary alone) serves SRV records in tests/srv
+  dnsmasq-base
 )
 
 # The peer benchmark (bench/run_bench.sh, bench/peer/compare_images.sh) also needs VTK and a

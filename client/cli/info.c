@@ -5,6 +5,7 @@
 #include <stdbool.h>
 #include <stdio.h>
 
+#include "cli_connect.h"
 #include "cli_args.h"
 #include "cli_report.h"
 #include "cli_token.h"
@@ -36,6 +37,8 @@ static void print_help(FILE *to)
           "\n"
           "options:\n"
           "  --server ADDR           HOST:PORT or unix:PATH (default " DEFAULT_SERVER ")\n"
+          "                          or srv:NAME, a DNS SRV name: one of its daemons by\n"
+          "                          SRV priority and weight\n"
           "  -h, --help              show this help\n"
           "\n",
           to);
@@ -68,7 +71,7 @@ static int info(const info_options *o)
     fc_connect_options connect_options = {.client_name = "fluidcast info", .token = fc_cli_token()};
     fc_client *c;
     fc_error err;
-    if (fc_client_connect(o->server, &connect_options, &c, &err) != FC_OK)
+    if (fc_cli_connect(o->server, NULL, &connect_options, &c, &err) != FC_OK)
         return fc_cli_fail(fc_cli_exit_for_client_error(err.code), "%s", err.message);
     fc_server_info server;
     fc_client_server_info(c, &server);

@@ -9,6 +9,7 @@
 #include <time.h>
 #include <unistd.h>
 
+#include "cli_connect.h"
 #include "cli_report.h"
 #include "cli_settings.h"
 #include "cli_token.h"
@@ -127,7 +128,7 @@ static int connect_and_set_up(render_job *job, fc_client **client)
     if (fc_snapshot_scene_resolve(&job->o->view, &scene, &err) != FC_OK)
         return fc_cli_fail(exit_for(err.code, FC_EXIT_INPUT), "%s", err.message);
     fc_connect_options connect_options = {.client_name = "fluidcast render", .token = fc_cli_token()};
-    if (fc_client_connect(job->o->view.server, &connect_options, client, &err) != FC_OK)
+    if (fc_cli_connect(job->o->view.server, NULL, &connect_options, client, &err) != FC_OK)
         return fc_cli_fail(fc_cli_exit_for_client_error(err.code), "%s", err.message);
     if (fc_snapshot_scene_send(*client, &scene, &err) != FC_OK ||
         fc_client_set_settings(*client, &job->settings, &err) != FC_OK)

@@ -4,6 +4,7 @@
 
 #include <stdio.h>
 
+#include "cli_connect.h"
 #include "cli_particles.h"
 #include "cli_report.h"
 #include "cli_settings.h"
@@ -40,7 +41,7 @@ static int render_remotely(const fc_snapshot_options *o, const fc_snapshot_scene
     fc_client *client;
     fc_error err;
     /* The message of a failed connect names the host and port itself. */
-    if (fc_client_connect(o->server, &connect_options, &client, &err) != FC_OK)
+    if (fc_cli_connect(o->server, NULL, &connect_options, &client, &err) != FC_OK)
         return fc_cli_fail(fc_cli_exit_for_client_error(err.code), "%s", err.message);
     fc_render_request request = { .format = o->format, .quality = o->quality, .aov = o->aov };
     int status = FC_EXIT_OK;

@@ -436,6 +436,7 @@ static void print_camera_help(FILE *to)
           "  -o, --output OUT        image file to write (required)\n"
           "  --server HOST:PORT      server address (default " FC_SNAPSHOT_DEFAULT_SERVER ";\n"
           "                          port 7450 when omitted; IPv6 as [::1]:7450)\n"
+          "                          or srv:NAME: one daemon of a DNS SRV name\n"
           "  --size WxH              image size in pixels (default 1280x720)\n"
           "  --eye X,Y,Z             camera position; needs --target\n"
           "  --target X,Y,Z          point the camera looks at; needs --eye\n"

@@ -6,6 +6,7 @@
 #include <stdio.h>
 #include <unistd.h>
 
+#include "cli_connect.h"
 #include "cli_frames.h"
 #include "cli_particles.h"
 #include "cli_report.h"
@@ -110,7 +111,7 @@ static int stream(const fc_stream_options *o)
         return fc_cli_fail(FC_EXIT_OUTPUT, "%s", err.message);
     fc_connect_options connect_options = {.client_name = "fluidcast stream", .token = fc_cli_token()};
     fc_client *c;
-    if (fc_client_connect(o->server, &connect_options, &c, &err) != FC_OK)
+    if (fc_cli_connect(o->server, o->session, &connect_options, &c, &err) != FC_OK)
         return fc_cli_fail(fc_cli_exit_for_client_error(err.code), "%s", err.message);
     int status = FC_EXIT_OK;
     if (o->session && fc_client_publish(c, o->session, NULL, &err) != FC_OK)

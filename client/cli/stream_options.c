@@ -140,6 +140,8 @@ void fc_stream_print_help(FILE *to)
           "\n"
           "options:\n"
           "  --server ADDR           HOST:PORT or unix:PATH (default " DEFAULT_SERVER ")\n"
+          "                          or srv:NAME, a DNS SRV name: the session's daemon by\n"
+          "                          rendezvous hashing of the session name\n"
           "  --session NAME          publish to session NAME (1..64 bytes); viewers see every\n"
           "                          frame; the session ends when the stream does\n"
           "  --out-dir DIR           ask for each frame's image and write DIR/frame_NNNNNN.EXT\n"

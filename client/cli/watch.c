@@ -6,6 +6,7 @@
 #include <stdio.h>
 #include <string.h>
 
+#include "cli_connect.h"
 #include "cli_args.h"
 #include "cli_frames.h"
 #include "cli_report.h"
@@ -121,6 +122,8 @@ static void print_help(FILE *to)
           "options:\n"
           "  --session NAME          the session to watch (required)\n"
           "  --server ADDR           HOST:PORT or unix:PATH (default " DEFAULT_SERVER ")\n"
+          "                          or srv:NAME, a DNS SRV name: the session's daemon by\n"
+          "                          rendezvous hashing of the session name\n"
           "  --out-dir DIR           write each image as DIR/NAME_NNNNNN.EXT (frame number)\n"
           "  --count N               exit after N images\n"
           "  --format FMT            png (default), jpg, exr or raw\n"
@@ -192,7 +195,7 @@ static int watch(const watch_options *o)
         return fc_cli_fail(FC_EXIT_OUTPUT, "%s", err.message);
     fc_connect_options connect_options = {.client_name = "fluidcast watch", .token = fc_cli_token()};
     fc_client *c;
-    if (fc_client_connect(o->server, &connect_options, &c, &err) != FC_OK)
+    if (fc_cli_connect(o->server, o->session, &connect_options, &c, &err) != FC_OK)
         return fc_cli_fail(fc_cli_exit_for_client_error(err.code), "%s", err.message);
     fc_render_request format = {.format = o->format, .quality = o->quality, .aov = FC_AOV_COLOR};
     watch_totals totals = {0};

@@ -8,10 +8,12 @@
 #include <stdint.h>
 
 #include "fluidcast.h"
+#include "host_port.h"
 #include "wire.h"
 
 struct fc_client {
     int fd;
+    char address[FC_HOST_MAX + 8];   /* the daemon connected to, "HOST:PORT" or "unix:PATH" (fc_client_address) */
     uint32_t last_request_id;
     uint32_t max_reply;        /* largest payload accepted from the server */
     bool broken;               /* the byte stream is lost or out of step: refuse further requests */

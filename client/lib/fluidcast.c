@@ -10,6 +10,7 @@
 #include "fc_error.h"
 #include "host_port.h"
 #include "socket_io.h"
+#include "srv_candidates.h"
 #include "wire_session.h"
 
 #define DEFAULT_CLIENT_NAME "libfluidcast"
@@ -132,21 +133,17 @@ static fc_code open_socket(const char *address, uint32_t timeout_ms, int *fd, fc
     return code != FC_OK ? code : fc_socket_connect(host, port, timeout_ms, fd, err);
 }
 
-fc_code fc_client_connect(const char *host_port, const fc_connect_options *options,
-                          fc_client **out, fc_error *err)
+/* One daemon at one plain address ("HOST:PORT", "unix:PATH"): a new client on
+ * success, nothing left behind on failure. */
+static fc_code connect_address(const char *address, const fc_connect_options *opt, fc_client **out,
+                               fc_error *err)
 {
-    if (!out)
-        return fc_error_set(err, FC_ERR_USAGE, "fc_client_connect needs somewhere to store the client");
-    *out = NULL;
-    fc_connect_options defaults;
-    memset(&defaults, 0, sizeof defaults);
-    const fc_connect_options *opt = options ? options : &defaults;
-
     fc_client *c = client_new();
     if (!c)
         return fc_error_set(err, FC_ERR_NOMEM, "no memory for a client");
+    snprintf(c->address, sizeof c->address, "%s", address ? address : "");
     uint32_t connect_timeout = opt->connect_timeout_ms ? opt->connect_timeout_ms : DEFAULT_CONNECT_TIMEOUT_MS;
-    fc_code code = open_socket(host_port, connect_timeout, &c->fd, err);
+    fc_code code = open_socket(address, connect_timeout, &c->fd, err);
     if (code == FC_OK)
         code = handshake(c, opt, connect_timeout, err);
     if (code != FC_OK) {
@@ -155,6 +152,61 @@ fc_code fc_client_connect(const char *host_port, const fc_connect_options *optio
     }
     *out = c;
     return FC_OK;
+}
+
+/* The SRV targets in their order for this session; a target that cannot be
+ * reached (FC_ERR_CONNECT) gives way to the next, so that every client of the
+ * session falls back to the same daemon. Any other failure (a refused token, a
+ * broken handshake) is the answer: trying elsewhere would split the session. */
+static fc_code connect_srv(const char *address, const char *session, const fc_connect_options *opt,
+                           fc_client **out, fc_error *err)
+{
+    fc_srv_target targets[FC_SRV_MAX_TARGETS];
+    size_t count = 0;
+    fc_code code = fc_srv_candidates(address, session, targets, &count, err);
+    fc_error last;
+    fc_error_clear(&last);
+    for (size_t i = 0; code == FC_OK && i < count; i++) {
+        char target[FC_HOST_MAX + 8];
+        fc_srv_target_address(&targets[i], target, sizeof target);
+        fc_code tried = connect_address(target, opt, out, &last);
+        if (tried == FC_OK)
+            return FC_OK;
+        if (tried != FC_ERR_CONNECT) {
+            if (err)
+                *err = last;
+            return tried;
+        }
+    }
+    if (code != FC_OK)
+        return code;
+    return fc_error_set(err, FC_ERR_CONNECT, "%s: none of its %zu target(s) could be reached; the last: %s",
+                        address, count, last.message);
+}
+
+fc_code fc_client_connect_session(const char *address, const char *session, const fc_connect_options *options,
+                                  fc_client **out, fc_error *err)
+{
+    if (!out)
+        return fc_error_set(err, FC_ERR_USAGE, "fc_client_connect needs somewhere to store the client");
+    *out = NULL;
+    fc_connect_options defaults;
+    memset(&defaults, 0, sizeof defaults);
+    const fc_connect_options *opt = options ? options : &defaults;
+    if (fc_srv_is_address(address))
+        return connect_srv(address, session, opt, out, err);
+    return connect_address(address, opt, out, err);
+}
+
+fc_code fc_client_connect(const char *host_port, const fc_connect_options *options,
+                          fc_client **out, fc_error *err)
+{
+    return fc_client_connect_session(host_port, NULL, options, out, err);
+}
+
+const char *fc_client_address(const fc_client *client)
+{
+    return client->address;
 }
 
 void fc_client_server_info(const fc_client *client, fc_server_info *out)

@@ -83,7 +83,8 @@ typedef struct fc_image_result {
 } fc_image_result;
 
 /* Connects to `host_port` — "HOST:PORT", "HOST" (port 7450), "[IPV6]:PORT",
- * "[IPV6]", or "unix:PATH" for a Unix-domain socket — sends HELLO (asking for
+ * "[IPV6]", "unix:PATH" for a Unix-domain socket, or "srv:NAME" for one of the
+ * daemons of a DNS SRV name (see fc_client_connect_session) — sends HELLO (asking for
  * every capability this library has) and checks the WELCOME (protocol version 1). On success
  * *out is a new client the caller owns (fc_client_close releases it); on failure
  * *out is NULL. Errors: FC_ERR_USAGE for a malformed address, FC_ERR_CONNECT when
@@ -92,6 +93,53 @@ typedef struct fc_image_result {
  * FC_ERR_PROTOCOL / FC_ERR_IO when the handshake breaks. */
 fc_code fc_client_connect(const char *host_port, const fc_connect_options *options,
                           fc_client **out, fc_error *err);
+
+/* ---- Many daemons behind one DNS name ------------------------------------------
+ * An address "srv:NAME" (e.g. "srv:_fluidcast._tcp.render.example.org") names the
+ * DNS SRV records of NAME, one per daemon (target host and port, priority,
+ * weight); a Kubernetes headless Service and any DNS server provide them. The
+ * records are looked up with libresolv at each connect.
+ *
+ * fc_client_connect_session places the connection by `session`, the name the
+ * caller will publish to or subscribe to: every client computes the same order
+ * of the targets from the session name alone (rendezvous, or highest-random-
+ * weight, hashing), so the producers and viewers of one session meet on one
+ * daemon without any router, and adding or removing a daemon moves only the
+ * sessions that daemon gains or loses (about 1/n of them). The order: lowest SRV
+ * priority first; within a priority, by decreasing weight / -ln(u), u the score
+ * below mapped into (0, 1) as (top 53 bits + 0.5) / 2^53 (with equal weights
+ * simply by decreasing score; weight 0 counts as 0.01); ties by target name,
+ * then port. The score of a session on a target is FNV-1a 64 over the session
+ * name's bytes, one zero byte, the target name (no trailing dot), ':' and the port
+ * in decimal, then MurmurHash3's 64-bit finaliser (fmix64). This is a contract:
+ * libraries of any version and other implementations must place alike.
+ * A target that cannot be reached (FC_ERR_CONNECT) gives way to the next in
+ * this order, the same for every client of the session; any other failure
+ * (a refused token, a broken handshake) is returned at once.
+ *
+ * Without a session (NULL or "", and fc_client_connect) an "srv:" address picks
+ * as RFC 2782 says: lowest priority first, within it at random in proportion to
+ * the weights, the next on FC_ERR_CONNECT.
+ *
+ * The SRV query goes to the DNS servers of /etc/resolv.conf, or, when the
+ * environment variable FLUIDCAST_DNS_SERVER is set to "ADDR" or "ADDR:PORT"
+ * (IPv4, port 53 by default), to that server alone: meant for tests and labs
+ * that run their own DNS server. The targets' own addresses come from the
+ * system resolver (getaddrinfo).
+ *
+ * Errors, besides those of fc_client_connect: FC_ERR_CONNECT when the name has
+ * no SRV records, the DNS server does not answer, the only target is "."
+ * (RFC 2782: no such service there), or no target can be reached (the message
+ * names the last failure); FC_ERR_USAGE for "srv:" with no name or a malformed
+ * FLUIDCAST_DNS_SERVER; FC_ERR_PROTOCOL for a DNS answer that does not parse.
+ * Any other address behaves exactly as with fc_client_connect. */
+fc_code fc_client_connect_session(const char *address, const char *session, const fc_connect_options *options,
+                                  fc_client **out, fc_error *err);
+
+/* The daemon this client is connected to: "HOST:PORT" as tried (for "srv:"
+ * addresses the chosen target), or "unix:PATH". Owned by the client; valid
+ * until fc_client_close. */
+const char *fc_client_address(const fc_client *client);
 
 /* Copies what the server announced at connect time into *out. Both pointers
  * must be valid; never fails. */

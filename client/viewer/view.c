@@ -7,6 +7,7 @@
 #include <string.h>
 #include <time.h>
 
+#include "cli_connect.h"
 #include "cli_particles.h"
 #include "cli_report.h"
 #include "cli_settings.h"
@@ -241,7 +242,7 @@ static int run(viewer *v, fc_frame *first, const fc_settings *settings, const fc
     fc_error err;
     fc_connect_options connect = {.client_name = "fluidcast view", .token = fc_cli_token()};
     fc_client *client;
-    if (fc_client_connect(v->opt.server, &connect, &client, &err) != FC_OK)
+    if (fc_cli_connect(v->opt.server, v->opt.session, &connect, &client, &err) != FC_OK)
         return fc_cli_fail(fc_cli_exit_for_client_error(err.code), "%s", err.message);
     if (fc_view_window_open(&v->win, v->opt.width, v->opt.height, &err) != FC_OK) {
         fc_client_close(client);

@@ -126,6 +126,8 @@ void fc_view_print_help(FILE *to)
           "\n"
           "options:\n"
           "  --server ADDR           HOST:PORT or unix:PATH (default " DEFAULT_SERVER ")\n"
+          "                          or srv:NAME, a DNS SRV name: the session's daemon by\n"
+          "                          rendezvous hashing of the session name\n"
           "  --session NAME          follow this session instead of playing files\n"
           "  --size WxH              initial window size (default 960x540); the render\n"
           "                          size follows the window\n"
