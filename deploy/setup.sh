@@ -14,6 +14,8 @@ PACKAGES=(
   libzstd-dev
   # particle readers: gzip'd .bgeo and compressed .vtu (zlib), VTK XML (expat)
   zlib1g-dev libexpat1-dev
+  # HDF5 particle files (libhdf5), and h5py to write the reader tests' files with the real tool
+  libhdf5-dev python3-h5py
   # fluidcast snapshot --legend: text with FreeType and a DejaVu font
   libfreetype-dev fonts-dejavu-core
   # fluidcast render to .mp4/.webm (libavcodec with libx264 and libvpx); fluidcastd's H.264 streams

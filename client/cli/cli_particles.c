@@ -5,10 +5,10 @@
 #include "fc_frame.h"
 #include "particle_reader.h"
 
-int fc_cli_load_particles(const char *path, fc_frame *frame)
+int fc_cli_load_particles(const char *path, const fc_read_options *options, fc_frame *frame)
 {
     fc_error err;
-    if (fc_read_particles(path, frame, &err) != FC_OK)
+    if (fc_read_particles_with(path, options, frame, &err) != FC_OK)
         return fc_cli_fail(FC_EXIT_INPUT, "%s", err.message);
     if (frame->count == 0)
         return fc_cli_fail(FC_EXIT_INPUT, "%s holds no particles", path);

@@ -4,9 +4,11 @@
 #define FC_CLI_PARTICLES_H
 
 #include "fluidcast_types.h"
+#include "particle_reader.h"
 
-/* Reads and validates the file into *frame (free it with fc_frame_free even on
- * failure). Returns FC_EXIT_OK or FC_EXIT_INPUT after printing why. */
-int fc_cli_load_particles(const char *path, fc_frame *frame);
+/* Reads (with the command's reader options, NULL: defaults) and validates the file
+ * into *frame (free it with fc_frame_free even on failure). Returns FC_EXIT_OK or
+ * FC_EXIT_INPUT after printing why. */
+int fc_cli_load_particles(const char *path, const fc_read_options *options, fc_frame *frame);
 
 #endif

@@ -59,7 +59,7 @@ static int choose_view(render_job *job)
     fc_frame first = {0};
     fc_up_choice up;
     fc_error err;
-    fc_code code = fc_sequence_bounds_read(&job->inputs, &bounds, &first, &err);
+    fc_code code = fc_sequence_bounds_read(&job->inputs, &o->view.read, &bounds, &first, &err);
     int status = FC_EXIT_OK;
     if (code != FC_OK)
         status = fc_cli_fail(FC_EXIT_INPUT, "%s", err.message);
@@ -171,7 +171,7 @@ static int render_all(render_job *job, fc_client *client)
 {
     fc_render_reader *reader;
     fc_error err;
-    if (fc_render_reader_start(job->todo_paths, job->todo_count, &reader, &err) != FC_OK)
+    if (fc_render_reader_start(job->todo_paths, job->todo_count, &job->o->view.read, &reader, &err) != FC_OK)
         return fc_cli_fail(FC_EXIT_INPUT, "%s", err.message);
     fc_progress progress;
     fc_progress_start(&progress, stdout, isatty(STDOUT_FILENO), job->todo_count);

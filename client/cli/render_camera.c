@@ -21,18 +21,19 @@ static void grow_box(fc_sequence_bounds *b, const fc_frame *frame)
     b->framed++;
 }
 
-fc_code fc_sequence_bounds_read(const fc_render_inputs *in, fc_sequence_bounds *out, fc_frame *first,
+fc_code fc_sequence_bounds_read(const fc_render_inputs *in, const fc_read_options *options, fc_sequence_bounds *out,
+                                fc_frame *first,
                                 fc_error *err)
 {
     memset(out, 0, sizeof *out);
-    fc_code code = fc_load_particles_checked(in->paths[0], first, err);
+    fc_code code = fc_load_particles_checked(in->paths[0], options, first, err);
     if (code != FC_OK)
         return code;
     grow_box(out, first);
     for (uint32_t i = 1; i < in->count; i++) {
         fc_frame frame = {0};
         fc_error ignored;
-        bool read = fc_load_particles_checked(in->paths[i], &frame, &ignored) == FC_OK;
+        bool read = fc_load_particles_checked(in->paths[i], options, &frame, &ignored) == FC_OK;
         if (read)
             grow_box(out, &frame);
         fc_frame_free(&frame);

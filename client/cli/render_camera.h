@@ -21,7 +21,8 @@ typedef struct fc_sequence_bounds {
  * after rendering the frames before it, which the box covers). The first file
  * is kept in *first (free it with fc_frame_free): the up guess and the radius
  * estimate come from it. Its failure is the only error, naming the file. */
-fc_code fc_sequence_bounds_read(const fc_render_inputs *in, fc_sequence_bounds *out, fc_frame *first,
+fc_code fc_sequence_bounds_read(const fc_render_inputs *in, const fc_read_options *options, fc_sequence_bounds *out,
+                                fc_frame *first,
                                 fc_error *err);
 
 /* The sequence's camera as fc_snapshot_camera makes it for a frame whose box

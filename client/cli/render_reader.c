@@ -12,6 +12,7 @@
 struct fc_render_reader {
     char *const *paths;
     uint32_t count;
+    const fc_read_options *options;
     pthread_t thread;
     pthread_mutex_t lock;
     pthread_cond_t changed;          /* an item was queued or taken, or stop/done was set */
@@ -21,9 +22,9 @@ struct fc_render_reader {
     bool done;                       /* the thread queues no more */
 };
 
-fc_code fc_load_particles_checked(const char *path, fc_frame *frame, fc_error *err)
+fc_code fc_load_particles_checked(const char *path, const fc_read_options *options, fc_frame *frame, fc_error *err)
 {
-    fc_code code = fc_read_particles(path, frame, err);
+    fc_code code = fc_read_particles_with(path, options, frame, err);
     if (code != FC_OK)
         return code;
     if (frame->count == 0)
@@ -57,7 +58,7 @@ static void *read_all(void *arg)
     fc_render_reader *r = arg;
     for (uint32_t i = 0; i < r->count; i++) {
         fc_read_frame item = {.slot = i};
-        item.code = fc_load_particles_checked(r->paths[i], &item.frame, &item.err);
+        item.code = fc_load_particles_checked(r->paths[i], r->options, &item.frame, &item.err);
         if (item.code != FC_OK)
             fc_frame_free(&item.frame);
         if (!enqueue(r, &item) || item.code != FC_OK)
@@ -70,7 +71,8 @@ static void *read_all(void *arg)
     return NULL;
 }
 
-fc_code fc_render_reader_start(char *const *paths, uint32_t count, fc_render_reader **out, fc_error *err)
+fc_code fc_render_reader_start(char *const *paths, uint32_t count, const fc_read_options *options,
+                              fc_render_reader **out, fc_error *err)
 {
     *out = NULL;
     fc_render_reader *r = calloc(1, sizeof *r);
@@ -78,6 +80,7 @@ fc_code fc_render_reader_start(char *const *paths, uint32_t count, fc_render_rea
         return fc_error_set(err, FC_ERR_NOMEM, "no memory for the frame reader");
     r->paths = paths;
     r->count = count;
+    r->options = options;
     pthread_mutex_init(&r->lock, NULL);
     pthread_cond_init(&r->changed, NULL);
     if (pthread_create(&r->thread, NULL, read_all, r) != 0) {

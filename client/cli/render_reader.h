@@ -10,6 +10,7 @@
 #include <stdint.h>
 
 #include "fluidcast_types.h"
+#include "particle_reader.h"
 
 #define FC_RENDER_READ_AHEAD 2
 
@@ -25,11 +26,12 @@ typedef struct fc_read_frame {
 /* Reads and checks one particle file as the CLI does (cli_particles.h), into
  * an error value: FC_ERR_IO/FC_ERR_PARSE... naming the file, also for a file
  * with no particles or non-finite values. */
-fc_code fc_load_particles_checked(const char *path, fc_frame *frame, fc_error *err);
+fc_code fc_load_particles_checked(const char *path, const fc_read_options *options, fc_frame *frame, fc_error *err);
 
-/* Starts reading paths[0..count) (the strings must outlive the reader).
+/* Starts reading paths[0..count) with the reader options (the strings and options must outlive the reader).
  * FC_ERR_NOMEM or FC_ERR_IO when the thread cannot be made. */
-fc_code fc_render_reader_start(char *const *paths, uint32_t count, fc_render_reader **out, fc_error *err);
+fc_code fc_render_reader_start(char *const *paths, uint32_t count, const fc_read_options *options,
+                              fc_render_reader **out, fc_error *err);
 
 /* Waits for the next frame; false when every file was handed out or the
  * reader stopped after a failure. */

@@ -92,7 +92,7 @@ static int snapshot(const fc_snapshot_options *o, fc_frame *frame)
     fc_snapshot_scene scene;
     int status = resolve_scene(o, &scene);
     if (status == FC_EXIT_OK)
-        status = fc_cli_load_particles(o->input, frame);
+        status = fc_cli_load_particles(o->input, &o->read, frame);
     if (status != FC_EXIT_OK)
         return status;
     fc_up_choice up;

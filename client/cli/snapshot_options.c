@@ -5,6 +5,7 @@
 #include <stddef.h>
 #include <string.h>
 
+#include "cli_read_options.h"
 #include "cli_report.h"
 #include "cli_values.h"
 #include "fc_colormap.h"
@@ -247,6 +248,11 @@ static fc_code set_cubemap(fc_snapshot_options *o, const option_spec *spec, cons
     return FC_OK;
 }
 
+static fc_code set_read(fc_snapshot_options *o, const option_spec *spec, const char *value, fc_error *err)
+{
+    return fc_cli_set_read_option(&o->read, spec->name, value, err);
+}
+
 #define SETTING(name, handler, field) {name, handler, offsetof(fc_settings, field)}
 
 static const option_spec options[] = {
@@ -286,6 +292,8 @@ static const option_spec options[] = {
     {"--cubemap", set_cubemap, 0},
     {"--aov", set_aov, 0},
     {"--quality", set_quality, 0},
+    {"--dataset", set_read, 0},
+    {"--step", set_read, 0},
 };
 
 /* Finds the option `arg` names, as "--name" or "--name=value" (then *inline_value
@@ -573,13 +581,14 @@ void fc_snapshot_print_help(FILE *to)
 {
     fputs("usage: fluidcast snapshot INPUT -o OUT [options]\n"
           "\n"
-          "Sends the particles in INPUT (.f32, .ply, .vtk, .vtu, .vtp, .pvd, .csv, .npy,\n.bgeo) to a fluidcastd server,\n"
+          "Sends the particles in INPUT (.f32, .ply, .vtk, .vtu, .vtp, .pvd, .csv, .npy,\n.bgeo, HDF5) to a fluidcastd server,\n"
           "renders them as fluid and writes the image the server encoded to OUT. The\n"
           "format follows OUT's extension: .png, .jpg/.jpeg or .exr. Options take their\n"
           "value as the next argument or after '=' (--ior=1.5).\n"
           "\n",
           to);
     print_camera_help(to);
+    fc_cli_print_read_options_help(to);
     fc_snapshot_print_settings_help(to);
     fputs("  -h, --help              show this help\n\n", to);
     fc_cli_print_exit_codes(to);

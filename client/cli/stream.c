@@ -74,7 +74,7 @@ static int render_and_write(fc_client *c, const fc_stream_options *o, uint32_t n
 static int push_file(fc_client *c, const fc_stream_options *o, uint32_t i, fc_progress *progress)
 {
     fc_frame frame = {0};
-    int status = fc_cli_load_particles(o->files[i], &frame);
+    int status = fc_cli_load_particles(o->files[i], &o->read, &frame);
     if (status == FC_EXIT_OK && i == 0)
         status = set_up_view(c, o, &frame);
     fc_upload_stats stats = {0};

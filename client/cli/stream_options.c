@@ -5,6 +5,7 @@
 #include <string.h>
 
 #include "cli_args.h"
+#include "cli_read_options.h"
 #include "cli_frames.h"
 #include "cli_report.h"
 #include "cli_values.h"
@@ -82,6 +83,11 @@ static fc_code set_quantize(void *o, const char *name, const char *value, fc_err
     return FC_OK;
 }
 
+static fc_code set_read(void *o, const char *name, const char *value, fc_error *err)
+{
+    return fc_cli_set_read_option(&((fc_stream_options *)o)->read, name, value, err);
+}
+
 static fc_code add_file(void *o, const char *arg, fc_error *err)
 {
     fc_stream_options *s = o;
@@ -99,7 +105,7 @@ static const fc_cli_option options[] = {
     {"--server", true, set_server},   {"--session", true, set_session}, {"--out-dir", true, set_out_dir},
     {"--format", true, set_format},   {"--quality", true, set_quality}, {"--size", true, set_size},
     {"--radius", true, set_radius},   {"--up", true, set_up},           {"--zstd", false, set_zstd},
-    {"--quantize", false, set_quantize},
+    {"--quantize", false, set_quantize}, {"--dataset", true, set_read}, {"--step", true, set_read},
 };
 
 static const fc_cli_command command = {"stream", options, sizeof options / sizeof options[0], add_file};
@@ -133,7 +139,7 @@ void fc_stream_print_help(FILE *to)
 {
     fputs("usage: fluidcast stream FILES... [options]\n"
           "\n"
-          "Pushes a sequence of particle files (.f32, .ply, .vtk, .csv), one frame each,\n"
+          "Pushes a sequence of particle files (any format snapshot reads), one frame each,\n"
           "to a fluidcastd server the way a simulation would: into a named session that\n"
           "`fluidcast watch` viewers follow, and/or rendered back into --out-dir. The camera\n"
           "frames the first file's particles and stays put for the whole sequence.\n"
@@ -157,8 +163,10 @@ void fc_stream_print_help(FILE *to)
           "  --quantize              send positions as 16-bit offsets in each frame's bounding\n"
           "                          box: error at most box extent / 131070 per axis\n"
           "  -h, --help              show this help\n"
-          "\n"
-          "On a terminal a progress bar shows frames, MB/s, fps and the bytes saved by\n"
+          "\n",
+          to);
+    fc_cli_print_read_options_help(to);
+    fputs("On a terminal a progress bar shows frames, MB/s, fps and the bytes saved by\n"
           "--zstd/--quantize; otherwise one line per frame. A summary line ends the run.\n"
           "\n",
           to);

@@ -2,6 +2,7 @@
 #include "particle_reader.h"
 
 #include <errno.h>
+#include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -27,6 +28,10 @@ static const struct {
     { "vtu", FC_FILE_VTK_XML },
     { "vtp", FC_FILE_VTK_XML },
     { "pvd", FC_FILE_PVD },
+    { "h5", FC_FILE_HDF5 },
+    { "hdf5", FC_FILE_HDF5 },
+    { "hdf", FC_FILE_HDF5 },
+    { "h5part", FC_FILE_HDF5 },
 };
 
 /* Whether the name ends with "." extension, case-insensitively. */
@@ -51,7 +56,7 @@ fc_file_format fc_file_format_from_path(const char *path)
 
 static fc_code unknown_format(const char *name, fc_error *err)
 {
-    return fc_error_set(err, FC_ERR_PARSE, "%s: unknown particle file format (expected .f32, .ply, .vtk, .vtu, .vtp, .pvd, .csv, .bgeo or .npy)",
+    return fc_error_set(err, FC_ERR_PARSE, "%s: unknown particle file format (expected .f32, .ply, .vtk, .vtu, .vtp, .pvd, .csv, .bgeo, .npy or an HDF5 file)",
                         name);
 }
 
@@ -72,6 +77,8 @@ static fc_code read_format(fc_cursor *c, fc_file_format format, fc_frame *frame,
         return fc_read_npy(c, frame, err);
     case FC_FILE_VTK_XML:
         return fc_read_vtkxml(c, frame, err);
+    case FC_FILE_HDF5:
+        return fc_read_hdf5(c, frame, err);
     case FC_FILE_PVD:
         return fc_error_set(err, FC_ERR_PARSE, "%s: a .pvd collection names other files: read it by its path, "
                             "or give one of its datasets", c->name);
@@ -81,9 +88,31 @@ static fc_code read_format(fc_cursor *c, fc_file_format format, fc_frame *frame,
     return unknown_format(c->name, err);
 }
 
+bool fc_is_hdf5(const uint8_t *data, size_t size)
+{
+    static const uint8_t signature[8] = { 0x89, 'H', 'D', 'F', '\r', '\n', 0x1a, '\n' };
+    if (data == NULL)
+        return false;
+    /* HDF5 looks at 0, then 512 and every doubling after it (a user block of 512 << k bytes). */
+    for (size_t at = 0; at <= size && size - at >= sizeof signature; at = at == 0 ? 512 : 2 * at) {
+        if (memcmp(data + at, signature, sizeof signature) == 0)
+            return true;
+        if (at > SIZE_MAX / 4)
+            break;
+    }
+    return false;
+}
+
 fc_code fc_read_particles_mem(const uint8_t *data, size_t size, fc_file_format format,
                               const char *name, fc_frame *frame, fc_error *err)
 {
+    return fc_read_particles_mem_with(data, size, format, name, NULL, frame, err);
+}
+
+fc_code fc_read_particles_mem_with(const uint8_t *data, size_t size, fc_file_format format, const char *name,
+                                   const fc_read_options *options, fc_frame *frame, fc_error *err)
+{
+    static const fc_read_options defaults = { NULL, false, 0 };
     if (frame == NULL)
         return fc_error_set(err, FC_ERR_USAGE, "fc_read_particles_mem: frame is NULL");
     memset(frame, 0, sizeof *frame);
@@ -95,6 +124,9 @@ fc_code fc_read_particles_mem(const uint8_t *data, size_t size, fc_file_format f
         return fc_error_set(err, FC_ERR_PARSE, "%s: empty file", name);
     fc_cursor c;
     fc_cursor_init(&c, data, size, name);
+    c.options = options != NULL ? options : &defaults;
+    if (format == FC_FILE_UNKNOWN && fc_is_hdf5(data, size))
+        format = FC_FILE_HDF5;
     fc_code code = read_format(&c, format, frame, err);
     if (code != FC_OK)
         fc_frame_free(frame); /* never hand out a partial frame */
@@ -157,14 +189,14 @@ static fc_code pvd_dataset_path(const char *path, char *dataset, size_t dataset_
 }
 
 /* A .pvd stands for its first dataset; its errors are reported under the .pvd's name too. */
-static fc_code read_pvd(const char *path, fc_frame *frame, fc_error *err)
+static fc_code read_pvd(const char *path, const fc_read_options *options, fc_frame *frame, fc_error *err)
 {
     char dataset[4096 + 256];
     fc_code code = pvd_dataset_path(path, dataset, sizeof dataset, err);
     if (code != FC_OK)
         return code;
     fc_error inner = { FC_OK, "" };
-    code = fc_read_particles(dataset, frame, &inner);
+    code = fc_read_particles_with(dataset, options, frame, &inner);
     if (code != FC_OK)
         return fc_error_set(err, code, "%s: its first DataSet: %s", path, inner.message);
     return FC_OK;
@@ -172,20 +204,27 @@ static fc_code read_pvd(const char *path, fc_frame *frame, fc_error *err)
 
 fc_code fc_read_particles(const char *path, fc_frame *frame, fc_error *err)
 {
+    return fc_read_particles_with(path, NULL, frame, err);
+}
+
+fc_code fc_read_particles_with(const char *path, const fc_read_options *options, fc_frame *frame, fc_error *err)
+{
     if (frame == NULL || path == NULL)
         return fc_error_set(err, FC_ERR_USAGE, "fc_read_particles: path and frame must not be NULL");
     memset(frame, 0, sizeof *frame);
     fc_file_format format = fc_file_format_from_path(path);
-    if (format == FC_FILE_UNKNOWN)
-        return unknown_format(path, err);
     if (format == FC_FILE_PVD)
-        return read_pvd(path, frame, err);
+        return read_pvd(path, options, frame, err);
     uint8_t *data = NULL;
     size_t size = 0;
     fc_code code = load_file(path, &data, &size, err);
     if (code != FC_OK)
         return code;
-    code = fc_read_particles_mem(data, size, format, path, frame, err);
+    /* HDF5 files carry many names (.h5, .hdf5, .snap, .0, none): the signature decides. */
+    if (fc_is_hdf5(data, size))
+        format = FC_FILE_HDF5;
+    code = format == FC_FILE_UNKNOWN ? unknown_format(path, err)
+                                     : fc_read_particles_mem_with(data, size, format, path, options, frame, err);
     free(data);
     return code;
 }

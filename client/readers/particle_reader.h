@@ -2,12 +2,15 @@
  * Formats: raw little-endian float32 xyz (.f32), PLY (ascii, binary little/big
  * endian), legacy VTK (ascii and binary POLYDATA / UNSTRUCTURED_GRID), CSV with a
  * header line, Houdini classic BGEO (partio's .bgeo, gzip'd or not), numpy .npy (N, 3) float
- * arrays, VTK XML .vtu/.vtp (ascii, binary, appended raw or base64, zlib-compressed) and
- * .pvd collections (by path: the first dataset listed). A bad file gets FC_ERR_PARSE (or FC_ERR_IO) with a message naming
+ * arrays, VTK XML .vtu/.vtp (ascii, binary, appended raw or base64, zlib-compressed),
+ * .pvd collections (by path: the first dataset listed) and HDF5 (libhdf5: SWIFT/GADGET
+ * snapshots, PySPH output, H5Part, or any layout named by a dataset path), known by its
+ * signature rather than its name. A bad file gets FC_ERR_PARSE (or FC_ERR_IO) with a message naming
  * the file and what is wrong; never a crash. */
 #ifndef FC_PARTICLE_READER_H
 #define FC_PARTICLE_READER_H
 
+#include <stdbool.h>
 #include "fluidcast_types.h"
 
 #ifdef __cplusplus
@@ -23,23 +26,43 @@ typedef enum fc_file_format {
     FC_FILE_BGEO,
     FC_FILE_NPY,
     FC_FILE_VTK_XML,
-    FC_FILE_PVD
+    FC_FILE_PVD,
+    FC_FILE_HDF5
 } fc_file_format;
 
+/* How to read a file beyond what its format says: the command line's reader options.
+ * A zeroed struct (or NULL) means the defaults. */
+typedef struct fc_read_options {
+    const char *dataset;   /* HDF5 --dataset: a group, an N x 3 dataset, or "x=PATH,y=PATH,z=PATH"
+                            * (README "HDF5"); NULL: found by the file's layout */
+    bool has_step;         /* H5Part --step: read group Step#step ... */
+    uint64_t step;         /* ... instead of the lowest-numbered step */
+} fc_read_options;
+
 /* From the file name's extension (case-insensitive): .f32 .ply .vtk .csv .npy .vtu .vtp .pvd, .bgeo
- * (also .bgeo.gz, .bhclassic, and .bgeo.sc so that its reader can refuse it clearly) */
+ * (also .bgeo.gz, .bhclassic, and .bgeo.sc so that its reader can refuse it clearly), .h5 .hdf5 .hdf
+ * .h5part. fc_read_particles trusts the HDF5 signature over any extension. */
 fc_file_format fc_file_format_from_path(const char *path);
 
-/* Reads `path` (format from its extension) into *frame (zeroed first; free with
- * fc_frame_free). Positions always; density, velocity and ids when the file has them.
- * A .pvd collection reads the first DataSet it lists (a .vtu or .vtp, relative to
- * the .pvd's directory). */
+/* Whether data is an HDF5 file: its signature "\x89HDF\r\n\x1a\n" at offset 0, 512, 1024, 2048, ...
+ * (a user block may come first). */
+bool fc_is_hdf5(const uint8_t *data, size_t size);
+
+/* Reads `path` (an HDF5 file by its signature, else the format from its extension)
+ * into *frame (zeroed first; free with fc_frame_free). Positions always; density,
+ * velocity and ids when the file has them. A .pvd collection reads the first DataSet
+ * it lists (a .vtu or .vtp, relative to the .pvd's directory). */
 fc_code fc_read_particles(const char *path, fc_frame *frame, fc_error *err);
+/* Same, with reader options (NULL: the defaults). */
+fc_code fc_read_particles_with(const char *path, const fc_read_options *options, fc_frame *frame, fc_error *err);
 
 /* Same, from a buffer in memory; `name` is used in error messages. FC_FILE_PVD is
- * refused here: a collection names other files, which only a path can resolve. */
+ * refused here: a collection names other files, which only a path can resolve.
+ * FC_FILE_UNKNOWN reads HDF5 when the data has its signature. */
 fc_code fc_read_particles_mem(const uint8_t *data, size_t size, fc_file_format format,
                               const char *name, fc_frame *frame, fc_error *err);
+fc_code fc_read_particles_mem_with(const uint8_t *data, size_t size, fc_file_format format, const char *name,
+                                   const fc_read_options *options, fc_frame *frame, fc_error *err);
 
 #ifdef __cplusplus
 }

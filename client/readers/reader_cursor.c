@@ -16,6 +16,7 @@ void fc_cursor_init(fc_cursor *c, const uint8_t *data, size_t size, const char *
     c->line = 1;
     c->binary = false;
     c->name = name;
+    c->options = NULL;
 }
 
 size_t fc_cursor_remaining(const fc_cursor *c)

@@ -26,6 +26,7 @@ typedef struct fc_cursor {
     size_t line;          /* line of the last line or token returned: what errors report */
     bool binary;          /* errors report the byte offset: line numbers mean nothing in binary data */
     const char *name;     /* file name for messages */
+    const struct fc_read_options *options; /* the read's options (particle_reader.h), set for every format reader */
 } fc_cursor;
 
 void fc_cursor_init(fc_cursor *c, const uint8_t *data, size_t size, const char *name);

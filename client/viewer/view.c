@@ -65,7 +65,7 @@ static void wake(void *ctx)
  * camera: framed on its bounds, upright along the guessed up axis. */
 static int prepare_files(const fc_view_options *o, fc_frame *first, fc_settings *settings, fc_camera *home)
 {
-    int status = fc_cli_load_particles(o->files[0], first);
+    int status = fc_cli_load_particles(o->files[0], &o->read, first);
     if (status != FC_EXIT_OK)
         return status;
     fc_cli_choices chosen;
@@ -261,7 +261,7 @@ static int run(viewer *v, fc_frame *first, const fc_settings *settings, const fc
     v->ctl.sent.generation = 1;
     fc_view_slots_put_request(&v->slots, &v->ctl.sent);
     fc_view_link_config link = {.session = v->opt.session, .files = v->opt.files, .file_count = v->opt.file_count,
-                                .first_frame = *first, .log_camera = v->opt.log_camera,
+                                .first_frame = *first, .read = &v->opt.read, .log_camera = v->opt.log_camera,
                                 .width = (uint32_t)width, .height = (uint32_t)height,
                                 .wake = wake, .wake_ctx = &v->wake_type};
     *first = (fc_frame){0}; /* the link owns it now */

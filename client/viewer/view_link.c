@@ -103,7 +103,7 @@ static fc_code push_frame(fc_view_link *link, link_state *st, uint32_t index, fc
     if (index == 0 && link->config.first_frame.count)
         frame = link->config.first_frame; /* kept: the sequence loops back to it */
     else
-        code = fc_read_particles(link->config.files[index], &frame, err);
+        code = fc_read_particles_with(link->config.files[index], link->config.read, &frame, err);
     if (code == FC_OK)
         code = fc_frame_validate(&frame, err);
     if (code == FC_OK)

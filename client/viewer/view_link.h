@@ -18,6 +18,7 @@
 #include <stdbool.h>
 
 #include "fluidcast.h"
+#include "particle_reader.h"
 #include "view_slot.h"
 
 typedef struct fc_view_link_config {
@@ -25,6 +26,7 @@ typedef struct fc_view_link_config {
     const char *const *files;
     uint32_t file_count;
     fc_frame first_frame;         /* files[0], already read (the link takes it over) */
+    const fc_read_options *read;  /* how the files are read (outlives the link) */
     bool log_camera;
     uint32_t width, height;       /* a session's first size, until a camera is sent */
     void (*wake)(void *ctx);      /* called after each image (thread-safe, quick) */

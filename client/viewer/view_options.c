@@ -6,6 +6,7 @@
 #include <string.h>
 
 #include "cli_args.h"
+#include "cli_read_options.h"
 #include "cli_report.h"
 #include "cli_values.h"
 #include "fc_error.h"
@@ -76,7 +77,14 @@ static fc_code add_file(void *o, const char *arg, fc_error *err)
     return FC_OK;
 }
 
+static fc_code set_read(void *o, const char *name, const char *value, fc_error *err)
+{
+    return fc_cli_set_read_option(&((fc_view_options *)o)->read, name, value, err);
+}
+
 static const fc_cli_option options[] = {
+    {"--dataset", true, set_read},
+    {"--step", true, set_read},
     {"--server", true, set_server},
     {"--session", true, set_session},
     {"--size", true, set_size},
@@ -138,8 +146,10 @@ void fc_view_print_help(FILE *to)
           "                          pan DX DY, dclick DX DY, shot FILE.bmp, key K, sleep MS,\n"
           "                          quit) against the window\n"
           "  -h, --help              show this help\n"
-          "\n"
-          "mouse:\n"
+          "\n",
+          to);
+    fc_cli_print_read_options_help(to);
+    fputs("mouse:\n"
           "  left drag               orbit about the pivot (fly mode: look around)\n"
           "  left double-click       the fluid under the cursor becomes the pivot; the\n"
           "                          view recentres on it (playing files)\n"

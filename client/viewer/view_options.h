@@ -8,6 +8,7 @@
 #include <stdio.h>
 
 #include "fluidcast_types.h"
+#include "particle_reader.h"
 
 #define FC_VIEW_MAX_FILES 100000
 
@@ -22,6 +23,7 @@ typedef struct fc_view_options {
     bool no_spacemouse;
     bool log_camera;              /* print every camera sent to the daemon (tests, debugging) */
     const char *test_script;      /* test hook: see view_script.h */
+    fc_read_options read;         /* --dataset, --step (cli_read_options.h) */
 } fc_view_options;
 
 fc_code fc_view_parse(int argc, char **argv, fc_view_options *o, fc_error *err);

@@ -82,8 +82,14 @@ static void test_file_errors(void)
     CHECK(strstr(err.message, "not a regular file") != NULL);
     rmdir(path);
 
-    CHECK_CODE(fc_read_particles("particles.xyz", &frame, &err), FC_ERR_PARSE);
-    CHECK(strstr(err.message, "particles.xyz: unknown particle file format") == err.message);
+    /* An unknown extension is read first (an HDF5 file may have any name), then refused unless HDF5. */
+    bytes text = { NULL, 0, 0 };
+    bytes_printf(&text, "1 2 3\n");
+    const char *xyz = write_temp_file("particles.xyz", &text);
+    CHECK_CODE(fc_read_particles(xyz, &frame, &err), FC_ERR_PARSE);
+    CHECK(strstr(err.message, xyz) == err.message && strstr(err.message, ": unknown particle file format") != NULL);
+    remove_temp_file("particles.xyz");
+    bytes_free(&text);
 }
 
 static void test_arguments(void)

@@ -41,9 +41,9 @@ static void check_frame(const fc_frame *frame, const uint8_t *data, size_t size)
     fc_error err = {FC_OK, ""};
     FUZZ_REQUIRE(frame->count > 0 && frame->positions != NULL, "accepted file without particles");
     /* Every particle takes at least one byte of the file; a gzip'd BGEO's at least 16 bytes, a compressed
-     * VTK XML file's 3 (Int8 points) of what deflate (at most 1032:1) packed into the file. */
+     * VTK XML or HDF5 file's 3 (Int8 points) of what deflate (at most 1032:1) packed into the file. */
     uint64_t most = FUZZ_FORMAT == FC_FILE_BGEO      ? (uint64_t)size * 1032 / 16 + 1
-                    : FUZZ_FORMAT == FC_FILE_VTK_XML ? (uint64_t)size * 1032 / 3 + 1
+                    : FUZZ_FORMAT == FC_FILE_VTK_XML || FUZZ_FORMAT == FC_FILE_HDF5 ? (uint64_t)size * 1032 / 3 + 1
                                                      : (uint64_t)size;
     FUZZ_REQUIRE(frame->count <= most, "%llu particles from %zu bytes", (unsigned long long)frame->count, size);
     FUZZ_REQUIRE(fc_frame_validate(frame, &err) == FC_OK, "accepted frame is invalid: %s", err.message);

@@ -1,0 +1,56 @@
+/* cli_read_options.c — see cli_read_options.h. */
+#include "cli_read_options.h"
+
+#include <string.h>
+
+#include "fc_error.h"
+
+static const char *const read_option_names[] = { "--dataset", "--step" };
+
+bool fc_cli_is_read_option(const char *name)
+{
+    for (size_t i = 0; i < sizeof read_option_names / sizeof read_option_names[0]; i++)
+        if (strcmp(name, read_option_names[i]) == 0)
+            return true;
+    return false;
+}
+
+static fc_code set_step(fc_read_options *o, const char *name, const char *value, fc_error *err)
+{
+    uint64_t step = 0;
+    const char *p = value;
+    for (; *p >= '0' && *p <= '9' && step <= UINT64_MAX / 10 - 1; p++)
+        step = step * 10 + (uint64_t)(*p - '0');
+    if (p == value || *p != '\0')
+        return fc_error_set(err, FC_ERR_USAGE, "%s needs a step number (H5Part's Step#N), not %s", name, value);
+    o->has_step = true;
+    o->step = step;
+    return FC_OK;
+}
+
+fc_code fc_cli_set_read_option(fc_read_options *o, const char *name, const char *value, fc_error *err)
+{
+    if (strcmp(name, "--dataset") == 0) {
+        if (value[0] == '\0')
+            return fc_error_set(err, FC_ERR_USAGE, "%s needs an HDF5 path", name);
+        o->dataset = value;
+        return FC_OK;
+    }
+    if (strcmp(name, "--step") == 0)
+        return set_step(o, name, value, err);
+    return fc_error_set(err, FC_ERR_USAGE, "%s is not a reader option", name);
+}
+
+void fc_cli_print_read_options_help(FILE *to)
+{
+    fputs("particle files:\n"
+          "  --dataset PATH          HDF5: where the particles are, when the file is not\n"
+          "                          a SWIFT/GADGET snapshot (PartType0), PySPH output\n"
+          "                          (particles/*/arrays) or H5Part (Step#N): a group\n"
+          "                          holding Coordinates or x, y, z (and the optional\n"
+          "                          arrays), an N x 3 dataset of positions, or\n"
+          "                          x=PATH,y=PATH,z=PATH (three 1-D datasets)\n"
+          "  --step N                H5Part: read group Step#N (default: the lowest N)\n"
+          "\n",
+          to);
+}

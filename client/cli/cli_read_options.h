@@ -1,0 +1,23 @@
+/* cli_read_options.h — the reader options of every command that reads particle
+ * files (snapshot, render, stream, view): --dataset and --step for HDF5 files,
+ * kept in an fc_read_options for fc_read_particles_with. */
+#ifndef FC_CLI_READ_OPTIONS_H
+#define FC_CLI_READ_OPTIONS_H
+
+#include <stdbool.h>
+#include <stdio.h>
+
+#include "fluidcast_types.h"
+#include "particle_reader.h"
+
+/* Whether `name` ("--dataset") is a reader option; all of them take a value. */
+bool fc_cli_is_read_option(const char *name);
+
+/* Applies reader option `name` with its value to *o. FC_ERR_USAGE naming the
+ * option for a bad value (the value string must outlive *o). */
+fc_code fc_cli_set_read_option(fc_read_options *o, const char *name, const char *value, fc_error *err);
+
+/* The "particle files" section of a command's help. */
+void fc_cli_print_read_options_help(FILE *to);
+
+#endif
