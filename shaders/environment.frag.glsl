@@ -25,6 +25,13 @@ layout(location = 37) uniform vec3 shadow_extinction;  // per world unit of the 
 layout(location = 38) uniform vec2 shadow_uv_scale;    // the map's share of its texture
 
 layout(binding = 5) uniform sampler2D shadow_thickness; // the fluid's thickness along sun rays, world units
+// Meshes (mesh_pass.c): seen from the sun through the same transform, the
+// nearest opaque mesh's and the nearest fluid's distance from the sun.
+layout(location = 39) uniform bool has_mesh_shadow;
+layout(location = 48) uniform vec4 sun_depth_uv_scale;   // xy: the fluid's depth map's share, zw: the meshes'
+layout(location = 49) uniform float mesh_shadow_bias;    // world units a surface may lie behind its own depth
+layout(binding = 6) uniform sampler2D fluid_sun_depth;   // linear depth from the sun, 0 = no fluid
+layout(binding = 7) uniform sampler2D mesh_sun_depth;    // linear depth from the sun, +inf = no mesh
 
 const vec3 zenith_color = vec3(0.16, 0.34, 0.78);
 const vec3 horizon_color = vec3(1.05, 1.08, 1.10);
@@ -68,7 +75,35 @@ float filtered_checker(vec2 uv, float width)
 // on the thickness the fluid has along the sun ray), per channel; 1 outside
 // the shadow map. A box of 4x4 texels softens the edge like a sun of
 // finite size would.
-vec3 sun_transmission(vec3 hit)
+// The share of sunlight the opaque meshes let reach `s` (a point through
+// sun_shadow): 4 taps of a depth comparison, softening the edge a little.
+float mesh_sun_visibility(vec4 s)
+{
+    if (!has_mesh_shadow)
+        return 1.0;
+    vec2 uv = s.xy / s.w;
+    if (any(lessThan(uv, vec2(0.0))) || any(greaterThan(uv, vec2(1.0))))
+        return 1.0;
+    vec2 texel = 1.0 / vec2(textureSize(mesh_sun_depth, 0));
+    float lit = 0.0;
+    for (int i = 0; i < 4; i++) {
+        vec2 corner = vec2(i & 1, i >> 1) - 0.5;
+        float nearest = texture(mesh_sun_depth, (uv + texel * corner) * sun_depth_uv_scale.zw).r;
+        lit += s.w <= nearest + mesh_shadow_bias ? 1.0 : 0.0;
+    }
+    return lit / 4.0;
+}
+
+// Whether the point `s` (through sun_shadow) lies sunward of all the fluid
+// on its sun ray: then the fluid's thickness there is behind it, no shadow.
+bool in_front_of_fluid(vec4 s)
+{
+    vec2 uv = s.xy / s.w;
+    float fluid = texture(fluid_sun_depth, clamp(uv, 0.0, 1.0) * sun_depth_uv_scale.xy).r;
+    return fluid <= 0.0 || s.w < fluid;
+}
+
+vec3 sun_transmission_of(vec3 hit, bool may_be_in_front)
 {
     if (!has_shadow)
         return vec3(1.0);
@@ -76,6 +111,9 @@ vec3 sun_transmission(vec3 hit)
     vec2 uv = s.xy / s.w;
     if (any(lessThan(uv, vec2(0.0))) || any(greaterThan(uv, vec2(1.0))))
         return vec3(1.0);
+    float meshes = mesh_sun_visibility(s);
+    if (may_be_in_front && in_front_of_fluid(s))
+        return vec3(meshes);
     vec2 texel = 1.0 / vec2(textureSize(shadow_thickness, 0));
     vec2 last = shadow_uv_scale - 0.5 * texel;   // the last texel centres of the map
     float t = 0.0;
@@ -83,7 +121,13 @@ vec3 sun_transmission(vec3 hit)
         vec2 corner = vec2(i & 1, i >> 1) * 2.0 - 1.0;   // four bilinear taps: a 4x4-texel box
         t += texture(shadow_thickness, min(uv * shadow_uv_scale + texel * corner, last)).r;
     }
-    return exp(-shadow_extinction * (t / 4.0));
+    return meshes * exp(-shadow_extinction * (t / 4.0));
+}
+
+// The floor lies below all the fluid.
+vec3 sun_transmission(vec3 hit)
+{
+    return sun_transmission_of(hit, false);
 }
 
 // `distance` along the ray and the cosine between ray and floor normal give
@@ -98,6 +142,18 @@ vec3 floor_radiance(vec3 hit, float distance, float cos_incidence)
     vec3 sun_light = sun_irradiance * sun_color * max(dot(world_up, sun_direction), 0.0) * sun_transmission(hit);
     float fog = 1.0 - exp(-distance / (fog_distance_in_checkers * checker_size));
     return mix(albedo * (sky_light + sun_light), horizon_color, fog);
+}
+
+// A mesh's surface (mesh_shade.frag.glsl): diffuse under the sky and the
+// sun, which the fluid and the opaque meshes may shadow, and a faint glint
+// of the sun. Unit world vectors; view_direction points toward the eye.
+vec3 surface_radiance(vec3 point, vec3 normal, vec3 albedo, vec3 view_direction)
+{
+    vec3 sky_light = 0.25 * (horizon_color + zenith_color) * (0.75 + 0.25 * dot(normal, world_up));
+    float facing = max(dot(normal, sun_direction), 0.0);
+    vec3 sun = sun_irradiance * sun_color * sun_transmission_of(point, true);
+    float glint = pow(max(dot(normal, normalize(sun_direction + view_direction)), 0.0), 60.0);
+    return albedo * (sky_light + sun * facing) + 0.15 * glint * sun;
 }
 
 vec3 scene_radiance(vec3 origin, vec3 dir)

@@ -136,7 +136,7 @@ static void draw_mask(const fc_composite_pass *pass, const fc_composite_inputs *
     const GLint clear = 0;
     glClearNamedFramebufferiv(target->framebuffer, GL_STENCIL, 0, &clear);
     glEnable(GL_DEPTH_TEST);
-    glDepthFunc(GL_ALWAYS);
+    glDepthFunc(in->depth_tested ? GL_LESS : GL_ALWAYS);
     glDepthMask(GL_TRUE);
     glEnable(GL_STENCIL_TEST);
     glStencilFunc(GL_ALWAYS, 1, 0xff);

@@ -27,6 +27,8 @@ typedef struct fc_composite_inputs {
     const fc_render_target *noise;           /* N(x, y) of the noise pass; NULL: no noise (nor foam) */
     GLuint environment_map;                  /* cube map reflected in the fluid; 0 = the built-in scene */
     bool colored;                            /* the thickness carries the fluid's colour (thickness_pass.h) */
+    bool depth_tested;                       /* opaque meshes lie in the depth buffer: fluid behind them stays
+                                                hidden (else the fluid's depth is written wherever it is) */
 } fc_composite_inputs;
 
 fc_code fc_composite_pass_create(const char *shader_dir, fc_composite_pass *pass, fc_error *err);

@@ -25,9 +25,13 @@ enum {
     LOC_SUN_SHADOW = 32,
     LOC_HAS_SHADOW = 36,
     LOC_SHADOW_EXTINCTION = 37,
-    LOC_SHADOW_UV_SCALE = 38
+    LOC_SHADOW_UV_SCALE = 38,
+    LOC_HAS_MESH_SHADOW = 39,
+    LOC_SUN_DEPTH_UV_SCALE = 48,
+    LOC_MESH_SHADOW_BIAS = 49
 };
-enum { UNIT_SHADOW_MAP = 5 };   /* layout(binding) in environment.frag.glsl */
+/* layout(binding) in environment.frag.glsl */
+enum { UNIT_SHADOW_MAP = 5, UNIT_FLUID_SUN_DEPTH = 6, UNIT_MESH_SUN_DEPTH = 7 };
 
 /* The sun stands this high over the floor, and (seen from above) this far
  * round from straight behind the camera towards its right: the surfaces the
@@ -159,5 +163,12 @@ void fc_environment_apply(const fc_environment *env, const fc_view *view)
         glUniform3fv(LOC_SHADOW_EXTINCTION, 1, env->shadow_extinction);
         glUniform2fv(LOC_SHADOW_UV_SCALE, 1, env->shadow_uv_scale);
         glBindTextureUnit(UNIT_SHADOW_MAP, env->shadow_map);
+        glBindTextureUnit(UNIT_FLUID_SUN_DEPTH, env->fluid_sun_depth);
     }
+    glUniform1i(LOC_HAS_MESH_SHADOW, env->has_shadow && env->has_mesh_shadow);
+    glUniform4f(LOC_SUN_DEPTH_UV_SCALE, env->fluid_sun_depth_uv_scale[0], env->fluid_sun_depth_uv_scale[1],
+                env->mesh_sun_depth_uv_scale[0], env->mesh_sun_depth_uv_scale[1]);
+    glUniform1f(LOC_MESH_SHADOW_BIAS, env->mesh_shadow_bias);
+    if (env->has_shadow && env->has_mesh_shadow)
+        glBindTextureUnit(UNIT_MESH_SUN_DEPTH, env->mesh_sun_depth);
 }

@@ -28,6 +28,13 @@ typedef struct fc_environment {
     float shadow_transform[16];   /* world point -> (u w, v w, 0, w), (u, v) in [0, 1] over the map */
     float shadow_uv_scale[2];     /* the map's share of its texture */
     float shadow_extinction[3];   /* per world unit of that thickness */
+    GLuint fluid_sun_depth;       /* R32F the fluid's linear depth from the sun (shadow_pass.h), 0 = no fluid */
+    float fluid_sun_depth_uv_scale[2];
+    /* The opaque meshes' shadows (mesh_pass.h), only with the fluid's. */
+    bool has_mesh_shadow;
+    GLuint mesh_sun_depth;        /* R32F the nearest mesh's linear depth from the sun */
+    float mesh_sun_depth_uv_scale[2];
+    float mesh_shadow_bias;       /* world units */
 } fc_environment;
 
 /* The environment of a render: a floor (when has_floor) perpendicular to the

@@ -17,6 +17,7 @@
 #include "fc_error.h"
 #include "fc_frame.h"
 #include "gl_util.h"
+#include "mesh_pass.h"
 #include "noise_pass.h"
 #include "normal_pass.h"
 #include "particle_attributes.h"
@@ -54,6 +55,7 @@ struct fc_pipeline {
     fc_composite_pass composite;
     fc_spray_pass spray;
     fc_shadow_pass shadow;
+    fc_mesh_pass mesh;
     fc_stage_timer timer;
     fc_pass_profile profile;
     fc_readback readback;
@@ -65,6 +67,9 @@ typedef struct render_job {
     const fc_view *view;
     const fc_settings *settings;
     const fc_scene_textures *scene;   /* NULL: the built-in scene */
+    const fc_scene_mesh *meshes;
+    uint32_t mesh_count;
+    float lo[3], hi[3];               /* the particles' box grown by the meshes': the floor and the sun frame it */
     fc_environment env;
     fc_particle_buffer surface;       /* the pipeline's particles without the spray (a prefix of them) */
     bool want_u8;
@@ -110,6 +115,8 @@ static fc_code create_passes(fc_pipeline *p, const char *dir, fc_error *err)
     if (code == FC_OK)
         code = fc_background_pass_create(dir, &p->background, err);
     if (code == FC_OK)
+        code = fc_mesh_pass_create(dir, &p->mesh, err);
+    if (code == FC_OK)
         code = fc_composite_pass_create(dir, &p->composite, err);
     if (code == FC_OK)
         code = fc_spray_pass_create(dir, &p->spray, err);
@@ -137,6 +144,12 @@ static fc_code depth_stage(fc_pipeline *p, const render_job *job, fc_aov aov, fc
     fc_pass_profile_begin(&p->profile, floor_plane ? "depth + thickness splat" : "depth splat");
     fc_code code = fc_depth_pass_run(&p->depth, &job->surface, job->view, job->settings->radius, floor_plane, err);
     fc_pass_profile_end(&p->profile);
+    /* Fluid behind an opaque mesh is not there for any later stage. */
+    if (code == FC_OK && job->mesh_count > 0) {
+        fc_pass_profile_begin(&p->profile, "mesh occlusion");
+        code = fc_mesh_pass_occlude(&p->mesh, job->meshes, job->mesh_count, job->view, &p->depth.target, err);
+        fc_pass_profile_end(&p->profile);
+    }
     fc_stage_timer_end(&p->timer, FC_STAGE_DEPTH);
     return code;
 }
@@ -229,21 +242,32 @@ static fc_code composite_stage(fc_pipeline *p, const render_job *job, const fc_r
                                const fc_render_target *thickness, const fc_render_target **result, fc_error *err)
 {
     fc_composite_inputs inputs = {surface, thickness, &p->background.target, NULL,
-                                  job->scene ? job->scene->environment_map : 0, job->colored};
+                                  job->scene ? job->scene->environment_map : 0, job->colored,
+                                  fc_mesh_any_opaque(job->meshes, job->mesh_count)};
     bool want_u8 = job->want_u8;
     fc_environment env = job->env;   /* the shadow pass adds its map */
     fc_stage_timer_begin(&p->timer, FC_STAGE_COMPOSITE);
     fc_code code = shading_noise(p, job, surface, &inputs.noise, err);
     fc_pass_profile *profile = &p->profile;
     if (code == FC_OK && job->settings->shadow && env.has_floor)
-        code = fc_shadow_pass_run(&p->shadow, &job->surface, p->particles.lo, p->particles.hi, job->settings, profile,
-                                  &env, err);
+        code = fc_shadow_pass_run(&p->shadow, &job->surface, job->lo, job->hi, job->settings, profile, &env, err);
+    if (code == FC_OK && env.has_shadow && job->mesh_count > 0) {
+        fc_pass_profile_begin(profile, "mesh shadows");
+        code = fc_mesh_pass_cast_shadows(&p->mesh, job->meshes, job->mesh_count, &p->shadow.sun_view, &env, err);
+        fc_pass_profile_end(profile);
+    }
     const fc_render_target *target = NULL;
     if (code == FC_OK)
         code = fc_composite_pass_target(&p->composite, job->view, want_u8, &target, err);
     if (code == FC_OK) {
         fc_pass_profile_begin(profile, "background");
         code = fc_background_pass_run(&p->background, job->view, &env, job->scene, target, err);
+        fc_pass_profile_end(profile);
+    }
+    if (code == FC_OK && job->mesh_count > 0) {
+        fc_pass_profile_begin(profile, "opaque meshes");
+        code = fc_mesh_pass_draw_opaque(&p->mesh, job->meshes, job->mesh_count, job->view, &env,
+                                        &p->background.target, target, want_u8, err);
         fc_pass_profile_end(profile);
     }
     if (code == FC_OK) {
@@ -255,6 +279,11 @@ static fc_code composite_stage(fc_pipeline *p, const render_job *job, const fc_r
         fc_pass_profile_begin(profile, "spray");
         code = fc_spray_pass_run(&p->spray, &p->particles, job->surface.count, &p->attributes, job->view, &job->env,
                                  job->settings, *result, err);
+        fc_pass_profile_end(profile);
+    }
+    if (code == FC_OK && job->mesh_count > 0) {
+        fc_pass_profile_begin(profile, "glass meshes");
+        code = fc_mesh_pass_draw_glass(&p->mesh, job->meshes, job->mesh_count, job->view, &env, *result, want_u8, err);
         fc_pass_profile_end(profile);
     }
     if (code == FC_OK) {
@@ -312,17 +341,30 @@ static fc_code render_stages(fc_pipeline *p, const render_job *job, fc_aov aov, 
     return composite_stage(p, job, surface, thickness, result, err);
 }
 
+/* The particles' box, grown to hold the meshes. */
+static void scene_bounds(const fc_pipeline *p, const fc_render_scene *scene, float lo[3], float hi[3])
+{
+    for (int k = 0; k < 3; k++) {
+        lo[k] = p->particles.lo[k];
+        hi[k] = p->particles.hi[k];
+    }
+    if (scene->meshes)
+        fc_mesh_bounds(scene->meshes, scene->mesh_count, lo, hi);
+}
+
 /* The job of a validated request: the view, the surface particles (all but
  * the spray) and the scene around them. */
 static void plan_job(const fc_pipeline *p, const fc_view *view, const fc_camera *camera, const fc_settings *settings,
-                     const fc_scene_textures *scene, fc_aov aov, bool want_u8, render_job *job)
+                     const fc_render_scene *scene, fc_aov aov, bool want_u8, render_job *job)
 {
-    *job = (render_job){.view = view, .settings = settings, .scene = scene, .surface = p->particles,
+    *job = (render_job){.view = view, .settings = settings, .scene = scene->textures, .meshes = scene->meshes,
+                        .mesh_count = scene->meshes ? scene->mesh_count : 0, .surface = p->particles,
                         .want_u8 = want_u8,
                         .colored = aov == FC_AOV_COLOR && settings->color_by != FC_COLOR_BY_NONE};
     job->surface.count = fc_particle_attributes_surface_count(&p->attributes, settings->density_threshold);
-    bool has_floor = !(scene && scene->background);
-    fc_environment_for_view(view, camera, p->particles.lo, p->particles.hi, settings, has_floor, want_u8, &job->env);
+    scene_bounds(p, scene, job->lo, job->hi);
+    bool has_floor = !(scene->textures && scene->textures->background);
+    fc_environment_for_view(view, camera, job->lo, job->hi, settings, has_floor, want_u8, &job->env);
 }
 
 /* Positions go to the GPU in the frame's order, with their records: each
@@ -414,7 +456,7 @@ static fc_code warm_up(fc_pipeline *p, fc_error *err)
         if (code != FC_OK)
             break;
         render_job job;
-        plan_job(p, &view, &camera, &settings, NULL, images[i], true, &job);
+        plan_job(p, &view, &camera, &settings, &(fc_render_scene){0}, images[i], true, &job);
         const fc_render_target *result = NULL;
         code = render_stages(p, &job, images[i], &result, err);
     }
@@ -459,6 +501,7 @@ void fc_pipeline_destroy(fc_pipeline *p)
     fc_spray_pass_destroy(&p->spray);
     fc_composite_pass_destroy(&p->composite);
     fc_background_pass_destroy(&p->background);
+    fc_mesh_pass_destroy(&p->mesh);
     fc_normal_pass_destroy(&p->normal);
     fc_noise_pass_destroy(&p->noise);
     fc_smoother_destroy(&p->smoother);
@@ -522,11 +565,12 @@ static uint32_t channels_of(fc_aov aov)
     return aov == FC_AOV_COLOR ? 4 : aov == FC_AOV_NORMAL ? 3 : 1;
 }
 
-fc_code fc_pipeline_render_scene(fc_pipeline *p, const fc_camera *camera, const fc_settings *settings,
-                                 const fc_scene_textures *scene, fc_aov aov, int want_u8, fc_image *out,
-                                 float *stage_ms, fc_error *err)
+fc_code fc_pipeline_render_with(fc_pipeline *p, const fc_camera *camera, const fc_settings *settings,
+                                const fc_render_scene *scene_in, fc_aov aov, int want_u8, fc_image *out,
+                                float *stage_ms, fc_error *err)
 {
-    if (!p || !camera || !settings || !out)
+    const fc_render_scene scene = scene_in ? *scene_in : (fc_render_scene){0};
+    if (!p || !camera || !settings || !out || (scene.mesh_count > 0 && !scene.meshes))
         return fc_error_set(err, FC_ERR_USAGE, "fc_pipeline_render: missing pipeline, camera, settings or image");
     fc_stage_timer_reset(&p->timer);
     fc_pass_profile_reset(&p->profile);
@@ -543,11 +587,13 @@ fc_code fc_pipeline_render_scene(fc_pipeline *p, const fc_camera *camera, const 
     /* The frame's amplitudes were given after the upload, or are calm. */
     fc_particle_attributes_settle(&p->attributes);
 
+    /* Near and far hold the meshes too. */
+    float lo[3], hi[3];
+    scene_bounds(p, &scene, lo, hi);
     fc_view view;
-    fc_view_from_camera(camera, p->particles.lo, p->particles.hi, fc_anisotropy_reach(&p->particles, settings->radius),
-                        &view);
+    fc_view_from_camera(camera, lo, hi, fc_anisotropy_reach(&p->particles, settings->radius), &view);
     render_job job;
-    plan_job(p, &view, camera, settings, scene, aov, want_u8 != 0, &job);
+    plan_job(p, &view, camera, settings, &scene, aov, want_u8 != 0, &job);
     const fc_render_target *result = NULL;
     code = render_stages(p, &job, aov, &result, err);
     if (code != FC_OK)
@@ -564,10 +610,18 @@ fc_code fc_pipeline_render_scene(fc_pipeline *p, const fc_camera *camera, const 
     return code;
 }
 
+fc_code fc_pipeline_render_scene(fc_pipeline *p, const fc_camera *camera, const fc_settings *settings,
+                                 const fc_scene_textures *scene, fc_aov aov, int want_u8, fc_image *out,
+                                 float *stage_ms, fc_error *err)
+{
+    fc_render_scene with = {.textures = scene};
+    return fc_pipeline_render_with(p, camera, settings, &with, aov, want_u8, out, stage_ms, err);
+}
+
 fc_code fc_pipeline_render(fc_pipeline *p, const fc_camera *camera, const fc_settings *settings, fc_aov aov,
                            int want_u8, fc_image *out, float *stage_ms, fc_error *err)
 {
-    return fc_pipeline_render_scene(p, camera, settings, NULL, aov, want_u8, out, stage_ms, err);
+    return fc_pipeline_render_with(p, camera, settings, NULL, aov, want_u8, out, stage_ms, err);
 }
 
 void fc_pipeline_force_splat(fc_pipeline *p, fc_splat_method method)
@@ -611,6 +665,7 @@ void fc_pipeline_trim(fc_pipeline *p)
     fc_render_target_release(&p->noise.target);
     fc_render_target_release(&p->normal.target);
     fc_render_target_release(&p->background.target);
+    fc_mesh_pass_trim(&p->mesh);
     fc_render_target_release(&p->composite.srgb_target);
     fc_render_target_release(&p->composite.float_target);
 }
@@ -629,6 +684,7 @@ void fc_pipeline_gpu_memory(const fc_pipeline *p, fc_gpu_memory *out)
     fc_render_target_tally(&p->noise.target, out);
     fc_render_target_tally(&p->normal.target, out);
     fc_render_target_tally(&p->background.target, out);
+    fc_mesh_pass_tally(&p->mesh, out);
     fc_render_target_tally(&p->composite.srgb_target, out);
     fc_render_target_tally(&p->composite.float_target, out);
     fc_readback_tally(&p->readback, out);

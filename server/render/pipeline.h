@@ -6,6 +6,8 @@
 #ifndef FC_PIPELINE_H
 #define FC_PIPELINE_H
 
+#include <stdbool.h>
+
 #include "fluidcast_types.h"
 #include "../image.h"
 #include "gpu_memory.h"
@@ -56,6 +58,36 @@ fc_code fc_scene_textures_create(fc_pipeline *p, const fc_image *background, con
                                  fc_scene_textures **out, fc_error *err);
 void fc_scene_textures_destroy(fc_scene_textures *t);
 
+/* A client's triangle mesh on the GPU (PROTOCOL.md section 12), created
+ * through a pipeline from a validated fc_mesh (its arrays are copied; the
+ * mesh's colour, opacity, flags and transform are not kept: each render
+ * names them, fc_scene_mesh). Owned by the caller like scene textures, not
+ * counted in fc_pipeline_gpu_memory (fc_mesh_buffers_bytes tells its size).
+ * FC_ERR_RENDER when the GPU runs out of memory. */
+typedef struct fc_mesh_buffers fc_mesh_buffers;
+fc_code fc_mesh_buffers_create(fc_pipeline *p, const fc_mesh *mesh, fc_mesh_buffers **out, fc_error *err);
+void fc_mesh_buffers_destroy(fc_mesh_buffers *b);
+uint64_t fc_mesh_buffers_bytes(const fc_mesh_buffers *b);
+
+/* One mesh of a render, placed and coloured. */
+typedef struct fc_scene_mesh {
+    const fc_mesh_buffers *buffers;
+    float transform[12];   /* 3x4 row-major, mesh frame -> world (fc_mesh.transform) */
+    float color[3];        /* linear RGB */
+    float opacity;         /* 1: opaque, drawn into the scene the fluid refracts, hiding the fluid behind it;
+                              below 1: glass, blended over the fluid */
+    bool hide_near;        /* faces whose front (counter-clockwise) side faces the camera are not drawn */
+} fc_scene_mesh;
+
+/* What surrounds the fluid in a render: scene textures (NULL: built-in) and
+ * meshes (count 0: none). The view's depth range, the floor and the sun's
+ * view of the shadows take the meshes' bounds in with the particles'. */
+typedef struct fc_render_scene {
+    const fc_scene_textures *textures;
+    const fc_scene_mesh *meshes;
+    uint32_t mesh_count;
+} fc_render_scene;
+
 /* Per-particle foam state across frames, keyed by particle id (CPU side): a
  * particle whose velocity changed by more than settings->foam_tau since its last
  * frame gets its noise amplitude raised; the raise decays by foam_decay per frame. */
@@ -80,6 +112,15 @@ fc_code fc_pipeline_set_amplitudes(fc_pipeline *p, const float *amplitude, uint6
 fc_code fc_pipeline_render_scene(fc_pipeline *p, const fc_camera *camera, const fc_settings *settings,
                                  const fc_scene_textures *scene, fc_aov aov, int want_u8, fc_image *out,
                                  float *stage_ms, fc_error *err);
+
+/* Like fc_pipeline_render_scene, with meshes: opaque ones are drawn into the
+ * scene before the fluid (the fluid's depth, and so every AOV but the
+ * thickness, is cut where a mesh is nearer; the fluid refracts them; they cast
+ * shadows on the floor and receive the fluid's when settings->shadow), glass
+ * ones blended over the fluid after it. scene NULL: the built-in scene. */
+fc_code fc_pipeline_render_with(fc_pipeline *p, const fc_camera *camera, const fc_settings *settings,
+                                const fc_render_scene *scene, fc_aov aov, int want_u8, fc_image *out,
+                                float *stage_ms, fc_error *err);
 
 /* ---- GPU memory (see gpu_memory.h) ---- */
 

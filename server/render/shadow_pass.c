@@ -99,6 +99,10 @@ fc_code fc_shadow_pass_run(fc_shadow_pass *pass, const fc_particle_buffer *parti
     env->shadow_uv_scale[1] = (float)map->height / (float)map->texture_height;
     env->shadow_map = map->color;
     env->has_shadow = true;
+    env->fluid_sun_depth = pass->splat.target.color;
+    env->fluid_sun_depth_uv_scale[0] = (float)pass->splat.target.width / (float)pass->splat.target.texture_width;
+    env->fluid_sun_depth_uv_scale[1] = (float)pass->splat.target.height / (float)pass->splat.target.texture_height;
+    pass->sun_view = view;
     for (int c = 0; c < 3; c++)
         env->shadow_extinction[c] = (settings->absorption[c] + REFRACTED_OUT_PER_RADIUS) / settings->radius;
     return FC_OK;

@@ -19,14 +19,17 @@ typedef struct fc_shadow_pass {
      * a CPU rasterizer), the thickness pass blurs it. */
     fc_depth_pass splat;
     fc_thickness_pass blur;
+    fc_view sun_view;   /* the sun's camera of the last run: the meshes' shadows are cast through it */
 } fc_shadow_pass;
 
 fc_code fc_shadow_pass_create(const char *shader_dir, fc_shadow_pass *pass, fc_error *err);
 void fc_shadow_pass_destroy(fc_shadow_pass *pass);
 
-/* Splats the particles (inside the box [lo, hi], of the settings' radius)
+/* Splats the particles (inside the box [lo, hi], of the settings' radius;
+ * the box may hold meshes too, which the sun's view then frames as well)
  * as seen from env->sun and sets env's shadow: the map, the world-to-map
- * transform and the extinction per world unit of thickness. */
+ * transform, the extinction per world unit of thickness and the fluid's
+ * nearest depth from the sun (which meshes in front of the fluid compare). */
 fc_code fc_shadow_pass_run(fc_shadow_pass *pass, const fc_particle_buffer *particles, const float lo[3],
                            const float hi[3], const fc_settings *settings, fc_pass_profile *profile,
                            fc_environment *env, fc_error *err);

@@ -4,7 +4,9 @@
  * vertices, a NaN vertex, counts beyond the limits) fails at once and sends
  * nothing; what only the server knows (a mesh never sent, a 65th mesh, the
  * memory limit) is reported by the next render with the server's code, and
- * the connection renders on. */
+ * the connection renders on. Through the renderer: a box in front of the
+ * ball makes its depth AOV 0 at the centre, and moved aside (MESH_TRANSFORM)
+ * gives the ball back; a producer's box shows in a viewer's stream images. */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -21,6 +23,12 @@
 
 /* 2 MB per connection: the ball and a few small meshes fit, 100000 vertices with normals do not. */
 static const char *const daemon_args[] = {"--max-session-memory", "2000000", NULL};
+
+static void fc_mesh_identity_for_test(float m[12])
+{
+    static const float identity[12] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0};
+    memcpy(m, identity, sizeof identity);
+}
 
 static fc_code send_ball(fc_client *client, fc_error *err)
 {
@@ -124,6 +132,102 @@ static void test_upload_move_remove(fc_client *client)
     fan_free(&b);
 }
 
+/* The depth AOV's value at the image's centre (0: no fluid), or -1 when the render failed. */
+static float centre_depth(fc_client *client, fc_error *err)
+{
+    fc_render_request request = {.format = FC_FORMAT_RAW, .quality = 0, .aov = FC_AOV_DEPTH};
+    fc_image_result image;
+    float depth = -1.0f;
+    if (fc_client_render(client, &request, &image, err) == FC_OK && image.size == 4u * SIDE * SIDE)
+        memcpy(&depth, image.data + 4 * ((SIDE / 2) * SIDE + SIDE / 2), 4);
+    fc_image_result_free(&image);
+    return depth;
+}
+
+/* A box x, z in [-1, 1], y in [-2, -1.8]: test_ball_camera looks along +y from
+ * y = -4 at the ball (radius 0.5 about the origin), so the box stands between. */
+static const float box_vertices[24] = {-1, -2, -1, 1, -2, -1, -1, -1.8f, -1, 1, -1.8f, -1,
+                                       -1, -2, 1,  1, -2, 1,  -1, -1.8f, 1,  1, -1.8f, 1};
+static const uint32_t box_indices[36] = {0, 2, 3, 0, 3, 1, 4, 5, 7, 4, 7, 6, 0, 1, 5, 0, 5, 4,
+                                         2, 6, 7, 2, 7, 3, 0, 4, 6, 0, 6, 2, 1, 3, 7, 1, 7, 5};
+
+static fc_mesh box_mesh(uint32_t id)
+{
+    fc_mesh m;
+    fc_mesh_defaults(&m);
+    m.id = id;
+    m.vertex_count = 8;
+    m.triangle_count = 12;
+    m.vertices = box_vertices;
+    m.indices = box_indices;
+    return m;
+}
+
+static void test_box_hides_ball(fc_client *client)
+{
+    fc_error err;
+    float plain = centre_depth(client, &err);
+    CHECK_MSG(plain > 0.0f, "the ball's centre depth %g", (double)plain);
+    fc_mesh box = box_mesh(20);
+    CHECK_CODE(fc_client_upload_mesh(client, &box, &err), FC_OK);
+    float hidden = centre_depth(client, &err);
+    CHECK_MSG(hidden == 0.0f, "behind the box the depth is %g", (double)hidden);
+    fc_mesh_transform aside = {.id = 20};
+    fc_mesh_identity_for_test(aside.transform);
+    aside.transform[3] = 5.0f;   /* 5 units to the side */
+    CHECK_CODE(fc_client_move_meshes(client, &aside, 1, &err), FC_OK);
+    float back = centre_depth(client, &err);
+    CHECK_MSG(fabsf(back - plain) < 1e-4f, "moved aside, the depth is %g, not %g", (double)back, (double)plain);
+    CHECK_CODE(fc_client_remove_mesh(client, 20, &err), FC_OK);
+    printf("box: centre depth %.3f, behind the box %.3f, box moved aside %.3f\n", (double)plain, (double)hidden,
+           (double)back);
+}
+
+/* A producer's mesh is its session's: the viewer's stream image shows it. */
+static void test_session_mesh(const char *address)
+{
+    fc_error err;
+    fc_client *producer = NULL, *viewer = NULL;
+    CHECK_CODE(fc_client_connect(address, NULL, &producer, &err), FC_OK);
+    CHECK_CODE(fc_client_connect(address, NULL, &viewer, &err), FC_OK);
+    if (!producer || !viewer) {
+        fc_client_close(producer);
+        fc_client_close(viewer);
+        return;
+    }
+    CHECK_CODE(fc_client_publish(producer, "tank", NULL, &err), FC_OK);
+    fc_render_request depth = {.format = FC_FORMAT_RAW, .quality = 0, .aov = FC_AOV_DEPTH};
+    CHECK_CODE(fc_client_subscribe(viewer, "tank", &depth, SIDE, SIDE, NULL, &err), FC_OK);
+    fc_camera cam;
+    test_ball_camera(SIDE, SIDE, &cam);
+    CHECK_CODE(fc_client_set_camera(viewer, &cam, &err), FC_OK);
+    fc_mesh box = box_mesh(1);
+    CHECK_CODE(fc_client_upload_mesh(producer, &box, &err), FC_OK);
+    fc_frame ball = {0};
+    CHECK_CODE(test_ball_frame(&ball, &err), FC_OK);
+    CHECK_CODE(fc_client_send_frame(producer, &ball, &err), FC_OK);
+    fc_frame_free(&ball);
+    /* The first image of the frame (a view-change image may come first: take the last). */
+    float centre = -1.0f;
+    for (int i = 0; i < 4; i++) {
+        fc_stream_image img;
+        if (fc_client_next_image(viewer, &img, &err) != FC_OK) {
+            CHECK_MSG(0, "stream image: %s", err.message);
+            break;
+        }
+        bool frame_image = img.frame_number == 1 && img.image.size == 4u * SIDE * SIDE;
+        if (frame_image)
+            memcpy(&centre, img.image.data + 4 * ((SIDE / 2) * SIDE + SIDE / 2), 4);
+        fc_stream_image_free(&img);
+        if (frame_image)
+            break;
+    }
+    CHECK_MSG(centre == 0.0f, "the viewer sees the producer's box? centre depth %g", (double)centre);
+    printf("session: the viewer's centre depth behind the producer's box %.3f\n", (double)centre);
+    fc_client_close(producer);
+    fc_client_close(viewer);
+}
+
 /* Refused by the library before sending: the connection is untouched. */
 static void test_local_refusals(fc_client *client)
 {
@@ -193,9 +297,11 @@ int main(void)
     if (client && send_ball(client, &err) == FC_OK) {
         test_upload_move_remove(client);
         test_local_refusals(client);
+        test_box_hides_ball(client);
         test_server_limits(client);
     }
     fc_client_close(client);
+    test_session_mesh(address);
     CHECK_CODE(fc_test_daemon_stop(&daemon, FC_TEST_DAEMON_STOP_TIMEOUT_MS, &err), FC_OK);
     return test_result();
 }

@@ -12,6 +12,7 @@
 static void forget_pipeline(fc_gpu_state *g)
 {
     fc_scene_texture_cache_free(&g->scene_textures);
+    fc_mesh_buffer_cache_free(&g->meshes);
     fc_pipeline_destroy(g->pipeline);
     g->pipeline = NULL;
     g->uploaded_frame_id = 0;

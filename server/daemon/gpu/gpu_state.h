@@ -21,6 +21,7 @@
 #include <stdint.h>
 
 #include "gl/egl_context.h"
+#include "gpu/mesh_buffer_cache.h"
 #include "gpu/scene_texture_cache.h"
 #include "log.h"
 #include "render/pipeline.h"
@@ -44,6 +45,7 @@ typedef struct fc_gpu_state {
     fc_pipeline *pipeline;                    /* NULL while the GPU is unavailable */
     uint64_t uploaded_frame_id;               /* frame whose particles the pipeline holds; 0 = none */
     fc_scene_texture_cache scene_textures;    /* clients' background and cube map textures */
+    fc_mesh_buffer_cache meshes;              /* clients' meshes on the GPU */
     fc_error unavailable;                     /* why the last re-creation failed */
     double retry_at_ms;                       /* no re-creation before this (fc_monotonic_ms) */
 } fc_gpu_state;

@@ -92,8 +92,13 @@ static fc_code draw(fc_gpu_state *gpu, fc_render_job *job, fc_error *err)
                                       &scene, err);
     if (code != FC_OK)
         return code;
-    code = fc_pipeline_render_scene(gpu->pipeline, &job->camera, &settings, scene, job->request.aov, want_u8,
-                                    &job->image, render_ms, err);
+    fc_scene_mesh meshes[FC_MESH_SET_CAPACITY];
+    code = fc_mesh_buffer_cache_scene(&gpu->meshes, gpu->pipeline, &job->meshes, meshes, err);
+    if (code != FC_OK)
+        return code;
+    fc_render_scene with = {.textures = scene, .meshes = meshes, .mesh_count = job->meshes.count};
+    code = fc_pipeline_render_with(gpu->pipeline, &job->camera, &settings, &with, job->request.aov, want_u8,
+                                   &job->image, render_ms, err);
     if (code != FC_OK)
         return code;
     for (int s = FC_STAGE_DEPTH; s <= FC_STAGE_READBACK; s++)
