@@ -39,6 +39,20 @@ install(FILES ${CMAKE_BINARY_DIR}/fluidcastConfig.cmake ${CMAKE_BINARY_DIR}/flui
 install(FILES ${PROJECT_SOURCE_DIR}/deploy/udev/70-fluidcast-spacemouse.rules
   DESTINATION ${FLUIDCAST_UDEV_RULES_DIR})
 
+# The systemd units (deploy/systemd), their ExecStart pointed at where
+# fluidcastd is installed (the files say /usr/bin/fluidcastd, Debian's place).
+set(FLUIDCAST_SYSTEMD_UNIT_DIR lib/systemd/system CACHE STRING
+    "where the systemd units are installed, relative to the prefix (systemd reads /usr/lib/systemd/system)")
+foreach(unit fluidcastd.service fluidcastd.socket fluidcastd@.service)
+  file(READ ${PROJECT_SOURCE_DIR}/deploy/systemd/${unit} unit_text)
+  string(REPLACE "/usr/bin/fluidcastd" "${CMAKE_INSTALL_FULL_BINDIR}/fluidcastd" unit_text "${unit_text}")
+  file(WRITE ${CMAKE_BINARY_DIR}/systemd/${unit} "${unit_text}")
+  install(FILES ${CMAKE_BINARY_DIR}/systemd/${unit} DESTINATION ${FLUIDCAST_SYSTEMD_UNIT_DIR})
+endforeach()
+set_property(DIRECTORY ${PROJECT_SOURCE_DIR} APPEND PROPERTY CMAKE_CONFIGURE_DEPENDS
+  ${PROJECT_SOURCE_DIR}/deploy/systemd/fluidcastd.service ${PROJECT_SOURCE_DIR}/deploy/systemd/fluidcastd.socket
+  ${PROJECT_SOURCE_DIR}/deploy/systemd/fluidcastd@.service)
+
 # The Python package, once python/fluidcast exists (reconfigure to pick it up).
 if(EXISTS ${PROJECT_SOURCE_DIR}/python/fluidcast/__init__.py)
   install(DIRECTORY ${PROJECT_SOURCE_DIR}/python/fluidcast DESTINATION ${FLUIDCAST_PYTHON_DIR}

@@ -28,6 +28,9 @@ PACKAGES=(
   libusb-1.0-0-dev umockdev libumockdev-dev
   # fluidcast view: its SDL2 window; its tests run it under xvfb-run
   libsdl2-dev xvfb xauth
+  # fluidcastd under systemd (sd_notify, socket activation; systemd-analyze checks the units)
+  # and its /metrics endpoint (libmicrohttpd; promtool checks the output)
+  libsystemd-dev systemd libmicrohttpd-dev prometheus
   # the Python binding (python/fluidcast) and its tests under Debian's python3
   python3-numpy python3-pytest
   # "srv:" addresses: a real DNS server (dnsmasq, its binary alone) serves SRV records in tests/srv

@@ -8,7 +8,8 @@
 #      in another file (a callback declared by its caller), the way a circle
 #      of calls hides;
 #   3. in the daemon, dependencies run one way between its folders
-#      (server/daemon/README.md): net -> clients -> sessions, gpu -> uploads.
+#      (server/daemon/README.md): net -> clients -> sessions, gpu -> uploads,
+#      and metrics/ below them all.
 #      Neither includes nor calls may go against that (FORBIDDEN below);
 #   4. with --objects: no variable a program can change (static or global,
 #      in .data or .bss) in the daemon's folders: the daemon's state is made
@@ -36,7 +37,8 @@ done
 FORBIDDEN="sessions:clients sessions:net sessions:gpu
 clients:net
 gpu:clients gpu:sessions gpu:net
-uploads:clients uploads:sessions uploads:net uploads:gpu"
+uploads:clients uploads:sessions uploads:net uploads:gpu
+metrics:clients metrics:sessions metrics:net metrics:gpu metrics:uploads"
 
 status=0
 work=$(mktemp -d)

@@ -9,6 +9,7 @@
 #include "auth_token.h"
 #include "gpu/render_service.h"
 #include "log.h"
+#include "metrics/metrics.h"
 #include "sessions/session_registry.h"
 #include "wire.h"
 
@@ -26,6 +27,7 @@ typedef struct fc_daemon_context {
     double idle_timeout_ms;        /* no complete message for this long closes a connection; 0 = never */
     double read_timeout_ms;        /* a started message must complete within this; 0 = never */
     uint64_t max_session_memory;   /* bytes one connection may hold (clients/client_memory.h) */
+    fc_metrics *metrics;           /* counted by every layer, read by the metrics endpoint's thread */
 } fc_daemon_context;
 
 #endif

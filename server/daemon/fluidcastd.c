@@ -1,6 +1,7 @@
 /* fluidcastd.c — the render daemon's top level: options, signals, the render
  * service (GL thread and encoders), the named sessions, the listeners and the
- * event loop, in that order; exit 0 on SIGINT/SIGTERM, 1 when it cannot start,
+ * event loop, in that order, telling a service manager (systemd) how far it
+ * got (service_manager.h); exit 0 on SIGINT/SIGTERM, 1 when it cannot start,
  * 2 on a bad command line. The folders below (net/, clients/, sessions/, gpu/,
  * uploads/) are the daemon's layers: README.md maps them. */
 #include <arpa/inet.h>
@@ -18,13 +19,18 @@
 #include "gpu/encoder_pool.h"
 #include "net/event_loop.h"
 #include "net/listener.h"
+#include "metrics/metrics.h"
+#include "metrics/metrics_http.h"
 #include "options.h"
+#include "service_manager.h"
 #include "uploads/frame_pool.h"
 
-#define SERVER_VERSION "fluidcastd 0.1.0"
+#define FLUIDCASTD_VERSION "0.1.0"
+#define SERVER_VERSION "fluidcastd " FLUIDCASTD_VERSION
 
 /* EXIT_FAILURE (1): cannot start or keep serving. */
-enum { EXIT_BAD_USAGE = 2, MAX_LISTENERS = 2 };
+/* MAX_LISTENERS: --listen and --unix, or as many as a .socket unit passes. */
+enum { EXIT_BAD_USAGE = 2, MAX_LISTENERS = 8 };
 
 /* What the frame pool may keep waiting between frames: a stream needs about
  * three blocks (the frame being received, the newest, the one being
@@ -112,8 +118,8 @@ static void warn_if_open(const fc_daemon_options *options, const fc_auth_token *
 }
 
 /* Opens the TCP and/or Unix listeners the options ask for; *count of them. */
-static fc_code open_listeners(const fc_daemon_options *options, fc_listener *listeners, size_t *count,
-                              fc_error *err)
+static fc_code open_own_listeners(const fc_daemon_options *options, fc_listener *listeners, size_t *count,
+                                  fc_error *err)
 {
     *count = 0;
     fc_code code = FC_OK;
@@ -127,33 +133,130 @@ static fc_code open_listeners(const fc_daemon_options *options, fc_listener *lis
         if (code == FC_OK)
             (*count)++;
     }
-    if (code == FC_OK && options->port_file)
-        code = write_port_file(options->port_file, listeners[0].is_unix ? 0 : listeners[0].port, err);
     return code;
 }
 
-/* Listens, announces the port and serves until a stop signal. */
-static int serve(const fc_daemon_options *options, fc_daemon_context *ctx, int stop_fd)
+/* The port of the first TCP listener, 0 when all are Unix sockets. */
+static unsigned first_tcp_port(const fc_listener *listeners, size_t count)
+{
+    for (size_t i = 0; i < count; i++)
+        if (!listeners[i].is_unix)
+            return listeners[i].port;
+    return 0;
+}
+
+/* The daemon's sockets: render listeners (inherited from systemd or opened
+ * here) and the metrics endpoint. */
+typedef struct daemon_sockets {
+    fc_listener listeners[MAX_LISTENERS];
+    size_t count;
+    bool inherited;            /* the listeners came from socket activation */
+    int metrics_fd;            /* an inherited metrics socket until the endpoint takes it; -1 */
+    fc_metrics_http *http;     /* the metrics endpoint; NULL when not asked for */
+} daemon_sockets;
+
+/* What systemd passed, if anything: taken first, before the slow GL start,
+ * so that the variables are gone before any library thread could see them. */
+static fc_code inherit_sockets(const fc_daemon_options *options, const fc_log *log, daemon_sockets *s,
+                               fc_error *err)
+{
+    fc_code code = fc_service_listeners(s->listeners, MAX_LISTENERS, &s->count, &s->metrics_fd, err);
+    s->inherited = code == FC_OK && s->count > 0;
+    if (s->inherited)
+        fc_log_write(log, FC_LOG_INFO, "socket activation: serving on the %zu socket(s) the service manager passed%s",
+                     s->count, options->listen_given || options->unix_path ? " (--listen and --unix ignored)" : "");
+    return code;
+}
+
+/* The metrics endpoint, on an inherited socket named "metrics" or on
+ * --metrics-listen; started before the GL context so that /readyz can say
+ * the daemon is starting. A busy port is an error: the operator asked for it. */
+static fc_code start_metrics(const fc_daemon_options *options, const fc_log *log, fc_metrics *metrics,
+                             daemon_sockets *s, fc_error *err)
+{
+    fc_listener l = {.fd = s->metrics_fd};
+    fc_error open_err;
+    if (s->metrics_fd >= 0)
+        snprintf(l.address, sizeof l.address, "the inherited socket '%s'", FC_SERVICE_METRICS_FD_NAME);
+    else if (!options->metrics_host[0])
+        return FC_OK;
+    else if (fc_listener_open(options->metrics_host, options->metrics_port, &l, &open_err) != FC_OK)
+        return fc_error_set(err, FC_ERR_IO, "--metrics-listen: %s", open_err.message);
+    s->metrics_fd = -1;   /* the endpoint owns it now, started or not */
+    fc_code code = fc_metrics_http_start(l.fd, metrics, &s->http, err);
+    if (code == FC_OK)
+        fc_log_write(log, FC_LOG_INFO, "metrics, health and readiness on http://%s/metrics, /healthz, /readyz",
+                     l.address);
+    return code;
+}
+
+static void close_sockets(daemon_sockets *s)
+{
+    fc_metrics_http_stop(s->http);
+    s->http = NULL;
+    if (s->metrics_fd >= 0)
+        close(s->metrics_fd);
+    s->metrics_fd = -1;
+    for (size_t i = 0; i < s->count; i++)
+        fc_listener_close(&s->listeners[i]);
+    s->count = 0;
+}
+
+/* The listeners the options ask for, unless systemd passed some; then the port file. */
+static fc_code open_listeners(const fc_daemon_options *options, daemon_sockets *s, fc_error *err)
+{
+    fc_code code = s->inherited ? FC_OK : open_own_listeners(options, s->listeners, &s->count, err);
+    if (code == FC_OK && options->port_file)
+        code = write_port_file(options->port_file, first_tcp_port(s->listeners, s->count), err);
+    return code;
+}
+
+/* "127.0.0.1:7450, unix:/run/fc.sock" for the service manager's status line. */
+static void describe_listeners(const fc_listener *listeners, size_t count, char *out, size_t size)
+{
+    size_t used = 0;
+    out[0] = '\0';
+    for (size_t i = 0; i < count && used < size; i++)
+        used += (size_t)snprintf(out + used, size - used, "%s%s", i ? ", " : "", listeners[i].address);
+}
+
+/* Tells the service manager the daemon is ready: only once the GL context
+ * exists and every listener accepts, so a client started after it (After=)
+ * finds the daemon answering. */
+static void announce_ready(const fc_daemon_context *ctx, const fc_listener *listeners, size_t count)
+{
+    char where[512];
+    for (size_t i = 0; i < count; i++)
+        fc_log_write(ctx->log, FC_LOG_INFO, "listening on %s", listeners[i].address);
+    describe_listeners(listeners, count, where, sizeof where);
+    fc_service_notify(ctx->log, "READY=1\nSTATUS=serving on %s; renderer %s", where, ctx->welcome.renderer);
+}
+
+/* Listens, announces the port and serves until a stop signal, then answers
+ * what is in flight. /readyz says ready only in between. */
+static int serve(const fc_daemon_options *options, fc_daemon_context *ctx, daemon_sockets *s, int stop_fd)
 {
     fc_error err;
-    fc_listener listeners[MAX_LISTENERS];
-    size_t count = 0;
     fc_event_loop *loop = NULL;
-    fc_code code = open_listeners(options, listeners, &count, &err);
+    fc_code code = open_listeners(options, s, &err);
     if (code == FC_OK)
-        code = fc_event_loop_create(listeners, count, stop_fd, ctx, &loop, &err);
+        code = fc_event_loop_create(s->listeners, s->count, stop_fd, ctx, &loop, &err);
     if (code == FC_OK) {
-        for (size_t i = 0; i < count; i++)
-            fc_log_write(ctx->log, FC_LOG_INFO, "listening on %s", listeners[i].address);
+        announce_ready(ctx, s->listeners, s->count);
+        fc_metrics_set_phase(ctx->metrics, FC_PHASE_SERVING);
         code = fc_event_loop_run(loop, &err);
     }
-    if (code == FC_OK)
+    if (code == FC_OK) {
+        fc_metrics_set_phase(ctx->metrics, FC_PHASE_DRAINING);
         fc_log_write(ctx->log, FC_LOG_INFO, "%s received: stopping", received_signal_name(stop_fd));
-    else
+        fc_service_notify(ctx->log, "STOPPING=1\nSTATUS=stopping: answering the renders in flight");
+        code = fc_event_loop_drain(loop, &err);
+    }
+    if (code != FC_OK) {
         fc_log_write(ctx->log, FC_LOG_ERROR, "%s", err.message);
+        fc_service_notify(ctx->log, "STATUS=failed: %s", err.message);
+    }
     fc_event_loop_destroy(loop);
-    for (size_t i = 0; i < count; i++)
-        fc_listener_close(&listeners[i]);
     return code == FC_OK ? 0 : EXIT_FAILURE;
 }
 
@@ -177,8 +280,8 @@ static fc_code read_test_hooks(uint64_t *lose_context_at_render, fc_error *err)
     return FC_OK;
 }
 
-static int run(const fc_daemon_options *options, const fc_auth_token *token, const fc_log *log,
-               uint64_t lose_context_at_render, int stop_fd)
+static int run_render_service(const fc_daemon_options *options, const fc_auth_token *token, const fc_log *log,
+                              uint64_t lose_context_at_render, fc_metrics *metrics, daemon_sockets *s, int stop_fd)
 {
     fc_error err;
     fc_render_service *render = NULL;
@@ -190,8 +293,10 @@ static int run(const fc_daemon_options *options, const fc_auth_token *token, con
         .log = log,
         .lose_context_at_render = lose_context_at_render,
     };
+    fc_service_notify(log, "STATUS=starting: creating the OpenGL context");
     if (fc_render_service_create(&config, &render, &err) != FC_OK) {
         fc_log_write(log, FC_LOG_ERROR, "cannot render: %s", err.message);
+        fc_service_notify(log, "STATUS=failed: cannot render: %s", err.message);
         fc_log_write(log, FC_LOG_ERROR,
                      "fluidcastd needs an OpenGL 4.5 core context through EGL: a GPU driver, or Mesa's "
                      "llvmpipe with --gpu software");
@@ -217,12 +322,14 @@ static int run(const fc_daemon_options *options, const fc_auth_token *token, con
         .idle_timeout_ms = options->idle_timeout_ms,
         .read_timeout_ms = options->read_timeout_ms,
         .max_session_memory = options->max_session_memory,
+        .metrics = metrics,
     };
     fill_welcome(options, render, &ctx.welcome);
+    fc_metrics_set_build_info(metrics, FLUIDCASTD_VERSION, ctx.welcome.renderer, "");
     int status = EXIT_FAILURE;
     if (fc_frame_pool_create(FRAME_POOL_BLOCKS, FRAME_POOL_BYTES, &ctx.frames, &err) == FC_OK &&
         fc_registry_create(options->max_sessions, ctx.frames, &ctx.sessions, &err) == FC_OK)
-        status = serve(options, &ctx, stop_fd);
+        status = serve(options, &ctx, s, stop_fd);
     else
         fc_log_write(log, FC_LOG_ERROR, "%s", err.message);
     fc_registry_destroy(ctx.sessions);
@@ -232,6 +339,25 @@ static int run(const fc_daemon_options *options, const fc_auth_token *token, con
         fc_log_write(log, FC_LOG_INFO, "frame blocks allocated: %llu",
                      (unsigned long long)fc_frame_pool_allocations(ctx.frames));
     fc_frame_pool_destroy(ctx.frames);
+    return status;
+}
+
+/* The metrics and the sockets, which exist before the GL context, around the
+ * render service and the event loop. */
+static int run(const fc_daemon_options *options, const fc_auth_token *token, const fc_log *log,
+               uint64_t lose_context_at_render, int stop_fd)
+{
+    fc_error err;
+    fc_metrics *metrics = NULL;
+    daemon_sockets sockets = {.metrics_fd = -1};
+    int status = EXIT_FAILURE;
+    if (fc_metrics_create(&metrics, &err) == FC_OK && inherit_sockets(options, log, &sockets, &err) == FC_OK &&
+        start_metrics(options, log, metrics, &sockets, &err) == FC_OK)
+        status = run_render_service(options, token, log, lose_context_at_render, metrics, &sockets, stop_fd);
+    else
+        fc_log_write(log, FC_LOG_ERROR, "cannot start: %s", err.message);
+    close_sockets(&sockets);
+    fc_metrics_destroy(metrics);
     return status;
 }
 

@@ -79,6 +79,10 @@ void fc_daemon_options_print_help(FILE *out, const char *program)
             "                          and unsent replies, and for a producer its session's\n"
             "                          frame and the multi-rank frames being assembled; a\n"
             "                          message beyond it gets ERROR LIMIT (default %llu)\n"
+            "  --metrics-listen ADDR   serve /metrics (Prometheus), /healthz and /readyz over\n"
+            "                          HTTP on ADDR: HOST:PORT, [ADDR]:PORT or PORT alone\n"
+            "                          (then on 127.0.0.1); never on a render port (default:\n"
+            "                          none)\n"
             "  --token-file PATH       require clients to send the token in PATH (one line)\n"
             "                          in HELLO; without it the FLUIDCAST_TOKEN environment\n"
             "                          variable, if set, is the token\n"
@@ -89,7 +93,10 @@ void fc_daemon_options_print_help(FILE *out, const char *program)
             "A render that fails on the GPU (out of memory, a GL error, a lost context) is\n"
             "answered with ERROR RENDER; the daemon then rebuilds its pipeline or recreates\n"
             "its GL context, and keeps serving.\n"
-            "SIGINT or SIGTERM stops the daemon cleanly (exit status 0).\n",
+            "SIGINT or SIGTERM stops the daemon cleanly (exit status 0).\n"
+            "Under systemd (deploy/systemd): readiness and stopping are announced with\n"
+            "sd_notify (Type=notify), and sockets passed by socket activation (LISTEN_FDS)\n"
+            "are served instead of --listen and --unix.\n",
             program, FC_DEFAULT_LISTEN_HOST, FC_DEFAULT_PORT, FC_DEFAULT_MAX_PARTICLES,
             FC_DEFAULT_MAX_IMAGE_SIDE, FC_DEFAULT_MAX_IMAGE_SIDE, FC_DEFAULT_MAX_MESSAGE,
             FC_DEFAULT_CHUNK_TIMEOUT_MS, FC_DEFAULT_REFRESH_MS, FC_PNG_DEFAULT_COMPRESSION, FC_DEFAULT_MAX_SESSIONS,
@@ -128,17 +135,19 @@ static fc_code parse_image_size(const char *text, fc_limits *limits, fc_error *e
     return FC_OK;
 }
 
-static fc_code parse_port(const char *text, fc_daemon_options *o, fc_error *err)
+static fc_code parse_port(const char *option, const char *text, char *port_out, size_t size, fc_error *err)
 {
     char *end = NULL;
     unsigned long port = strtoul(text, &end, 10);
     if (text[0] < '0' || text[0] > '9' || *end != '\0' || port > 65535)
-        return fc_error_set(err, FC_ERR_USAGE, "--listen: port '%s' is not a number from 0 to 65535", text);
-    snprintf(o->listen_port, sizeof o->listen_port, "%lu", port);
+        return fc_error_set(err, FC_ERR_USAGE, "%s: port '%s' is not a number from 0 to 65535", option, text);
+    snprintf(port_out, size, "%lu", port);
     return FC_OK;
 }
 
-fc_code fc_daemon_options_parse_listen(const char *text, fc_daemon_options *o, fc_error *err)
+/* "HOST:PORT" or "[IPV6]:PORT" into host and port (brackets removed). */
+static fc_code parse_host_port(const char *option, const char *text, char *host_out, size_t host_size,
+                               char *port_out, size_t port_size, fc_error *err)
 {
     const char *host = text;
     size_t host_len;
@@ -146,24 +155,40 @@ fc_code fc_daemon_options_parse_listen(const char *text, fc_daemon_options *o, f
     if (text[0] == '[') {
         const char *close = strchr(text, ']');
         if (!close || close[1] != ':')
-            return fc_error_set(err, FC_ERR_USAGE, "--listen '%s': expected [IPV6]:PORT", text);
+            return fc_error_set(err, FC_ERR_USAGE, "%s '%s': expected [IPV6]:PORT", option, text);
         host = text + 1;
         host_len = (size_t)(close - host);
         port = close + 2;
     } else {
         const char *colon = strrchr(text, ':');
         if (!colon)
-            return fc_error_set(err, FC_ERR_USAGE, "--listen '%s': expected HOST:PORT", text);
+            return fc_error_set(err, FC_ERR_USAGE, "%s '%s': expected HOST:PORT", option, text);
         if (memchr(text, ':', (size_t)(colon - text)))
-            return fc_error_set(err, FC_ERR_USAGE, "--listen '%s': write IPv6 addresses as [ADDR]:PORT", text);
+            return fc_error_set(err, FC_ERR_USAGE, "%s '%s': write IPv6 addresses as [ADDR]:PORT", option, text);
         host_len = (size_t)(colon - text);
         port = colon + 1;
     }
-    if (host_len == 0 || host_len >= sizeof o->listen_host)
-        return fc_error_set(err, FC_ERR_USAGE, "--listen '%s': missing or overlong host", text);
-    memcpy(o->listen_host, host, host_len);
-    o->listen_host[host_len] = '\0';
-    return parse_port(port, o, err);
+    if (host_len == 0 || host_len >= host_size)
+        return fc_error_set(err, FC_ERR_USAGE, "%s '%s': missing or overlong host", option, text);
+    memcpy(host_out, host, host_len);
+    host_out[host_len] = '\0';
+    return parse_port(option, port, port_out, port_size, err);
+}
+
+fc_code fc_daemon_options_parse_listen(const char *text, fc_daemon_options *o, fc_error *err)
+{
+    return parse_host_port("--listen", text, o->listen_host, sizeof o->listen_host, o->listen_port,
+                           sizeof o->listen_port, err);
+}
+
+fc_code fc_daemon_options_parse_metrics_listen(const char *text, fc_daemon_options *o, fc_error *err)
+{
+    if (text[0] >= '0' && text[0] <= '9' && !strchr(text, ':')) {
+        snprintf(o->metrics_host, sizeof o->metrics_host, "%s", FC_DEFAULT_LISTEN_HOST);
+        return parse_port("--metrics-listen", text, o->metrics_port, sizeof o->metrics_port, err);
+    }
+    return parse_host_port("--metrics-listen", text, o->metrics_host, sizeof o->metrics_host, o->metrics_port,
+                           sizeof o->metrics_port, err);
 }
 
 static bool is_known_option(const char *name)
@@ -173,7 +198,7 @@ static bool is_known_option(const char *name)
                                         "--unix",          "--chunk-timeout-ms", "--refresh-ms", "--encoders",
                                         "--max-sessions", "--max-connections", "--idle-timeout-ms",
                                         "--read-timeout-ms", "--token-file", "--max-session-memory",
-                                        "--png-compression"};
+                                        "--png-compression", "--metrics-listen"};
     for (size_t i = 0; i < sizeof known / sizeof known[0]; i++)
         if (strcmp(name, known[i]) == 0)
             return true;
@@ -202,6 +227,8 @@ static fc_code apply_hardening_option(const char *name, const char *value, fc_da
         o->token_file = value;
         return FC_OK;
     }
+    if (strcmp(name, "--metrics-listen") == 0)
+        return fc_daemon_options_parse_metrics_listen(value, o, err);
     if (strcmp(name, "--max-connections") == 0) {
         if (parse_count(name, value, UINT32_MAX, &n, err) != FC_OK)
             return FC_ERR_USAGE;

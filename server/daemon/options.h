@@ -40,6 +40,8 @@ typedef struct fc_daemon_options {
     uint32_t idle_timeout_ms;  /* close a connection with no complete message for this long; 0 = never */
     uint32_t read_timeout_ms;  /* a started message must be complete within this; 0 = never */
     uint64_t max_session_memory;   /* bytes one connection (with the named session it produces) may hold */
+    char metrics_host[256];    /* --metrics-listen: "" = no metrics endpoint */
+    char metrics_port[8];
     const char *token_file;    /* --token-file: NULL for none (then FLUIDCAST_TOKEN); points into argv */
     bool help;                 /* --help: print usage and exit */
 } fc_daemon_options;
@@ -55,6 +57,9 @@ bool fc_daemon_options_serve_tcp(const fc_daemon_options *o);
 
 /* Parses "HOST:PORT", "[IPV6]:PORT" into the listen fields. */
 fc_code fc_daemon_options_parse_listen(const char *text, fc_daemon_options *o, fc_error *err);
+/* Parses --metrics-listen's "HOST:PORT", "[IPV6]:PORT" or "PORT" (then on
+ * 127.0.0.1: the metrics are for the operator, not the world). */
+fc_code fc_daemon_options_parse_metrics_listen(const char *text, fc_daemon_options *o, fc_error *err);
 
 void fc_daemon_options_print_help(FILE *out, const char *program);
 

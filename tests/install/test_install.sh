@@ -60,6 +60,11 @@ for f in fluidcastConfig.cmake fluidcastConfigVersion.cmake fluidcastTargets.cma
     need_file "$R$LIBDIR/cmake/fluidcast/$f"
 done
 need_file "$R$PREFIX/lib/udev/rules.d/70-fluidcast-spacemouse.rules"
+for u in fluidcastd.service fluidcastd.socket fluidcastd@.service; do
+    need_file "$R$PREFIX/lib/systemd/system/$u"
+    matches "^ExecStart=$BINDIR/fluidcastd " < "$R$PREFIX/lib/systemd/system/$u" || [ "$u" = fluidcastd.socket ] ||
+        fail "$u does not run $BINDIR/fluidcastd"
+done
 # The Python package, when this build was configured with python/fluidcast present.
 PYPKG=""
 if grep -rqs "python/fluidcast" "$BUILD/cmake_install.cmake"; then

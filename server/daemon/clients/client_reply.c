@@ -25,6 +25,8 @@ fc_client_verdict fc_client_reply_error(const fc_daemon_context *ctx, const char
     fc_log_write(ctx->log, server_side ? FC_LOG_WARN : FC_LOG_INFO, "%s: request %u: %s: %s%s", peer,
                  (unsigned)request_id, fc_code_name(wire.code), wire.message,
                  then == FC_CLIENT_CLOSE ? " (closing)" : "");
+    if (wire.code == FC_ERR_LIMIT)
+        fc_metrics_add(ctx->metrics, FC_METRIC_LIMIT_REJECTIONS, 1);
     fc_error write_err;
     if (fc_wire_write_error(out, request_id, &wire, &write_err) != FC_OK) {
         fc_log_write(ctx->log, FC_LOG_ERROR, "%s: cannot queue ERROR: %s", peer, write_err.message);

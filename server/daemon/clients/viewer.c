@@ -67,6 +67,7 @@ static void dispatch(struct fc_client *c, image_reason reason, double now_ms)
     if (order.request.format == FC_FORMAT_H264)
         v->keyframe_wanted = false;
     v->last_sequence = c->session->sequence;
+    fc_metrics_add(c->ctx->metrics, FC_METRIC_DROPPED_VIEWER_BUSY, order.tag.missed);
     double refresh_ms = c->ctx->refresh_ms;
     bool lossy = order.request.format == FC_FORMAT_JPEG || order.request.format == FC_FORMAT_H264;
     v->refresh_due_ms = lossy && refresh_ms > 0.0 ? now_ms + refresh_ms : 0.0;

@@ -167,6 +167,7 @@ static void flush(fc_connection *c)
         ssize_t n = send(c->fd, c->out.data + c->out_sent, c->out.len - c->out_sent, MSG_NOSIGNAL);
         if (n > 0) {
             c->out_sent += (size_t)n;
+            fc_metrics_add(c->client.ctx->metrics, FC_METRIC_BYTES_SENT, (uint64_t)n);
         } else if (n < 0 && errno == EINTR) {
             continue;
         } else if (n < 0 && (errno == EAGAIN || errno == EWOULDBLOCK)) {
@@ -281,6 +282,7 @@ static void deliver(fc_connection *c, fc_daemon_context *ctx)
         forget_payload(c);
     }
     c->messages++;
+    fc_metrics_add(ctx->metrics, FC_METRIC_MESSAGES_RECEIVED, 1);
     apply_verdict(c, verdict);
     if (c->phase == FC_CONN_OPEN)
         flush(c);
@@ -359,6 +361,8 @@ static read_result classify_recv(ssize_t n)
 static read_result receive_header(fc_connection *c, fc_daemon_context *ctx)
 {
     ssize_t n = recv(c->fd, c->header_bytes + c->header_got, FC_WIRE_HEADER_SIZE - c->header_got, 0);
+    if (n > 0)
+        fc_metrics_add(ctx->metrics, FC_METRIC_BYTES_RECEIVED, (uint64_t)n);
     if (n > 0 && c->header_got == 0)
         c->started_ms = fc_monotonic_ms();
     if (n > 0 && (c->header_got += (size_t)n) == FC_WIRE_HEADER_SIZE)
@@ -377,6 +381,8 @@ static read_result receive_payload(fc_connection *c, fc_daemon_context *ctx)
     size_t room = c->payload_cap - c->payload_got;
     size_t wanted = c->header.length - c->payload_got;
     ssize_t n = recv(c->fd, c->payload + c->payload_got, room < wanted ? room : wanted, 0);
+    if (n > 0)
+        fc_metrics_add(ctx->metrics, FC_METRIC_BYTES_RECEIVED, (uint64_t)n);
     if (n > 0 && (c->payload_got += (size_t)n) == c->header.length)
         deliver(c, ctx);
     return classify_recv(n);

@@ -129,6 +129,7 @@ static void add_client(fc_event_loop *loop, const fc_listener *listener, int fd,
      * flood of them is bounded by the accept rate and the linger time. */
     bool over_limit = loop->count >= loop->ctx->max_connections;
     loop->connections[loop->count++] = c;
+    fc_metrics_add(loop->ctx->metrics, FC_METRIC_CONNECTIONS_ACCEPTED, 1);
     fc_log_write(loop->ctx->log, FC_LOG_INFO, "%s: connected", peer);
     if (over_limit)
         fc_connection_refuse(c, loop->ctx);
@@ -200,6 +201,24 @@ static fc_connection *find_connection(const fc_event_loop *loop, uint64_t id)
     return NULL;
 }
 
+/* A finished job in the metrics: its render and encode times, or why its
+ * image goes nowhere. */
+static void count_job(fc_metrics *metrics, const fc_render_job *job, bool delivered)
+{
+    if (job->error.code != FC_OK) {
+        fc_metrics_add(metrics, FC_METRIC_DROPPED_RENDER_FAILED, 1);
+        return;
+    }
+    double render_ms = 0.0;
+    for (int s = FC_STAGE_UPLOAD; s <= FC_STAGE_READBACK; s++)
+        render_ms += job->stage_ms[s] > 0.0f ? job->stage_ms[s] : 0.0;
+    fc_metrics_add(metrics, FC_METRIC_FRAMES_RENDERED, 1);
+    fc_metrics_observe(metrics, FC_METRIC_RENDER_SECONDS, render_ms / 1e3);
+    fc_metrics_observe(metrics, FC_METRIC_ENCODE_SECONDS, job->stage_ms[FC_STAGE_ENCODE] / 1e3);
+    if (!delivered)
+        fc_metrics_add(metrics, FC_METRIC_DROPPED_CLIENT_GONE, 1);
+}
+
 /* Hands each finished render job to its connection; jobs of connections that
  * have gone meanwhile are dropped. */
 static void deliver_results(fc_event_loop *loop)
@@ -208,6 +227,7 @@ static void deliver_results(fc_event_loop *loop)
     while (job) {
         fc_render_job *next = job->next;
         fc_connection *c = find_connection(loop, job->connection_id);
+        count_job(loop->ctx->metrics, job, c != NULL);
         if (c)
             fc_connection_on_job_done(c, job);
         fc_render_job_free(job);
@@ -247,6 +267,13 @@ static void accept_ready(fc_event_loop *loop)
             accept_clients(loop, &loop->listeners[i]);
 }
 
+/* The loop's state the metrics endpoint's thread cannot read itself. */
+static void publish_gauges(fc_event_loop *loop)
+{
+    fc_metrics_set(loop->ctx->metrics, FC_METRIC_CONNECTIONS, (int64_t)loop->count);
+    fc_metrics_set(loop->ctx->metrics, FC_METRIC_SESSIONS, (int64_t)fc_registry_count(loop->ctx->sessions));
+}
+
 /* A connection whose RENDER is being rendered, or whose replies are not all sent. */
 static bool connection_busy(const fc_connection *c)
 {
@@ -273,9 +300,7 @@ static size_t prepare_drain_poll(fc_event_loop *loop)
     return busy;
 }
 
-/* After a stop signal: answers every request already being rendered and sends
- * every queued reply, so no client loses a render it asked for, then returns. */
-static fc_code drain_in_flight(fc_event_loop *loop, fc_error *err)
+fc_code fc_event_loop_drain(fc_event_loop *loop, fc_error *err)
 {
     double deadline_ms = fc_monotonic_ms() + SHUTDOWN_DRAIN_MS;
     for (;;) {
@@ -291,6 +316,7 @@ static fc_code drain_in_flight(fc_event_loop *loop, fc_error *err)
             deliver_results(loop);
         service_connections(loop, fc_monotonic_ms());
         remove_finished(loop);
+        publish_gauges(loop);
     }
 }
 
@@ -304,7 +330,7 @@ fc_code fc_event_loop_run(fc_event_loop *loop, fc_error *err)
             return fc_error_set(err, FC_ERR_IO, "poll: %s", strerror(errno));
         }
         if (loop->fds[STOP_SLOT].revents)
-            return drain_in_flight(loop, err);
+            return FC_OK;
         if (loop->fds[RESULTS_SLOT].revents)
             deliver_results(loop);
         fc_registry_expire(loop->ctx->sessions, fc_monotonic_ms());
@@ -313,5 +339,6 @@ fc_code fc_event_loop_run(fc_event_loop *loop, fc_error *err)
         remove_finished(loop);
         fc_registry_collect(loop->ctx->sessions);
         accept_ready(loop);
+        publish_gauges(loop);
     }
 }

@@ -17,10 +17,14 @@ typedef struct fc_event_loop fc_event_loop;
 fc_code fc_event_loop_create(const fc_listener *listeners, size_t count, int stop_fd, fc_daemon_context *ctx,
                              fc_event_loop **out, fc_error *err);
 
-/* Serves clients until stop_fd is readable (FC_OK) or poll() fails (FC_ERR_IO).
- * On the stop signal it accepts and reads nothing more, but first answers the
- * RENDERs already in flight and sends queued replies (for at most 5 s). */
+/* Serves clients until stop_fd is readable (FC_OK) or poll() fails (FC_ERR_IO). */
 fc_code fc_event_loop_run(fc_event_loop *loop, fc_error *err);
+
+/* After the stop signal: accepts and reads nothing more, but answers the
+ * RENDERs already in flight and sends queued replies (for at most 5 s), so no
+ * client loses a render it asked for. Separate from fc_event_loop_run so the
+ * top level can say it is stopping (to systemd, to /readyz) in between. */
+fc_code fc_event_loop_drain(fc_event_loop *loop, fc_error *err);
 
 /* Closes every client connection and frees the loop. */
 void fc_event_loop_destroy(fc_event_loop *loop);

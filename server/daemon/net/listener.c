@@ -1,4 +1,5 @@
-/* listener.c — the daemon's listening TCP socket. */
+/* listener.c — the daemon's listening sockets: opened here, or inherited from
+ * the service manager (socket activation). */
 #include "net/listener.h"
 
 #include <arpa/inet.h>
@@ -6,6 +7,7 @@
 #include <fcntl.h>
 #include <netdb.h>
 #include <netinet/in.h>
+#include <stddef.h>
 #include <stdio.h>
 #include <string.h>
 #include <sys/socket.h>
@@ -144,11 +146,58 @@ fc_code fc_listener_open_unix(const char *path, fc_listener *out, fc_error *err)
     return FC_OK;
 }
 
+/* "unix:PATH" of a bound Unix socket; abstract (leading NUL) and unnamed ones
+ * have no file: they are shown as "unix:@NAME" and "unix:(unnamed)". */
+static void describe_unix(fc_listener *l, const struct sockaddr_un *addr, socklen_t len)
+{
+    size_t path_len = len > offsetof(struct sockaddr_un, sun_path) ? len - offsetof(struct sockaddr_un, sun_path) : 0;
+    if (path_len == 0) {
+        snprintf(l->address, sizeof l->address, "unix:(unnamed)");
+    } else if (addr->sun_path[0] == '\0') {
+        snprintf(l->address, sizeof l->address, "unix:@%.*s", (int)(path_len - 1), addr->sun_path + 1);
+    } else {
+        snprintf(l->unix_path, sizeof l->unix_path, "%.*s", (int)strnlen(addr->sun_path, path_len), addr->sun_path);
+        snprintf(l->address, sizeof l->address, "unix:%s", l->unix_path);
+    }
+}
+
+fc_code fc_listener_adopt(int fd, fc_listener *out, fc_error *err)
+{
+    memset(out, 0, sizeof *out);
+    out->fd = -1;
+    int type = 0, listening = 0;
+    socklen_t size = sizeof type;
+    struct sockaddr_storage bound;
+    socklen_t len = sizeof bound;
+    if (getsockopt(fd, SOL_SOCKET, SO_TYPE, &type, &size) != 0 || getsockname(fd, (struct sockaddr *)&bound, &len) != 0)
+        return fc_error_set(err, FC_ERR_IO, "inherited descriptor %d is not a socket: %s", fd, strerror(errno));
+    size = sizeof listening;
+    if (type != SOCK_STREAM || getsockopt(fd, SOL_SOCKET, SO_ACCEPTCONN, &listening, &size) != 0 || !listening)
+        return fc_error_set(err, FC_ERR_IO, "inherited descriptor %d is not a listening stream socket", fd);
+    int flags = fcntl(fd, F_GETFL);
+    /* systemd hands sockets over blocking unless NonBlocking=yes; the event loop needs them not to be. */
+    if (flags < 0 || fcntl(fd, F_SETFL, flags | O_NONBLOCK) != 0 || fcntl(fd, F_SETFD, FD_CLOEXEC) != 0)
+        return fc_error_set(err, FC_ERR_IO, "inherited descriptor %d: fcntl: %s", fd, strerror(errno));
+    out->fd = fd;
+    out->adopted = true;
+    if (bound.ss_family == AF_UNIX) {
+        out->is_unix = true;
+        describe_unix(out, (const struct sockaddr_un *)&bound, len);
+        return FC_OK;
+    }
+    if (bound.ss_family != AF_INET && bound.ss_family != AF_INET6) {
+        out->fd = -1;
+        return fc_error_set(err, FC_ERR_IO, "inherited descriptor %d: address family %d is neither TCP nor Unix",
+                            fd, bound.ss_family);
+    }
+    return describe_bound(out, err);
+}
+
 void fc_listener_close(fc_listener *l)
 {
     if (l->fd >= 0)
         close(l->fd);
-    if (l->fd >= 0 && l->is_unix)
+    if (l->fd >= 0 && l->is_unix && !l->adopted && l->unix_path[0])
         unlink(l->unix_path);
     l->fd = -1;
 }

@@ -13,7 +13,8 @@ typedef struct fc_listener {
     uint16_t port;         /* the bound TCP port (the kernel's choice for port 0); 0 for Unix */
     char address[128];     /* "127.0.0.1:7450", "[::1]:7450" or "unix:/run/fc.sock", for logs */
     bool is_unix;
-    char unix_path[108];   /* the socket file, removed again on close */
+    bool adopted;          /* handed over by the service manager: its socket file is not ours to remove */
+    char unix_path[108];   /* the socket file, removed again on close (unless adopted) */
 } fc_listener;
 
 /* Resolves host/port with getaddrinfo and listens on the first address that
@@ -23,6 +24,12 @@ fc_code fc_listener_open(const char *host, const char *port, fc_listener *out, f
  * daemon that is gone is replaced; one a running daemon answers on is not
  * (FC_ERR_IO: in use). */
 fc_code fc_listener_open_unix(const char *path, fc_listener *out, fc_error *err);
+/* Takes over a socket that already listens (socket activation: systemd passes
+ * it as an inherited descriptor): TCP or Unix stream, made non-blocking and
+ * close-on-exec, described like one opened here. Its socket file (Unix) stays
+ * where the service manager made it on close. FC_ERR_IO when fd is not a
+ * listening stream socket of those families. */
+fc_code fc_listener_adopt(int fd, fc_listener *out, fc_error *err);
 void fc_listener_close(fc_listener *l);
 
 /* "ADDR:PORT" ("[ADDR]:PORT" for IPv6) of a socket address. */

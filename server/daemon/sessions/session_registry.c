@@ -26,6 +26,11 @@ fc_code fc_registry_create(uint32_t max_sessions, fc_frame_pool *pool, fc_sessio
     return FC_OK;
 }
 
+size_t fc_registry_count(const fc_session_registry *reg)
+{
+    return reg->count;
+}
+
 void fc_registry_destroy(fc_session_registry *reg)
 {
     if (!reg)

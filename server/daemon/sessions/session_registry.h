@@ -14,6 +14,9 @@ typedef struct fc_session_registry fc_session_registry;
 struct fc_frame_pool;
 
 /* pool: where the sessions' chunk blocks come from and go back to. */
+/* How many named sessions exist. */
+size_t fc_registry_count(const fc_session_registry *reg);
+
 fc_code fc_registry_create(uint32_t max_sessions, struct fc_frame_pool *pool, fc_session_registry **out,
                            fc_error *err);
 /* Frees every session. The connections in them must be gone already. */
