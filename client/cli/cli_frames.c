@@ -11,9 +11,9 @@
 
 fc_code fc_cli_parse_format(const char *option, const char *text, fc_image_format *out, fc_error *err)
 {
-    static const char *const names[] = {"png", "jpg", "jpeg", "exr", "raw", NULL};
+    static const char *const names[] = {"png", "jpg", "jpeg", "exr", "raw", "h264", NULL};
     static const fc_image_format formats[] = {FC_FORMAT_PNG, FC_FORMAT_JPEG, FC_FORMAT_JPEG, FC_FORMAT_EXR,
-                                              FC_FORMAT_RAW};
+                                              FC_FORMAT_RAW, FC_FORMAT_H264};
     int index;
     fc_code code = fc_cli_parse_choice(option, text, names, &index, err);
     if (code == FC_OK)

@@ -8,10 +8,10 @@
 
 #include "fluidcast_types.h"
 
-/* "png", "jpg"/"jpeg", "exr" or "raw". */
+/* "png", "jpg"/"jpeg", "exr", "raw" or "h264" (a viewer's video stream: `watch` only). */
 fc_code fc_cli_parse_format(const char *option, const char *text, fc_image_format *out, fc_error *err);
 
-/* The file extension of a format, without the dot: "png", "jpg", "exr", "raw". */
+/* The file extension of a format, without the dot: "png", "jpg", "exr", "raw", "h264". */
 const char *fc_cli_format_extension(fc_image_format format);
 
 /* Creates the directory unless it exists. FC_ERR_IO naming it otherwise. */

@@ -125,6 +125,11 @@ fc_code fc_stream_parse(int argc, char **argv, fc_stream_options *out, fc_error 
         return fc_error_set(err, FC_ERR_USAGE, "stream needs at least one particle file");
     if (out->has_quality && out->format != FC_FORMAT_JPEG)
         return fc_error_set(err, FC_ERR_USAGE, "--quality applies to --format jpg only");
+    /* One image per frame, each a file: a video goes to `watch --format h264` or `render` (.mp4). */
+    if (out->format == FC_FORMAT_H264)
+        return fc_error_set(err, FC_ERR_USAGE,
+                            "--format h264 is a viewer's video stream: use fluidcast watch --format h264, "
+                            "or fluidcast render with an .mp4 output");
     return FC_OK;
 }
 

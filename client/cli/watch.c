@@ -2,6 +2,7 @@
  * optionally write) each image until --count images or the session's end. */
 #include "watch.h"
 
+#include <errno.h>
 #include <stdbool.h>
 #include <stdio.h>
 #include <string.h>
@@ -103,8 +104,8 @@ static fc_code parse(int argc, char **argv, watch_options *o, fc_error *err)
         return code;
     if (!o->session)
         return fc_error_set(err, FC_ERR_USAGE, "watch needs --session NAME");
-    if (o->has_quality && o->format != FC_FORMAT_JPEG)
-        return fc_error_set(err, FC_ERR_USAGE, "--quality applies to --format jpg only");
+    if (o->has_quality && o->format != FC_FORMAT_JPEG && o->format != FC_FORMAT_H264)
+        return fc_error_set(err, FC_ERR_USAGE, "--quality applies to --format jpg and h264 only");
     return FC_OK;
 }
 
@@ -116,20 +117,26 @@ static void print_help(FILE *to)
           "producer publishes, rendered for this viewer; prints one line per image (frame\n"
           "number, size, frames missed, server latency) and exits after --count images or\n"
           "when the producer ends the session. A viewer that falls behind gets the newest\n"
-          "frame and is told how many it missed. With --format jpg a lossless PNG of the\n"
-          "last frame follows once the stream pauses.\n"
+          "frame and is told how many it missed. With --format jpg or h264 a lossless PNG\n"
+          "of the last frame follows once the stream pauses.\n"
+          "\n"
+          "--format h264 receives the images as one H.264 video stream (a tenth of JPEG's\n"
+          "bytes or less); with --out-dir its access units go, in order, into one raw\n"
+          "Annex B file, DIR/NAME.h264, that ffplay or ffmpeg reads (ffmpeg -i NAME.h264\n"
+          "-c copy NAME.mp4 remuxes it); the PNG refreshes go next to it as usual.\n"
           "\n"
           "options:\n"
           "  --session NAME          the session to watch (required)\n"
           "  --server ADDR           HOST:PORT or unix:PATH (default " DEFAULT_SERVER ")\n"
           "                          or srv:NAME, a DNS SRV name: the session's daemon by\n"
           "                          rendezvous hashing of the session name\n"
-          "  --out-dir DIR           write each image as DIR/NAME_NNNNNN.EXT (frame number)\n"
+          "  --out-dir DIR           write each image as DIR/NAME_NNNNNN.EXT (frame number);\n"
+          "                          h264: the stream as DIR/NAME.h264\n"
           "  --count N               exit after N images\n"
-          "  --format FMT            png (default), jpg, exr or raw\n"
-          "  --quality Q             JPEG quality 1..100 (default 90)\n"
-          "  --size WxH              image size; each frame is framed automatically\n"
-          "                          (default 640x360)\n"
+          "  --format FMT            png (default), jpg, exr, raw or h264\n"
+          "  --quality Q             JPEG or H.264 quality 1..100 (default 90)\n"
+          "  --size WxH              image size, even for h264; each frame is framed\n"
+          "                          automatically (default 640x360)\n"
           "  -h, --help              show this help\n"
           "\n",
           to);
@@ -141,10 +148,36 @@ static int client_failure(const watch_options *o, const fc_error *err)
     return fc_cli_fail(fc_cli_exit_for_client_error(err->code), "%s: %s", o->server, err->message);
 }
 
-static int write_image(const watch_options *o, const fc_stream_image *img)
+/* The H.264 stream's file, DIR/NAME.h264: its access units back to back (Annex B). */
+static int open_video(const watch_options *o, FILE **out)
+{
+    *out = NULL;
+    if (!o->out_dir || o->format != FC_FORMAT_H264)
+        return FC_EXIT_OK;
+    char path[4096];
+    if ((size_t)snprintf(path, sizeof path, "%s/%s.h264", o->out_dir, o->session) >= sizeof path)
+        return fc_cli_fail(FC_EXIT_USAGE, "the path %s/%s.h264 is too long", o->out_dir, o->session);
+    *out = fopen(path, "wb");
+    return *out ? FC_EXIT_OK : fc_cli_fail(FC_EXIT_OUTPUT, "cannot write %s: %s", path, strerror(errno));
+}
+
+static int close_video(const watch_options *o, FILE *video, int status)
+{
+    if (video && fclose(video) != 0 && status == FC_EXIT_OK)
+        return fc_cli_fail(FC_EXIT_OUTPUT, "cannot write %s/%s.h264: %s", o->out_dir, o->session, strerror(errno));
+    return status;
+}
+
+static int write_image(const watch_options *o, const fc_stream_image *img, FILE *video)
 {
     char path[4096];
     fc_error err;
+    if (video && img->image.format == FC_FORMAT_H264) {
+        if (fwrite(img->image.data, 1, img->image.size, video) != img->image.size)
+            return fc_cli_fail(FC_EXIT_OUTPUT, "cannot write %s/%s.h264: %s", o->out_dir, o->session,
+                               strerror(errno));
+        return FC_EXIT_OK;
+    }
     if (fc_cli_frame_path(path, sizeof path, o->out_dir, o->session, img->frame_number, img->image.format, &err) !=
             FC_OK ||
         fc_output_write(path, img->image.data, img->image.size, &err) != FC_OK)
@@ -158,15 +191,16 @@ static void report_image(const fc_stream_image *img, watch_totals *totals)
     totals->images++;
     totals->missed += img->missed;
     totals->latency_sum_ms += latency;
-    printf("image %u: frame %llu, %ux%u %s, %zu bytes, missed %u, latency %.1f ms%s%s\n", totals->images,
+    printf("image %u: frame %llu, %ux%u %s, %zu bytes, missed %u, latency %.1f ms%s%s%s\n", totals->images,
            (unsigned long long)img->frame_number, (unsigned)img->image.width, (unsigned)img->image.height,
            fc_output_format_name(img->image.format), img->image.size, (unsigned)img->missed, (double)latency,
-           img->refresh ? " (lossless refresh)" : "", img->view_change ? " (new view)" : "");
+           img->refresh ? " (lossless refresh)" : "", img->view_change ? " (new view)" : "",
+           img->keyframe ? " (key frame)" : "");
     fflush(stdout);
 }
 
 /* Receives images until the count or the session's end; *ended says which. */
-static int receive(fc_client *c, const watch_options *o, watch_totals *totals, bool *ended)
+static int receive(fc_client *c, const watch_options *o, FILE *video, watch_totals *totals, bool *ended)
 {
     *ended = false;
     while (o->count == 0 || totals->images < o->count) {
@@ -179,7 +213,7 @@ static int receive(fc_client *c, const watch_options *o, watch_totals *totals, b
         if (!*ended) {
             report_image(&img, totals);
             if (o->out_dir)
-                status = write_image(o, &img);
+                status = write_image(o, &img, video);
         }
         fc_stream_image_free(&img);
         if (status != FC_EXIT_OK || *ended)
@@ -200,11 +234,13 @@ static int watch(const watch_options *o)
     fc_render_request format = {.format = o->format, .quality = o->quality, .aov = FC_AOV_COLOR};
     watch_totals totals = {0};
     bool ended = false;
-    int status = FC_EXIT_OK;
-    if (fc_client_subscribe(c, o->session, &format, o->width, o->height, NULL, &err) != FC_OK)
+    FILE *video;
+    int status = open_video(o, &video);
+    if (status == FC_EXIT_OK && fc_client_subscribe(c, o->session, &format, o->width, o->height, NULL, &err) != FC_OK)
         status = client_failure(o, &err);
-    else
-        status = receive(c, o, &totals, &ended);
+    else if (status == FC_EXIT_OK)
+        status = receive(c, o, video, &totals, &ended);
+    status = close_video(o, video, status);
     if (status == FC_EXIT_OK && !ended && fc_client_leave_session(c, &err) != FC_OK)
         status = client_failure(o, &err);
     if (status == FC_EXIT_OK)

@@ -262,7 +262,7 @@ static int run(viewer *v, fc_frame *first, const fc_settings *settings, const fc
     fc_view_slots_put_request(&v->slots, &v->ctl.sent);
     fc_view_link_config link = {.session = v->opt.session, .files = v->opt.files, .file_count = v->opt.file_count,
                                 .first_frame = *first, .read = &v->opt.read, .log_camera = v->opt.log_camera,
-                                .width = (uint32_t)width, .height = (uint32_t)height,
+                                .width = (uint32_t)width, .height = (uint32_t)height, .format = v->opt.format,
                                 .wake = wake, .wake_ctx = &v->wake_type};
     *first = (fc_frame){0}; /* the link owns it now */
     if (fc_view_link_start(&v->link, &link, &v->slots, client, &err) != FC_OK)

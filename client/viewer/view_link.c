@@ -13,6 +13,7 @@
 #include "output_file.h"
 #include "particle_reader.h"
 #include "view_camera.h"
+#include "view_decode.h"
 
 /* What the worker remembers of what it sent, to send only changes. */
 typedef struct link_state {
@@ -22,6 +23,8 @@ typedef struct link_state {
     uint32_t screenshot_done;
     uint32_t pick_done;
     double sent_ms;               /* when the last camera/settings went out */
+    fc_view_decoder *decoder;
+    bool keyframe_asked;          /* H.264: a key frame was asked for and has not come yet */
 } link_state;
 
 static double now_ms(void)
@@ -41,13 +44,23 @@ static void give_up(fc_view_link *link, int exit_status, const char *fmt, const 
 
 static int client_exit(const fc_error *err) { return fc_cli_exit_for_client_error(err->code); }
 
+/* H.264 pictures (4:2:0) have even sides: one pixel less, the window scales it. */
+static uint32_t even(uint32_t side)
+{
+    return side > 2 ? side & ~1u : 2;
+}
+
 /* The camera the daemon renders with: the window's, halved while moving. */
-static fc_camera render_camera(const fc_view_request *r)
+static fc_camera render_camera(const fc_view_link *link, const fc_view_request *r)
 {
     fc_camera cam = r->camera;
     if (r->preview) {
         cam.width = cam.width / 2 ? cam.width / 2 : 1;
         cam.height = cam.height / 2 ? cam.height / 2 : 1;
+    }
+    if (link->config.format == FC_FORMAT_H264) {
+        cam.width = even(cam.width);
+        cam.height = even(cam.height);
     }
     return cam;
 }
@@ -76,24 +89,14 @@ static fc_code send_view(fc_view_link *link, link_state *st, const fc_view_reque
     st->sent_ms = now_ms();
     if (!r->has_camera)
         return FC_OK;
-    fc_camera cam = render_camera(r);
+    fc_camera cam = render_camera(link, r);
     log_camera(link, r, &cam);
     return fc_client_set_camera(link->client, &cam, err);
 }
 
-/* RAW colour is RGBA8 rows, top to bottom: decoding is checking the size. */
-static fc_code decode(fc_image_result *img, fc_view_image *out, fc_error *err)
+static fc_render_request image_request(const fc_view_link *link)
 {
-    if (img->format != FC_FORMAT_RAW || img->size != (size_t)img->width * img->height * 4u)
-        return fc_error_set(err, FC_ERR_PROTOCOL, "expected %ux%u RGBA8, got %zu bytes", (unsigned)img->width,
-                            (unsigned)img->height, img->size);
-    out->rgba = img->data;
-    out->width = img->width;
-    out->height = img->height;
-    memcpy(out->stage_ms, img->stage_ms, sizeof out->stage_ms);
-    img->data = NULL;
-    img->size = 0;
-    return FC_OK;
+    return (fc_render_request){.format = link->config.format, .quality = 90, .aov = FC_AOV_COLOR};
 }
 
 static fc_code push_frame(fc_view_link *link, link_state *st, uint32_t index, fc_error *err)
@@ -120,7 +123,7 @@ static fc_code screenshot(fc_view_link *link, const fc_view_request *r, fc_error
 {
     fc_view_request full = *r;
     full.preview = false;
-    fc_camera cam = render_camera(&full);
+    fc_camera cam = render_camera(link, &full);
     fc_code code = fc_client_set_camera(link->client, &cam, err);
     fc_image_result img = {0};
     fc_render_request png = {.format = FC_FORMAT_PNG, .quality = 90, .aov = FC_AOV_COLOR};
@@ -182,12 +185,14 @@ static fc_code render_files(fc_view_link *link, link_state *st, const fc_view_re
     if (code == FC_OK)
         code = send_view(link, st, r, err);
     fc_image_result img = {0};
-    fc_render_request raw = {.format = FC_FORMAT_RAW, .quality = 90, .aov = FC_AOV_COLOR};
+    fc_render_request request = image_request(link);
     if (code == FC_OK)
-        code = fc_client_render(link->client, &raw, &img, err);
+        code = fc_client_render(link->client, &request, &img, err);
     if (code == FC_OK)
-        code = decode(&img, &out, err);
+        code = fc_view_decoder_decode(st->decoder, &img, &out, err);
     fc_image_result_free(&img);
+    if (code == FC_OK && !out.rgba)
+        code = fc_error_set(err, FC_ERR_PROTOCOL, "the server's H.264 image shows nothing");
     if (code != FC_OK)
         return code;
     out.round_trip_ms = now_ms() - st->sent_ms;
@@ -196,9 +201,9 @@ static fc_code render_files(fc_view_link *link, link_state *st, const fc_view_re
     return FC_OK;
 }
 
-static void run_files(fc_view_link *link)
+static void run_files(fc_view_link *link, link_state *state)
 {
-    link_state st = {.loaded = UINT32_MAX};
+    link_state st = *state;
     uint64_t done = 0;
     fc_view_request r;
     bool stop = false;
@@ -212,18 +217,36 @@ static void run_files(fc_view_link *link)
     }
 }
 
+/* Decodes a session's image; an H.264 access unit that shows nothing (its
+ * reference was lost) asks the server for a key frame, once until it comes. */
+static fc_code decode_stream_image(fc_view_link *link, link_state *st, fc_stream_image *img, fc_view_image *out,
+                                   fc_error *err)
+{
+    fc_code code = fc_view_decoder_decode(st->decoder, &img->image, out, err);
+    if (img->keyframe)
+        st->keyframe_asked = false;
+    if (code != FC_OK || out->rgba || img->image.format != FC_FORMAT_H264 || st->keyframe_asked)
+        return code;
+    st->keyframe_asked = true;
+    return fc_client_request_keyframe(link->client, err);
+}
+
 /* A session: images come when the producer publishes (or after a view
  * change); a changed camera goes out between images. */
-static void run_session(fc_view_link *link)
+static void run_session(fc_view_link *link, link_state *state)
 {
     fc_error err;
-    fc_render_request raw = {.format = FC_FORMAT_RAW, .quality = 90, .aov = FC_AOV_COLOR};
-    if (fc_client_subscribe(link->client, link->config.session, &raw, link->config.width, link->config.height,
-                            NULL, &err) != FC_OK) {
+    fc_render_request request = image_request(link);
+    uint32_t width = link->config.width, height = link->config.height;
+    if (request.format == FC_FORMAT_H264) {
+        width = even(width);
+        height = even(height);
+    }
+    if (fc_client_subscribe(link->client, link->config.session, &request, width, height, NULL, &err) != FC_OK) {
         give_up(link, client_exit(&err), "%s", err.message);
         return;
     }
-    link_state st = {.loaded = UINT32_MAX};
+    link_state st = *state;
     uint64_t done = 0, shown = 0;
     for (;;) {
         fc_view_request r;
@@ -245,10 +268,12 @@ static void run_session(fc_view_link *link)
             return;
         }
         fc_view_image out = {.generation = shown, .frame_number = img.frame_number, .preview = r.preview};
-        fc_code code = decode(&img.image, &out, &err);
+        fc_code code = decode_stream_image(link, &st, &img, &out, &err);
         fc_stream_image_free(&img);
         if (code != FC_OK)
             break;
+        if (!out.rgba)
+            continue;
         out.round_trip_ms = img.view_change ? now_ms() - st.sent_ms : -1.0;
         fc_view_slots_put_image(link->slots, &out);
         link->config.wake(link->config.wake_ctx);
@@ -259,10 +284,15 @@ static void run_session(fc_view_link *link)
 static void *worker(void *arg)
 {
     fc_view_link *link = arg;
-    if (link->config.session)
-        run_session(link);
+    link_state st = {.loaded = UINT32_MAX};
+    fc_error err;
+    if (fc_view_decoder_create(&st.decoder, &err) != FC_OK)
+        give_up(link, client_exit(&err), "%s", err.message);
+    else if (link->config.session)
+        run_session(link, &st);
     else
-        run_files(link);
+        run_files(link, &st);
+    fc_view_decoder_free(st.decoder);
     pthread_mutex_lock(&link->slots->lock);
     link->finished = true;
     pthread_mutex_unlock(&link->slots->lock);

@@ -8,9 +8,11 @@
  * A double-click's pick renders a quarter-size depth AOV first and returns
  * the point under the cursor with the next image.
  *
- * Images are asked for as RAW RGBA8, so "decoding" is checking the size and
- * taking the rows: no image codec on the client (PNG is used for the lossless
- * screenshot, written as the server encoded it). */
+ * Images are asked for as RAW RGBA8 by default, so "decoding" is checking the
+ * size and taking the rows; with --format jpeg or h264 they are decoded with
+ * libavcodec on this thread (view_decode.h): a session's H.264 images as one
+ * video stream, whose camera sizes are kept even (4:2:0). PNG is used for the
+ * lossless screenshot, written as the server encoded it. */
 #ifndef FC_VIEW_LINK_H
 #define FC_VIEW_LINK_H
 
@@ -29,6 +31,7 @@ typedef struct fc_view_link_config {
     const fc_read_options *read;  /* how the files are read (outlives the link) */
     bool log_camera;
     uint32_t width, height;       /* a session's first size, until a camera is sent */
+    fc_image_format format;       /* RAW, JPEG or H264: how images travel */
     void (*wake)(void *ctx);      /* called after each image (thread-safe, quick) */
     void *wake_ctx;
 } fc_view_link_config;

@@ -34,6 +34,17 @@ static fc_code set_size(void *o, const char *name, const char *value, fc_error *
     return fc_cli_parse_size(name, value, &v->width, &v->height, err);
 }
 
+static fc_code set_format(void *o, const char *name, const char *value, fc_error *err)
+{
+    static const char *const names[] = {"raw", "jpeg", "h264", NULL};
+    static const fc_image_format formats[] = {FC_FORMAT_RAW, FC_FORMAT_JPEG, FC_FORMAT_H264};
+    int index;
+    fc_code code = fc_cli_parse_choice(name, value, names, &index, err);
+    if (code == FC_OK)
+        ((fc_view_options *)o)->format = formats[index];
+    return code;
+}
+
 static fc_code set_fps(void *o, const char *name, const char *value, fc_error *err)
 {
     fc_view_options *v = o;
@@ -89,6 +100,7 @@ static const fc_cli_option options[] = {
     {"--session", true, set_session},
     {"--size", true, set_size},
     {"--fps", true, set_fps},
+    {"--format", true, set_format},
     {"--no-spacemouse", false, set_no_spacemouse},
     {"--log-camera", false, set_log_camera},
     {"--test-script", true, set_test_script},
@@ -103,6 +115,7 @@ fc_code fc_view_parse(int argc, char **argv, fc_view_options *o, fc_error *err)
     o->width = 960;
     o->height = 540;
     o->fps = 24.0f;
+    o->format = FC_FORMAT_RAW;
     fc_code code = fc_cli_parse_args(&command, argc, argv, o, &o->help, err);
     if (code != FC_OK || o->help)
         return code;
@@ -140,6 +153,9 @@ void fc_view_print_help(FILE *to)
           "  --size WxH              initial window size (default 960x540); the render\n"
           "                          size follows the window\n"
           "  --fps F                 playback rate of a sequence (default 24)\n"
+          "  --format raw|jpeg|h264  how images travel (default raw: exact, largest); h264\n"
+          "                          streams a session as video, about 1/10 of JPEG's bytes,\n"
+          "                          for links slower than a LAN (README: Viewer)\n"
           "  --no-spacemouse         do not look for a SpaceMouse\n"
           "  --log-camera            print each camera sent to the daemon\n"
           "  --test-script SCRIPT    test hook: run ';'-separated commands (wait, drag DX DY,\n"

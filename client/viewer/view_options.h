@@ -19,6 +19,7 @@ typedef struct fc_view_options {
     const char **files;           /* the sequence, in order (owned: free with fc_view_options_free) */
     uint32_t file_count;
     uint32_t width, height;       /* initial window size */
+    fc_image_format format;       /* how images travel: RAW (default), JPEG or H264 */
     float fps;                    /* playback rate of a sequence */
     bool no_spacemouse;
     bool log_camera;              /* print every camera sent to the daemon (tests, debugging) */

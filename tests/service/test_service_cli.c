@@ -99,12 +99,51 @@ static void write_frames(const char *dir, char paths[FILES][96])
     }
 }
 
+/* The NAL unit types of an Annex B file: a bit per type present, and the number of slices (types 1 and 5). */
+static uint32_t annex_b_types(const uint8_t *p, size_t n, int *slices)
+{
+    uint32_t types = 0;
+    *slices = 0;
+    for (size_t i = 0; i + 3 < n; i++)
+        if (p[i] == 0 && p[i + 1] == 0 && p[i + 2] == 1) {
+            int type = p[i + 3] & 0x1f;
+            types |= 1u << type;
+            *slices += type == 1 || type == 5;
+            i += 2;
+        }
+    return types;
+}
+
+/* watch --format h264 --out-dir: the access units it printed, in one Annex B file starting with an IDR. */
+static void check_h264_watch(const cli_job *video, const char *dir)
+{
+    CHECK_MSG(video->result.status == 0 && strstr(video->result.out, "session ended"), "watch h264: %d\n%s%s",
+              video->result.status, video->result.out, video->result.err);
+    int units = 0;
+    for (const char *p = strstr(video->result.out, " H.264, "); p; p = strstr(p + 1, " H.264, "))
+        units++;
+    char path[128];
+    snprintf(path, sizeof path, "%s/cli.h264", dir);
+    size_t size = 0;
+    uint8_t *data = read_whole_file(path, &size);
+    int slices = 0;
+    uint32_t types = data ? annex_b_types(data, size, &slices) : 0;
+    static const uint8_t sps_start[] = {0, 0, 0, 1, 0x67};
+    CHECK_MSG(data && size > sizeof sps_start && memcmp(data, sps_start, sizeof sps_start) == 0, "%s starts with %s",
+              path, data ? "no SPS" : "nothing");
+    CHECK_MSG((types & (1u << 5)) && (types & (1u << 8)) && units >= 1 && slices == units,
+              "%s: NAL types 0x%x, %d slices for %d access units", path, types, slices, units);
+    CHECK_MSG(strstr(video->result.out, "(key frame)") != NULL, "no key frame flagged:\n%s", video->result.out);
+    free(data);
+}
+
 static void test_stream_watch_info(const fc_test_daemon *d, const char *base)
 {
-    char paths[FILES][96], out_dir[96], watch_dir[96];
+    char paths[FILES][96], out_dir[96], watch_dir[96], video_dir[96];
     write_frames(base, paths);
     snprintf(out_dir, sizeof out_dir, "%s/out", base);
     snprintf(watch_dir, sizeof watch_dir, "%s/watched", base);
+    snprintf(video_dir, sizeof video_dir, "%s/video", base);
     const char *server = svc_address(d);
 
     cli_job watcher = {.program = FLUIDCAST_CLI_PATH,
@@ -113,19 +152,24 @@ static void test_stream_watch_info(const fc_test_daemon *d, const char *base)
     cli_job counter = {.program = FLUIDCAST_CLI_PATH,
                        .args = {"watch", "--server", server, "--session", "cli", "--count", "1", "--format", "jpg",
                                 "--quality", "80", "--size", "41x41", NULL}};
+    cli_job video = {.program = FLUIDCAST_CLI_PATH,
+                     .args = {"watch", "--server", server, "--session", "cli", "--size", "42x42", "--format", "h264",
+                              "--out-dir", video_dir, NULL}};
     make_dir(watcher.dir, sizeof watcher.dir, base, "w1");
     make_dir(counter.dir, sizeof counter.dir, base, "w2");
-    pthread_t threads[2];
+    make_dir(video.dir, sizeof video.dir, base, "w3");
+    pthread_t threads[3];
     pthread_create(&threads[0], NULL, run_job, &watcher);
     pthread_create(&threads[1], NULL, run_job, &counter);
-    CHECK_MSG(wait_for_viewers(d, "cli", 2), "the watchers never subscribed");
+    pthread_create(&threads[2], NULL, run_job, &video);
+    CHECK_MSG(wait_for_viewers(d, "cli", 3), "the watchers never subscribed");
 
     cli_result info;
     const char *info_args[] = {"info", "--server", server, NULL};
     cli_run(FLUIDCAST_CLI_PATH, base, info_args, &info);
     CHECK_MSG(info.status == 0 && strstr(info.out, "fluidcastd 0.1.0 (protocol 1)") &&
                   strstr(info.out, "llvmpipe") && strstr(info.out, "capabilities: sessions zstd quantize16") &&
-                  strstr(info.out, "cli: 0 producer(s), 2 viewer(s), 0 frame(s)"),
+                  strstr(info.out, "cli: 0 producer(s), 3 viewer(s), 0 frame(s)"),
               "info: status %d, out:\n%s", info.status, info.out);
 
     cli_result stream;
@@ -134,6 +178,8 @@ static void test_stream_watch_info(const fc_test_daemon *d, const char *base)
     cli_run(FLUIDCAST_CLI_PATH, base, stream_args, &stream);
     pthread_join(threads[0], NULL);
     pthread_join(threads[1], NULL);
+    pthread_join(threads[2], NULL);
+    check_h264_watch(&video, video_dir);
 
     CHECK_MSG(stream.status == 0, "stream: status %d, err: %s", stream.status, stream.err);
     CHECK_MSG(strstr(stream.out, "frame 1/4 ") && strstr(stream.out, "frame 4/4 ") &&
@@ -177,9 +223,10 @@ static void test_usage_errors(const char *base)
     const char *no_session[] = {"watch", "--count", "3", NULL};
     const char *png_quality[] = {"stream", "a.f32", "--quality", "50", NULL};
     const char *nobody[] = {"info", "--server", "127.0.0.1:1", NULL};
-    const char *const *runs[] = {no_files, no_session, png_quality, nobody};
-    const int expected[] = {2, 2, 2, 4};
-    for (int i = 0; i < 4; i++) {
+    const char *stream_h264[] = {"stream", "a.f32", "--format", "h264", NULL};
+    const char *const *runs[] = {no_files, no_session, png_quality, nobody, stream_h264};
+    const int expected[] = {2, 2, 2, 4, 2};
+    for (int i = 0; i < 5; i++) {
         cli_result r;
         cli_run(FLUIDCAST_CLI_PATH, base, runs[i], &r);
         CHECK_MSG(r.status == expected[i] && strncmp(r.err, "fluidcast: ", 11) == 0, "%s %s: status %d, err %s",

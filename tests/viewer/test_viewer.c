@@ -12,6 +12,9 @@
  *               fluid) leaves the camera alone
  *   spacemouse  under umockdev-run with tests/input's Compact holding +X:
  *               the camera pans (its target moves against the view's right)
+ *   h264        the slab published to a session (by this test, through
+ *               libfluidcast); `view --session --format h264` decodes the
+ *               daemon's H.264 stream and draws it as `draw` requires
  * Usage: test_viewer MODE FLUIDCAST_CLI TESTS_INPUT_DIR [GALLERY_PNG] */
 #include <fcntl.h>
 #include <math.h>
@@ -24,6 +27,7 @@
 
 #include "fc_error.h"
 #include "fc_frame.h"
+#include "fluidcast.h"
 #include "support/daemon_process.h"
 #include "support/image_decode.h"
 #include "test_util.h"
@@ -44,21 +48,63 @@ extern char **environ;
 #define HEIGHT 240
 #define DRAG_PX 80
 
-/* A slab of particles, long along x, so that turning it changes its picture. */
+/* A slab of particles, long along x, so that turning it changes its picture:
+ * its positions into p (NULL: only counted); returns the count. */
+static uint64_t slab_points(float *p)
+{
+    const float s = 0.0625f;
+    uint64_t n = 0;
+    for (int i = -12; i <= 12; i++)
+        for (int j = -4; j <= 4; j++)
+            for (int k = -4; k <= 4; k++)
+                if (i * i / 144.0 + j * j / 16.0 + k * k / 16.0 <= 1.0) {
+                    if (p) {
+                        p[3 * n] = i * s;
+                        p[3 * n + 1] = j * s;
+                        p[3 * n + 2] = k * s;
+                    }
+                    n++;
+                }
+    return n;
+}
+
 static bool write_slab(const char *path)
 {
     FILE *f = fopen(path, "wb");
     if (!f)
         return false;
-    const float s = 0.0625f;
-    for (int i = -12; i <= 12; i++)
-        for (int j = -4; j <= 4; j++)
-            for (int k = -4; k <= 4; k++)
-                if (i * i / 144.0 + j * j / 16.0 + k * k / 16.0 <= 1.0) {
-                    float p[3] = {i * s, j * s, k * s};
-                    fwrite(p, sizeof p, 1, f);
-                }
-    return fclose(f) == 0;
+    fc_frame frame = {0};
+    fc_error err;
+    bool ok = fc_frame_alloc(&frame, slab_points(NULL), 0, &err) == FC_OK;
+    if (ok) {
+        slab_points(frame.positions);
+        ok = fwrite(frame.positions, 12, frame.count, f) == frame.count;
+    }
+    fc_frame_free(&frame);
+    return fclose(f) == 0 && ok;
+}
+
+/* A producer holding the slab as session `name`'s frame (NULL on failure). */
+static fc_client *publish_slab(const char *server, const char *name)
+{
+    fc_connect_options options = {.client_name = "test_viewer producer", .reply_timeout_ms = 30000};
+    fc_client *c = NULL;
+    fc_frame frame = {0};
+    fc_error err;
+    bool ok = fc_client_connect(server, &options, &c, &err) == FC_OK &&
+              fc_client_publish(c, name, NULL, &err) == FC_OK &&
+              fc_frame_alloc(&frame, slab_points(NULL), 0, &err) == FC_OK;
+    if (ok) {
+        slab_points(frame.positions);
+        ok = fc_client_send_frame(c, &frame, &err) == FC_OK;
+    }
+    fc_frame_free(&frame);
+    if (!ok) {
+        fprintf(stderr, "producer: %s\n", err.message);
+        fc_client_close(c);
+        return NULL;
+    }
+    return c;
 }
 
 /* Runs argv with stdout and stderr to out_path; the exit status or -1. */
@@ -320,24 +366,35 @@ static int run_viewer(const scene *s, const char *mode, char **log)
     } else if (strcmp(mode, "pick") == 0) {
         snprintf(script, sizeof script, "wait; dclick 0 0; wait; dclick %d %d; wait; quit", -WIDTH / 2 + 4,
                  HEIGHT / 2 - 4);
-    } else if (strcmp(mode, "draw") == 0) {
+    } else if (strcmp(mode, "draw") == 0 || strcmp(mode, "h264") == 0) {
         snprintf(script, sizeof script, "wait; shot %s; quit", a);
     } else {
         snprintf(script, sizeof script, "wait; shot %s; drag %d 0; wait; shot %s; key p; wait; quit", a, DRAG_PX, b);
     }
     char size[32];
     snprintf(size, sizeof size, "%dx%d", WIDTH, HEIGHT);
+    bool h264 = strcmp(mode, "h264") == 0;
     const char *rest[] = {s->cli, "view", s->slab, "--server", s->server, "--size", size, "--log-camera",
                           "--test-script", script};
     for (size_t i = 0; i < sizeof rest / sizeof rest[0]; i++)
         argv[n++] = rest[i];
+    fc_client *producer = NULL;
+    if (h264) {
+        /* The session's frame is there before the viewer subscribes: its first image is that frame's IDR. */
+        producer = publish_slab(s->server, "view-h264");
+        REQUIRE(producer != NULL);
+        argv[2] = "--session=view-h264";   /* in place of the files */
+        argv[n++] = "--format";
+        argv[n++] = "h264";
+    }
     if (strcmp(mode, "spacemouse") != 0)
         argv[n++] = "--no-spacemouse";
     argv[n] = NULL;
     int status = run(argv, out);
+    fc_client_close(producer);
     *log = read_text(out);
     REQUIRE_MSG(status == 0 && *log, "the viewer exited with %d:\n%s", status, *log ? *log : "");
-    if (strcmp(mode, "draw") == 0)
+    if (strcmp(mode, "draw") == 0 || h264)
         return test_draw(s, *log, a);
     if (strcmp(mode, "drag") == 0)
         return test_drag(s, *log, a, b);
@@ -349,7 +406,7 @@ static int run_viewer(const scene *s, const char *mode, char **log)
 int main(int argc, char **argv)
 {
     if (argc < 4) {
-        fprintf(stderr, "usage: test_viewer draw|drag|pick|spacemouse FLUIDCAST_CLI TESTS_INPUT_DIR [GALLERY_PNG]\n");
+        fprintf(stderr, "usage: test_viewer draw|drag|pick|spacemouse|h264 FLUIDCAST_CLI TESTS_INPUT_DIR [GALLERY_PNG]\n");
         return 2;
     }
     const char *mode = argv[1];
@@ -364,7 +421,11 @@ int main(int argc, char **argv)
     REQUIRE(write_slab(s.slab));
     fc_test_daemon d;
     fc_error err;
-    REQUIRE_MSG(fc_test_daemon_start(&d, NULL, FC_TEST_DAEMON_START_TIMEOUT_MS, &err) == FC_OK, "%s", err.message);
+    /* h264: no lossless PNG refresh, so what the window shows is the decoded H.264 picture. */
+    static const char *const no_refresh[] = {"--refresh-ms", "0", NULL};
+    const char *const *daemon_args = strcmp(mode, "h264") == 0 ? no_refresh : NULL;
+    REQUIRE_MSG(fc_test_daemon_start(&d, daemon_args, FC_TEST_DAEMON_START_TIMEOUT_MS, &err) == FC_OK, "%s",
+                err.message);
     snprintf(s.server, sizeof s.server, "127.0.0.1:%u", (unsigned)d.port);
     char *log = NULL;
     int status = run_viewer(&s, mode, &log);
