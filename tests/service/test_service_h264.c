@@ -6,6 +6,8 @@
  * not; frames skipped by latest-wins leave the stream decodable; a key frame
  * comes on request, at a resize and after a failed image; a viewer at rest
  * gets a lossless PNG refresh; a RENDER's H.264 image is an IDR of its own;
+ * after a stream image the viewer never got (a lost GPU context, by the
+ * daemon's test hook) the next one is an IDR and decodes;
  * viewers that join and vanish mid-stream leave the daemon serving the others
  * (their encoders freed: the sanitizer build checks the daemon leaks nothing). */
 #include <math.h>
@@ -398,6 +400,53 @@ static void vanishing_viewers(const fc_test_daemon *d, scene *s)
     }
 }
 
+/* A daemon whose 3rd render loses the GPU context: the viewer's image of
+ * frame 3 is an ERROR (RENDER), and its image of frame 4 an IDR that decodes. */
+static void forced_miss(void)
+{
+    static const char *const environment[] = {"FLUIDCASTD_TEST_LOSE_CONTEXT=3", NULL};
+    static const char *const args[] = {"--max-image", "256x256", "--refresh-ms", "0", NULL};
+    fc_test_daemon_setup setup = {.extra_args = args, .environment = environment};
+    fc_test_daemon d;
+    fc_error err;
+    if (fc_test_daemon_start_with(&d, &setup, FC_TEST_DAEMON_START_TIMEOUT_MS, &err) != FC_OK) {
+        CHECK_MSG(0, "cannot start the daemon: %s", err.message);
+        return;
+    }
+    scene s = {0};
+    svc_axis_camera(EYE_Z, W, H, &s.camera);
+    svc_settings(&s.settings);
+    s.producer = svc_client(&d, "producer");
+    CHECK(s.producer && fc_client_publish(s.producer, SESSION, NULL, &err) == FC_OK);
+    s.h264 = viewer(&d, &s, FC_FORMAT_H264, "h264");
+    CHECK(decoder_open(&s.h264_decoder, AV_CODEC_ID_H264));
+    for (uint64_t f = 1; s.producer && s.h264 && f <= 5 && publish(&s, f); f++) {
+        fc_stream_image h;
+        fc_code code = fc_client_next_image(s.h264, &h, &err);
+        if (f == 3) {
+            CHECK_MSG(code == FC_ERR_RENDER, "frame 3: code %d (%s), expected RENDER", (int)code, err.message);
+            continue;
+        }
+        CHECK_MSG(code == FC_OK && h.frame_number == f, "frame %llu: code %d", (unsigned long long)f, (int)code);
+        if (code != FC_OK)
+            break;
+        bool idr = is_idr_unit(h.image.data, h.image.size);
+        CHECK_MSG((f == 1 || f == 4) == (h.keyframe && idr), "frame %llu: keyframe %d, NAL types 0x%x",
+                  (unsigned long long)f, h.keyframe, nal_types(h.image.data, h.image.size));
+        picture p;
+        CHECK_MSG(decode(&s.h264_decoder, h.image.data, h.image.size, &p) && p.width == W && p.height == H,
+                  "frame %llu does not decode", (unsigned long long)f);
+        if (f == 4)
+            printf("after the failed image: frame 4 an IDR of %zu bytes\n", h.image.size);
+        free(p.rgba);
+        fc_stream_image_free(&h);
+    }
+    decoder_close(&s.h264_decoder);
+    fc_client_close(s.h264);
+    fc_client_close(s.producer);
+    CHECK(svc_stop_daemon(&d));
+}
+
 int main(void)
 {
     fc_test_daemon daemon;
@@ -434,5 +483,6 @@ int main(void)
     fc_client_close(s.raw);
     fc_client_close(s.producer);
     CHECK(svc_stop_daemon(&daemon));
+    forced_miss();
     return test_result();
 }
