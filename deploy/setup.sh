@@ -20,6 +20,8 @@ PACKAGES=(
   libfreetype-dev fonts-dejavu-core
   # fluidcast render to .mp4/.webm (libavcodec with libx264 and libvpx); fluidcastd's H.264 streams
   libavcodec-dev libavformat-dev libavutil-dev libswscale-dev
+  # fluidcast render --camera-path: the camera keyframe file (JSON)
+  libcjson-dev
   # shader validation in the test suite
   glslang-tools
   # fuzzing (libFuzzer) in the test suite

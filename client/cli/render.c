@@ -1,7 +1,8 @@
-/* render.c — `fluidcast render`: expand the inputs, frame the whole sequence
- * once, connect, then for each frame (read ahead on the reader thread):
- * upload, set the (orbiting) camera, render, append to the video or write the
- * image; report progress; finish the video whatever happened. */
+/* render.c — `fluidcast render`: expand the inputs, read the camera path if
+ * there is one, frame the whole sequence once, connect, then for each frame (read ahead on the reader thread):
+ * upload, set the (orbiting) camera, render, hand the image to the writer
+ * thread (which appends it to the video or writes its file); report progress;
+ * finish the video whatever happened. */
 #include "render.h"
 
 #include <stdio.h>
@@ -9,6 +10,7 @@
 #include <time.h>
 #include <unistd.h>
 
+#include "camera_path.h"
 #include "cli_connect.h"
 #include "cli_report.h"
 #include "cli_settings.h"
@@ -23,19 +25,21 @@
 #include "render_options.h"
 #include "render_output.h"
 #include "render_reader.h"
+#include "render_writer.h"
 #include "snapshot_scene.h"
 #include "up_choice.h"
 
 typedef struct render_job {
     const fc_render_options *o;
     fc_render_inputs inputs;
-    fc_camera camera;               /* before --orbit turns it */
+    fc_camera camera;               /* before --orbit turns it; the defaults of a camera path */
+    fc_camera_path path;            /* --camera-path's keyframes (count 0 without) */
     fc_settings settings;
     char **todo_paths;              /* the inputs to render (--skip-existing leaves some out) */
     uint32_t *todo;                 /* their positions in inputs */
     uint32_t todo_count;
     fc_render_output output;
-    uint32_t rendered;
+    uint32_t rendered;              /* images written */
 } render_job;
 
 static int exit_for(fc_code code, int otherwise)
@@ -76,7 +80,9 @@ static int choose_view(render_job *job)
         fc_cli_complete_color_range(&job->settings, &first, o->view.has_color_range, &chosen);
         printf("render: %u frames, %s .. %s", (unsigned)job->inputs.count, job->inputs.paths[0],
                job->inputs.paths[job->inputs.count - 1]);
-        if (o->view.has_eye)
+        if (o->camera_path)
+            printf("; camera from %s (%u keyframes)\n", o->camera_path, (unsigned)job->path.count);
+        else if (o->view.has_eye)
             printf("; camera from --eye/--target\n");
         else
             printf("; camera framed on the bounds of %u of them\n", (unsigned)bounds.framed);
@@ -136,14 +142,27 @@ static int connect_and_set_up(render_job *job, fc_client **client)
     return FC_EXIT_OK;
 }
 
-/* Frame `slot` of the sequence of `count`: turned by orbit x slot / count. */
+/* Frame `slot` of the sequence of `count`: on the camera path at its
+ * number, or turned by orbit x slot / count. */
 static void frame_camera(const render_job *job, uint32_t slot, fc_camera *cam)
 {
+    if (job->path.count > 0) {
+        fc_camera_path_at(&job->path, job->inputs.numbers[slot], &job->camera, cam);
+        return;
+    }
     double turn = job->o->has_orbit ? (double)job->o->orbit_deg * slot / job->inputs.count : 0.0;
     fc_orbit_camera(&job->camera, turn, cam);
 }
 
-static int render_frame(render_job *job, fc_client *client, const fc_read_frame *item, fc_progress *progress)
+static int output_failure(const fc_error *err)
+{
+    return fc_cli_fail(err->code == FC_ERR_PROTOCOL ? FC_EXIT_CONNECTION : FC_EXIT_OUTPUT, "%s", err->message);
+}
+
+/* Upload, camera, render; the image goes to the writer thread, so the next
+ * frame is uploaded and rendered while it is encoded and written. */
+static int render_frame(render_job *job, fc_client *client, fc_render_writer *writer, const fc_read_frame *item,
+                        fc_progress *progress)
 {
     uint32_t slot = job->todo[item->slot];
     fc_camera cam;
@@ -157,22 +176,27 @@ static int render_frame(render_job *job, fc_client *client, const fc_read_frame 
     if (fc_client_upload_frame(client, &item->frame, NULL, &stats, &err) != FC_OK ||
         fc_client_set_camera(client, &cam, &err) != FC_OK || fc_client_render(client, &request, &image, &err) != FC_OK)
         status = client_failure(job, &err);
-    else if (fc_render_output_write(&job->output, job->inputs.numbers[slot], &image, &err) != FC_OK)
-        status = fc_cli_fail(err.code == FC_ERR_PROTOCOL ? FC_EXIT_CONNECTION : FC_EXIT_OUTPUT, "%s", err.message);
+    else if (fc_render_writer_put(writer, job->inputs.numbers[slot], &image, &err) != FC_OK)
+        status = output_failure(&err);
     fc_image_result_free(&image);
-    if (status == FC_EXIT_OK) {
-        job->rendered++;
+    if (status == FC_EXIT_OK)
         fc_progress_frame(progress, job->inputs.paths[slot], item->frame.count, &stats);
-    }
     return status;
 }
 
+/* The frames go from the reader thread (files read and parsed ahead) through
+ * the connection to the writer thread (images encoded and written behind). */
 static int render_all(render_job *job, fc_client *client)
 {
     fc_render_reader *reader;
+    fc_render_writer *writer;
     fc_error err;
-    if (fc_render_reader_start(job->todo_paths, job->todo_count, &job->o->view.read, &reader, &err) != FC_OK)
+    if (fc_render_writer_start(&job->output, &writer, &err) != FC_OK)
+        return fc_cli_fail(FC_EXIT_OUTPUT, "%s", err.message);
+    if (fc_render_reader_start(job->todo_paths, job->todo_count, &job->o->view.read, &reader, &err) != FC_OK) {
+        fc_render_writer_finish(writer, &job->rendered, &err);
         return fc_cli_fail(FC_EXIT_INPUT, "%s", err.message);
+    }
     fc_progress progress;
     fc_progress_start(&progress, stdout, isatty(STDOUT_FILENO), job->todo_count);
     int status = FC_EXIT_OK;
@@ -184,10 +208,13 @@ static int render_all(render_job *job, fc_client *client)
             status = fc_cli_fail(FC_EXIT_INPUT, "frame %u of %u: %s", (unsigned)job->todo[item.slot] + 1,
                                  (unsigned)job->inputs.count, item.err.message);
         } else
-            status = render_frame(job, client, &item, &progress);
+            status = render_frame(job, client, writer, &item, &progress);
         fc_frame_free(&item.frame);
     }
     fc_render_reader_stop(reader);
+    /* What was rendered is written, also after a failure or an interruption. */
+    if (fc_render_writer_finish(writer, &job->rendered, &err) != FC_OK && status == FC_EXIT_OK)
+        status = output_failure(&err);
     if (status == FC_EXIT_OK && progress.tty)
         putchar('\n');
     int signal_number = fc_render_interrupted();
@@ -234,6 +261,8 @@ static int render(render_job *job)
     if (fc_render_inputs_expand(job->o->inputs, job->o->input_count, &job->o->range, &job->inputs, &err) != FC_OK)
         return fc_cli_fail(exit_for(err.code, FC_EXIT_INPUT), "%s", err.message);
     job->output.options = job->o;
+    if (job->o->camera_path && fc_camera_path_load(job->o->camera_path, &job->path, &err) != FC_OK)
+        return fc_cli_fail(FC_EXIT_INPUT, "%s", err.message);
     int status = choose_view(job);
     if (status == FC_EXIT_OK)
         status = choose_frames(job);
@@ -270,6 +299,7 @@ int fc_render_main(int argc, char **argv)
         free(job.todo);
         free(job.todo_paths);
         fc_render_inputs_free(&job.inputs);
+        fc_camera_path_free(&job.path);
     }
     fc_render_options_free(&options);
     return status;

@@ -9,6 +9,7 @@
 #include <unistd.h>
 
 #include "fc_error.h"
+#include "render_brace.h"
 
 #define MAX_FRAMES 1000000u
 #define PATH_CAP 4096
@@ -184,6 +185,33 @@ static fc_code expand_pattern(const char *pattern, const fc_frame_range *range, 
     return code;
 }
 
+/* ---- a {} pattern: every file with digits where {} is, by number ---- */
+
+static bool in_range(const fc_frame_range *range, uint32_t first, uint32_t number)
+{
+    return (!range->has_start || number >= range->start) && (!range->has_end || number <= range->end) &&
+           (number - first) % range->step == 0;
+}
+
+static fc_code expand_braces(const char *pattern, const fc_frame_range *range, fc_render_inputs *out,
+                             fc_error *err)
+{
+    fc_brace_match *m;
+    size_t count;
+    fc_code code = fc_brace_matches(pattern, &m, &count, err);
+    if (code != FC_OK)
+        return code;
+    /* --step counts from --start, else from the lowest number there is. */
+    uint32_t first = range->has_start ? range->start : m[0].number;
+    for (size_t i = 0; i < count && code == FC_OK; i++)
+        if (m[i].number >= first && in_range(range, first, m[i].number))
+            code = add_path(out, m[i].path, m[i].number, err);
+    fc_brace_matches_free(m, count);
+    if (code == FC_OK && out->count == 0)
+        code = fc_error_set(err, FC_ERR_USAGE, "no file of \"%s\" is in the frame range given", pattern);
+    return code;
+}
+
 /* ---- lists and globs ---- */
 
 static int version_order(const void *a, const void *b)
@@ -213,18 +241,22 @@ fc_code fc_render_inputs_expand(const char *const *args, uint32_t arg_count, con
                                 fc_render_inputs *out, fc_error *err)
 {
     memset(out, 0, sizeof *out);
-    bool pattern = arg_count == 1 && fc_is_frame_pattern(args[0]);
+    bool printf_pattern = arg_count == 1 && fc_is_frame_pattern(args[0]);
+    bool brace_pattern = arg_count == 1 && !printf_pattern && fc_is_brace_pattern(args[0]);
+    bool pattern = printf_pattern || brace_pattern;
     for (uint32_t i = 0; i < arg_count && !pattern; i++)
-        if (fc_is_frame_pattern(args[i]))
+        if (fc_is_frame_pattern(args[i]) || fc_is_brace_pattern(args[i]))
             return fc_error_set(err, FC_ERR_USAGE, "a frame pattern (\"%s\") must be the only input", args[i]);
     if (!pattern && (range->has_start || range->has_end || range->step != 1))
-        return fc_error_set(err, FC_ERR_USAGE, "--start, --end and --step need a frame pattern such as frame_%%04d.ply");
+        return fc_error_set(err, FC_ERR_USAGE, "--start, --end and --step need a frame pattern such as frame_%%04d.ply or frame_{}.ply");
     if (range->has_start && range->has_end && range->end < range->start)
         return fc_error_set(err, FC_ERR_USAGE, "--end %u is before --start %u", (unsigned)range->end,
                             (unsigned)range->start);
     fc_code code = FC_OK;
-    if (pattern)
+    if (printf_pattern)
         code = expand_pattern(args[0], range, out, err);
+    else if (brace_pattern)
+        code = expand_braces(args[0], range, out, err);
     for (uint32_t i = 0; i < arg_count && !pattern && code == FC_OK; i++)
         code = strpbrk(args[i], "*?[") ? expand_glob(args[i], out, err) : add_path(out, args[i], out->count, err);
     if (code == FC_OK && out->count == 0)

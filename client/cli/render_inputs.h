@@ -1,8 +1,11 @@
 /* render_inputs.h — the particle files of `fluidcast render`, in order: a list
  * of names, shell-style globs (expanded with glob(3), each sorted with
- * numbers in names compared by value) or one printf-style frame pattern
+ * numbers in names compared by value), one printf-style frame pattern
  * ("frame_%04d.ply"): frames from --start (default: the lowest number that
- * exists) up by --step to --end (default: up to the first number missing). */
+ * exists) up by --step to --end (default: up to the first number missing), or
+ * one "{}" pattern ("ParticleData_Fluid_{}.bgeo", render_brace.h): every file
+ * with digits there, by number, those in --start..--end, every --step-th
+ * counted from --start (default: the lowest). */
 #ifndef FC_RENDER_INPUTS_H
 #define FC_RENDER_INPUTS_H
 
@@ -32,7 +35,8 @@ fc_code fc_pattern_path(const char *pattern, uint32_t number, char *out, size_t 
 
 /* Expands the INPUTS. FC_ERR_USAGE for a pattern among other inputs, a range
  * without a pattern, a glob that matches nothing, a pattern with no frame at
- * all, or an empty result; FC_ERR_NOMEM. Files named one by one (and with
+ * all (or none in the range), two files of one number in a {} pattern, or an
+ * empty result; FC_ERR_NOMEM. Files named one by one (and with
  * --end, the pattern's) are not checked here: a missing one is reported when
  * its turn comes. Free with fc_render_inputs_free. */
 fc_code fc_render_inputs_expand(const char *const *args, uint32_t arg_count, const fc_frame_range *range,

@@ -43,6 +43,14 @@ static fc_code set_orbit(void *o, const char *name, const char *value, fc_error 
     return fc_cli_parse_float(name, value, &r->orbit_deg, err);
 }
 
+static fc_code set_camera_path(void *o, const char *name, const char *value, fc_error *err)
+{
+    if (value[0] == '\0')
+        return fc_error_set(err, FC_ERR_USAGE, "%s needs a file name", name);
+    ((fc_render_options *)o)->camera_path = value;
+    return FC_OK;
+}
+
 static fc_code set_skip_existing(void *o, const char *name, const char *value, fc_error *err)
 {
     (void)name, (void)value, (void)err;
@@ -62,7 +70,7 @@ static fc_code set_quality(void *o, const char *name, const char *value, fc_erro
 static const fc_cli_option own_options[] = {
     {"--start", true, set_start}, {"--end", true, set_end},     {"--step", true, set_step},
     {"--fps", true, set_fps},     {"--orbit", true, set_orbit}, {"--skip-existing", false, set_skip_existing},
-    {"--quality", true, set_quality},
+    {"--quality", true, set_quality}, {"--camera-path", true, set_camera_path},
 };
 
 static const fc_cli_option *find_own(const char *arg, const char **inline_value)
@@ -164,9 +172,13 @@ static fc_code check_image_pattern(fc_render_options *o, fc_error *err)
 static fc_code check_combinations(fc_render_options *o, fc_error *err)
 {
     if (o->input_count == 0)
-        return fc_error_set(err, FC_ERR_USAGE, "render needs particle files: a list, a glob or a %%04d pattern");
+        return fc_error_set(err, FC_ERR_USAGE, "render needs particle files: a list, a glob, a %%04d or a {} pattern");
     if (!o->view.output)
         return fc_error_set(err, FC_ERR_USAGE, "render needs an output: -o OUT.mp4|.webm or -o frames/f_%%04d.png");
+    if (o->camera_path && (o->view.has_eye || o->view.has_target))
+        return fc_error_set(err, FC_ERR_USAGE, "--camera-path gives the camera: leave out --eye and --target");
+    if (o->camera_path && o->has_orbit)
+        return fc_error_set(err, FC_ERR_USAGE, "--camera-path gives the camera: leave out --orbit");
     o->video = fc_video_is_video_path(o->view.output);
     fc_code code = o->video ? check_video(o, err) : check_image_pattern(o, err);
     return code != FC_OK ? code : fc_snapshot_check_camera(&o->view, err);
@@ -204,13 +216,16 @@ static void print_sequence_help(FILE *to)
             "\n"
             "Renders a sequence of particle files (the formats snapshot reads) on a\n"
             "fluidcastd server, in order, into a video or numbered images. The camera\n"
-            "stays put over the sequence: it frames the bounding box of all its frames (a\n"
-            "first pass reads every file for it), up guessed from the first frame as\n"
-            "snapshot does.\n"
+            "stays put over the sequence (unless --orbit or --camera-path moves it): it\n"
+            "frames the bounding box of all its frames (a first pass reads every file\n"
+            "for it), up guessed from the first frame as snapshot does.\n"
             "\n"
             "INPUTS: files in the order given; quoted globs ('out/*.ply', expanded here,\n"
-            "numbers in names sorted by value); or one pattern with a %%d (frame_%%04d.ply):\n"
-            "frames from the lowest number that exists up to the first that is missing.\n"
+            "numbers in names sorted by value); one pattern with a %%d (frame_%%04d.ply):\n"
+            "frames from the lowest number that exists up to the first that is missing;\n"
+            "or one pattern with {} standing for digits, padded or not\n"
+            "('output/partio/ParticleData_Fluid_{}.bgeo'): every file that matches, by\n"
+            "number (2 before 10).\n"
             "\n"
             "sequence:\n"
             "  -o, --output OUT        video (.mp4: H.264 with libx264, else MPEG-4;\n"
@@ -218,8 +233,8 @@ static void print_sequence_help(FILE *to)
             "                          pattern with one %%d: frames/f_%%04d.png|.jpg|.exr,\n"
             "                          numbered like the input pattern's frames, else\n"
             "                          0, 1, 2... in order (a missing directory is made)\n"
-            "  --start N, --end N      first and last frame number of a %%d pattern (with\n"
-            "                          --end every frame must exist)\n"
+            "  --start N, --end N      first and last frame number of a %%d or {} pattern\n"
+            "                          (with --end every frame of a %%d one must exist)\n"
             "  --step N                every Nth frame of a pattern (default 1)\n"
             "  --fps N                 video frame rate, 1..1000 (default %u)\n"
             "  --quality Q             video: constant-rate factor, lower is better\n"
@@ -227,6 +242,13 @@ static void print_sequence_help(FILE *to)
             "                          .jpg: JPEG quality 1..100 (default 90)\n"
             "  --orbit DEGREES         turn the eye about the target around the up axis,\n"
             "                          DEGREES x i / N at frame i of N (360: a seamless loop)\n"
+            "  --camera-path FILE.json camera keyframes, interpolated over the sequence:\n"
+            "                          [{\"frame\": N, \"eye\": [x,y,z], \"target\": [x,y,z],\n"
+            "                          \"up\": [x,y,z], \"fov\": DEG}, ...] (up and fov optional;\n"
+            "                          frame: the number in the file names, else 0, 1...;\n"
+            "                          eye and target on a Catmull-Rom spline through the\n"
+            "                          keyframes, up and fov linear; held before the first\n"
+            "                          and after the last)\n"
             "  --skip-existing         image patterns: leave frames whose image exists, to\n"
             "                          resume an interrupted batch (the camera is the same)\n"
             "\n"

@@ -23,6 +23,7 @@ typedef struct fc_render_options {
     uint32_t fps;
     bool has_orbit;
     float orbit_deg;               /* turn of the eye about the target over the sequence */
+    const char *camera_path;       /* --camera-path FILE.json (camera_path.h), or NULL */
     bool skip_existing;
     bool has_quality;
     uint32_t quality;              /* video: constant-rate factor; .jpg: JPEG quality */
@@ -31,7 +32,8 @@ typedef struct fc_render_options {
 /* Parses the arguments after "render". FC_ERR_USAGE for an unknown option or
  * bad value, no input, an output that is neither a video nor an image pattern
  * with one %d, --skip-existing or --aov with a video, --quality out of the
- * output's range, or what snapshot refuses. Free with fc_render_options_free. */
+ * output's range, --camera-path with --eye/--target or --orbit, or what
+ * snapshot refuses. Free with fc_render_options_free. */
 fc_code fc_render_parse(int argc, char **argv, fc_render_options *out, fc_error *err);
 void fc_render_options_free(fc_render_options *o);
 void fc_render_print_help(FILE *to);

@@ -8,7 +8,9 @@
  * exit status 3 and its name, and the partial video plays with the frames
  * before it, as it does after Ctrl-C; --orbit 90 turns the view (the floor changes between the first
  * and last frame) while the fixed camera keeps every pixel away from the
- * ball. */
+ * ball. Inputs as a glob, a %d pattern and a {} pattern come in number order
+ * (b_2 before b_10), with --start/--end/--step; a {} pattern refuses two
+ * files of one number and a range without frames. */
 #define _GNU_SOURCE   /* memmem */
 #include <fcntl.h>
 #include <math.h>
@@ -23,10 +25,10 @@
 #include <unistd.h>
 
 #include "cli_runner.h"
+#include "render_pictures.h"
 #include "fc_error.h"
 #include "fc_frame.h"
 #include "support/daemon_process.h"
-#include "support/image_decode.h"
 #include "test_ball.h"
 #include "test_util.h"
 #include "video_frames.h"
@@ -121,65 +123,11 @@ static const char *pattern_input(const test_env *env, char *buf)
 
 /* ---- pictures ---- */
 
-typedef struct picture {
-    uint32_t width, height;
-    uint8_t *rgb;    /* 3 bytes a pixel */
-} picture;
-
-static bool read_png(const char *path, picture *out)
-{
-    size_t size;
-    uint8_t *data = read_whole_file(path, &size);
-    fc_decoded_image img;
-    fc_error err;
-    bool ok = data && fc_decode_image(data, size, "png", 0, &img, &err) == FC_OK;
-    free(data);
-    if (!ok)
-        return false;
-    out->width = img.width;
-    out->height = img.height;
-    out->rgb = malloc((size_t)img.width * img.height * 3);
-    const uint8_t *src = img.pixels;
-    for (size_t p = 0; p < (size_t)img.width * img.height; p++)
-        for (int c = 0; c < 3; c++)
-            out->rgb[3 * p + c] = src[p * img.channels + (c < (int)img.channels ? c : 0)];
-    fc_decoded_image_free(&img);
-    return true;
-}
-
 static bool read_frame_png(const char *pattern_dir, const test_env *env, int i, picture *out)
 {
     char name[PATH_CAP], path[PATH_CAP];
     snprintf(name, sizeof name, "%s/f_%04d.png", pattern_dir, i);
     return read_png(path_in(env, name, path), out);
-}
-
-/* The fluid is blue over a neutral floor and sky: pixels whose blue exceeds
- * their red by 60. Returns the mean x of those pixels, -1 when none. */
-static double fluid_centroid_x(const uint8_t *rgb, uint32_t width, uint32_t height, uint32_t *pixels)
-{
-    double sum = 0;
-    *pixels = 0;
-    for (uint32_t y = 0; y < height; y++)
-        for (uint32_t x = 0; x < width; x++) {
-            const uint8_t *p = rgb + 3 * ((size_t)y * width + x);
-            if (p[2] > p[0] + 60) {
-                sum += x;
-                (*pixels)++;
-            }
-        }
-    return *pixels ? sum / *pixels : -1.0;
-}
-
-static double psnr(const uint8_t *a, const uint8_t *b, size_t bytes)
-{
-    double se = 0;
-    for (size_t i = 0; i < bytes; i++) {
-        double d = (double)a[i] - b[i];
-        se += d * d;
-    }
-    double mse = se / (double)bytes;
-    return mse > 0 ? 10.0 * log10(255.0 * 255.0 / mse) : 99.0;
 }
 
 /* Fraction of the pixels of rows [first_row, height) where some channel
@@ -474,6 +422,56 @@ static void test_input_order(const test_env *env)
     path_in(env, "un/b_10.f32", b);
     snprintf(expected, sizeof expected, "2 frames, %s .. %s;", a, b);
     expect_frames(env, "un/b_%d.f32", (const char *const[]){"--start", "2", "--step", "8", NULL}, expected);
+    /* {}: every file with digits there, by number, gaps allowed. */
+    path_in(env, "un/b_1.f32", a);
+    snprintf(expected, sizeof expected, "3 frames, %s .. %s; camera framed on the bounds of 3 of them", a, b);
+    expect_frames(env, "un/b_{}.f32", NULL, expected);
+    snprintf(expected, sizeof expected, "2 frames, %s .. %s;", a, b);
+    expect_frames(env, "un/b_{}.f32", (const char *const[]){"--step", "9", NULL}, expected);   /* 1 and 10 */
+    path_in(env, "un/b_2.f32", a);
+    snprintf(expected, sizeof expected, "1 frames, %s .. %s;", a, a);
+    expect_frames(env, "un/b_{}.f32", (const char *const[]){"--start", "2", "--end", "9", NULL}, expected);
+}
+
+/* A {} pattern refuses two files of one number, a pattern that matches
+ * nothing and a range with none of its frames, naming the files. */
+static void test_brace_pattern_errors(const test_env *env)
+{
+    char a[PATH_CAP], b[PATH_CAP], in[PATH_CAP], out[PATH_CAP], message[3 * PATH_CAP];
+    CHECK(mkdir(path_in(env, "dup", a), 0700) == 0);
+    CHECK(link(frame_input(env, 0, a), path_in(env, "dup/c_1.f32", b)) == 0);
+    CHECK(link(frame_input(env, 1, a), path_in(env, "dup/c_01.f32", b)) == 0);
+    CHECK(link(frame_input(env, 2, a), path_in(env, "dup/c_x.f32", b)) == 0);   /* no digits: not a frame */
+    snprintf(message, sizeof message, "%s and %s are both frame 1", path_in(env, "dup/c_01.f32", a),
+             path_in(env, "dup/c_1.f32", b));
+    const struct {
+        const char *input, *extra, *message;
+    } cases[] = {
+        {"dup/c_{}.f32", NULL, message},
+        {"dup/d_{}.f32", NULL, "no file matches the pattern"},
+        {"un/b_{}.f32", "--start=11", "is in the frame range given"},
+        {"dup/c_{}.f32 un/b_1.f32", NULL, "must be the only input"},
+    };
+    for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) {
+        char first[PATH_CAP];
+        snprintf(first, sizeof first, "%s", cases[i].input);
+        char *second = strchr(first, ' ');
+        if (second)
+            *second++ = '\0';
+        const char *args[12] = {"render", path_in(env, first, in), "-o", path_in(env, "never.mp4", out),
+                                "--server", "127.0.0.1:1", "--up", "z"};
+        int n = 8;
+        char other[PATH_CAP];
+        if (second)
+            args[n++] = path_in(env, second, other);
+        if (cases[i].extra)
+            args[n++] = cases[i].extra;
+        args[n] = NULL;
+        cli_result r;
+        cli_run(FLUIDCAST_CLI_PATH, env->dir, args, &r);
+        CHECK_MSG(r.status == 2 && strstr(r.err, cases[i].message), "%s: exit %d, expected \"%s\" in\n%s%s",
+                  cases[i].input, r.status, cases[i].message, r.out, r.err);
+    }
 }
 
 static void expect_usage(const test_env *env, const char *out, const char *const *extra, const char *message)
@@ -548,6 +546,7 @@ int main(void)
     snprintf(env.server, sizeof env.server, "127.0.0.1:%u", (unsigned)daemon.port);
     test_usage_errors(&env);
     test_input_order(&env);
+    test_brace_pattern_errors(&env);
     test_color_range_from_the_first_frame(&env);
     double centroid[FRAMES];
     test_png_sequence(&env, centroid);
