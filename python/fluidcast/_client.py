@@ -570,6 +570,15 @@ class Client:
         finally:
             _capi.fc_stream_image_free(ctypes.byref(image))
 
+    def request_keyframe(self):
+        """Asks for an H.264 key frame (fc_client_request_keyframe): the current frame comes again as an IDR.
+
+        For a decoder that lost its place in an H.264 stream; the image comes
+        after the one in flight, with ``view_change`` and ``keyframe`` set.
+        Raises ``Code.USAGE`` when not subscribed, or a connection error.
+        """
+        self._call(_capi.fc_client_request_keyframe)
+
     def leave_session(self):
         """Leaves the session (fc_client_leave_session) and waits for the server's confirmation.
 

@@ -47,6 +47,32 @@ def test_publish_subscribe_round_trip(connect):
     assert e.value.code is fluidcast.Code.BAD_STATE
 
 
+def _nal_types(data):
+    """The NAL unit types of an Annex B access unit."""
+    return {data[i + 3] & 0x1F for i in range(len(data) - 3) if data[i:i + 3] == b"\x00\x00\x01"}
+
+
+def test_h264_stream(connect):
+    producer, viewer = connect(), connect()
+    producer.publish("py-h264")
+    viewer.subscribe("py-h264", format="h264", size=(64, 48))
+    producer.send_frame(ball())
+    first = next_frame_image(viewer, 1)
+    assert not first.refresh and first.format is fluidcast.Format.H264 and (first.width, first.height) == (64, 48)
+    assert first.keyframe and {7, 8, 5} <= _nal_types(first.data)
+    producer.send_frame(ball() * 1.1)
+    second = next_frame_image(viewer, 2)
+    assert not second.keyframe and 5 not in _nal_types(second.data)
+    viewer.request_keyframe()
+    again = viewer.next_image()
+    while again.refresh:   # a lossless PNG refresh may come first on a slow machine
+        again = viewer.next_image()
+    assert again.view_change and again.keyframe and again.frame_number == 2 and 5 in _nal_types(again.data)
+    with pytest.raises(fluidcast.Error) as e:   # 4:2:0 needs even sides
+        connect().subscribe("py-h264", format="h264", size=(63, 48))
+    assert e.value.code is fluidcast.Code.INVALID_VALUE
+
+
 def test_raw_stream_and_encoded_uploads(connect):
     producer, viewer = connect(), connect()
     info = producer.server_info
