@@ -37,6 +37,9 @@ PACKAGES=(
   python3-numpy python3-pytest
   # "srv:" addresses: a real DNS server (dnsmasq, its binary alone) serves SRV records in tests/srv
   dnsmasq-base
+  # deploy/slurm's batch scripts run on a one-host Slurm cluster in the tests (tests/slurm,
+  # deploy/slurm/test-cluster.sh): its daemons, munge, and ss to pick free ports
+  slurm-wlm munge iproute2
 )
 
 # The peer benchmark (bench/run_bench.sh, bench/peer/compare_images.sh) also needs VTK and a

@@ -8,6 +8,21 @@ cd "$(dirname "$0")/.."
 deploy/setup.sh
 deploy/build.sh
 status=0
+
+# Services the deploy tests need, started here and stopped by process id on exit:
+# a one-host Slurm cluster (munged, slurmctld, slurmd) in a directory of its own,
+# which tests/slurm finds through SLURM_CONF. Without it they skip, saying so;
+# in CI (CI=true) a cluster that does not start fails the run.
+slurm_dir=$(mktemp -d /tmp/fc-slurm-cluster-XXXXXX)
+slurm_cluster=$PWD/deploy/slurm/test-cluster.sh
+trap '"$slurm_cluster" stop "$slurm_dir"; rm -rf "$slurm_dir"' EXIT
+if "$slurm_cluster" start "$slurm_dir"; then
+  export SLURM_CONF=$slurm_dir/slurm.conf
+else
+  echo "test: the Slurm test cluster did not start (logs in $slurm_dir/log); deploy.slurm is skipped" >&2
+  if [ "${CI:-}" = true ]; then status=1; fi
+fi
+
 (cd build && ctest --output-on-failure -j "$(nproc)" --timeout 900) || status=1
 
 echo "test: sanitizer suite (build-asan, FC_SANITIZE=address,undefined)"
