@@ -5,7 +5,7 @@
 
 #include "fc_error.h"
 
-static const char *const read_option_names[] = { "--dataset", "--step" };
+static const char *const read_option_names[] = { "--dataset", "--step", "--select" };
 
 bool fc_cli_is_read_option(const char *name)
 {
@@ -38,6 +38,14 @@ fc_code fc_cli_set_read_option(fc_read_options *o, const char *name, const char 
     }
     if (strcmp(name, "--step") == 0)
         return set_step(o, name, value, err);
+    if (strcmp(name, "--select") == 0) {
+        if (o->select_count == FC_SELECT_MAX)
+            return fc_error_set(err, FC_ERR_USAGE, "at most %d --select options", FC_SELECT_MAX);
+        fc_code code = fc_select_parse(value, &o->select[o->select_count], err);
+        if (code == FC_OK)
+            o->select_count++;
+        return code;
+    }
     return fc_error_set(err, FC_ERR_USAGE, "%s is not a reader option", name);
 }
 
@@ -51,6 +59,12 @@ void fc_cli_print_read_options_help(FILE *to)
           "                          arrays), an N x 3 dataset of positions, or\n"
           "                          x=PATH,y=PATH,z=PATH (three 1-D datasets)\n"
           "  --step N                H5Part: read group Step#N (default: the lowest N)\n"
+          "  --select ATTR=V[,V...]  keep only the particles whose attribute is one of the\n"
+          "  --select 'ATTR<V'       values, or compares so (also <=, >, >=, !=);\n"
+          "                          repeatable, all must hold. ATTR: x, y, z, density,\n"
+          "                          vx, vy, vz, speed, id, radius, or any other column or\n"
+          "                          array the file has (DualSPHysics: --select Type=3\n"
+          "                          keeps the fluid, dropping the boundary particles)\n"
           "\n",
           to);
 }

@@ -1,6 +1,6 @@
 /* cli_read_options.h — the reader options of every command that reads particle
- * files (snapshot, render, stream, view): --dataset and --step for HDF5 files,
- * kept in an fc_read_options for fc_read_particles_with. */
+ * files (snapshot, render, stream, view): --dataset and --step for HDF5 files and
+ * --select for any, kept in an fc_read_options for fc_read_particles_with. */
 #ifndef FC_CLI_READ_OPTIONS_H
 #define FC_CLI_READ_OPTIONS_H
 

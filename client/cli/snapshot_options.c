@@ -294,6 +294,7 @@ static const option_spec options[] = {
     {"--quality", set_quality, 0},
     {"--dataset", set_read, 0},
     {"--step", set_read, 0},
+    {"--select", set_read, 0},
 };
 
 /* Finds the option `arg` names, as "--name" or "--name=value" (then *inline_value

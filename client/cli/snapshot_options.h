@@ -36,7 +36,7 @@ typedef struct fc_snapshot_options {
     bool has_color_range;          /* --range given: no range from the first frame's percentiles */
     bool legend;                   /* --legend: a colour bar drawn into the image (snapshot_legend.h) */
     uint32_t quality;
-    fc_read_options read;          /* --dataset, --step (cli_read_options.h) */
+    fc_read_options read;          /* --dataset, --step, --select (cli_read_options.h) */
 } fc_snapshot_options;
 
 /* Parses the arguments after "snapshot". FC_ERR_USAGE with the reason (naming

@@ -106,6 +106,7 @@ static const fc_cli_option options[] = {
     {"--format", true, set_format},   {"--quality", true, set_quality}, {"--size", true, set_size},
     {"--radius", true, set_radius},   {"--up", true, set_up},           {"--zstd", false, set_zstd},
     {"--quantize", false, set_quantize}, {"--dataset", true, set_read}, {"--step", true, set_read},
+    {"--select", true, set_read},
 };
 
 static const fc_cli_command command = {"stream", options, sizeof options / sizeof options[0], add_file};

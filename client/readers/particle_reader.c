@@ -11,6 +11,7 @@
 #include "fc_frame.h"
 #include "reader_cursor.h"
 #include "reader_formats.h"
+#include "reader_select.h"
 
 static const struct {
     const char *extension;
@@ -112,7 +113,7 @@ fc_code fc_read_particles_mem(const uint8_t *data, size_t size, fc_file_format f
 fc_code fc_read_particles_mem_with(const uint8_t *data, size_t size, fc_file_format format, const char *name,
                                    const fc_read_options *options, fc_frame *frame, fc_error *err)
 {
-    static const fc_read_options defaults = { NULL, false, 0 };
+    static const fc_read_options defaults; /* zero: the defaults */
     if (frame == NULL)
         return fc_error_set(err, FC_ERR_USAGE, "fc_read_particles_mem: frame is NULL");
     memset(frame, 0, sizeof *frame);
@@ -127,7 +128,17 @@ fc_code fc_read_particles_mem_with(const uint8_t *data, size_t size, fc_file_for
     c.options = options != NULL ? options : &defaults;
     if (format == FC_FILE_UNKNOWN && fc_is_hdf5(data, size))
         format = FC_FILE_HDF5;
+    /* Named scalars beyond the frame's attributes are kept only when a selection may need them. */
+    fc_read_extras *extras = c.options->select_count > 0 ? calloc(1, sizeof *extras) : NULL;
+    if (c.options->select_count > 0 && extras == NULL)
+        return fc_error_set(err, FC_ERR_NOMEM, "%s: out of memory", name);
+    c.extras = extras;
     fc_code code = read_format(&c, format, frame, err);
+    if (code == FC_OK)
+        code = fc_select_apply(frame, extras, c.options, name, err);
+    if (extras != NULL)
+        fc_extras_free(extras);
+    free(extras);
     if (code != FC_OK)
         fc_frame_free(frame); /* never hand out a partial frame */
     return code;

@@ -30,6 +30,30 @@ typedef enum fc_file_format {
     FC_FILE_HDF5
 } fc_file_format;
 
+/* --select: which particles to keep, by one attribute's value. */
+enum { FC_SELECT_MAX = 8, FC_SELECT_MAX_VALUES = 16, FC_SELECT_NAME_MAX = 64, FC_SELECT_TEXT_MAX = 160 };
+
+typedef enum fc_select_op {
+    FC_SELECT_IN,      /* ATTR=V[,V...]: equal to one of the values */
+    FC_SELECT_NOT_IN,  /* ATTR!=V[,V...]: equal to none of them */
+    FC_SELECT_LT,      /* ATTR<V */
+    FC_SELECT_LE,      /* ATTR<=V */
+    FC_SELECT_GT,      /* ATTR>V */
+    FC_SELECT_GE       /* ATTR>=V */
+} fc_select_op;
+
+typedef struct fc_select {
+    char attribute[FC_SELECT_NAME_MAX];  /* matched case-insensitively */
+    fc_select_op op;
+    uint32_t value_count;
+    double values[FC_SELECT_MAX_VALUES];
+    char text[FC_SELECT_TEXT_MAX];       /* as given, for messages */
+} fc_select;
+
+/* Parses "ATTR=V[,V...]", "ATTR!=V[,V...]", "ATTR<V", "ATTR<=V", "ATTR>V" or "ATTR>=V"
+ * ("==" also means "="). FC_ERR_USAGE naming the text for anything else. */
+fc_code fc_select_parse(const char *text, fc_select *out, fc_error *err);
+
 /* How to read a file beyond what its format says: the command line's reader options.
  * A zeroed struct (or NULL) means the defaults. */
 typedef struct fc_read_options {
@@ -37,6 +61,12 @@ typedef struct fc_read_options {
                             * (README "HDF5"); NULL: found by the file's layout */
     bool has_step;         /* H5Part --step: read group Step#step ... */
     uint64_t step;         /* ... instead of the lowest-numbered step */
+    /* --select: a particle is kept when all hold. Attributes: x y z, density, vx vy vz, speed, id,
+     * radius when the frame has them, and any other per-particle scalar the file names (a CSV column
+     * such as DualSPHysics' Type, a PySPH array such as tag, a SWIFT dataset such as Masses). An unknown
+     * name is an error listing those the file has; a selection that keeps nothing is an error naming it. */
+    uint32_t select_count;
+    fc_select select[FC_SELECT_MAX];
 } fc_read_options;
 
 /* From the file name's extension (case-insensitive): .f32 .ply .vtk .csv .npy .vtu .vtp .pvd, .bgeo

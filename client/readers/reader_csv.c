@@ -9,9 +9,11 @@
  * and a line of units may follow it. */
 #include "reader_formats.h"
 
+#include <math.h>
 #include <stdlib.h>
 #include <string.h>
 #include "fc_error.h"
+#include "reader_extras.h"
 #include "reader_fields.h"
 
 enum { CSV_MAX_PREAMBLE = 8 };
@@ -20,6 +22,8 @@ typedef struct csv_layout {
     char separator;
     fc_field *columns;   /* what each column provides; FC_FIELD_NONE for ignored ones */
     size_t column_count;
+    fc_span *names;      /* each column's name without its unit */
+    double **extras;     /* per column: where its values go for --select (c->extras), or NULL */
     fc_field_set fields;
     uint32_t attributes; /* fc_frame_alloc mask for the fields present */
 } csv_layout;
@@ -129,11 +133,14 @@ static fc_code csv_parse_header(const fc_cursor *c, fc_span line, csv_layout *l,
     line = csv_strip_trailing(line, l->separator);
     l->column_count = csv_count_fields(line, l->separator);
     l->columns = calloc(l->column_count, sizeof *l->columns);
-    if (l->columns == NULL)
+    l->names = calloc(l->column_count, sizeof *l->names);
+    l->extras = calloc(l->column_count, sizeof *l->extras);
+    if (l->columns == NULL || l->names == NULL || l->extras == NULL)
         return fc_error_set(err, FC_ERR_NOMEM, "%s: out of memory for %zu columns", c->name, l->column_count);
     fc_span rest = line, name;
     for (size_t i = 0; fc_span_next_field(&rest, l->separator, &name); i++) {
         name = fc_span_trim(name);
+        l->names[i] = csv_strip_unit(name);
         l->columns[i] = csv_field_from_name(name);
         if (l->columns[i] != FC_FIELD_NONE && !fc_field_set_add(&l->fields, l->columns[i])) {
             char quoted[FC_QUOTE_MAX];
@@ -167,8 +174,11 @@ static fc_code csv_read_record(const fc_cursor *c, fc_span line, const csv_layou
     for (size_t i = 0; fc_span_next_field(&rest, l->separator, &text); i++) {
         fc_field field = l->columns[i];
         double value = 0.0;
-        if (field == FC_FIELD_NONE)
+        if (field == FC_FIELD_NONE) {
+            if (l->extras[i] != NULL && !fc_span_to_double(fc_span_trim(text), &l->extras[i][index]))
+                l->extras[i][index] = NAN; /* only a selection reads it; text matches no value */
             continue;
+        }
         text = fc_span_trim(text);
         if (!fc_span_to_double(text, &value)) {
             char quoted[FC_QUOTE_MAX];
@@ -181,9 +191,25 @@ static fc_code csv_read_record(const fc_cursor *c, fc_span line, const csv_layou
     return FC_OK;
 }
 
+/* The columns no attribute takes, kept by name for --select when the read asks for them. */
+static fc_code csv_keep_extras(const fc_cursor *c, const csv_layout *l, uint64_t count, fc_error *err)
+{
+    for (size_t i = 0; c->extras != NULL && i < l->column_count; i++) {
+        fc_code code = FC_OK;
+        if (l->columns[i] == FC_FIELD_NONE)
+            l->extras[i] = fc_extras_add(c->extras, l->names[i], count, c->name, err, &code);
+        if (code != FC_OK)
+            return code;
+    }
+    return FC_OK;
+}
+
 static fc_code csv_read_records(fc_cursor *c, const csv_layout *l, fc_frame *frame, fc_error *err)
 {
-    fc_code code = fc_reader_alloc_frame(c, frame, csv_count_records(*c), l->attributes, err);
+    uint64_t count = csv_count_records(*c);
+    fc_code code = fc_reader_alloc_frame(c, frame, count, l->attributes, err);
+    if (code == FC_OK)
+        code = csv_keep_extras(c, l, count, err);
     fc_span line;
     for (uint64_t index = 0; code == FC_OK && csv_next_record(c, &line); index++)
         code = csv_read_record(c, line, l, index, frame, err);
@@ -224,7 +250,7 @@ fc_code fc_read_csv(fc_cursor *c, fc_frame *frame, fc_error *err)
     fc_span line;
     if (!csv_next_record(c, &line))
         return fc_cursor_fail(c, err, "no header line");
-    csv_layout layout = { csv_separator(line), NULL, 0, { { false } }, 0 };
+    csv_layout layout = { csv_separator(line), NULL, 0, NULL, NULL, { { false } }, 0 };
     if (layout.separator == ';')
         csv_skip_preamble(c, &line);
     fc_code code = csv_parse_header(c, line, &layout, err);
@@ -233,5 +259,7 @@ fc_code fc_read_csv(fc_cursor *c, fc_frame *frame, fc_error *err)
     if (code == FC_OK)
         code = csv_read_records(c, &layout, frame, err);
     free(layout.columns);
+    free(layout.names);
+    free(layout.extras);
     return code;
 }

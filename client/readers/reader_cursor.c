@@ -17,6 +17,7 @@ void fc_cursor_init(fc_cursor *c, const uint8_t *data, size_t size, const char *
     c->binary = false;
     c->name = name;
     c->options = NULL;
+    c->extras = NULL;
 }
 
 size_t fc_cursor_remaining(const fc_cursor *c)

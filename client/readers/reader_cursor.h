@@ -27,6 +27,7 @@ typedef struct fc_cursor {
     bool binary;          /* errors report the byte offset: line numbers mean nothing in binary data */
     const char *name;     /* file name for messages */
     const struct fc_read_options *options; /* the read's options (particle_reader.h), set for every format reader */
+    struct fc_read_extras *extras;  /* where a reader keeps named scalars for --select; NULL: keep none */
 } fc_cursor;
 
 void fc_cursor_init(fc_cursor *c, const uint8_t *data, size_t size, const char *name);

@@ -24,6 +24,7 @@
 #include "fc_error.h"
 #include "fc_frame.h"
 #include "particle_reader.h"
+#include "reader_extras.h"
 #include "reader_fields.h"
 #include "reader_hdf5_table.h"
 
@@ -228,19 +229,28 @@ static fc_code read_layout(const h5_source *s, hid_t file, const fc_read_options
 
 /* ---- into the frame ---- */
 
+/* The render radius from the SPH smoothing length h. SWIFT sets h = eta x the mean particle spacing with
+ * eta = 1.2348 (its default resolution, about 48 neighbours for the cubic spline; GADGET's h is the kernel's
+ * support, larger, and PySPH's h = hdx x dx with hdx 1 to 1.3), and fluidcast's radius for a spacing d is
+ * 0.9 d (fc_frame_estimate_radius: spheres that just close the surface). So radius = 0.9 h / 1.2348:
+ * SWIFT's particles get the size the spacing estimate would give them, adaptively; --radius overrides. */
+#define H5_RADIUS_PER_SMOOTHING_LENGTH (0.9 / 1.2348)
+
 /* An attribute is kept when every particle array has it (PySPH's fluid and solid arrays). */
 static uint32_t common_attributes(const h5_tables *tables, uint64_t *count)
 {
-    bool velocity = true, density = true, ids = true;
+    bool velocity = true, density = true, ids = true, radius = true;
     *count = 0;
     for (size_t i = 0; i < tables->count; i++) {
         const h5_table *t = &tables->items[i];
         velocity = velocity && t->velocity;
         density = density && t->density;
+        radius = radius && t->radius;
         ids = ids && t->ids && tables->count == 1; /* ids of two arrays may collide */
         *count += t->count;
     }
-    return (density ? FC_ATTR_DENSITY : 0u) | (velocity ? FC_ATTR_VELOCITY : 0u) | (ids ? FC_ATTR_IDS : 0u);
+    return (density ? FC_ATTR_DENSITY : 0u) | (velocity ? FC_ATTR_VELOCITY : 0u) | (ids ? FC_ATTR_IDS : 0u) |
+           (radius ? FC_ATTR_RADIUS : 0u);
 }
 
 static fc_code reject(const h5_source *s, fc_error *err, uint64_t index, fc_field field, double value)
@@ -265,6 +275,42 @@ static fc_code store_table(const h5_source *s, const h5_table *t, uint64_t first
             return reject(s, err, at, FC_FIELD_DENSITY, t->density[i]);
         if (frame->ids && !fc_field_store(frame, at, FC_FIELD_ID, t->ids[i]))
             return reject(s, err, at, FC_FIELD_ID, t->ids[i]);
+        if (frame->radius) {
+            double r = t->radius[i] * H5_RADIUS_PER_SMOOTHING_LENGTH;
+            if (!(r > 0.0 && r <= FC_FRAME_MAX_RADIUS))
+                return fc_error_set(err, FC_ERR_PARSE, "%s: particle %llu: smoothing length %g is not in (0, %g]",
+                                    s->name, (unsigned long long)at, t->radius[i],
+                                    FC_FRAME_MAX_RADIUS / H5_RADIUS_PER_SMOOTHING_LENGTH);
+            frame->radius[at] = (float)r;
+        }
+    }
+    return FC_OK;
+}
+
+/* The named scalars every table has, concatenated, for --select. */
+static fc_code store_extras(const fc_cursor *c, const h5_tables *tables, fc_error *err)
+{
+    const h5_table *first = &tables->items[0];
+    for (size_t k = 0; c->extras != NULL && k < first->extra_count; k++) {
+        const double *parts[H5_MAX_ARRAYS];
+        uint64_t count = 0;
+        size_t found = 0;
+        for (size_t i = 0; i < tables->count; i++) {
+            const h5_table *t = &tables->items[i];
+            for (size_t j = 0; j < t->extra_count && found == i; j++)
+                if (strcmp(t->extra_names[j], first->extra_names[k]) == 0)
+                    parts[found++] = t->extras[j];
+            count += t->count;
+        }
+        if (found != tables->count)
+            continue;
+        fc_code code = FC_OK;
+        fc_span name = { first->extra_names[k], strlen(first->extra_names[k]) };
+        double *values = fc_extras_add(c->extras, name, count, c->name, err, &code);
+        if (code != FC_OK)
+            return code;
+        for (size_t i = 0, at = 0; values && i < tables->count; at += tables->items[i].count, i++)
+            memcpy(values + at, parts[i], (size_t)tables->items[i].count * sizeof *values);
     }
     return FC_OK;
 }
@@ -280,7 +326,7 @@ static fc_code store_tables(const fc_cursor *c, const h5_source *s, const h5_tab
         code = store_table(s, &tables->items[i], first, frame, err);
         first += tables->items[i].count;
     }
-    return code;
+    return code == FC_OK ? store_extras(c, tables, err) : code;
 }
 
 fc_code fc_read_hdf5(fc_cursor *c, fc_frame *frame, fc_error *err)

@@ -96,6 +96,7 @@ static fc_code set_read(void *o, const char *name, const char *value, fc_error *
 static const fc_cli_option options[] = {
     {"--dataset", true, set_read},
     {"--step", true, set_read},
+    {"--select", true, set_read},
     {"--server", true, set_server},
     {"--session", true, set_session},
     {"--size", true, set_size},

@@ -31,6 +31,11 @@ static void check_particle(const fc_frame *f, uint64_t at, uint64_t i, double x_
                   f->density[at]);
     if (f->ids)
         CHECK_MSG(f->ids[at] == 7 * i + 3, "%s: ids[%llu] = %u", what, (unsigned long long)at, f->ids[at]);
+    /* The render radius is 0.9 h / 1.2348 (reader_hdf5.c: SWIFT's eta). */
+    double radius = 0.01 * (double)(i + 1) * 0.9 / 1.2348;
+    if (f->radius)
+        CHECK_MSG(fabs(f->radius[at] - radius) <= 1e-6 * radius, "%s: radius[%llu] = %g, expected %g", what,
+                  (unsigned long long)at, f->radius[at], radius);
 }
 
 static void read_ok(const char *name, const fc_read_options *o, fc_frame *f)
@@ -46,7 +51,7 @@ static void test_swift(void)
     for (size_t k = 0; k < sizeof full / sizeof full[0]; k++) {
         fc_frame f;
         read_ok(full[k], NULL, &f);
-        CHECK_MSG(f.count == N && f.velocity && f.density && f.ids, "%s: %llu particles", full[k],
+        CHECK_MSG(f.count == N && f.velocity && f.density && f.ids && f.radius, "%s: %llu particles", full[k],
                   (unsigned long long)f.count);
         for (uint64_t i = 0; i < f.count; i++)
             check_particle(&f, i, i, 0, full[k]);
@@ -56,7 +61,7 @@ static void test_swift(void)
     for (size_t k = 0; k < 2; k++) {
         fc_frame f;
         read_ok(minimal[k], NULL, &f);
-        CHECK_MSG(f.count == N && !f.velocity && !f.density && !f.ids, "%s", minimal[k]);
+        CHECK_MSG(f.count == N && !f.velocity && !f.density && !f.ids && !f.radius, "%s", minimal[k]);
         for (uint64_t i = 0; i < f.count; i++)
             check_particle(&f, i, i, 0, minimal[k]);
         fc_frame_free(&f);
@@ -78,6 +83,32 @@ static void test_pysph(void)
         check_particle(&f, i, i, 0, "pysph_f64 fluid");
     for (uint64_t i = 0; i < 10 && N + i < f.count; i++)
         check_particle(&f, N + i, i, 100, "pysph_f64 solid");
+    fc_frame_free(&f);
+}
+
+/* --select over what the file names beyond the frame: PySPH's m (0.25 fluid, 0.75 solid), SWIFT's Masses. */
+static void test_select(void)
+{
+    fc_frame f;
+    fc_read_options o = { 0 };
+    fc_error err = { FC_OK, "" };
+    CHECK(fc_select_parse("m>0.5", &o.select[o.select_count++], &err) == FC_OK);
+    read_ok("pysph_f64.hdf5", &o, &f);
+    CHECK_MSG(f.count == 10, "m>0.5: %llu", (unsigned long long)f.count);
+    for (uint64_t i = 0; i < f.count; i++)
+        check_particle(&f, i, i, 100, "solid by m");
+    fc_frame_free(&f);
+    o.select_count = 0;
+    CHECK(fc_select_parse("Masses=0.5", &o.select[o.select_count++], &err) == FC_OK);
+    CHECK(fc_select_parse("ParticleIDs<0", &o.select[o.select_count++], &err) == FC_OK);
+    CHECK_CODE(fc_read_particles_with(fixture("swift_f32.h5"), &o, &f, &err), FC_ERR_USAGE);
+    CHECK_MSG(strstr(err.message, "no attribute 'ParticleIDs' (this file has: x, y, z, density, vx, vy, vz, speed, "
+                                  "id, radius, Masses)") != NULL, "%s", err.message);
+    o.select[1] = o.select[0];
+    CHECK(fc_select_parse("id>=left", &o.select[1], &err) == FC_ERR_USAGE);
+    CHECK(fc_select_parse("id>=689", &o.select[1], &err) == FC_OK); /* ids 7 i + 3: i >= 98 */
+    read_ok("swift_f32.h5", &o, &f);
+    CHECK_MSG(f.count == 2 && f.ids && f.ids[0] == 689 && f.ids[1] == 696, "%llu", (unsigned long long)f.count);
     fc_frame_free(&f);
 }
 
@@ -212,6 +243,7 @@ int main(void)
     }
     test_swift();
     test_pysph();
+    test_select();
     test_h5part();
     test_dataset_option();
     test_refusals();
