@@ -34,6 +34,12 @@ uint32_t fc_h264_crf_for_quality(uint32_t quality)
     return (uint32_t)(51.0 - 0.31 * (double)quality + 0.5);
 }
 
+uint64_t fc_h264_encoder_memory(uint32_t width, uint32_t height)
+{
+    enum { BYTES_PER_PIXEL = 24, FIXED_BYTES = 4 << 20 };
+    return (uint64_t)BYTES_PER_PIXEL * width * height + FIXED_BYTES;
+}
+
 static fc_code av_failure(fc_error *err, const char *what, int averr)
 {
     char reason[AV_ERROR_MAX_STRING_SIZE];

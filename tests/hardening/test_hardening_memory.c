@@ -199,6 +199,31 @@ static void expect_stream_frame(int fd, uint32_t subscribe_id, uint64_t frame_nu
     fc_test_message_free(&m);
 }
 
+/* An H.264 viewer's encoder counts (24 bytes per pixel + 4 MiB): beyond a 100 kB limit at any size. */
+static void test_h264_viewer_beyond_limit(hx_env *env)
+{
+    printf("case: an H.264 viewer whose encoder goes beyond the limit\n");
+    int fd = hx_connect_greeted(env, FC_CAP_SESSIONS);
+    fc_subscribe sub = {.request = {FC_FORMAT_H264, 0, FC_AOV_COLOR}, .width = HX_IMAGE_SIDE, .height = HX_IMAGE_SIDE};
+    snprintf(sub.name, sizeof sub.name, "%s", "memory-h264");
+    fc_buf out;
+    fc_error err;
+    fc_buf_init(&out);
+    CHECK_CODE(fc_wire_write_subscribe(&out, 31, &sub, &err), FC_OK);
+    hx_send_buf(fd, &out);
+    fc_buf_free(&out);
+    hx_expect_error_mentioning(fd, 31, FC_ERR_LIMIT, LIMIT_NAME);
+    hx_expect_witness_served(env);
+    /* Refused, the connection is in no session: a RAW subscription on it goes through. */
+    sub.request = (fc_render_request){FC_FORMAT_RAW, 0, FC_AOV_DEPTH};
+    fc_buf_init(&out);
+    CHECK_CODE(fc_wire_write_subscribe(&out, 32, &sub, &err), FC_OK);
+    hx_send_buf(fd, &out);
+    fc_buf_free(&out);
+    hx_expect_reply_type(fd, 32, FC_MSG_SESSION_STATE);
+    close(fd);
+}
+
 static void test_chunks_beyond_limit(hx_env *env)
 {
     printf("case: chunks whose assembly goes beyond the limit\n");
@@ -238,6 +263,7 @@ int main(void)
     if (!hx_env_start(&env, daemon_args))
         return hx_exit_status(1);
     test_frame_beyond_limit(&env);
+    test_h264_viewer_beyond_limit(&env);
     test_reply_beyond_limit(&env);
     test_background_beyond_limit(&env);
     test_chunks_beyond_limit(&env);

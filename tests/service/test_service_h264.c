@@ -7,7 +7,8 @@
  * comes on request, at a resize and after a failed image; a viewer at rest
  * gets a lossless PNG refresh; a RENDER's H.264 image is an IDR of its own;
  * after a stream image the viewer never got (a lost GPU context, by the
- * daemon's test hook) the next one is an IDR and decodes;
+ * daemon's test hook) the next one is an IDR and decodes; a CAMERA whose
+ * stream encoder would not fit --max-session-memory is refused with LIMIT;
  * viewers that join and vanish mid-stream leave the daemon serving the others
  * (their encoders freed: the sanitizer build checks the daemon leaks nothing). */
 #include <math.h>
@@ -405,7 +406,9 @@ static void vanishing_viewers(const fc_test_daemon *d, scene *s)
 static void forced_miss(void)
 {
     static const char *const environment[] = {"FLUIDCASTD_TEST_LOSE_CONTEXT=3", NULL};
-    static const char *const args[] = {"--max-image", "256x256", "--refresh-ms", "0", NULL};
+    /* Room for the encoder at 128x96 (24 bytes per pixel + 4 MiB, client_memory.h), not at 256x256. */
+    static const char *const args[] = {"--max-image", "256x256", "--refresh-ms", "0", "--max-session-memory",
+                                       "5000000", NULL};
     fc_test_daemon_setup setup = {.extra_args = args, .environment = environment};
     fc_test_daemon d;
     fc_error err;
@@ -439,6 +442,17 @@ static void forced_miss(void)
         if (f == 4)
             printf("after the failed image: frame 4 an IDR of %zu bytes\n", h.image.size);
         free(p.rgba);
+        fc_stream_image_free(&h);
+    }
+    fc_camera big = s.camera;
+    big.width = big.height = 256;
+    fc_stream_image h;
+    CHECK_CODE(fc_client_set_camera(s.h264, &big, &err), FC_OK);
+    CHECK_CODE(fc_client_next_image(s.h264, &h, &err), FC_ERR_LIMIT);
+    printf("a larger stream: %s\n", err.message);
+    /* The stream goes on at its size. */
+    if (publish(&s, 6) && next_image(s.h264, &h, "after the refused camera")) {
+        CHECK(h.frame_number == 6 && h.image.width == W && h.image.height == H && !h.keyframe);
         fc_stream_image_free(&h);
     }
     decoder_close(&s.h264_decoder);

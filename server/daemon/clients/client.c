@@ -102,13 +102,28 @@ static fc_client_verdict handle_frame(fc_client *c, fc_daemon_context *ctx, cons
     return FC_CLIENT_CONTINUE;
 }
 
+/* An H.264 viewer's encoder grows with its images: a CAMERA of another size must fit. */
+static fc_code admit_video_size(const fc_client *c, const fc_camera *camera, fc_error *err)
+{
+    if (c->role != FC_ROLE_VIEWER || c->viewer.request.format != FC_FORMAT_H264)
+        return FC_OK;
+    fc_image_format format = c->viewer.request.format;
+    uint32_t width = c->has_camera ? c->camera.width : c->viewer.auto_width;
+    uint32_t height = c->has_camera ? c->camera.height : c->viewer.auto_height;
+    char what[64];
+    snprintf(what, sizeof what, "an H.264 stream of %ux%u", (unsigned)camera->width, (unsigned)camera->height);
+    return fc_client_memory_admit(c, fc_memory_of_video(format, width, height),
+                                  fc_memory_of_video(format, camera->width, camera->height), what, err);
+}
+
 static fc_client_verdict handle_camera(fc_client *c, fc_daemon_context *ctx, const fc_msg_header *h,
                                        const uint8_t *payload, fc_buf *out)
 {
     fc_camera camera;
     fc_error err;
     if (fc_wire_read_camera(payload, h->length, &camera, &err) != FC_OK ||
-        fc_client_check_image_limit(&ctx->welcome.limits, camera.width, camera.height, &err) != FC_OK)
+        fc_client_check_image_limit(&ctx->welcome.limits, camera.width, camera.height, &err) != FC_OK ||
+        admit_video_size(c, &camera, &err) != FC_OK)
         return reply_error(c, ctx, h, &err, FC_CLIENT_CONTINUE, out);
     c->camera = camera;
     c->has_camera = true;

@@ -28,6 +28,21 @@ uint64_t fc_memory_of_scene_part(const fc_scene_part *part)
     return bytes;
 }
 
+uint64_t fc_memory_of_video(fc_image_format format, uint32_t width, uint32_t height)
+{
+    return format == FC_FORMAT_H264 ? fc_h264_stream_memory(width, height) : 0;
+}
+
+/* A viewer's stream encoder, at the size its images have now. */
+static uint64_t memory_of_viewer(const fc_client *c)
+{
+    if (c->role != FC_ROLE_VIEWER)
+        return 0;
+    uint32_t width = c->has_camera ? c->camera.width : c->viewer.auto_width;
+    uint32_t height = c->has_camera ? c->camera.height : c->viewer.auto_height;
+    return fc_memory_of_video(c->viewer.request.format, width, height);
+}
+
 static uint64_t memory_of_shared(const fc_shared_frame *frame)
 {
     return frame ? fc_memory_of_frame(&frame->frame) : 0;
@@ -45,7 +60,8 @@ static uint64_t memory_of_assembly(const fc_chunk_assembly *a)
 uint64_t fc_client_memory_held(const fc_client *c)
 {
     uint64_t bytes = memory_of_shared(c->frame) + fc_memory_of_scene_part(c->scene.background) +
-                     fc_memory_of_scene_part(c->scene.environment) + fc_mesh_set_bytes(&c->meshes) + c->out->len;
+                     fc_memory_of_scene_part(c->scene.environment) + fc_mesh_set_bytes(&c->meshes) + c->out->len +
+                     memory_of_viewer(c);
     if (c->role == FC_ROLE_PRODUCER)
         bytes += memory_of_shared(c->session->latest) + memory_of_assembly(&c->session->chunks) +
                  fc_mesh_set_bytes(&c->session->meshes);

@@ -6,6 +6,8 @@
  *   - its own frame (the last FRAME of a connection outside named sessions);
  *   - its scene images (background, cube-map faces), decoded;
  *   - the replies queued for it that the socket has not taken yet;
+ *   - for an H.264 viewer, its stream's encoder, estimated for its image size
+ *     (fc_h264_stream_memory);
  *   - for a producer, its named session's latest frame and every chunk of the
  *     multi-rank frames being assembled: each producer answers for all of it,
  *     as any of them may complete it.
@@ -28,6 +30,10 @@
 
 uint64_t fc_memory_of_frame(const fc_frame *frame);
 uint64_t fc_memory_of_scene_part(const fc_scene_part *part);   /* 0 for NULL */
+
+/* An H.264 viewer's encoder at width x height (0 for other formats): what
+ * SUBSCRIBE and a viewer's CAMERA admit. */
+uint64_t fc_memory_of_video(fc_image_format format, uint32_t width, uint32_t height);
 
 /* Everything the list above counts for this connection. */
 uint64_t fc_client_memory_held(const fc_client *c);

@@ -112,7 +112,12 @@ static fc_client_verdict handle_subscribe(fc_client *c, const fc_msg_header *h, 
     uint32_t width = sub.width ? sub.width : FC_DEFAULT_VIEW_WIDTH;
     uint32_t height = sub.height ? sub.height : FC_DEFAULT_VIEW_HEIGHT;
     c->member.ops = &member_ops;
+    char what[64];
+    snprintf(what, sizeof what, "an H.264 stream of %ux%u", (unsigned)width, (unsigned)height);
+    uint64_t encoder = fc_memory_of_video(sub.request.format, c->has_camera ? c->camera.width : width,
+                                          c->has_camera ? c->camera.height : height);
     if (fc_client_check_image_limit(&c->ctx->welcome.limits, width, height, &err) != FC_OK ||
+        fc_client_memory_admit(c, 0, encoder, what, &err) != FC_OK ||
         fc_registry_open(c->ctx->sessions, sub.name, &session, &err) != FC_OK ||
         fc_session_add_viewer(session, &c->member, &err) != FC_OK)
         return reply_error(c, h, &err, out);

@@ -12,6 +12,11 @@ struct fc_h264_stream {
     fc_h264_encoder *encoder;    /* NULL until the first image, and after a failure */
 };
 
+uint64_t fc_h264_stream_memory(uint32_t width, uint32_t height)
+{
+    return fc_h264_encoder_memory(width, height);
+}
+
 fc_h264_stream *fc_h264_stream_create(uint32_t quality)
 {
     fc_h264_stream *s = calloc(1, sizeof *s);

@@ -20,6 +20,9 @@
 
 typedef struct fc_h264_stream fc_h264_stream;
 
+/* What a stream's encoder holds at width x height (fc_h264_encoder_memory). */
+uint64_t fc_h264_stream_memory(uint32_t width, uint32_t height);
+
 /* A stream at `quality` (1..100, PROTOCOL.md 10.7), with one reference. NULL when out of memory. */
 fc_h264_stream *fc_h264_stream_create(uint32_t quality);
 fc_h264_stream *fc_h264_stream_ref(fc_h264_stream *s);
