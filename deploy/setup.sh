@@ -40,6 +40,8 @@ PACKAGES=(
   # deploy/slurm's batch scripts run on a one-host Slurm cluster in the tests (tests/slurm,
   # deploy/slurm/test-cluster.sh): its daemons, munge, and ss to pick free ports
   slurm-wlm munge iproute2
+  # deploy/kubernetes/validate.cjs runs under Node.js (its npm packages: below)
+  nodejs
 )
 
 # The peer benchmark (bench/run_bench.sh, bench/peer/compare_images.sh) also needs VTK and a
@@ -53,14 +55,27 @@ missing=()
 for p in "${PACKAGES[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
 done
-if [ ${#missing[@]} -eq 0 ]; then
-  echo "setup: all ${#PACKAGES[@]} packages present"
-  exit 0
-fi
-
 SUDO=""
 [ "$(id -u)" -eq 0 ] || SUDO="sudo"
-echo "setup: installing ${missing[*]}"
 export DEBIAN_FRONTEND=noninteractive
-$SUDO apt-get update -qq
-$SUDO apt-get install -y -qq --no-install-recommends "${missing[@]}"
+if [ ${#missing[@]} -eq 0 ]; then
+  echo "setup: all ${#PACKAGES[@]} packages present"
+else
+  echo "setup: installing ${missing[*]}"
+  $SUDO apt-get update -qq
+  $SUDO apt-get install -y -qq --no-install-recommends "${missing[@]}"
+fi
+
+# The Kubernetes manifests' offline schema check (tests/kubernetes, deploy/kubernetes/validate.cjs)
+# uses kubernetes-models and yaml from npm, pinned by deploy/kubernetes/package-lock.json, installed
+# into build/npm (git-ignored). Node.js comes with Debian's nodejs; npm separately where it lacks it.
+root=$(cd "$(dirname "$0")/.." && pwd)
+npm_dir=$root/build/npm
+if [ ! -f "$npm_dir/node_modules/kubernetes-models/package.json" ] ||
+   ! cmp -s "$root/deploy/kubernetes/package-lock.json" "$npm_dir/package-lock.json"; then
+  command -v npm > /dev/null || { $SUDO apt-get update -qq; $SUDO apt-get install -y -qq --no-install-recommends npm; }
+  mkdir -p "$npm_dir"
+  cp "$root/deploy/kubernetes/package.json" "$root/deploy/kubernetes/package-lock.json" "$npm_dir/"
+  echo "setup: npm ci in build/npm (kubernetes-models, yaml)"
+  (cd "$npm_dir" && npm ci --no-audit --no-fund --loglevel=error)
+fi
