@@ -121,7 +121,9 @@ typedef enum fc_colormap {
 /* Every parameter a user may tune. fc_settings_default() gives convincing water;
  * zero is "off" for the optional effects. */
 typedef struct fc_settings {
-    float radius;              /* sphere radius in world units; 0 = estimate from particle spacing */
+    float radius;              /* sphere radius in world units, overriding any per-particle radii; 0 = each
+                                  particle's own radius (fc_frame.radius), or without them an estimate
+                                  from the particle spacing */
     fc_smoothing smoothing;
     uint32_t iterations;       /* curvature-flow steps, or filter passes for the other methods */
     uint32_t filter_radius;    /* kernel half-width in pixels (bilateral, binomial, narrow); 0 = from the

@@ -9,12 +9,11 @@
 
 vec3 pixel_ray(vec2 pixel);
 
-layout(location = 3) uniform float radius;
-
-// False when the view ray through `pixel` misses the ellipsoid. Otherwise
+// False when the view ray through `pixel` misses the ellipsoid of `radius`
+// (the particle's own). Otherwise
 // `depth` is the linear view depth of the front hit and `chord` the length of
 // the ray inside the ellipsoid (world units).
-bool cast_ellipsoid_ray(vec2 pixel, vec3 centre, mat3 inverse, out float depth, out float chord)
+bool cast_ellipsoid_ray(vec2 pixel, vec3 centre, mat3 inverse, float radius, out float depth, out float chord)
 {
     vec3 dir = pixel_ray(pixel);
     // Along the ray x(t) = t dir the transformed point is t a - b.

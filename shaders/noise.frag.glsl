@@ -8,7 +8,7 @@
 // computed here instead of looked up: a hash of (lattice cell, id) gives the
 // lattice gradients.
 
-bool cast_sphere_ray(vec2 pixel, vec3 centre, out float depth, out float chord);
+bool cast_sphere_ray(vec2 pixel, vec3 centre, float radius, out float depth, out float chord);
 uint particle_id();
 float particle_amplitude();
 
@@ -16,10 +16,10 @@ layout(binding = 0) uniform sampler2D surface_depth;   // smoothed linear depth,
 
 layout(location = 1) uniform vec4 projection;          // P[0][0], P[1][1], P[2][2], P[3][2]
 layout(location = 2) uniform vec2 viewport;
-layout(location = 3) uniform float radius;
 layout(location = 10) uniform float noise_amplitude;   // settings.noise
 
 layout(location = 0) flat in vec3 sphere_centre;
+layout(location = 6) flat in float splat_radius;       // this particle's radius (sphere_shape.vert.glsl)
 layout(location = 0) out float noise;
 
 // Lattice cells per particle radius: features about the particle's size,
@@ -62,7 +62,7 @@ float gradient_noise(vec2 p, uint seed)
 void main()
 {
     float depth, chord;
-    if (!cast_sphere_ray(gl_FragCoord.xy, sphere_centre, depth, chord))
+    if (!cast_sphere_ray(gl_FragCoord.xy, sphere_centre, splat_radius, depth, chord))
         discard;
     float surface = texelFetch(surface_depth, ivec2(gl_FragCoord.xy), 0).r;
     if (surface <= 0.0)
@@ -70,12 +70,12 @@ void main()
     vec3 dir = vec3((gl_FragCoord.xy / viewport * 2.0 - 1.0) / projection.xy, -1.0);
     // Where this pixel meets the sphere, in radii from its centre: (x, y) of
     // eq. 10, inside the unit disc.
-    vec2 local = (depth * dir - sphere_centre).xy / radius;
+    vec2 local = (depth * dir - sphere_centre).xy / splat_radius;
     // (1 - ρ²)³ is the Gaussian e^(-3ρ²) near the centre but reaches 0 with
     // zero slope at the rim: no sprite outline shows in N or its gradient.
     float rim = max(1.0 - dot(local, local), 0.0);
     float kernel = rim * rim * rim;
-    float below = max(depth - surface, 0.0) / radius;
+    float below = max(depth - surface, 0.0) / splat_radius;
     uint id = particle_id();
     // The id also shifts the lattice, so no two particles share cell borders.
     vec2 offset = vec2(hash(id) & 0xffu, hash(id + 1u) & 0xffu) / 256.0;

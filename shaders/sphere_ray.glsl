@@ -6,7 +6,6 @@
 
 layout(location = 1) uniform vec4 projection;   // P[0][0], P[1][1], P[2][2], P[3][2]
 layout(location = 2) uniform vec2 viewport;
-layout(location = 3) uniform float radius;
 
 // The view ray through `pixel` (window coordinates of a pixel centre, origin
 // at the lower left) with dir.z = -1, so the ray parameter is linear depth.
@@ -15,10 +14,11 @@ vec3 pixel_ray(vec2 pixel)
     return vec3((pixel / viewport * 2.0 - 1.0) / projection.xy, -1.0);
 }
 
-// False when the view ray through `pixel` misses the sphere. Otherwise
+// False when the view ray through `pixel` misses the sphere of `radius`
+// (world units: the particle's own, sphere_shape.*.glsl). Otherwise
 // `depth` is the linear view depth of the front hit and `chord` the length of
 // the ray inside the sphere (world units).
-bool cast_sphere_ray(vec2 pixel, vec3 centre, out float depth, out float chord)
+bool cast_sphere_ray(vec2 pixel, vec3 centre, float radius, out float depth, out float chord)
 {
     vec3 dir = pixel_ray(pixel);
     float t_closest = dot(dir, centre) / dot(dir, dir);

@@ -3,24 +3,30 @@
 // where it is and how to cast it (ellipsoid_shape.comp.glsl is the anisotropic
 // one).
 
-bool cast_sphere_ray(vec2 pixel, vec3 centre, out float depth, out float chord);
+bool cast_sphere_ray(vec2 pixel, vec3 centre, float radius, out float depth, out float chord);
 
-layout(location = 0) uniform mat4 view_matrix;   // world -> view
-layout(location = 3) uniform float radius;       // world units
+layout(location = 0) uniform mat4 view_matrix;        // world -> view
+layout(location = 3) uniform float radius;            // world units: every particle's, or the median's
+layout(location = 512) uniform bool sized_particles;   // each particle's radius is radius x its ratio
 
 // A buffer texture, not a storage buffer: llvmpipe gathers a texel fetch
 // for all lanes at once but loads from a storage buffer lane by lane.
 layout(binding = 0) uniform samplerBuffer particle_positions;   // RGB32F: xyz per particle, world space
+layout(binding = 1) uniform samplerBuffer radius_ratios;        // R32F: the dispatch's particles' ratios
+
+// The loaded particle's radius.
+float loaded_radius;
 
 // The view-space centre and bounding radius of the dispatch's particle i.
 vec4 load_particle(uint i)
 {
-    return vec4((view_matrix * vec4(texelFetch(particle_positions, int(i)).xyz, 1.0)).xyz, radius);
+    loaded_radius = sized_particles ? radius * texelFetch(radius_ratios, int(i)).r : radius;
+    return vec4((view_matrix * vec4(texelFetch(particle_positions, int(i)).xyz, 1.0)).xyz, loaded_radius);
 }
 
 bool cast_particle_ray(vec2 pixel, vec3 centre, out float depth, out float chord)
 {
-    return cast_sphere_ray(pixel, centre, depth, chord);
+    return cast_sphere_ray(pixel, centre, loaded_radius, depth, chord);
 }
 
 // Spheres take their NDC bounds from sphere_bounds.glsl's intervals.

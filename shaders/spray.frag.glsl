@@ -10,7 +10,6 @@ float particle_speed();
 
 layout(location = 1) uniform vec4 projection;        // P[0][0], P[1][1], P[2][2], P[3][2]
 layout(location = 2) uniform vec2 viewport;
-layout(location = 3) uniform float radius;           // the droplets' radius
 layout(location = 10) uniform vec3 light_view;       // unit, towards the light, view space
 layout(location = 11) uniform vec3 fluid_color;      // linear RGB
 layout(location = 12) uniform float whitening;       // settings.foam: how white fast spray gets

@@ -292,7 +292,8 @@ fc_code fc_anisotropy_read(const fc_anisotropy *a, uint64_t count, fc_ellipsoid 
 
 float fc_anisotropy_reach(const fc_particle_buffer *particles, float radius)
 {
-    return particles->shapes ? radius * FC_ANISOTROPY_MAX_STRETCH : radius;
+    float largest = fc_particle_buffer_largest_radius(particles, radius);
+    return particles->shapes ? largest * FC_ANISOTROPY_MAX_STRETCH : largest;
 }
 
 void fc_anisotropy_tally(const fc_anisotropy *a, fc_gpu_memory *m)

@@ -89,8 +89,9 @@ fc_code fc_anisotropy_update(fc_anisotropy *a, const fc_particle_buffer *particl
 /* Reads the ellipsoids of slots [0, count) back into out (tests). */
 fc_code fc_anisotropy_read(const fc_anisotropy *a, uint64_t count, fc_ellipsoid *out, fc_error *err);
 
-/* The farthest a particle's shape reaches from its centre: radius, or the
- * longest ellipsoid's where the buffer's particles are ellipsoids. */
+/* The farthest a particle's shape reaches from its centre: radius (of the
+ * largest particle where they are sized, particle_buffer.h), or the longest
+ * ellipsoid's where the buffer's particles are ellipsoids. */
 float fc_anisotropy_reach(const fc_particle_buffer *particles, float radius);
 
 /* Adds the buffers' bytes and allocations to m's particle bytes. */

@@ -19,18 +19,19 @@ enum {
     LOC_UNITS_PER_CHORD = 7,
     LOC_MAX_CHORD = 8,
     LOC_FIRST_PARTICLE = 9,
-    LOC_FLOOR_PLANE = 10
+    LOC_FLOOR_PLANE = 10,
+    LOC_SIZED_PARTICLES = 512
 };
 /* ... and in surface_resolve.comp.glsl. */
 enum { LOC_CHORD_PER_UNIT = 0, LOC_SOURCE_SIZE = 40 };
 enum { IMAGE_NEAREST_DEPTH = 0, IMAGE_THICKNESS_SUM = 1, IMAGE_DEPTH_OUT = 2, IMAGE_THICKNESS_OUT = 3 };
-enum { UNIT_POSITIONS = 0 };
+enum { UNIT_POSITIONS = 0, UNIT_RADIUS_RATIOS = 1 };
 /* Storage buffer binding of the ellipsoids in ellipsoid_shape.comp.glsl. */
 enum { BIND_ELLIPSOIDS = 5 };
 /* local_size of the two shaders. */
 enum { SPLAT_GROUP = 64, RESOLVE_TILE = 8 };
-/* Bytes per particle position: xyz as float32. */
-enum { POSITION_BYTES = 3 * sizeof(float) };
+/* Bytes per particle position: xyz as float32; per radius ratio: float32. */
+enum { POSITION_BYTES = 3 * sizeof(float), RATIO_BYTES = sizeof(float) };
 /* Workgroups along x per row of the dispatch: below the 65535 GL guarantees. */
 #define SPLAT_GROUPS_PER_ROW 32768u
 
@@ -90,6 +91,7 @@ fc_code fc_compute_splat_create(const char *shader_dir, fc_compute_splat *s, fc_
     if (code != FC_OK)
         return code;
     glCreateTextures(GL_TEXTURE_BUFFER, 1, &s->positions);
+    glCreateTextures(GL_TEXTURE_BUFFER, 1, &s->ratios);
     GLint max_texels = 0, alignment = 1;
     glGetIntegerv(GL_MAX_TEXTURE_BUFFER_SIZE, &max_texels);
     glGetIntegerv(GL_TEXTURE_BUFFER_OFFSET_ALIGNMENT, &alignment);
@@ -111,6 +113,7 @@ void fc_compute_splat_destroy(fc_compute_splat *s)
     glDeleteProgram(s->ellipsoid_program);
     glDeleteProgram(s->resolve_program);
     glDeleteTextures(1, &s->positions);
+    glDeleteTextures(1, &s->ratios);
     release_images(s);
     *s = (fc_compute_splat){0};
 }
@@ -144,6 +147,11 @@ static void dispatch(const fc_compute_splat *s, GLuint program, const fc_particl
 {
     glTextureBufferRange(s->positions, GL_RGB32F, particles->buffer, (GLintptr)(first * POSITION_BYTES),
                          (GLsizeiptr)(count * POSITION_BYTES));
+    /* first is a multiple of A / gcd(A, 12) (dispatch_limit), so for the
+     * power-of-two alignments A drivers have, first x 4 bytes is aligned too. */
+    if (particles->sized)
+        glTextureBufferRange(s->ratios, GL_R32F, particles->radii, (GLintptr)(first * RATIO_BYTES),
+                             (GLsizeiptr)(count * RATIO_BYTES));
     glProgramUniform1ui(program, LOC_PARTICLE_COUNT, (GLuint)count);
     if (program == s->ellipsoid_program)
         glProgramUniform1ui(program, LOC_FIRST_PARTICLE, (GLuint)first);
@@ -153,7 +161,7 @@ static void dispatch(const fc_compute_splat *s, GLuint program, const fc_particl
 }
 
 /* The longest chord through a particle: its diameter, or the longest
- * ellipsoid's. */
+ * ellipsoid's, of the largest particle. */
 static float max_chord(const fc_particle_buffer *particles, float radius)
 {
     return 2.0f * fc_anisotropy_reach(particles, radius);
@@ -167,6 +175,7 @@ static void splat(const fc_compute_splat *s, const fc_particle_buffer *particles
     glProgramUniform4f(program, LOC_PROJECTION, view->fx, view->fy, view->p22, view->p32);
     glProgramUniform2f(program, LOC_VIEWPORT, (float)view->width, (float)view->height);
     glProgramUniform1f(program, LOC_RADIUS, radius);
+    glProgramUniform1i(program, LOC_SIZED_PARTICLES, particles->sized ? GL_TRUE : GL_FALSE);
     glProgramUniform1f(program, LOC_UNITS_PER_CHORD, floor_plane ? (float)units : 0.0f);
     glProgramUniform1f(program, LOC_MAX_CHORD, max_chord(particles, radius));
     if (particles->shapes)
@@ -178,6 +187,7 @@ static void splat(const fc_compute_splat *s, const fc_particle_buffer *particles
     glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_UPDATE_BARRIER_BIT);
     glUseProgram(program);
     glBindTextureUnit(UNIT_POSITIONS, s->positions);
+    glBindTextureUnit(UNIT_RADIUS_RATIOS, s->ratios);
     for (uint64_t first = 0; first < particles->count; first += s->particles_per_dispatch) {
         uint64_t left = particles->count - first;
         dispatch(s, program, particles, first, left < s->particles_per_dispatch ? left : s->particles_per_dispatch);
@@ -185,7 +195,9 @@ static void splat(const fc_compute_splat *s, const fc_particle_buffer *particles
     /* Detached, the texture does not keep a particle buffer alive once that
      * is reallocated. */
     glTextureBuffer(s->positions, GL_RGB32F, 0);
+    glTextureBuffer(s->ratios, GL_R32F, 0);
     glBindTextureUnit(UNIT_POSITIONS, 0);
+    glBindTextureUnit(UNIT_RADIUS_RATIOS, 0);
 }
 
 static void resolve(const fc_compute_splat *s, const fc_view *view, float longest_chord, bool with_thickness,

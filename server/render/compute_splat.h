@@ -17,6 +17,7 @@ typedef struct fc_compute_splat {
     GLuint ellipsoid_program;          /* the particles' ellipsoids (anisotropy.h), where the buffer names them */
     GLuint resolve_program;
     GLuint positions;                  /* buffer texture (RGB32F) over the particle buffer, during a run */
+    GLuint ratios;                     /* buffer texture (R32F) over the radius ratios, during a sized run */
     uint64_t particles_per_dispatch;   /* the most particles the buffer texture may show at once */
     GLuint nearest_depth;     /* R32UI: bits of the nearest depth, +inf where no sphere is */
     GLuint thickness_sum;     /* R32UI: thickness in fixed point */

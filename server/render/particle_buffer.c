@@ -1,13 +1,17 @@
-/* particle_buffer.c — particle positions on the GPU. */
+/* particle_buffer.c — particle positions (and radii) on the GPU. */
 #include "particle_buffer.h"
 
 #include <string.h>
 
 #include "density_order.h"
 #include "fc_error.h"
+#include "fc_frame.h"
 #include "gl_util.h"
 
 #define POSITION_STRIDE (3 * sizeof(float))
+#define RADIUS_STRIDE sizeof(float)
+/* Storage buffer binding of the ratios in sphere_shape.vert.glsl and ellipsoid_shape.vert.glsl. */
+enum { BIND_RADIUS_RATIOS = 7 };
 
 fc_code fc_particle_buffer_create(fc_particle_buffer *pb, fc_error *err)
 {
@@ -29,9 +33,20 @@ static void release_buffer(fc_particle_buffer *pb)
     pb->capacity = 0;
 }
 
+static void release_radii(fc_particle_buffer *pb)
+{
+    if (pb->mapped_radii)
+        glUnmapNamedBuffer(pb->radii);
+    glDeleteBuffers(1, &pb->radii);
+    pb->mapped_radii = NULL;
+    pb->radii = 0;
+    pb->radii_capacity = 0;
+}
+
 void fc_particle_buffer_destroy(fc_particle_buffer *pb)
 {
     release_buffer(pb);
+    release_radii(pb);
     glDeleteVertexArrays(1, &pb->vertex_array);
     *pb = (fc_particle_buffer){0};
 }
@@ -62,16 +77,54 @@ static fc_code grow(fc_particle_buffer *pb, uint64_t count, fc_error *err)
     return FC_OK;
 }
 
-fc_code fc_particle_buffer_reserve(fc_particle_buffer *pb, uint64_t count, fc_error *err)
+/* A radius buffer of `count` floats, persistently mapped like the positions'. */
+static fc_code grow_radii(fc_particle_buffer *pb, uint64_t count, fc_error *err)
+{
+    release_radii(pb);
+    pb->allocations++;
+    GLbitfield flags = GL_MAP_WRITE_BIT | GL_MAP_PERSISTENT_BIT | GL_MAP_COHERENT_BIT;
+    GLsizeiptr bytes = (GLsizeiptr)(count * RADIUS_STRIDE);
+    glCreateBuffers(1, &pb->radii);
+    glNamedBufferStorage(pb->radii, bytes, NULL, flags);
+    fc_code code = fc_gl_check("allocating the particle radius buffer", err);
+    if (code == FC_OK && !(pb->mapped_radii = glMapNamedBufferRange(pb->radii, 0, bytes, flags)))
+        code = fc_gl_failure("mapping the particle radius buffer", err);
+    if (code != FC_OK) {
+        release_radii(pb);
+        return code;
+    }
+    pb->radii_capacity = count;
+    return FC_OK;
+}
+
+fc_code fc_particle_buffer_reserve(fc_particle_buffer *pb, uint64_t count, bool radii, fc_error *err)
 {
     pb->count = 0;
+    pb->has_radii = false;
     /* Waiting for every command so far covers the draws that read the frame
      * about to be overwritten, here and in the other mapped buffers, also
      * when this one is replaced. */
     fc_code code = fc_gl_wait_until_done("waiting for the last frame's draws", err);
     if (code == FC_OK && count > pb->capacity)
         code = grow(pb, count, err);
+    /* Grown to the positions' capacity, so frames with radii of any size up to it allocate nothing more. */
+    if (code == FC_OK && radii && count > pb->radii_capacity)
+        code = grow_radii(pb, pb->capacity, err);
     return code;
+}
+
+fc_code fc_particle_buffer_measure_radii(fc_particle_buffer *pb, const fc_frame *frame, fc_error *err)
+{
+    pb->has_radii = false;
+    if (!frame->radius || frame->count == 0)
+        return FC_OK;
+    float median = 0.0f;
+    fc_code code = fc_frame_median_radius(frame, &median, err);
+    if (code != FC_OK)
+        return code;
+    pb->radius_median = median;
+    pb->has_radii = median > 0.0f;
+    return FC_OK;
 }
 
 /* Bounds kept in locals while copying: through pb they could alias the
@@ -109,6 +162,19 @@ static bounds copy_positions(float *to, const float *positions, const uint32_t *
     return b;
 }
 
+/* Each particle's ratio to the median, slot by slot; returns the largest.
+ * Equal radii give exactly 1 (x / x is exact in IEEE arithmetic). */
+static float copy_ratios(float *to, const float *radius, const uint32_t *order, uint64_t count, float median)
+{
+    float largest = 0.0f;
+    for (uint64_t slot = 0; slot < count; slot++) {
+        float ratio = radius[order ? order[slot] : slot] / median;
+        to[slot] = ratio;
+        largest = ratio > largest ? ratio : largest;
+    }
+    return largest;
+}
+
 /* One pass: each position is read once, written once into the mapped
  * buffer and bounded on the way. */
 void fc_particle_buffer_fill(fc_particle_buffer *pb, const fc_frame *frame, const uint32_t *order)
@@ -116,6 +182,10 @@ void fc_particle_buffer_fill(fc_particle_buffer *pb, const fc_frame *frame, cons
     bounds b = {{0.0f, 0.0f, 0.0f}, {0.0f, 0.0f, 0.0f}};
     if (frame->count > 0)
         b = copy_positions(pb->mapped, frame->positions, order, frame->count);
+    if (pb->has_radii && frame->radius && frame->count <= pb->radii_capacity)
+        pb->radius_ratio_max = copy_ratios(pb->mapped_radii, frame->radius, order, frame->count, pb->radius_median);
+    else
+        pb->has_radii = false;
     memcpy(pb->lo, b.lo, sizeof b.lo);
     memcpy(pb->hi, b.hi, sizeof b.hi);
     pb->count = frame->count;
@@ -124,7 +194,9 @@ void fc_particle_buffer_fill(fc_particle_buffer *pb, const fc_frame *frame, cons
 
 fc_code fc_particle_buffer_upload(fc_particle_buffer *pb, const fc_frame *frame, fc_error *err)
 {
-    fc_code code = fc_particle_buffer_reserve(pb, frame->count, err);
+    fc_code code = fc_particle_buffer_reserve(pb, frame->count, frame->radius != NULL, err);
+    if (code == FC_OK)
+        code = fc_particle_buffer_measure_radii(pb, frame, err);
     if (code == FC_OK)
         fc_particle_buffer_fill(pb, frame, NULL);
     return code;
@@ -136,8 +208,19 @@ void fc_particle_buffer_bind(const fc_particle_buffer *pb, bool per_instance)
     glBindVertexArray(pb->vertex_array);
 }
 
+void fc_particle_buffer_bind_radii(const fc_particle_buffer *pb)
+{
+    if (pb->sized)
+        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, BIND_RADIUS_RATIOS, pb->radii);
+}
+
+float fc_particle_buffer_largest_radius(const fc_particle_buffer *pb, float radius)
+{
+    return pb->sized ? radius * pb->radius_ratio_max : radius;
+}
+
 void fc_particle_buffer_tally(const fc_particle_buffer *pb, fc_gpu_memory *m)
 {
-    m->particle_bytes += pb->capacity * POSITION_STRIDE;
+    m->particle_bytes += pb->capacity * POSITION_STRIDE + pb->radii_capacity * RADIUS_STRIDE;
     m->allocations += pb->allocations;
 }

@@ -372,7 +372,9 @@ static void plan_job(const fc_pipeline *p, const fc_view *view, const fc_camera 
  * the last frame's. */
 static fc_code upload_frame(fc_pipeline *p, const fc_frame *frame, fc_error *err)
 {
-    fc_code code = fc_particle_buffer_reserve(&p->particles, frame->count, err);
+    fc_code code = fc_particle_buffer_reserve(&p->particles, frame->count, frame->radius != NULL, err);
+    if (code == FC_OK)
+        code = fc_particle_buffer_measure_radii(&p->particles, frame, err);
     if (code == FC_OK)
         code = fc_particle_attributes_upload(&p->attributes, frame, err);
     if (code == FC_OK) {
@@ -464,6 +466,7 @@ static fc_code warm_up(fc_pipeline *p, fc_error *err)
         fc_stage_timer_ms(&p->timer, (fc_stage)s);   /* waits until the GPU is done */
     p->particles.count = 0;
     p->particles.shapes = 0;
+    p->particles.has_radii = p->particles.sized = false;
     fc_anisotropy_trim(&p->anisotropy);   /* a pipeline holds no ellipsoids until a render asks for them */
     p->attributes.count = 0;
     p->attributes.reorderable = false;
@@ -540,8 +543,9 @@ static fc_code check_request(const fc_pipeline *p, const fc_camera *camera, cons
         code = fc_settings_validate(settings, err);
     if (code != FC_OK)
         return code;
-    if (!(settings->radius > 0.0f))
-        return fc_error_set(err, FC_ERR_INVALID_VALUE, "radius %g: the pipeline needs a resolved radius > 0",
+    if (!(settings->radius > 0.0f) && !p->particles.has_radii)
+        return fc_error_set(err, FC_ERR_INVALID_VALUE,
+                            "radius %g: the pipeline needs a resolved radius > 0 for a frame without radii",
                             (double)settings->radius);
     if (aov < FC_AOV_COLOR || aov > FC_AOV_NOISE)
         return fc_error_set(err, FC_ERR_INVALID_VALUE, "unknown image kind (aov) %d", (int)aov);
@@ -565,17 +569,31 @@ static uint32_t channels_of(fc_aov aov)
     return aov == FC_AOV_COLOR ? 4 : aov == FC_AOV_NORMAL ? 3 : 1;
 }
 
-fc_code fc_pipeline_render_with(fc_pipeline *p, const fc_camera *camera, const fc_settings *settings,
+/* The settings the stages see: a radius of 0 on a frame with radii sizes
+ * each particle by its own (PROTOCOL.md 5), the median standing for them
+ * where one size is needed; a radius > 0 overrides them. */
+static fc_settings resolve_radius(fc_pipeline *p, const fc_settings *settings)
+{
+    fc_settings resolved = *settings;
+    p->particles.sized = !(settings->radius > 0.0f) && p->particles.has_radii;
+    if (p->particles.sized)
+        resolved.radius = p->particles.radius_median;
+    return resolved;
+}
+
+fc_code fc_pipeline_render_with(fc_pipeline *p, const fc_camera *camera, const fc_settings *requested,
                                 const fc_render_scene *scene_in, fc_aov aov, int want_u8, fc_image *out,
                                 float *stage_ms, fc_error *err)
 {
     const fc_render_scene scene = scene_in ? *scene_in : (fc_render_scene){0};
-    if (!p || !camera || !settings || !out || (scene.mesh_count > 0 && !scene.meshes))
+    if (!p || !camera || !requested || !out || (scene.mesh_count > 0 && !scene.meshes))
         return fc_error_set(err, FC_ERR_USAGE, "fc_pipeline_render: missing pipeline, camera, settings or image");
     fc_stage_timer_reset(&p->timer);
     fc_pass_profile_reset(&p->profile);
     report_stages(&p->timer, stage_ms);
-    fc_code code = check_request(p, camera, settings, aov, err);
+    fc_code code = check_request(p, camera, requested, aov, err);
+    fc_settings resolved = resolve_radius(p, requested);
+    const fc_settings *settings = &resolved;
     if (code == FC_OK)
         code = order_for(p, settings, err);
     if (code == FC_OK)

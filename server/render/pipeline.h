@@ -24,7 +24,9 @@ void fc_pipeline_destroy(fc_pipeline *p);
 
 /* Uploads a frame's particles to the GPU; they stay until the next upload, so
  * several cameras/settings can render the same frame. stage_ms (may be NULL)
- * receives FC_STAGE_UPLOAD. The frame must be validated (finite) already.
+ * receives FC_STAGE_UPLOAD. The frame must be validated (finite, radii in
+ * (0, 1e6]) already. A frame with radii has its median radius found here, in
+ * O(count) on a copy of the radii.
  * The particles go up in the frame's order: the first render with a
  * density_threshold > 0 sorts a frame with densities (densest first) and
  * rewrites them in that order, reading the frame again. So the frame's
@@ -39,7 +41,11 @@ fc_code fc_pipeline_upload(fc_pipeline *p, const fc_frame *frame, float *stage_m
  * float channel. `out` is reused across calls.
  * stage_ms (array of FC_STAGE_COUNT, may be NULL) receives GPU times of each
  * stage from timer queries (negative for stages that did not run).
- * settings->radius must be > 0 (the caller resolves "auto"). */
+ * settings->radius must be > 0 (the caller resolves "auto"), except for a
+ * frame with per-particle radii: 0 then splats each particle at its own
+ * radius, the median of them standing in where the passes need one size
+ * (smoothing filter width, absorption per radius, ...), and a radius > 0
+ * overrides them all (PROTOCOL.md 5). */
 fc_code fc_pipeline_render(fc_pipeline *p, const fc_camera *camera, const fc_settings *settings,
                            fc_aov aov, int want_u8, fc_image *out, float *stage_ms, fc_error *err);
 
@@ -126,7 +132,8 @@ fc_code fc_pipeline_render_with(fc_pipeline *p, const fc_camera *camera, const f
 
 /* The GPU memory the pipeline holds now, from the sizes and formats its
  * resources were allocated with: particle buffers sized to the largest frame
- * uploaded; render targets — the depth pass's raw depth, thickness and
+ * uploaded (positions, and each particle's radius
+ * ratio once a frame with radii came); render targets — the depth pass's raw depth, thickness and
  * linear depth (R32F each), the compute splat's two R32UI images, the
  * thickness splat and its blur (R32F x 3: the blur's two at half the
  * image's resolution, or the splat's where lower) and the thickness AOV's

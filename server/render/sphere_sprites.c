@@ -13,7 +13,8 @@ enum {
     LOC_RADIUS = 3,
     LOC_MAX_POINT_SIZE = 4,
     LOC_AS_QUADS = 5,
-    LOC_FIRST_PARTICLE = 9
+    LOC_FIRST_PARTICLE = 9,
+    LOC_SIZED_PARTICLES = 512   /* sphere_shape.vert.glsl, ellipsoid_shape.vert.glsl */
 };
 /* Storage buffer binding of the ellipsoids in ellipsoid_shape.vert.glsl. */
 enum { BIND_ELLIPSOIDS = 5 };
@@ -117,6 +118,8 @@ void fc_sphere_sprites_draw_range(const fc_sphere_sprites *s, const fc_particle_
     glUniform4f(LOC_PROJECTION, view->fx, view->fy, view->p22, view->p32);
     glUniform2f(LOC_VIEWPORT, (float)view->width, (float)view->height);
     glUniform1f(LOC_RADIUS, radius);
+    glUniform1i(LOC_SIZED_PARTICLES, particles->sized ? GL_TRUE : GL_FALSE);
+    fc_particle_buffer_bind_radii(particles);
     glUniform1f(LOC_MAX_POINT_SIZE, s->max_point_size);
     glUniform1i(LOC_FIRST_PARTICLE, (GLint)first);
     glEnable(GL_PROGRAM_POINT_SIZE);

@@ -39,7 +39,9 @@ void fc_sphere_sprites_destroy(fc_sphere_sprites *s);
 /* The program a draw of `particles` uses: set a pass's own uniforms on it. */
 GLuint fc_sphere_sprites_program(const fc_sphere_sprites *s, const fc_particle_buffer *particles);
 
-/* Draws every particle as a sphere of `radius` into the bound framebuffer. */
+/* Draws every particle as a sphere of `radius` into the bound framebuffer;
+ * where the particles are sized (particle_buffer.h), each particle's sphere
+ * is `radius` times its ratio to the median. */
 void fc_sphere_sprites_draw(const fc_sphere_sprites *s, const fc_particle_buffer *particles, const fc_view *view,
                             float radius);
 

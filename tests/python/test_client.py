@@ -130,6 +130,30 @@ def test_per_particle_radius_out_of_domain_names_the_particle(client):
     assert png_size(client.render()) == SIZE
 
 
+def test_per_particle_radii_through_the_daemon(client):
+    # Two particles 4 units in front of the eye, radii 0.2 and 0.5: with the
+    # radius setting 0 (auto) the depth at each centre is 4 - r_i; a setting
+    # > 0 overrides both.
+    positions = np.array([[-0.6, 0, 0], [0.6, 0, 0]], np.float32)
+    radius = np.array([0.2, 0.5], np.float32)
+    client.send_frame(positions, radius=radius)
+    client.set_camera(eye=(0, -4, 0), target=(0, 0, 0), up=(0, 0, 1), fov=40, size=(161, 81))
+    client.set_settings(radius=0, smoothing="none")
+    depth = client.render_image("depth")
+    f = 0.5 * 81 / np.tan(np.radians(20))          # pixels per unit of x / depth
+    columns = [int(80 + x * f / 4) for x in (-0.6, 0.6)]
+    for column, r in zip(columns, radius):
+        assert abs(depth[40, column] - (4 - r)) < 0.01, (column, depth[40, column], 4 - r)
+    # The silhouettes' widths follow the radii: about 2 r f / 4 pixels each.
+    widths = [int(np.count_nonzero(depth[40, :80] > 0)), int(np.count_nonzero(depth[40, 81:] > 0))]
+    for width, r in zip(widths, radius):
+        assert abs(width - 2 * r * f / 4) <= 2.5, (widths, r)
+    client.set_settings(radius=0.3)
+    depth = client.render_image("depth")
+    for column in columns:
+        assert abs(depth[40, column] - (4 - 0.3)) < 0.01
+
+
 def test_negative_radius_raises_invalid_value(client):
     client.send_frame(ball(500))
     look_at_ball(client)

@@ -54,7 +54,7 @@ static bool send_chunks(int fd, uint32_t request_id, const fc_frame *f, uint64_t
     fc_error err;
     bool sent = true;
     for (uint32_t index = 0; index < 2 && sent; index++) {
-        fc_frame half = {PARTICLES / 2, f->positions + index * 3 * (PARTICLES / 2), NULL, NULL, NULL};
+        fc_frame half = {.count = PARTICLES / 2, .positions = f->positions + index * 3 * (PARTICLES / 2)};
         fc_chunk_header h = {number, index, 2};
         sent = fc_wire_write_chunk(&b, request_id, &h, &half, 0, 0, &err) == FC_OK && svc_send(fd, &b);
     }
@@ -135,7 +135,7 @@ static void stream(uint16_t port)
 
     /* A small FRAME after a compressed one arrives in the connection's larger
      * buffer: it is copied out rather than keep that buffer, and still taken. */
-    fc_frame small = {100, f.positions, NULL, NULL, NULL};
+    fc_frame small = {.count = 100, .positions = f.positions};
     CHECK(send_frame(fd, request_id++, &f, 1));
     CHECK(send_frame(fd, request_id++, &small, 0));
     check_published(fd, 4 * FRAMES_PER_KIND + 2, CHUNK_FRAME_BASE + FRAMES_PER_KIND + 1);

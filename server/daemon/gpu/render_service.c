@@ -46,10 +46,12 @@ struct fc_render_service {
 
 /* ---- GL thread ---- */
 
-/* Radius 0 means "auto": estimated once per frame, however often it is rendered. */
+/* Radius 0 means "auto": each particle's own radius on a frame that has them
+ * (the pipeline sizes them, PROTOCOL.md 5), else estimated once per frame,
+ * however often it is rendered. */
 static float resolve_radius(fc_render_job *job)
 {
-    if (job->settings.radius > 0.0f)
+    if (job->settings.radius > 0.0f || job->frame->frame.radius)
         return job->settings.radius;
     if (job->frame->estimated_radius <= 0.0f)
         job->frame->estimated_radius = fc_frame_estimate_radius(&job->frame->frame);
