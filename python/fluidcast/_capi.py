@@ -191,6 +191,8 @@ _E = POINTER(FcError)
 # name: (restype, argtypes), as declared in fluidcast.h
 _PROTOTYPES = {
     "fc_client_connect": (c_enum, [c_char_p, POINTER(FcConnectOptions), POINTER(c_client_p), _E]),
+    "fc_client_connect_session": (c_enum, [c_char_p, c_char_p, POINTER(FcConnectOptions), POINTER(c_client_p), _E]),
+    "fc_client_address": (c_char_p, [c_client_p]),
     "fc_client_server_info": (None, [c_client_p, POINTER(FcServerInfo)]),
     "fc_client_send_frame": (c_enum, [c_client_p, POINTER(FcFrame), _E]),
     "fc_client_set_camera": (c_enum, [c_client_p, POINTER(FcCamera), _E]),

@@ -254,23 +254,30 @@ def default_settings():
 
 # ---- the client -----------------------------------------------------------
 
-def connect(address, token=None, name="fluidcast-python", connect_timeout=None, reply_timeout=None):
-    """Connects to a fluidcastd and returns a :class:`Client` (fc_client_connect).
+def connect(address, token=None, name="fluidcast-python", connect_timeout=None, reply_timeout=None, session=None):
+    """Connects to a fluidcastd and returns a :class:`Client` (fc_client_connect_session).
 
     Arguments:
-        address: "HOST:PORT", "HOST" (port 7450), "[IPV6]:PORT", "[IPV6]" or "unix:PATH".
+        address: "HOST:PORT", "HOST" (port 7450), "[IPV6]:PORT", "[IPV6]", "unix:PATH", or
+            "srv:NAME": one of the daemons of the DNS SRV name NAME (see ``session``).
         token: the daemon's shared secret (fluidcastd --token-file / $FLUIDCAST_TOKEN), or None.
         name: shown in the server's log (truncated to 63 bytes).
         connect_timeout: seconds to reach the server and get its WELCOME; None: 10.
         reply_timeout: longest silence, in seconds, tolerated while sending or
             waiting for a reply (a render can take seconds); None: wait indefinitely.
+        session: the session this client will publish or subscribe to. With an
+            "srv:" address every client of one session is placed on the same
+            daemon (rendezvous hashing of the name, fluidcast.h); None: by SRV
+            priority and weight. Other addresses ignore it. :attr:`Client.daemon`
+            says where the client went.
 
     Raises :class:`Error`: ``Code.USAGE`` for a malformed address,
     ``Code.CONNECT`` when the server cannot be reached in time,
     ``Code.UNAUTHORIZED`` for a missing or wrong token, ``Code.VERSION`` and
     the connection errors when the handshake fails.
     """
-    return Client(address, token=token, name=name, connect_timeout=connect_timeout, reply_timeout=reply_timeout)
+    return Client(address, token=token, name=name, connect_timeout=connect_timeout, reply_timeout=reply_timeout,
+                  session=session)
 
 
 class Client:
@@ -289,7 +296,8 @@ class Client:
     per thread for concurrency. ctypes releases the GIL during each call.
     """
 
-    def __init__(self, address, token=None, name="fluidcast-python", connect_timeout=None, reply_timeout=None):
+    def __init__(self, address, token=None, name="fluidcast-python", connect_timeout=None, reply_timeout=None,
+                 session=None):
         self._handle = None
         self._lock = threading.Lock()
         options = FcConnectOptions(
@@ -299,11 +307,13 @@ class Client:
             token.encode() if token else None)
         handle = _capi.c_client_p()
         err = FcError()
-        code = _capi.fc_client_connect(os.fsencode(address), ctypes.byref(options), ctypes.byref(handle),
-                                       ctypes.byref(err))
+        code = _capi.fc_client_connect_session(os.fsencode(address), session.encode() if session else None,
+                                               ctypes.byref(options), ctypes.byref(handle), ctypes.byref(err))
         raise_for(code, err)
         self._handle = handle
         self.address = address
+        #: the daemon connected to: "HOST:PORT" (for "srv:" addresses the chosen target) or "unix:PATH"
+        self.daemon = os.fsdecode(_capi.fc_client_address(self._handle))
         self._settings = _default_c_settings()
         info = FcServerInfo()
         _capi.fc_client_server_info(self._handle, ctypes.byref(info))

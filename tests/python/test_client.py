@@ -20,6 +20,12 @@ def test_connect_and_server_info(client):
     assert not client.closed
 
 
+def test_connect_with_a_session_on_a_plain_address(daemon):
+    """A session places "srv:" connections only; a plain address is used as given."""
+    with fluidcast.connect(daemon.address, session="dam") as c:
+        assert c.daemon == daemon.address and c.address == daemon.address
+
+
 def test_connect_errors():
     with pytest.raises(fluidcast.Error) as e:
         fluidcast.connect("localhost:99999")
@@ -30,6 +36,9 @@ def test_connect_errors():
     with pytest.raises(fluidcast.Error) as e:
         fluidcast.connect("127.0.0.1:%d" % port, connect_timeout=5)
     assert e.value.code == fluidcast.Code.CONNECT
+    with pytest.raises(fluidcast.Error) as e:
+        fluidcast.connect("srv:", session="dam")
+    assert e.value.code == fluidcast.Code.USAGE and "SRV" in e.value.message
 
 
 def test_render_png_has_the_camera_size(client):
