@@ -16,16 +16,18 @@ libfluidcast: see :mod:`fluidcast._library` for where it is looked for
 ($FLUIDCAST_LIBRARY first).
 """
 
-from ._enums import (Aov, Code, ColorBy, Colormap, Format, Kernel, SERVER_CAN_QUANTIZE16, SERVER_CAN_STREAM,
+from ._enums import (Aov, Code, ColorBy, Colormap, Format, Kernel, MESH_HIDE_NEAR, SERVER_CAN_QUANTIZE16, SERVER_CAN_STREAM,
                      SERVER_CAN_ZSTD, Smoothing, Stage)
 from ._errors import Error
 from ._frame import Frame
+from ._mesh import Mesh
 from ._capi import library_path
 from ._client import (Client, Image, SETTING_NAMES, ServerInfo, SessionStatus, StreamImage, UploadStats, connect,
                       default_settings)
 
 __all__ = [
-    "connect", "Client", "Error", "Code", "Frame", "Image", "StreamImage", "ServerInfo", "SessionStatus",
+    "connect", "Client", "Error", "Code", "Frame", "Mesh", "Image", "StreamImage", "ServerInfo", "SessionStatus",
     "UploadStats", "Format", "Aov", "Smoothing", "Kernel", "ColorBy", "Colormap", "Stage", "SETTING_NAMES",
-    "default_settings", "SERVER_CAN_STREAM", "SERVER_CAN_ZSTD", "SERVER_CAN_QUANTIZE16", "library_path",
+    "default_settings", "SERVER_CAN_STREAM", "SERVER_CAN_ZSTD", "SERVER_CAN_QUANTIZE16", "MESH_HIDE_NEAR",
+    "library_path",
 ]

@@ -84,6 +84,32 @@ class FcSettings(Structure):
     ]
 
 
+class FcMesh(Structure):
+    """fc_mesh: a triangle mesh drawn with the fluid (MESH); the arrays are the caller's."""
+    _c_name_ = "fc_mesh"
+    _fields_ = [
+        ("id", c_uint32),
+        ("flags", c_uint32),               # FC_MESH_HIDE_NEAR or 0
+        ("vertex_count", c_uint32),
+        ("triangle_count", c_uint32),
+        ("vertices", POINTER(c_float)),    # 3*vertex_count
+        ("indices", POINTER(c_uint32)),    # 3*triangle_count, each < vertex_count
+        ("normals", POINTER(c_float)),     # 3*vertex_count, or NULL: flat faces
+        ("color", c_float * 3),
+        ("opacity", c_float),
+        ("transform", c_float * 12),       # 3x4 row-major (R | t)
+    ]
+
+
+class FcMeshTransform(Structure):
+    """fc_mesh_transform: a new placement of mesh ``id`` (MESH_TRANSFORM)."""
+    _c_name_ = "fc_mesh_transform"
+    _fields_ = [
+        ("id", c_uint32),
+        ("transform", c_float * 12),
+    ]
+
+
 class FcRenderRequest(Structure):
     """fc_render_request: image format, JPEG quality, AOV."""
     _c_name_ = "fc_render_request"
@@ -180,7 +206,7 @@ class FcUploadStats(Structure):
 
 
 #: Every struct mirrored, for the layout test.
-STRUCTS = (FcError, FcFrame, FcCamera, FcSettings, FcRenderRequest, FcConnectOptions, FcServerInfo,
+STRUCTS = (FcError, FcFrame, FcCamera, FcSettings, FcMesh, FcMeshTransform, FcRenderRequest, FcConnectOptions, FcServerInfo,
            FcImageResult, FcSessionStatus, FcStreamImage, FcUploadOptions, FcUploadStats)
 
 lib, library_path = _library.load()
@@ -201,6 +227,10 @@ _PROTOTYPES = {
     "fc_client_set_background_file": (c_enum, [c_client_p, c_char_p, _E]),
     "fc_client_set_environment_bytes": (c_enum, [c_client_p, POINTER(c_void_p), POINTER(c_size_t), _E]),
     "fc_client_set_environment_files": (c_enum, [c_client_p, POINTER(c_char_p), _E]),
+    "fc_mesh_defaults": (None, [POINTER(FcMesh)]),
+    "fc_client_upload_mesh": (c_enum, [c_client_p, POINTER(FcMesh), _E]),
+    "fc_client_remove_mesh": (c_enum, [c_client_p, c_uint32, _E]),
+    "fc_client_move_meshes": (c_enum, [c_client_p, POINTER(FcMeshTransform), c_uint32, _E]),
     "fc_client_render": (c_enum, [c_client_p, POINTER(FcRenderRequest), POINTER(FcImageResult), _E]),
     "fc_image_result_free": (None, [POINTER(FcImageResult)]),
     "fc_client_close": (None, [c_client_p]),

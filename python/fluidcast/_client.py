@@ -15,6 +15,7 @@ from ._enums import (Aov, Code, ColorBy, Colormap, Format, Kernel, Smoothing, St
                      parse)
 from ._errors import Error, raise_for
 from ._frame import as_frame
+from ._mesh import as_mesh, transform_entries
 
 _UINT32_MAX = 0xFFFFFFFF
 
@@ -258,23 +259,33 @@ def connect(address, token=None, name="fluidcast-python", connect_timeout=None, 
     """Connects to a fluidcastd and returns a :class:`Client` (fc_client_connect_session).
 
     Arguments:
-        address: "HOST:PORT", "HOST" (port 7450), "[IPV6]:PORT", "[IPV6]", "unix:PATH", or
-            "srv:NAME": one of the daemons of the DNS SRV name NAME (see ``session``).
+        address: "HOST:PORT", "HOST" (port 7450), "[IPV6]:PORT", "[IPV6]",
+            "unix:PATH", or "srv:NAME" for one of the daemons named by the DNS
+            SRV records of NAME (e.g. "srv:_fluidcast._tcp.render.example.org";
+            a Kubernetes headless Service provides them).
         token: the daemon's shared secret (fluidcastd --token-file / $FLUIDCAST_TOKEN), or None.
         name: shown in the server's log (truncated to 63 bytes).
         connect_timeout: seconds to reach the server and get its WELCOME; None: 10.
         reply_timeout: longest silence, in seconds, tolerated while sending or
             waiting for a reply (a render can take seconds); None: wait indefinitely.
-        session: the session this client will publish or subscribe to. With an
-            "srv:" address every client of one session is placed on the same
-            daemon (rendezvous hashing of the name, fluidcast.h); None: by SRV
-            priority and weight. Other addresses ignore it. :attr:`Client.daemon`
-            says where the client went.
+        session: with a "srv:" address, the name of the session this client
+            will publish or subscribe to. Every client of one session computes
+            the same order of the SRV targets from the name alone (rendezvous
+            hashing, fluidcast.h), so a session's producers and viewers meet on
+            one daemon without a router; an unreachable target gives way to the
+            next in that order. Without it a "srv:" address picks by the SRV
+            priorities and weights (RFC 2782). Other addresses ignore it.
+            The records are looked up at each connect, from the DNS servers of
+            /etc/resolv.conf or the one $FLUIDCAST_DNS_SERVER ("ADDR[:PORT]") names.
 
-    Raises :class:`Error`: ``Code.USAGE`` for a malformed address,
-    ``Code.CONNECT`` when the server cannot be reached in time,
-    ``Code.UNAUTHORIZED`` for a missing or wrong token, ``Code.VERSION`` and
-    the connection errors when the handshake fails.
+    :attr:`Client.daemon` says which daemon was reached.
+
+    Raises :class:`Error`: ``Code.USAGE`` for a malformed address (or "srv:"
+    without a name, a malformed $FLUIDCAST_DNS_SERVER), ``Code.CONNECT`` when
+    the server cannot be reached in time (for "srv:": no SRV records, no DNS
+    answer, or no target reachable), ``Code.UNAUTHORIZED`` for a missing or
+    wrong token, ``Code.VERSION`` and the connection errors when the handshake
+    fails, ``Code.PROTOCOL`` for a DNS answer that does not parse.
     """
     return Client(address, token=token, name=name, connect_timeout=connect_timeout, reply_timeout=reply_timeout,
                   session=session)
@@ -288,7 +299,7 @@ class Client:
     wait for an answer, until it arrived) and raises :class:`Error` when the
     call fails. Requests the server answers only when it rejects them
     (:meth:`send_frame`, :meth:`set_camera`, :meth:`set_settings`, scene
-    images) report that rejection from the next :meth:`render`.
+    images, meshes) report that rejection from the next :meth:`render`.
 
     Like fc_client, one connection serves one thing at a time: calls from
     several threads are serialised by a lock (a thread waiting in
@@ -311,7 +322,10 @@ class Client:
                                                ctypes.byref(options), ctypes.byref(handle), ctypes.byref(err))
         raise_for(code, err)
         self._handle = handle
+        #: the address given to :func:`connect` (e.g. "srv:NAME")
         self.address = address
+        #: the session name given to :func:`connect`, or None
+        self.session = session or None
         #: the daemon connected to: "HOST:PORT" (for "srv:" addresses the chosen target) or "unix:PATH"
         self.daemon = os.fsdecode(_capi.fc_client_address(self._handle))
         self._settings = _default_c_settings()
@@ -474,6 +488,60 @@ class Client:
         data = (ctypes.c_void_p * 6)(*[ctypes.addressof(b) for b in buffers])
         sizes = (ctypes.c_size_t * 6)(*[len(b) for b in blobs])
         self._call(_capi.fc_client_set_environment_bytes, data, sizes)
+
+    # -- meshes --
+
+    def upload_mesh(self, vertices, indices=None, normals=None, id=None, color=None, opacity=None, transform=None,
+                    hide_near=None):
+        """Sends a triangle mesh drawn with the fluid (fc_client_upload_mesh); returns the :class:`Mesh` sent.
+
+        ``vertices`` (V, 3) and ``normals`` (V, 3, or None for flat faces)
+        float32, ``indices`` (T, 3) uint32, counter-clockwise seen from
+        outside: numpy arrays already of these types and C-contiguous are
+        encoded from where they are, without a copy; others are converted once
+        (see :class:`Mesh`). Or a prepared :class:`Mesh` as ``vertices``,
+        alone. The rest, when given: ``id`` (default 0: a mesh of an id already
+        sent replaces it), ``color`` (linear RGB in [0, 1], default 0.8 grey),
+        ``opacity`` (default 1: opaque, hides the fluid behind it and is
+        refracted by it; below 1: glass blended over the fluid), ``transform``
+        (3x4 or 4x4 matrix or 12 numbers; default identity) and ``hide_near``
+        (True: faces turned toward the camera are not drawn, for a tank's near
+        walls). A producer's meshes (after :meth:`publish`) show in every
+        viewer's images of its session.
+
+        Raises :class:`Error` without sending: ``Code.INVALID_VALUE`` for an
+        index >= V or < 0 (naming the triangle), a vertex or normal that is not
+        finite, a colour or opacity outside [0, 1]; ``Code.LIMIT`` beyond 2^24
+        vertices or triangles; ``Code.TOO_LARGE`` beyond the server's message
+        limit. The server's rejections (``Code.LIMIT`` for a 65th mesh or one
+        beyond the connection's memory) come from the next :meth:`render`.
+        """
+        mesh = as_mesh(vertices, indices, normals=normals, id=id, color=color, opacity=opacity,
+                       transform=transform, hide_near=hide_near)
+        self._call(_capi.fc_client_upload_mesh, ctypes.byref(mesh.c_mesh))
+        return mesh
+
+    def remove_mesh(self, id):
+        """Removes mesh ``id`` (fc_client_remove_mesh); no error when there is none."""
+        self._call(_capi.fc_client_remove_mesh, _uint32("mesh id", id))
+
+    def move_meshes(self, transforms):
+        """Places meshes already sent anew, all in one message (fc_client_move_meshes).
+
+        ``transforms``: {id: transform} or (id, transform) pairs, at most 64
+        distinct ids; each transform as for :meth:`upload_mesh` (a 3x4 or 4x4
+        matrix or 12 numbers; world = R v + t). For a simulation's rigid
+        bodies, once per frame. The server moves all of them or, when one id
+        was never sent, none: ``Code.BAD_STATE`` from the next :meth:`render`.
+        Raises, unsent: ``Code.LIMIT`` for more than 64 entries,
+        ``Code.INVALID_VALUE`` for an id given twice or a transform that is not finite.
+        """
+        entries, count = transform_entries(transforms)
+        self._call(_capi.fc_client_move_meshes, entries, count)
+
+    def move_mesh(self, id, transform):
+        """Places mesh ``id`` anew: :meth:`move_meshes` with one entry."""
+        self.move_meshes([(id, transform)])
 
     # -- rendering --
 

@@ -92,3 +92,15 @@ def png_size(data):
     assert data[:8] == PNG_MAGIC, data[:8]
     assert data[12:16] == b"IHDR"
     return int.from_bytes(data[16:20], "big"), int.from_bytes(data[20:24], "big")
+
+
+# The corners of a box by bit (x: 1, y: 2, z: 4) and its 12 triangles,
+# counter-clockwise seen from outside (as tests/integration/test_client_mesh.c).
+_BOX_INDICES = [[0, 2, 3], [0, 3, 1], [4, 5, 7], [4, 7, 6], [0, 1, 5], [0, 5, 4],
+                [2, 6, 7], [2, 7, 3], [0, 4, 6], [0, 6, 2], [1, 3, 7], [1, 7, 5]]
+
+
+def box(lo, hi):
+    """An axis-aligned box from corner ``lo`` to ``hi``: vertices (8, 3) float32 and indices (12, 3) uint32."""
+    vertices = np.array([[(lo, hi)[(i >> k) & 1][k] for k in range(3)] for i in range(8)], np.float32)
+    return vertices, np.array(_BOX_INDICES, np.uint32)
