@@ -49,6 +49,20 @@ fc_code fc_cli_set_read_option(fc_read_options *o, const char *name, const char 
     return fc_error_set(err, FC_ERR_USAGE, "%s is not a reader option", name);
 }
 
+void fc_cli_print_recentring(const fc_recentring *r)
+{
+    if (r->applied)
+        printf("recentred: float64 positions far from the origin, shifted by -(%.17g, %.17g, %.17g) before float32 "
+               "(--eye/--target and --select x/y/z stay in the file's coordinates)\n",
+               r->offset[0], r->offset[1], r->offset[2]);
+}
+
+void fc_cli_recentre_point(const fc_recentring *r, float point[3])
+{
+    for (int k = 0; r->applied && k < 3; k++)
+        point[k] = (float)((double)point[k] - r->offset[k]);
+}
+
 void fc_cli_print_read_options_help(FILE *to)
 {
     fputs("particle files:\n"
@@ -65,6 +79,8 @@ void fc_cli_print_read_options_help(FILE *to)
           "                          vx, vy, vz, speed, id, radius, or any other column or\n"
           "                          array the file has (DualSPHysics: --select Type=3\n"
           "                          keeps the fluid, dropping the boundary particles)\n"
+          "Float64 positions far from the origin (centre beyond 100 x the extent) are\n"
+          "recentred on the first file's bounds before float32, and the offset printed.\n"
           "\n",
           to);
 }

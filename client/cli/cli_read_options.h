@@ -17,6 +17,13 @@ bool fc_cli_is_read_option(const char *name);
  * option for a bad value (the value string must outlive *o). */
 fc_code fc_cli_set_read_option(fc_read_options *o, const char *name, const char *value, fc_error *err);
 
+/* After the first file: says once, on stdout, that float64 positions far from the origin
+ * were recentred and by what (nothing when they were not). */
+void fc_cli_print_recentring(const fc_recentring *r);
+
+/* A point given in the file's coordinates (--eye, --target) moved into the recentred frame. */
+void fc_cli_recentre_point(const fc_recentring *r, float point[3]);
+
 /* The "particle files" section of a command's help. */
 void fc_cli_print_read_options_help(FILE *to);
 

@@ -12,6 +12,7 @@
 
 #include "camera_path.h"
 #include "cli_connect.h"
+#include "cli_read_options.h"
 #include "cli_report.h"
 #include "cli_settings.h"
 #include "cli_token.h"
@@ -56,20 +57,32 @@ static double now_s(void)
 
 /* ---- before connecting: the frames, the camera, the settings ---- */
 
+/* The view options with --eye/--target moved into the recentred frame, like the particles. */
+static const fc_snapshot_options *placed_view(const fc_render_options *o, fc_snapshot_options *view)
+{
+    *view = o->view;
+    fc_cli_recentre_point(&o->view.recentring, view->eye);
+    fc_cli_recentre_point(&o->view.recentring, view->target);
+    return view;
+}
+
 static int choose_view(render_job *job)
 {
     const fc_render_options *o = job->o;
     fc_sequence_bounds bounds;
+    fc_snapshot_options view;
     fc_frame first = {0};
     fc_up_choice up;
     fc_error err;
     fc_code code = fc_sequence_bounds_read(&job->inputs, &o->view.read, &bounds, &first, &err);
     int status = FC_EXIT_OK;
+    if (code == FC_OK)
+        fc_cli_print_recentring(&o->view.recentring);
     if (code != FC_OK)
         status = fc_cli_fail(FC_EXIT_INPUT, "%s", err.message);
     else if (fc_up_choose(o->view.has_up, o->view.up, &first, &up, &err) != FC_OK)
         status = fc_cli_fail(FC_EXIT_INPUT, "%s", err.message);
-    else if (fc_sequence_camera(&o->view, &bounds, &up, &job->camera, &err) != FC_OK)
+    else if (fc_sequence_camera(placed_view(o, &view), &bounds, &up, &job->camera, &err) != FC_OK)
         status = fc_cli_fail(FC_EXIT_USAGE, "%s", err.message);
     if (status == FC_EXIT_OK) {
         /* Completed from the first frame as snapshot completes them from its one. */

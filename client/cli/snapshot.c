@@ -6,6 +6,7 @@
 
 #include "cli_connect.h"
 #include "cli_particles.h"
+#include "cli_read_options.h"
 #include "cli_report.h"
 #include "cli_settings.h"
 #include "cli_token.h"
@@ -95,12 +96,16 @@ static int snapshot(const fc_snapshot_options *o, fc_frame *frame)
         status = fc_cli_load_particles(o->input, &o->read, frame);
     if (status != FC_EXIT_OK)
         return status;
+    fc_cli_print_recentring(&o->recentring);
     fc_up_choice up;
     fc_camera cam;
     fc_error err;
     if (fc_up_choose(o->has_up, o->up, frame, &up, &err) != FC_OK)
         return fc_cli_fail(FC_EXIT_INPUT, "%s", err.message);
-    if (fc_snapshot_camera(o, frame, &up, &cam, &err) != FC_OK)
+    fc_snapshot_options placed = *o; /* --eye/--target in the recentred frame, like the particles */
+    fc_cli_recentre_point(&o->recentring, placed.eye);
+    fc_cli_recentre_point(&o->recentring, placed.target);
+    if (fc_snapshot_camera(&placed, frame, &up, &cam, &err) != FC_OK)
         return fc_cli_fail(FC_EXIT_USAGE, "%s", err.message);
     /* The options' settings (checked while parsing), completed from the frame so the choices can be reported. */
     fc_settings settings = o->settings;

@@ -316,6 +316,7 @@ static const option_spec *find_option(const char *arg, const char **inline_value
 void fc_snapshot_set_defaults(fc_snapshot_options *o)
 {
     memset(o, 0, sizeof *o);
+    o->read.recentring = &o->recentring;
     o->server = FC_SNAPSHOT_DEFAULT_SERVER;
     o->width = 1280;
     o->height = 720;

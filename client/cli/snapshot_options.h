@@ -37,6 +37,7 @@ typedef struct fc_snapshot_options {
     bool legend;                   /* --legend: a colour bar drawn into the image (snapshot_legend.h) */
     uint32_t quality;
     fc_read_options read;          /* --dataset, --step, --select (cli_read_options.h) */
+    fc_recentring recentring;      /* read.recentring points here (fc_snapshot_set_defaults) */
 } fc_snapshot_options;
 
 /* Parses the arguments after "snapshot". FC_ERR_USAGE with the reason (naming

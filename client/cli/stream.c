@@ -9,6 +9,7 @@
 #include "cli_connect.h"
 #include "cli_frames.h"
 #include "cli_particles.h"
+#include "cli_read_options.h"
 #include "cli_report.h"
 #include "cli_settings.h"
 #include "cli_token.h"
@@ -75,8 +76,10 @@ static int push_file(fc_client *c, const fc_stream_options *o, uint32_t i, fc_pr
 {
     fc_frame frame = {0};
     int status = fc_cli_load_particles(o->files[i], &o->read, &frame);
-    if (status == FC_EXIT_OK && i == 0)
+    if (status == FC_EXIT_OK && i == 0) {
+        fc_cli_print_recentring(&o->recentring);
         status = set_up_view(c, o, &frame);
+    }
     fc_upload_stats stats = {0};
     fc_error err;
     if (status == FC_EXIT_OK && fc_client_upload_frame(c, &frame, &o->upload, &stats, &err) != FC_OK)

@@ -114,6 +114,7 @@ static const fc_cli_command command = {"stream", options, sizeof options / sizeo
 fc_code fc_stream_parse(int argc, char **argv, fc_stream_options *out, fc_error *err)
 {
     memset(out, 0, sizeof *out);
+    out->read.recentring = &out->recentring;
     out->server = DEFAULT_SERVER;
     out->format = FC_FORMAT_PNG;
     out->quality = 90;

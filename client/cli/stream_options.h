@@ -27,6 +27,7 @@ typedef struct fc_stream_options {
     float up[3];                   /* only when has_up: otherwise guessed from the first frame */
     fc_upload_options upload;
     fc_read_options read;          /* --dataset, --step, --select (cli_read_options.h) */
+    fc_recentring recentring;      /* read.recentring points here */
 } fc_stream_options;
 
 /* Parses the arguments after "stream". FC_ERR_USAGE for a bad option, no

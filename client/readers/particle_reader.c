@@ -2,6 +2,8 @@
 #include "particle_reader.h"
 
 #include <errno.h>
+#include <float.h>
+#include <math.h>
 #include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -10,6 +12,7 @@
 #include "fc_error.h"
 #include "fc_frame.h"
 #include "reader_cursor.h"
+#include "reader_fields.h"
 #include "reader_formats.h"
 #include "reader_select.h"
 
@@ -104,6 +107,55 @@ bool fc_is_hdf5(const uint8_t *data, size_t size)
     return false;
 }
 
+/* Recentre when the centre is farther from the origin than this many times the largest extent: float32 then
+ * keeps at least 1/(100 x 2^-24) ~ 170000 steps across the data instead of the 2^24 it would have at the origin. */
+#define FC_RECENTRE_RATIO 100.0
+
+/* The first float64 read decides the recentring from the bounds of its positions. */
+static void decide_recentring(const fc_positions64 *p, fc_recentring *r)
+{
+    double lo[3], hi[3], centre[3], extent = 0.0, distance = 0.0;
+    for (int k = 0; k < 3; k++)
+        lo[k] = hi[k] = p->xyz[k];
+    for (uint64_t i = 0; i < p->count; i++)
+        for (int k = 0; k < 3; k++) {
+            double v = p->xyz[3 * i + (uint64_t)k];
+            lo[k] = v < lo[k] ? v : lo[k];
+            hi[k] = v > hi[k] ? v : hi[k];
+        }
+    for (int k = 0; k < 3; k++) {
+        centre[k] = lo[k] / 2 + hi[k] / 2;
+        extent = hi[k] - lo[k] > extent ? hi[k] - lo[k] : extent;
+        distance = fabs(centre[k]) > distance ? fabs(centre[k]) : distance;
+    }
+    r->decided = true;
+    r->applied = distance > FC_RECENTRE_RATIO * extent && distance > 0.0;
+    for (int k = 0; k < 3; k++)
+        r->offset[k] = r->applied ? centre[k] : 0.0;
+}
+
+/* Converts the staged float64 positions to the frame's float32, less the recentring's offset. */
+static fc_code finish_positions64(fc_positions64 *p, fc_recentring *r, fc_frame *frame, const char *name,
+                                  fc_error *err)
+{
+    if (p->out_of_memory)
+        return fc_error_set(err, FC_ERR_NOMEM, "%s: no memory for %llu float64 positions", name,
+                            (unsigned long long)frame->count);
+    if (p->xyz == NULL || p->count != frame->count)
+        return FC_OK;
+    if (!r->decided)
+        decide_recentring(p, r);
+    for (uint64_t i = 0; i < p->count; i++)
+        for (int k = 0; k < 3; k++) {
+            double v = p->xyz[3 * i + (uint64_t)k] - (r->applied ? r->offset[k] : 0.0);
+            if (!(fabs(v) <= FLT_MAX))
+                return fc_error_set(err, FC_ERR_PARSE, "%s: particle %llu: %c = %g is beyond float range", name,
+                                    (unsigned long long)i, 'x' + k, p->xyz[3 * i + (uint64_t)k]);
+            frame->positions[3 * i + (uint64_t)k] = (float)v;
+        }
+    return FC_OK;
+}
+
 fc_code fc_read_particles_mem(const uint8_t *data, size_t size, fc_file_format format,
                               const char *name, fc_frame *frame, fc_error *err)
 {
@@ -133,9 +185,17 @@ fc_code fc_read_particles_mem_with(const uint8_t *data, size_t size, fc_file_for
     if (c.options->select_count > 0 && extras == NULL)
         return fc_error_set(err, FC_ERR_NOMEM, "%s: out of memory", name);
     c.extras = extras;
+    fc_positions64 positions64 = { NULL, 0, false };
+    fc_recentring *recentring = c.options->recentring;
+    c.positions64 = recentring != NULL ? &positions64 : NULL;
     fc_code code = read_format(&c, format, frame, err);
+    if (code == FC_OK && recentring != NULL)
+        code = finish_positions64(&positions64, recentring, frame, name, err);
+    free(positions64.xyz);
+    static const double no_offset[3] = { 0.0, 0.0, 0.0 };
+    const double *offset = recentring != NULL && recentring->applied ? recentring->offset : no_offset;
     if (code == FC_OK)
-        code = fc_select_apply(frame, extras, c.options, name, err);
+        code = fc_select_apply(frame, extras, c.options, offset, name, err);
     if (extras != NULL)
         fc_extras_free(extras);
     free(extras);

@@ -54,6 +54,17 @@ typedef struct fc_select {
  * ("==" also means "="). FC_ERR_USAGE naming the text for anything else. */
 fc_code fc_select_parse(const char *text, fc_select *out, fc_error *err);
 
+/* Float64 positions far from the origin (x ~ 1e7 with a spacing of 1e-3) lose their spacing
+ * in float32. A read with a recentring shifts them by the bounds' centre in double before the
+ * conversion: the first float64 file read decides (recentre when the centre lies farther from
+ * the origin than 100 x the largest extent) and every later read with the same state uses that
+ * offset, so a sequence keeps one frame of reference. Float32 files are never shifted. */
+typedef struct fc_recentring {
+    bool decided;          /* a float64 file was read: applied and offset hold */
+    bool applied;          /* positions are file positions - offset */
+    double offset[3];
+} fc_recentring;
+
 /* How to read a file beyond what its format says: the command line's reader options.
  * A zeroed struct (or NULL) means the defaults. */
 typedef struct fc_read_options {
@@ -63,10 +74,12 @@ typedef struct fc_read_options {
     uint64_t step;         /* ... instead of the lowest-numbered step */
     /* --select: a particle is kept when all hold. Attributes: x y z, density, vx vy vz, speed, id,
      * radius when the frame has them, and any other per-particle scalar the file names (a CSV column
-     * such as DualSPHysics' Type, a PySPH array such as tag, a SWIFT dataset such as Masses). An unknown
+     * such as DualSPHysics' Type, a PySPH array such as tag, a SWIFT dataset such as Masses); x, y, z
+     * in the file's coordinates, before any recentring. An unknown
      * name is an error listing those the file has; a selection that keeps nothing is an error naming it. */
     uint32_t select_count;
     fc_select select[FC_SELECT_MAX];
+    fc_recentring *recentring;   /* NULL: float64 positions are converted as they are */
 } fc_read_options;
 
 /* From the file name's extension (case-insensitive): .f32 .ply .vtk .csv .npy .vtu .vtp .pvd, .bgeo

@@ -305,6 +305,7 @@ fc_code fc_read_bgeo(fc_cursor *c, fc_frame *frame, fc_error *err)
     fc_cursor_init(&inner, plain, plain_size, c->name);
     inner.options = c->options;
     inner.extras = c->extras;
+    inner.positions64 = c->positions64;
     code = plain_size == 0 ? fc_error_set(err, FC_ERR_PARSE, "%s: gzip holds no data", c->name)
                            : bgeo_read_classic(&inner, frame, err);
     free(plain);

@@ -18,6 +18,7 @@ void fc_cursor_init(fc_cursor *c, const uint8_t *data, size_t size, const char *
     c->name = name;
     c->options = NULL;
     c->extras = NULL;
+    c->positions64 = NULL;
 }
 
 size_t fc_cursor_remaining(const fc_cursor *c)

@@ -3,6 +3,8 @@
 
 #include <float.h>
 #include <math.h>
+#include <stdint.h>
+#include <stdlib.h>
 #include "fc_error.h"
 #include "fc_frame.h"
 
@@ -111,6 +113,27 @@ bool fc_field_store(fc_frame *frame, uint64_t index, fc_field field, double valu
     default:
         break;
     }
+    return true;
+}
+
+bool fc_field_store_position64(const fc_cursor *c, fc_frame *frame, uint64_t index, fc_field field, double value)
+{
+    fc_positions64 *p = c->positions64;
+    if (p == NULL || field < FC_FIELD_X || field > FC_FIELD_Z)
+        return fc_field_store(frame, index, field, value);
+    if (!isfinite(value))
+        return false;
+    if (p->xyz == NULL) {
+        p->count = frame->count;
+        p->xyz = p->count <= SIZE_MAX / 3 / sizeof *p->xyz ? malloc((size_t)p->count * 3 * sizeof *p->xyz) : NULL;
+        p->out_of_memory = p->xyz == NULL;
+        if (p->xyz == NULL)
+            return false;
+    }
+    if (index >= p->count)
+        return false;
+    p->xyz[3 * index + (uint64_t)(field - FC_FIELD_X)] = value;
+    frame->positions[3 * index + (uint64_t)(field - FC_FIELD_X)] = 0.0f; /* set when the offset is known */
     return true;
 }
 

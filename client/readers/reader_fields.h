@@ -46,6 +46,18 @@ fc_code fc_reader_alloc_frame(const fc_cursor *c, fc_frame *frame, uint64_t coun
 /* Stores value as field of particle index; false when it does not fit the field:
  * non-finite or beyond float range, or an id that is not an integer in 0..UINT32_MAX. */
 bool fc_field_store(fc_frame *frame, uint64_t index, fc_field field, double value);
+/* Float64 positions in double until particle_reader.c has chosen the recentring. */
+typedef struct fc_positions64 {
+    double *xyz;        /* 3 x count, allocated by the first store */
+    uint64_t count;
+    bool out_of_memory;
+} fc_positions64;
+
+/* For a position component (FC_FIELD_X..Z) read from a float64 value: keeps it in c's
+ * positions64 when the read recentres, else stores it like fc_field_store. False when not
+ * finite (or, unstaged, beyond float range) or out of memory. */
+bool fc_field_store_position64(const fc_cursor *c, fc_frame *frame, uint64_t index, fc_field field, double value);
+
 /* FC_ERR_PARSE at c's position explaining why fc_field_store refused value. */
 fc_code fc_field_reject(const fc_cursor *c, fc_error *err, uint64_t index, fc_field field, double value);
 

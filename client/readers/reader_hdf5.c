@@ -260,13 +260,16 @@ static fc_code reject(const h5_source *s, fc_error *err, uint64_t index, fc_fiel
                         fc_field_name(field), value, requirement);
 }
 
-static fc_code store_table(const h5_source *s, const h5_table *t, uint64_t first, fc_frame *frame, fc_error *err)
+/* f64: some array's positions are float64, so all of them wait in double for the recentring. */
+static fc_code store_table(const fc_cursor *c, const h5_source *s, const h5_table *t, uint64_t first, bool f64,
+                           fc_frame *frame, fc_error *err)
 {
     for (uint64_t i = 0; i < t->count; i++) {
         uint64_t at = first + i;
         for (int k = 0; k < 3; k++) {
             fc_field axis = (fc_field)(FC_FIELD_X + k), speed = (fc_field)(FC_FIELD_VX + k);
-            if (!fc_field_store(frame, at, axis, t->position[3 * i + (uint64_t)k]))
+            double p = t->position[3 * i + (uint64_t)k];
+            if (!(f64 ? fc_field_store_position64(c, frame, at, axis, p) : fc_field_store(frame, at, axis, p)))
                 return reject(s, err, at, axis, t->position[3 * i + (uint64_t)k]);
             if (frame->velocity && !fc_field_store(frame, at, speed, t->velocity[3 * i + (uint64_t)k]))
                 return reject(s, err, at, speed, t->velocity[3 * i + (uint64_t)k]);
@@ -322,8 +325,11 @@ static fc_code store_tables(const fc_cursor *c, const h5_source *s, const h5_tab
     uint32_t attributes = common_attributes(tables, &count);
     fc_code code = fc_reader_alloc_frame(c, frame, count, attributes, err);
     uint64_t first = 0;
+    bool f64 = false;
+    for (size_t i = 0; i < tables->count; i++)
+        f64 = f64 || tables->items[i].position_value_size > 4;
     for (size_t i = 0; i < tables->count && code == FC_OK; i++) {
-        code = store_table(s, &tables->items[i], first, frame, err);
+        code = store_table(c, s, &tables->items[i], first, f64, frame, err);
         first += tables->items[i].count;
     }
     return code == FC_OK ? store_extras(c, tables, err) : code;

@@ -147,7 +147,7 @@ static fc_code read_values(const h5_source *s, hid_t d, const char *path, uint64
 
 /* Opens loc/name, checks it is (rows, columns) (rows 0: any, then *rows_out tells) and reads it. */
 static fc_code read_dataset(const h5_source *s, hid_t loc, const char *name, const char *path, size_t columns,
-                            uint64_t rows, double **out, uint64_t *rows_out, fc_error *err)
+                            uint64_t rows, double **out, uint64_t *rows_out, size_t *value_size, fc_error *err)
 {
     char what[256];
     hid_t d = H5Dopen2(loc, name, H5P_DEFAULT);
@@ -163,6 +163,8 @@ static fc_code read_dataset(const h5_source *s, hid_t loc, const char *name, con
         code = read_values(s, d, path, shape.dims[0], columns, out, err);
     if (code == FC_OK && rows_out != NULL)
         *rows_out = shape.dims[0];
+    if (code == FC_OK && value_size != NULL && shape.value_size > *value_size)
+        *value_size = shape.value_size;
     H5Dclose(d);
     return code;
 }
@@ -223,13 +225,13 @@ static void join_path(char *out, size_t size, const char *group, const char *nam
 
 /* One role: its N x 3 dataset, else its three components; *found false when neither is complete. */
 static fc_code read_vector(const h5_source *s, hid_t group, const char *path, const h5_links *links, h5_plan *plan,
-                           h5_role role, uint64_t *rows, double **out, fc_error *err)
+                           h5_role role, uint64_t *rows, double **out, size_t *value_size, fc_error *err)
 {
     char full[512];
     const int *at = plan->at[role];
     if (at[3] >= 0) {
         join_path(full, sizeof full, path, links->names[at[3]]);
-        return read_dataset(s, group, links->names[at[3]], full, 3, *rows, out, rows, err);
+        return read_dataset(s, group, links->names[at[3]], full, 3, *rows, out, rows, value_size, err);
     }
     if (at[0] < 0 || at[1] < 0 || at[2] < 0) {
         for (int k = 0; k < 3; k++) /* an incomplete vector's parts are plain scalars */
@@ -241,7 +243,7 @@ static fc_code read_vector(const h5_source *s, hid_t group, const char *path, co
     fc_code code = FC_OK;
     for (int k = 0; k < 3 && code == FC_OK; k++) {
         join_path(full, sizeof full, path, links->names[at[k]]);
-        code = read_dataset(s, group, links->names[at[k]], full, 1, *rows, &parts[k], rows, err);
+        code = read_dataset(s, group, links->names[at[k]], full, 1, *rows, &parts[k], rows, value_size, err);
     }
     if (code == FC_OK && (*out = malloc((size_t)*rows * 3 * sizeof **out)) == NULL)
         code = fc_error_set(err, FC_ERR_NOMEM, "%s: cannot allocate %s for %llu particles", s->name,
@@ -262,7 +264,7 @@ static fc_code read_scalar_role(const h5_source *s, hid_t group, const char *pat
     if (at < 0)
         return FC_OK;
     join_path(full, sizeof full, path, links->names[at]);
-    return read_dataset(s, group, links->names[at], full, 1, rows, out, NULL, err);
+    return read_dataset(s, group, links->names[at], full, 1, rows, out, NULL, NULL, err);
 }
 
 /* Every other numeric (N,) dataset becomes a named scalar; other shapes are not per-particle and are skipped. */
@@ -306,13 +308,14 @@ fc_code h5_table_read_group(const h5_source *s, hid_t group, const char *path, h
         code = h5_fail(s, err, what);
     if (code == FC_OK) {
         plan_roles(links, plan);
-        code = read_vector(s, group, path, links, plan, H5_POSITION, &t->count, &t->position, err);
+        code = read_vector(s, group, path, links, plan, H5_POSITION, &t->count, &t->position,
+                           &t->position_value_size, err);
     }
     if (code == FC_OK && t->position == NULL && (t->no_positions = true))
         code = fc_error_set(err, FC_ERR_PARSE, "%s: group '%s' has no positions (Coordinates as N x 3, or x, y "
                             "and z)", s->name, path);
     if (code == FC_OK)
-        code = read_vector(s, group, path, links, plan, H5_VELOCITY, &t->count, &t->velocity, err);
+        code = read_vector(s, group, path, links, plan, H5_VELOCITY, &t->count, &t->velocity, NULL, err);
     if (code == FC_OK)
         code = read_scalar_role(s, group, path, links, plan, H5_DENSITY, t->count, &t->density, err);
     if (code == FC_OK)
@@ -331,11 +334,13 @@ fc_code h5_table_read_positions(const h5_source *s, hid_t file, const char *cons
 {
     memset(t, 0, sizeof *t);
     if (path_count == 1)
-        return read_dataset(s, file, paths[0], paths[0], 3, 0, &t->position, &t->count, err);
+        return read_dataset(s, file, paths[0], paths[0], 3, 0, &t->position, &t->count, &t->position_value_size,
+                            err);
     double *parts[3] = { NULL, NULL, NULL };
     fc_code code = FC_OK;
     for (int k = 0; k < 3 && code == FC_OK; k++)
-        code = read_dataset(s, file, paths[k], paths[k], 1, t->count, &parts[k], &t->count, err);
+        code = read_dataset(s, file, paths[k], paths[k], 1, t->count, &parts[k], &t->count, &t->position_value_size,
+                            err);
     if (code == FC_OK && (t->position = malloc((size_t)t->count * 3 * sizeof *t->position)) == NULL)
         code = fc_error_set(err, FC_ERR_NOMEM, "%s: cannot allocate positions", s->name);
     for (uint64_t i = 0; code == FC_OK && i < t->count; i++)

@@ -25,6 +25,7 @@ typedef struct h5_table {
     char extra_names[H5_MAX_EXTRAS][H5_NAME_MAX];
     double *extras[H5_MAX_EXTRAS];
     bool no_positions;  /* why h5_table_read_group failed: the group has no positions at all */
+    size_t position_value_size; /* bytes of the widest position dataset's values: 8 for float64 */
 } h5_table;
 
 /* What the reader shares with the table functions: the file's name for messages

@@ -227,7 +227,8 @@ static fc_code read_values(fc_cursor *c, const npy_header *h, fc_frame *frame, f
         fc_field axis = (fc_field)(FC_FIELD_X + (h->fortran_order ? at / n : at % 3));
         double value = 0.0;
         fc_cursor_read_scalar(c, h->type, h->big_endian, &value); /* fits: checked above */
-        if (!fc_field_store(frame, i, axis, value)) {
+        if (!(h->type == FC_SCALAR_F64 ? fc_field_store_position64(c, frame, i, axis, value)
+                                       : fc_field_store(frame, i, axis, value))) {
             c->pos -= size;
             return fc_field_reject(c, err, i, axis, value);
         }

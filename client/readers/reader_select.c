@@ -74,8 +74,9 @@ fc_code fc_select_parse(const char *text, fc_select *out, fc_error *err)
 /* ---- one attribute's values ---- */
 
 typedef struct select_source {
-    const float *floats;     /* value i = floats[stride i + offset] */
+    const float *floats;     /* value i = floats[stride i + offset] + shift */
     size_t stride, offset;
+    double shift;            /* positions: the recentring's offset along the axis */
     bool speed;              /* |velocity i| */
     const uint32_t *ids;
     const double *doubles;
@@ -90,29 +91,29 @@ static double source_value(const select_source *s, uint64_t i)
     const float *v = s->floats + s->stride * i;
     if (s->speed)
         return sqrt((double)v[0] * v[0] + (double)v[1] * v[1] + (double)v[2] * v[2]);
-    return v[s->offset];
+    return (double)v[s->offset] + s->shift;
 }
 
 /* The frame's own attributes, by the names --color-by and the readers use. */
-static bool frame_source(const fc_frame *f, const char *name, select_source *s)
+static bool frame_source(const fc_frame *f, const char *name, const double shift[3], select_source *s)
 {
     static const char *const axes[] = { "x", "y", "z" }, *const speeds[] = { "vx", "vy", "vz" };
     memset(s, 0, sizeof *s);
     fc_span n = { name, strlen(name) };
     for (size_t k = 0; k < 3; k++) {
         if (fc_span_iequals(n, axes[k]))
-            return *s = (select_source){ f->positions, 3, k, false, NULL, NULL }, true;
+            return *s = (select_source){ .floats = f->positions, .stride = 3, .offset = k, .shift = shift[k] }, true;
         if (f->velocity && fc_span_iequals(n, speeds[k]))
-            return *s = (select_source){ f->velocity, 3, k, false, NULL, NULL }, true;
+            return *s = (select_source){ .floats = f->velocity, .stride = 3, .offset = k }, true;
     }
     if (f->velocity && fc_span_iequals(n, "speed"))
-        return *s = (select_source){ f->velocity, 3, 0, true, NULL, NULL }, true;
+        return *s = (select_source){ .floats = f->velocity, .stride = 3, .speed = true }, true;
     if (f->density && fc_span_iequals(n, "density"))
-        return *s = (select_source){ f->density, 1, 0, false, NULL, NULL }, true;
+        return *s = (select_source){ .floats = f->density, .stride = 1 }, true;
     if (f->radius && fc_span_iequals(n, "radius"))
-        return *s = (select_source){ f->radius, 1, 0, false, NULL, NULL }, true;
+        return *s = (select_source){ .floats = f->radius, .stride = 1 }, true;
     if (f->ids && fc_span_iequals(n, "id"))
-        return *s = (select_source){ NULL, 0, 0, false, f->ids, NULL }, true;
+        return *s = (select_source){ .ids = f->ids }, true;
     return false;
 }
 
@@ -178,11 +179,11 @@ static void compact(fc_frame *f, fc_read_extras *x, const uint8_t *keep, uint64_
     f->count = kept;
 }
 
-static fc_code apply_one(fc_frame *f, fc_read_extras *x, const fc_select *sel, uint8_t *keep, const char *name,
-                         fc_error *err)
+static fc_code apply_one(fc_frame *f, fc_read_extras *x, const fc_select *sel, const double offset[3], uint8_t *keep,
+                         const char *name, fc_error *err)
 {
     select_source s;
-    if (!frame_source(f, sel->attribute, &s)) {
+    if (!frame_source(f, sel->attribute, offset, &s)) {
         memset(&s, 0, sizeof s);
         s.doubles = x ? fc_extras_find(x, sel->attribute) : NULL;
     }
@@ -204,8 +205,8 @@ static fc_code apply_one(fc_frame *f, fc_read_extras *x, const fc_select *sel, u
     return FC_OK;
 }
 
-fc_code fc_select_apply(fc_frame *frame, fc_read_extras *extras, const fc_read_options *o, const char *name,
-                        fc_error *err)
+fc_code fc_select_apply(fc_frame *frame, fc_read_extras *extras, const fc_read_options *o, const double offset[3],
+                        const char *name, fc_error *err)
 {
     if (o == NULL || o->select_count == 0)
         return FC_OK;
@@ -215,7 +216,7 @@ fc_code fc_select_apply(fc_frame *frame, fc_read_extras *extras, const fc_read_o
                             (unsigned long long)frame->count);
     fc_code code = FC_OK;
     for (uint32_t k = 0; k < o->select_count && k < FC_SELECT_MAX && code == FC_OK; k++)
-        code = apply_one(frame, extras, &o->select[k], keep, name, err);
+        code = apply_one(frame, extras, &o->select[k], offset, keep, name, err);
     free(keep);
     return code;
 }

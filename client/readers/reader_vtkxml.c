@@ -352,7 +352,9 @@ static fc_code store_values(const vx_doc *d, const vx_array *a, uint64_t index, 
 {
     uint64_t particle = index / a->components;
     fc_field field = (fc_field)(a->first + index % a->components);
-    if (fc_field_store(frame, particle, field, value))
+    bool stored = a->type == FC_SCALAR_F64 ? fc_field_store_position64(d->c, frame, particle, field, value)
+                                           : fc_field_store(frame, particle, field, value);
+    if (stored)
         return FC_OK;
     const char *requirement = field == FC_FIELD_ID ? "an integer in 0..4294967295" : "a finite value in float range";
     return fc_error_set(d->err, FC_ERR_PARSE, "%s: DataArray '%s': particle %llu: %s = %g is not %s", d->c->name,

@@ -9,6 +9,7 @@
 
 #include "cli_connect.h"
 #include "cli_particles.h"
+#include "cli_read_options.h"
 #include "cli_report.h"
 #include "cli_settings.h"
 #include "cli_token.h"
@@ -68,6 +69,7 @@ static int prepare_files(const fc_view_options *o, fc_frame *first, fc_settings 
     int status = fc_cli_load_particles(o->files[0], &o->read, first);
     if (status != FC_EXIT_OK)
         return status;
+    fc_cli_print_recentring(&o->recentring);
     fc_cli_choices chosen;
     fc_cli_complete_settings(settings, first, false, &chosen);
     fc_up_guess guess;

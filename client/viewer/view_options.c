@@ -112,6 +112,7 @@ static const fc_cli_command command = {"view", options, sizeof options / sizeof 
 fc_code fc_view_parse(int argc, char **argv, fc_view_options *o, fc_error *err)
 {
     memset(o, 0, sizeof *o);
+    o->read.recentring = &o->recentring;
     o->server = DEFAULT_SERVER;
     o->width = 960;
     o->height = 540;

@@ -25,6 +25,7 @@ typedef struct fc_view_options {
     bool log_camera;              /* print every camera sent to the daemon (tests, debugging) */
     const char *test_script;      /* test hook: see view_script.h */
     fc_read_options read;         /* --dataset, --step, --select (cli_read_options.h) */
+    fc_recentring recentring;     /* read.recentring points here */
 } fc_view_options;
 
 fc_code fc_view_parse(int argc, char **argv, fc_view_options *o, fc_error *err);
