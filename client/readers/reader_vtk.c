@@ -9,6 +9,7 @@
 
 #include "fc_error.h"
 #include "fc_frame.h"
+#include "reader_extras.h"
 #include "reader_fields.h"
 
 typedef struct vtk_block {
@@ -27,6 +28,10 @@ typedef struct vtk_file {
     vtk_section section;
     uint64_t tuples;           /* tuples per attribute array in the current section */
     vtk_block positions, density, velocity, ids;
+    /* Other one-component point arrays (DualSPHysics' Type, Mk), kept for --select when the read asks. */
+    size_t extra_count;
+    vtk_block extras[FC_EXTRAS_MAX];
+    fc_span extra_names[FC_EXTRAS_MAX];
 } vtk_file;
 
 static const struct {
@@ -167,6 +172,11 @@ static fc_code vtk_attribute_array(fc_cursor *c, vtk_file *f, fc_span name, uint
                                    fc_scalar_type type, bool may_be_particle_data, fc_error *err)
 {
     vtk_block *target = may_be_particle_data ? vtk_point_array_target(f, name, components) : NULL;
+    if (target == NULL && c->extras != NULL && f->section == VTK_POINT_DATA && components == 1 &&
+        tuples == f->point_count && f->extra_count < FC_EXTRAS_MAX) {
+        f->extra_names[f->extra_count] = name;
+        return vtk_array_data(c, tuples, components, type, &f->extras[f->extra_count++], err);
+    }
     if (target != NULL) {
         char quoted[FC_QUOTE_MAX];
         fc_span_quote(name, quoted, sizeof quoted);
@@ -483,11 +493,31 @@ static fc_code vtk_read_block(const vtk_block *b, fc_frame *frame, fc_error *err
             fc_code code = vtk_read_value(&c, b, &value, err);
             if (code != FC_OK)
                 return code;
-            if (!fc_field_store(frame, i, field, value)) {
+            bool stored = b->type == FC_SCALAR_F64 ? fc_field_store_position64(&c, frame, i, field, value)
+                                                   : fc_field_store(frame, i, field, value);
+            if (!stored) {
                 if (c.binary)
                     c.pos = value_offset;
                 return fc_field_reject(&c, err, i, field, value);
             }
+        }
+    }
+    return FC_OK;
+}
+
+/* The other point arrays, as named scalars for --select (values that are no number stay NaN). */
+static fc_code vtk_read_extras(const fc_cursor *c, const vtk_file *f, uint64_t count, fc_error *err)
+{
+    for (size_t k = 0; k < f->extra_count; k++) {
+        fc_code code = FC_OK;
+        double *values = fc_extras_add(c->extras, f->extra_names[k], count, c->name, err, &code);
+        if (code != FC_OK)
+            return code;
+        fc_cursor at = f->extras[k].at;
+        for (uint64_t i = 0; values != NULL && i < count; i++) {
+            code = vtk_read_value(&at, &f->extras[k], &values[i], err);
+            if (code != FC_OK)
+                return code;
         }
     }
     return FC_OK;
@@ -517,5 +547,7 @@ fc_code fc_read_vtk(fc_cursor *c, fc_frame *frame, fc_error *err)
         if (blocks[i]->present)
             code = vtk_read_block(blocks[i], frame, err);
     }
+    if (code == FC_OK && c->extras != NULL)
+        code = vtk_read_extras(c, &f, frame->count, err);
     return code;
 }

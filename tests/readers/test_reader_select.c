@@ -109,10 +109,30 @@ static void test_errors(void)
     CHECK_MSG(strstr(err.message, "no attribute 'speed' (this file has: x, y, z)") != NULL, "%s", err.message);
 }
 
+/* Legacy VTK as DualSPHysics' PartVTK writes it: Type and Mk as one-component point arrays. */
+static void test_legacy_vtk(void)
+{
+    static const char vtk[] = "# vtk DataFile Version 3.0\nparts\nASCII\nDATASET POLYDATA\n"
+                              "POINTS 4 double\n0 0 0\n1 0 0\n2 0 0\n3 0 0\n"
+                              "POINT_DATA 4\nSCALARS Idp unsigned_int\nLOOKUP_TABLE default\n10 11 12 13\n"
+                              "SCALARS Type unsigned_char\nLOOKUP_TABLE default\n0 3 0 3\n"
+                              "FIELD FieldData 1\nMk 1 4 unsigned_char\n0 1 0 2\n";
+    fc_read_options o = { 0 };
+    fc_error err = { FC_OK, "" };
+    CHECK(fc_select_parse("Type=3", &o.select[o.select_count++], &err) == FC_OK);
+    CHECK(fc_select_parse("Mk>=2", &o.select[o.select_count++], &err) == FC_OK);
+    fc_frame f;
+    CHECK_MSG(fc_read_particles_mem_with((const uint8_t *)vtk, sizeof vtk - 1, FC_FILE_VTK, "p.vtk", &o, &f, &err) ==
+                  FC_OK, "%s", err.message);
+    CHECK_MSG(f.count == 1 && f.ids && f.ids[0] == 13 && f.positions[0] == 3.0f, "%llu", (unsigned long long)f.count);
+    fc_frame_free(&f);
+}
+
 int main(void)
 {
     test_parse();
     test_keep();
     test_errors();
+    test_legacy_vtk();
     return test_result();
 }
