@@ -77,7 +77,13 @@ void fc_cli_complete_color_range(fc_settings *s, const fc_frame *frame, bool ran
 void fc_cli_complete_settings(fc_settings *s, const fc_frame *frame, bool threshold_given, fc_cli_choices *chosen)
 {
     *chosen = (fc_cli_choices){0};
-    if (!(s->radius > 0.0f)) {
+    if (!(s->radius > 0.0f) && frame->radius) {
+        s->radius = 0.0f;
+        chosen->per_particle_radius = true;
+        fc_error ignored;
+        if (fc_frame_median_radius(frame, &chosen->median_radius, &ignored) != FC_OK)
+            chosen->median_radius = 0.0f;
+    } else if (!(s->radius > 0.0f)) {
         s->radius = fc_frame_estimate_radius(frame);
         chosen->radius = true;
     }
@@ -95,4 +101,13 @@ void fc_cli_print_color_range(const fc_settings *s)
     printf("color range: %s %.9g:%.9g (2nd-98th percentile of the frame; --range %.9g:%.9g to fix it)\n",
            s->color_by == FC_COLOR_BY_SPEED ? "speed" : "density", (double)s->color_range[0],
            (double)s->color_range[1], (double)s->color_range[0], (double)s->color_range[1]);
+}
+
+void fc_cli_print_radius(const fc_settings *s, const fc_cli_choices *chosen, const char *estimated_from)
+{
+    if (chosen->per_particle_radius)
+        printf("radius: per-particle radii from the file (median %g; --radius R renders every particle at R)\n",
+               (double)chosen->median_radius);
+    else if (chosen->radius)
+        printf("radius %g (estimated from %s)\n", (double)s->radius, estimated_from);
 }

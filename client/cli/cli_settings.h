@@ -10,12 +10,16 @@
 /* What fc_cli_complete_settings chose. */
 typedef struct fc_cli_choices {
     bool radius;   /* the radius was estimated from the particle spacing */
+    bool per_particle_radius;   /* radius left at 0: the frame's own radii are used (median below) */
+    float median_radius;        /* the frame's median radius, when per_particle_radius */
     bool spray;    /* the spray threshold was set from the frame's densities */
     bool color_range;   /* the colour range was set from the frame's attribute */
 } fc_cli_choices;
 
 /* Completes the settings from a frame (the first of a sequence): a radius
- * <= 0 is estimated from the particle spacing (fc_frame_estimate_radius:
+ * <= 0 stays 0 when the frame has per-particle radii (the server splats each
+ * particle at its own, PROTOCOL.md 5), and is otherwise estimated from the
+ * particle spacing (fc_frame_estimate_radius:
  * side by side on the splash frames and the demo scene, smaller radii made
  * ellipsoids no crisper, and jittered surfaces pebbly); unless the user
  * gave one, a frame with densities gets a spray threshold of half its median
@@ -33,5 +37,8 @@ void fc_cli_complete_color_range(fc_settings *s, const fc_frame *frame, bool ran
 
 /* Prints the colour range fc_cli_complete_color_range chose, as a --range to paste. */
 void fc_cli_print_color_range(const fc_settings *s);
+
+/* The radius line of snapshot and render: the radius, and how it was chosen. */
+void fc_cli_print_radius(const fc_settings *s, const fc_cli_choices *chosen, const char *estimated_from);
 
 #endif

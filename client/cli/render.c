@@ -101,8 +101,7 @@ static int choose_view(render_job *job)
             printf("; camera framed on the bounds of %u of them\n", (unsigned)bounds.framed);
         if (!up.given)
             printf("up %s\n", up.note);
-        if (chosen.radius)
-            printf("radius %g (estimated from the first frame's particle spacing)\n", (double)job->settings.radius);
+        fc_cli_print_radius(&job->settings, &chosen, "the first frame's particle spacing");
         if (chosen.spray)
             printf("spray: particles below density %g (half the first frame's median; --density-threshold to "
                    "change)\n",

@@ -63,10 +63,17 @@ static int write_image(const fc_snapshot_options *o, const fc_image_result *imag
     fc_error err;
     if (fc_output_write(o->output, image->data, image->size, &err) != FC_OK)
         return fc_cli_fail(FC_EXIT_OUTPUT, "%s", err.message);
-    printf("wrote %s: %ux%u %s, %zu bytes, server %.1f ms, radius %g%s\n", o->output, (unsigned)image->width,
-           (unsigned)image->height, fc_output_format_name(image->format), image->size,
-           (double)image->stage_ms[FC_STAGE_TOTAL], (double)settings->radius,
-           chosen->radius ? " (estimated from particle spacing)" : "");
+    if (chosen->per_particle_radius)
+        printf("wrote %s: %ux%u %s, %zu bytes, server %.1f ms, radius per particle\n", o->output,
+               (unsigned)image->width, (unsigned)image->height, fc_output_format_name(image->format), image->size,
+               (double)image->stage_ms[FC_STAGE_TOTAL]);
+    else
+        printf("wrote %s: %ux%u %s, %zu bytes, server %.1f ms, radius %g%s\n", o->output, (unsigned)image->width,
+               (unsigned)image->height, fc_output_format_name(image->format), image->size,
+               (double)image->stage_ms[FC_STAGE_TOTAL], (double)settings->radius,
+               chosen->radius ? " (estimated from particle spacing)" : "");
+    if (chosen->per_particle_radius)
+        fc_cli_print_radius(settings, chosen, NULL);
     if (!up->given)
         printf("up %s\n", up->note);
     if (chosen->spray)

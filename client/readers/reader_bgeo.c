@@ -148,6 +148,9 @@ static fc_code bgeo_assign_field(const fc_cursor *c, bgeo_attribute *a, fc_field
         else if (fc_span_iequals(a->name, id_names[i]))
             a->first = FC_FIELD_ID;
     }
+    /* Houdini's point scale is the particle's radius (partio writes it as pscale). */
+    if (fc_span_iequals(a->name, "pscale") || fc_span_iequals(a->name, "radius"))
+        a->first = FC_FIELD_RADIUS;
     if (a->first == FC_FIELD_NONE)
         return FC_OK;
     if (a->type == BGEO_TYPE_INDEX || a->components != wanted)

@@ -16,6 +16,8 @@ static const struct {
     { "density", FC_FIELD_DENSITY }, { "rho", FC_FIELD_DENSITY },
     { "vx", FC_FIELD_VX },       { "vy", FC_FIELD_VY }, { "vz", FC_FIELD_VZ },
     { "id", FC_FIELD_ID },
+    /* Houdini's point scale is the particle's radius (partio, SPlisHSPlasH's BGEO). */
+    { "radius", FC_FIELD_RADIUS }, { "pscale", FC_FIELD_RADIUS },
 };
 
 fc_field fc_field_from_name(fc_span name)
@@ -57,7 +59,8 @@ bool fc_field_set_attributes(const fc_field_set *set, uint32_t *attributes, cons
     }
     *attributes = (set->present[FC_FIELD_DENSITY] ? FC_ATTR_DENSITY : 0u) |
                   (velocity_parts == 3 ? FC_ATTR_VELOCITY : 0u) |
-                  (set->present[FC_FIELD_ID] ? FC_ATTR_IDS : 0u);
+                  (set->present[FC_FIELD_ID] ? FC_ATTR_IDS : 0u) |
+                  (set->present[FC_FIELD_RADIUS] ? FC_ATTR_RADIUS : 0u);
     return true;
 }
 
@@ -92,6 +95,14 @@ bool fc_field_store(fc_frame *frame, uint64_t index, fc_field field, double valu
         if (!fits_id(value))
             return false;
         frame->ids[index] = (uint32_t)value;
+        return true;
+    }
+    if (field == FC_FIELD_RADIUS) {
+        /* Checked as stored: a radius too small for a float would be stored as 0. */
+        float radius = (float)value;
+        if (!(value > 0.0 && radius > 0.0f && radius <= FC_FRAME_MAX_RADIUS))
+            return false;
+        frame->radius[index] = radius;
         return true;
     }
     if (!fits_float(value))
@@ -137,10 +148,16 @@ bool fc_field_store_position64(const fc_cursor *c, fc_frame *frame, uint64_t ind
     return true;
 }
 
+const char *fc_field_requirement(fc_field field)
+{
+    return field == FC_FIELD_ID       ? "an integer in 0..4294967295"
+           : field == FC_FIELD_RADIUS ? "a radius in (0, 1e6] (--radius R renders every particle at R)"
+                                      : "a finite value in float range";
+}
+
 fc_code fc_field_reject(const fc_cursor *c, fc_error *err, uint64_t index, fc_field field, double value)
 {
-    const char *requirement = field == FC_FIELD_ID ? "an integer in 0..4294967295"
-                                                    : "a finite value in float range";
+    const char *requirement = fc_field_requirement(field);
     return fc_cursor_fail(c, err, "particle %llu: %s = %g is not %s", (unsigned long long)index,
                           fc_field_name(field), value, requirement);
 }

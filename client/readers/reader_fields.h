@@ -19,11 +19,12 @@ typedef enum fc_field {
     FC_FIELD_VY,
     FC_FIELD_VZ,
     FC_FIELD_ID,
+    FC_FIELD_RADIUS,   /* per-particle splat radius (FRAME attribute bit 3): radius, pscale */
     FC_FIELD_COUNT
 } fc_field;
 
-/* The field a PLY property or CSV column denotes (x y z density|rho vx vy vz id,
- * case-insensitive); FC_FIELD_NONE for any other name. */
+/* The field a PLY property or CSV column denotes (x y z density|rho vx vy vz id
+ * radius|pscale, case-insensitive); FC_FIELD_NONE for any other name. */
 fc_field fc_field_from_name(fc_span name);
 const char *fc_field_name(fc_field field);
 
@@ -44,7 +45,8 @@ fc_code fc_reader_alloc_frame(const fc_cursor *c, fc_frame *frame, uint64_t coun
                               uint32_t attributes, fc_error *err);
 
 /* Stores value as field of particle index; false when it does not fit the field:
- * non-finite or beyond float range, or an id that is not an integer in 0..UINT32_MAX. */
+ * non-finite or beyond float range, an id that is not an integer in 0..UINT32_MAX,
+ * or a radius outside (0, 1e6] (PROTOCOL.md 7.3). */
 bool fc_field_store(fc_frame *frame, uint64_t index, fc_field field, double value);
 /* Float64 positions in double until particle_reader.c has chosen the recentring. */
 typedef struct fc_positions64 {
@@ -58,6 +60,8 @@ typedef struct fc_positions64 {
  * finite (or, unstaged, beyond float range) or out of memory. */
 bool fc_field_store_position64(const fc_cursor *c, fc_frame *frame, uint64_t index, fc_field field, double value);
 
+/* What fc_field_store requires of a value of field, for messages ("a finite value in float range"). */
+const char *fc_field_requirement(fc_field field);
 /* FC_ERR_PARSE at c's position explaining why fc_field_store refused value. */
 fc_code fc_field_reject(const fc_cursor *c, fc_error *err, uint64_t index, fc_field field, double value);
 

@@ -27,7 +27,7 @@ typedef struct vtk_file {
     uint64_t point_count;
     vtk_section section;
     uint64_t tuples;           /* tuples per attribute array in the current section */
-    vtk_block positions, density, velocity, ids;
+    vtk_block positions, density, velocity, ids, radius;
     /* Other one-component point arrays (DualSPHysics' Type, Mk), kept for --select when the read asks. */
     size_t extra_count;
     vtk_block extras[FC_EXTRAS_MAX];
@@ -57,6 +57,7 @@ static const struct {
 static const char *const vtk_density_names[] = { "density", "rho", "rhop", NULL };
 static const char *const vtk_velocity_names[] = { "velocity", "vel", "v", NULL };
 static const char *const vtk_id_names[] = { "id", "ids", "idp", NULL };
+static const char *const vtk_radius_names[] = { "radius", "pscale", NULL };
 
 static bool vtk_is_one_of(fc_span name, const char *const *names)
 {
@@ -164,6 +165,8 @@ static vtk_block *vtk_point_array_target(vtk_file *f, fc_span name, uint64_t com
         return &f->velocity;
     if (components == 1 && vtk_is_one_of(name, vtk_id_names))
         return &f->ids;
+    if (components == 1 && vtk_is_one_of(name, vtk_radius_names))
+        return &f->radius;
     return NULL;
 }
 
@@ -530,6 +533,7 @@ static void vtk_init_blocks(vtk_file *f)
     f->density = (vtk_block){ .components = 1, .first_field = FC_FIELD_DENSITY };
     f->velocity = (vtk_block){ .components = 3, .first_field = FC_FIELD_VX };
     f->ids = (vtk_block){ .components = 1, .first_field = FC_FIELD_ID };
+    f->radius = (vtk_block){ .components = 1, .first_field = FC_FIELD_RADIUS };
 }
 
 fc_code fc_read_vtk(fc_cursor *c, fc_frame *frame, fc_error *err)
@@ -540,9 +544,9 @@ fc_code fc_read_vtk(fc_cursor *c, fc_frame *frame, fc_error *err)
     if (code != FC_OK)
         return code;
     uint32_t attributes = (f.density.present ? FC_ATTR_DENSITY : 0u) | (f.velocity.present ? FC_ATTR_VELOCITY : 0u) |
-                          (f.ids.present ? FC_ATTR_IDS : 0u);
+                          (f.ids.present ? FC_ATTR_IDS : 0u) | (f.radius.present ? FC_ATTR_RADIUS : 0u);
     code = fc_reader_alloc_frame(c, frame, f.point_count, attributes, err);
-    const vtk_block *blocks[] = { &f.positions, &f.density, &f.velocity, &f.ids };
+    const vtk_block *blocks[] = { &f.positions, &f.density, &f.velocity, &f.ids, &f.radius };
     for (size_t i = 0; code == FC_OK && i < sizeof blocks / sizeof blocks[0]; i++) {
         if (blocks[i]->present)
             code = vtk_read_block(blocks[i], frame, err);

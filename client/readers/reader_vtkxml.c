@@ -155,6 +155,7 @@ static fc_field point_data_field(const char *name, uint64_t *components)
     static const char *const velocity[] = { "velocity", "velocities", "vel", "v", "u" };
     static const char *const density[] = { "density", "rho", "dens" };
     static const char *const ids[] = { "id", "ids", "idp", "pid", "particleid", "particle_id", "particleids" };
+    static const char *const radius[] = { "radius", "pscale" };
     fc_span n = { name, strlen(name) };
     for (size_t i = 0; i < sizeof velocity / sizeof velocity[0]; i++)
         if (fc_span_iequals(n, velocity[i]))
@@ -165,6 +166,9 @@ static fc_field point_data_field(const char *name, uint64_t *components)
     for (size_t i = 0; i < sizeof ids / sizeof ids[0]; i++)
         if (fc_span_iequals(n, ids[i]))
             return *components = 1, FC_FIELD_ID;
+    for (size_t i = 0; i < sizeof radius / sizeof radius[0]; i++)
+        if (fc_span_iequals(n, radius[i]))
+            return *components = 1, FC_FIELD_RADIUS;
     return FC_FIELD_NONE;
 }
 
@@ -356,7 +360,7 @@ static fc_code store_values(const vx_doc *d, const vx_array *a, uint64_t index, 
                                            : fc_field_store(frame, particle, field, value);
     if (stored)
         return FC_OK;
-    const char *requirement = field == FC_FIELD_ID ? "an integer in 0..4294967295" : "a finite value in float range";
+    const char *requirement = fc_field_requirement(field);
     return fc_error_set(d->err, FC_ERR_PARSE, "%s: DataArray '%s': particle %llu: %s = %g is not %s", d->c->name,
                         a->name, (unsigned long long)particle, fc_field_name(field), value, requirement);
 }

@@ -52,6 +52,12 @@ if [ -d "$splash" ]; then
     look anisotropic --kernel anisotropic
     look shadow_off --shadow off
   done
+  # Per-particle radii: frame 11 with x >= 0.5 at twice the suggested radius (two_radii.py adds the column).
+  two_radii=$(mktemp --suffix=.ply)
+  /usr/bin/python3 docs/gallery/two_radii.py "$splash/frame_0011.ply" "$two_radii"
+  $bin/fluidcast snapshot "$two_radii" --server "127.0.0.1:$(cat "$portfile")" --size 640x360 \
+    --eye -0.3664,-1.0005,1.4229 --target 0.5,0.5,0.21 --up z --fov 40 -o "$out/splash_f11_two_radii.png"
+  rm -f "$two_radii"
 else
   echo "gallery: no $splash, splash rows not regenerated" >&2
 fi

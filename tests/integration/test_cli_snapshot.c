@@ -2,6 +2,7 @@
  * (and, for failures after connecting, a fake server): the images it writes
  * (size, magic bytes, fluid where the ball projects and background elsewhere,
  * the analytic depth of the ball's front), what it prints, and every exit code. */
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -222,6 +223,42 @@ static void test_depth_aov(test_env *env)
     fc_decoded_image_free(&img);
 }
 
+/* A PLY with a radius per particle (0.2 and 0.5, 4 units in front of the
+ * eye): the depth at each centre is 4 - r_i, the CLI says it used the file's
+ * radii; --radius 0.3 overrides both. The image's x follows world x here. */
+static void test_radius_from_the_file(test_env *env)
+{
+    FILE *f = fopen(scratch(env, "radii.ply"), "w");
+    CHECK(f && fputs("ply\nformat ascii 1.0\nelement vertex 2\nproperty float x\nproperty float y\n"
+                     "property float z\nproperty float radius\nend_header\n-0.6 0 0 0.2\n0.6 0 0 0.5\n",
+                     f) >= 0);
+    if (f)
+        fclose(f);
+    const double focal = 0.5 * 81 / tan(20.0 * 3.14159265358979323846 / 180.0); /* pixels per x / depth */
+    const int columns[2] = { (int)(80 - 0.6 * focal / 4 + 0.5), (int)(80 + 0.6 * focal / 4 + 0.5) };
+    const float radii[2] = { 0.2f, 0.5f };
+    for (int override = 0; override < 2; override++) {
+        cli_result r;
+        run(env, &r, (const char *const[]){ "snapshot", scratch(env, "radii.ply"), "-o", scratch(env, "radii.exr"),
+                                            "--server", env->server, "--size", "161x81", "--eye", "0,-4,0",
+                                            "--target", "0,0,0", "--aov", "depth", override ? "--radius" : NULL,
+                                            "0.3", NULL });
+        CHECK_MSG(r.status == 0, "exit %d: %s", r.status, r.err);
+        bool says = strstr(r.out, "radius: per-particle radii from the file (median 0.5") != NULL;
+        CHECK_MSG(says != (override == 1), "stdout: %s", r.out);
+        fc_decoded_image img;
+        if (!decode_file(scratch(env, "radii.exr"), "exr", 1, &img))
+            return;
+        const float *depth = img.pixels;
+        for (int i = 0; i < 2 && img.width == 161 && img.height == 81; i++) {
+            double expected = 4.0 - (override ? 0.3 : radii[i]);
+            CHECK_MSG(fabs(depth[40 * 161 + columns[i]] - expected) < 0.01, "particle %d: depth %g, expected %g", i,
+                      (double)depth[40 * 161 + columns[i]], expected);
+        }
+        fc_decoded_image_free(&img);
+    }
+}
+
 static void expect_exit(test_env *env, int expected, const char *const *args)
 {
     cli_result r;
@@ -291,7 +328,7 @@ static void test_protocol_failure(test_env *env)
 static void remove_scratch(test_env *env)
 {
     const char *names[] = { "ball.f32", "ball.ply", "corners.f32", "broken.ply", "ball.png", "empty.png",
-                            "auto.png", "ball.jpg", "ball.exr", "depth.exr" };
+                            "auto.png", "ball.jpg", "ball.exr", "depth.exr", "radii.ply", "radii.exr" };
     for (size_t i = 0; i < sizeof names / sizeof names[0]; i++)
         unlink(scratch(env, names[i]));
     rmdir(env->dir);
@@ -324,6 +361,7 @@ int main(void)
     test_ply_auto_camera_and_radius(&env);
     test_jpeg_and_exr_magic(&env);
     test_depth_aov(&env);
+    test_radius_from_the_file(&env);
     test_input_server_and_output_errors(&env);
     CHECK_CODE(fc_test_daemon_stop(&daemon, FC_TEST_DAEMON_STOP_TIMEOUT_MS, &err), FC_OK);
     remove_scratch(&env);

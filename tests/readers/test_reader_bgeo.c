@@ -187,6 +187,33 @@ static void expect_attribute_failure(const char *name, unsigned components, int3
     bytes_free(&b);
 }
 
+/* pscale (Houdini's point scale, as partio writes it) is each particle's radius; one that is not a
+ * usable radius is refused naming the particle. */
+static void test_pscale_is_the_radius(void)
+{
+    const float pscale[2] = { 0.025f, 0.05f };
+    bytes b = { NULL, 0, 0 };
+    put_header(&b, 5, 2, 1);
+    put_attribute(&b, "pscale", 1, T_FLOAT);
+    for (int i = 0; i < 2; i++) {
+        bytes_f32(&b, (float)i, true), bytes_f32(&b, 0, true), bytes_f32(&b, 0, true), bytes_f32(&b, 1, true);
+        bytes_f32(&b, pscale[i], true);
+    }
+    fc_frame frame;
+    fc_error err = { FC_OK, "" };
+    CHECK_CODE(fc_read_particles_mem(b.data, b.len, FC_FILE_BGEO, "r.bgeo", &frame, &err), FC_OK);
+    CHECK(frame.count == 2 && frame.radius && fc_frame_attributes(&frame) == FC_ATTR_RADIUS);
+    if (frame.radius)
+        CHECK(frame.radius[0] == pscale[0] && frame.radius[1] == pscale[1]);
+    fc_frame_free(&frame);
+    /* The second particle's pscale 0: refused at its bytes, the particle named. */
+    b.len -= 4;
+    bytes_f32(&b, 0.0f, true);
+    expect_failure(&b, FC_FILE_BGEO, "r.bgeo", FC_ERR_PARSE, "particle 1: radius = 0 is not a radius in (0, 1e6]");
+    bytes_free(&b);
+    expect_attribute_failure("pscale", 3, T_VECTOR, "radius needs 1 numbers");
+}
+
 static void test_refusals(void)
 {
     bytes b = { NULL, 0, 0 };
@@ -277,6 +304,7 @@ int main(void)
 {
     test_good_files();
     test_attribute_variants();
+    test_pscale_is_the_radius();
     test_formats_from_names();
     test_refusals();
     test_gzip_refusals();
