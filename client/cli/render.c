@@ -26,6 +26,7 @@
 #include "render_options.h"
 #include "render_output.h"
 #include "render_reader.h"
+#include "cli_mesh.h"
 #include "render_writer.h"
 #include "snapshot_scene.h"
 #include "up_choice.h"
@@ -148,6 +149,8 @@ static int connect_and_set_up(render_job *job, fc_client **client)
     fc_connect_options connect_options = {.client_name = "fluidcast render", .token = fc_cli_token()};
     if (fc_cli_connect(job->o->view.server, NULL, &connect_options, client, &err) != FC_OK)
         return fc_cli_fail(fc_cli_exit_for_client_error(err.code), "%s", err.message);
+    if (fc_cli_meshes_send(*client, job->o->view.meshes, job->o->view.mesh_count, NULL, &err) != FC_OK)
+        return fc_cli_fail(fc_cli_mesh_exit(err.code), "%s", err.message);
     if (fc_snapshot_scene_send(*client, &scene, &err) != FC_OK ||
         fc_client_set_settings(*client, &job->settings, &err) != FC_OK)
         return client_failure(job, &err);
@@ -185,6 +188,9 @@ static int render_frame(render_job *job, fc_client *client, fc_render_writer *wr
     fc_image_result image = {0};
     fc_error err;
     int status = FC_EXIT_OK;
+    /* Per-frame meshes (box_%04d.obj) with this frame's number, before its particles. */
+    if (fc_cli_meshes_send(client, view->meshes, view->mesh_count, &job->inputs.numbers[slot], &err) != FC_OK)
+        return fc_cli_fail(fc_cli_mesh_exit(err.code), "%s", err.message);
     if (fc_client_upload_frame(client, &item->frame, NULL, &stats, &err) != FC_OK ||
         fc_client_set_camera(client, &cam, &err) != FC_OK || fc_client_render(client, &request, &image, &err) != FC_OK)
         status = client_failure(job, &err);

@@ -17,6 +17,7 @@
 #include "snapshot_camera.h"
 #include "snapshot_legend.h"
 #include "snapshot_options.h"
+#include "cli_mesh.h"
 #include "snapshot_scene.h"
 #include "up_choice.h"
 
@@ -46,7 +47,14 @@ static int render_remotely(const fc_snapshot_options *o, const fc_snapshot_scene
         return fc_cli_fail(fc_cli_exit_for_client_error(err.code), "%s", err.message);
     fc_render_request request = { .format = o->format, .quality = o->quality, .aov = o->aov };
     int status = FC_EXIT_OK;
-    /* Rejections of the scene images, FRAME, CAMERA and SETTINGS arrive as the render's error. */
+    /* Meshes are read here: a file that cannot be read is the input's fault. */
+    const uint32_t frame_zero = 0;
+    if (fc_cli_meshes_send(client, o->meshes, o->mesh_count, NULL, &err) != FC_OK ||
+        fc_cli_meshes_send(client, o->meshes, o->mesh_count, &frame_zero, &err) != FC_OK) {
+        fc_client_close(client);
+        return fc_cli_fail(fc_cli_mesh_exit(err.code), "%s", err.message);
+    }
+    /* Rejections of the scene images, meshes, FRAME, CAMERA and SETTINGS arrive as the render's error. */
     if (fc_snapshot_scene_send(client, scene, &err) != FC_OK || fc_client_send_frame(client, frame, &err) != FC_OK ||
         fc_client_set_camera(client, cam, &err) != FC_OK ||
         fc_client_set_settings(client, settings, &err) != FC_OK ||

@@ -248,6 +248,16 @@ static fc_code set_cubemap(fc_snapshot_options *o, const option_spec *spec, cons
     return FC_OK;
 }
 
+static fc_code set_mesh(fc_snapshot_options *o, const option_spec *spec, const char *value, fc_error *err)
+{
+    if (o->mesh_count == FC_CLI_MAX_MESHES)
+        return fc_error_set(err, FC_ERR_USAGE, "%s: at most %d meshes", spec->name, FC_CLI_MAX_MESHES);
+    fc_code code = fc_cli_mesh_parse(value, &o->meshes[o->mesh_count], err);
+    if (code == FC_OK)
+        o->mesh_count++;
+    return code;
+}
+
 static fc_code set_read(fc_snapshot_options *o, const option_spec *spec, const char *value, fc_error *err)
 {
     return fc_cli_set_read_option(&o->read, spec->name, value, err);
@@ -290,6 +300,7 @@ static const option_spec options[] = {
     {"--range", set_range, 0},
     {"--background", set_background, 0},
     {"--cubemap", set_cubemap, 0},
+    {"--mesh", set_mesh, 0},
     {"--aov", set_aov, 0},
     {"--quality", set_quality, 0},
     {"--dataset", set_read, 0},
@@ -541,6 +552,15 @@ static void print_shading_help(FILE *to, const fc_settings *d)
             "  --cubemap DIR           or a directory holding px, nx, py, ny, pz and nz\n"
             "                          .png/.jpg/.jpeg/.exr\n"
             "                          (scene images: at most 8192 pixels per side)\n"
+            "  --mesh FILE[:color=R,G,B][:opacity=X][:hide-near]\n"
+            "                          a triangle mesh drawn with the fluid (repeatable, up\n"
+            "                          to 16): .obj, .stl, .ply (with faces) or legacy .vtk\n"
+            "                          POLYDATA; colour linear RGB 0..1 (default 0.8 grey);\n"
+            "                          opacity 1 (default) hides the fluid behind it, below\n"
+            "                          1 is glass over it; hide-near leaves out the faces\n"
+            "                          turned toward the camera (a tank's near walls). A\n"
+            "                          FILE with %%d (box_%%04d.obj) is read per frame by\n"
+            "                          render, with the frame's number\n"
             "\n",
             (double)d->fluid_color[0], (double)d->fluid_color[1], (double)d->fluid_color[2],
             (double)d->absorption[0], (double)d->absorption[1], (double)d->absorption[2], (double)d->ior,

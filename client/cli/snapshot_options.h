@@ -8,6 +8,7 @@
 #include <stdio.h>
 
 #include "fluidcast_types.h"
+#include "cli_mesh.h"
 #include "particle_reader.h"
 
 #define FC_SNAPSHOT_DEFAULT_SERVER "127.0.0.1:7450"
@@ -38,6 +39,8 @@ typedef struct fc_snapshot_options {
     uint32_t quality;
     fc_read_options read;          /* --dataset, --step, --select (cli_read_options.h) */
     fc_recentring recentring;      /* read.recentring points here (fc_snapshot_set_defaults) */
+    fc_cli_mesh meshes[FC_CLI_MAX_MESHES];   /* --mesh, in order: mesh i is sent as id i + 1 (cli_mesh.h) */
+    int mesh_count;
 } fc_snapshot_options;
 
 /* Parses the arguments after "snapshot". FC_ERR_USAGE with the reason (naming

@@ -58,6 +58,14 @@ if [ -d "$splash" ]; then
   $bin/fluidcast snapshot "$two_radii" --server "127.0.0.1:$(cat "$portfile")" --size 640x360 \
     --eye -0.3664,-1.0005,1.4229 --target 0.5,0.5,0.21 --up z --fov 40 -o "$out/splash_f11_two_radii.png"
   rm -f "$two_radii"
+  # The splash in its tank (docs/gallery/splash_tank.obj): glass walls, and opaque ones, the near walls hidden.
+  tank() { # NAME MESH-OPTIONS
+    $bin/fluidcast snapshot "$splash/frame_0011.ply" --server "127.0.0.1:$(cat "$portfile")" --size 960x540 \
+      --eye -0.3664,-1.0005,1.4229 --target 0.5,0.5,0.21 --up z --fov 40 --radius 0.0078571 \
+      --mesh "$out/splash_tank.obj:$2" -o "$out/splash_f11_$1.png"
+  }
+  tank tank_glass "color=0.7,0.85,1:opacity=0.3:hide-near"
+  tank tank_opaque "color=0.55,0.5,0.45:hide-near"
 else
   echo "gallery: no $splash, splash rows not regenerated" >&2
 fi

@@ -418,6 +418,76 @@ static void test_bad_values_are_usage_errors(const test_env *env)
     expect_exit(env, 3, "ball.f32", FLAGS("--cubemap", env->dir), "has no px");
 }
 
+/* An OBJ box [lo, hi], faces wound counter-clockwise seen from outside. */
+static bool write_box_obj(const char *path, const float lo[3], const float hi[3])
+{
+    FILE *f = fopen(path, "w");
+    if (!f)
+        return false;
+    for (int c = 0; c < 8; c++)
+        fprintf(f, "v %g %g %g\n", (double)(c & 1 ? hi[0] : lo[0]), (double)(c & 2 ? hi[1] : lo[1]),
+                (double)(c & 4 ? hi[2] : lo[2]));
+    fputs("f 1 3 4 2\nf 5 6 8 7\nf 1 2 6 5\nf 3 7 8 4\nf 1 5 7 3\nf 2 4 8 6\n", f);
+    return fclose(f) == 0;
+}
+
+/* --mesh through the real daemon: a box between the camera (y = -4) and the
+ * ball leaves no fluid in the depth image, as glass it hides nothing; a closed
+ * tank around the ball hides it unless hide-near culls its near wall; a %d
+ * pattern takes frame 0 in a snapshot; bad options are usage errors, a missing
+ * or broken mesh file an input error (exit 3) naming it. */
+static void test_mesh(const test_env *env)
+{
+    char path[PATH_SIZE];
+    bool ok = write_box_obj(scratch(env, "wall.obj", path), (float[3]){-3, -2, -3}, (float[3]){3, -1.8f, 3}) &&
+              write_box_obj(scratch(env, "wall_0000.obj", path), (float[3]){-3, -2, -3}, (float[3]){3, -1.8f, 3}) &&
+              write_box_obj(scratch(env, "tank.obj", path), (float[3]){-1, -1, -1}, (float[3]){1, 1, 1}) &&
+              write_bytes(scratch(env, "broken.obj", path), (const uint8_t *)"v 0 0\n", 6);
+    CHECK(ok);
+    if (!ok)
+        return;
+    fc_decoded_image plain, wall, glass, pattern, tank, open;
+    char wall_arg[PATH_SIZE + 32], glass_arg[PATH_SIZE + 32], pattern_arg[PATH_SIZE], tank_arg[PATH_SIZE],
+        open_arg[PATH_SIZE + 16];
+    snprintf(wall_arg, sizeof wall_arg, "%s:color=1,0,0", scratch(env, "wall.obj", path));
+    snprintf(glass_arg, sizeof glass_arg, "%s:opacity=0.3:color=0.2,0.4,1", scratch(env, "wall.obj", path));
+    snprintf(pattern_arg, sizeof pattern_arg, "%s", scratch(env, "wall_%04d.obj", path));
+    snprintf(tank_arg, sizeof tank_arg, "%s", scratch(env, "tank.obj", path));
+    snprintf(open_arg, sizeof open_arg, "%s:hide-near", scratch(env, "tank.obj", path));
+    if (render(env, "ball.f32", "mesh_plain.exr", FLAGS("--aov", "depth"), &plain)) {
+        size_t fluid = nonzero(&plain);
+        CHECK_MSG(fluid >= BALL_PIXELS_MIN, "%zu fluid pixels", fluid);
+        if (render(env, "ball.f32", "mesh_wall.exr", FLAGS("--aov", "depth", "--mesh", wall_arg), &wall)) {
+            CHECK_MSG(nonzero(&wall) == 0, "behind the wall %zu fluid pixels", nonzero(&wall));
+            fc_decoded_image_free(&wall);
+        }
+        if (render(env, "ball.f32", "mesh_glass.exr", FLAGS("--aov", "depth", "--mesh", glass_arg), &glass)) {
+            CHECK_MSG(nonzero(&glass) == fluid, "behind glass %zu fluid pixels of %zu", nonzero(&glass), fluid);
+            fc_decoded_image_free(&glass);
+        }
+        if (render(env, "ball.f32", "mesh_pattern.exr", FLAGS("--aov", "depth", "--mesh", pattern_arg), &pattern)) {
+            CHECK_MSG(nonzero(&pattern) == 0, "the pattern's frame 0: %zu fluid pixels", nonzero(&pattern));
+            fc_decoded_image_free(&pattern);
+        }
+        if (render(env, "ball.f32", "mesh_tank.exr", FLAGS("--aov", "depth", "--mesh", tank_arg), &tank)) {
+            CHECK_MSG(nonzero(&tank) == 0, "inside the closed tank %zu fluid pixels", nonzero(&tank));
+            fc_decoded_image_free(&tank);
+        }
+        if (render(env, "ball.f32", "mesh_open.exr", FLAGS("--aov", "depth", "--mesh", open_arg), &open)) {
+            CHECK_MSG(nonzero(&open) == fluid && differing(&open, &plain) == 0,
+                      "hide-near: %zu fluid pixels of %zu, %zu differ", nonzero(&open), fluid, differing(&open, &plain));
+            fc_decoded_image_free(&open);
+        }
+        fc_decoded_image_free(&plain);
+    }
+    expect_exit(env, 2, "ball.f32", FLAGS("--mesh", "box.txt"), "--mesh");
+    expect_exit(env, 2, "ball.f32", FLAGS("--mesh", "box.obj:opacity=2"), "opacity");
+    expect_exit(env, 2, "ball.f32", FLAGS("--mesh", "box.obj:color=1,1"), "color");
+    expect_exit(env, 2, "ball.f32", FLAGS("--mesh", "box.obj:shiny=1"), "shiny");
+    expect_exit(env, 3, "ball.f32", FLAGS("--mesh", scratch(env, "missing.obj", path)), "missing.obj");
+    expect_exit(env, 3, "ball.f32", FLAGS("--mesh", scratch(env, "broken.obj", path)), "three numbers");
+}
+
 /* --color-by: speed on a frame with velocities changes the image and
  * prints the range it chose (the 2nd to 98th percentile; every particle of
  * ballv.csv moves at 3, and a constant v gets [v, v + 1]); --range fixes it and moves the colours; density colours too;
@@ -540,6 +610,7 @@ int main(void)
     test_server_rejects_images(&env);
     test_color_by(&env);
     test_legend(&env);
+    test_mesh(&env);
     CHECK_CODE(fc_test_daemon_stop(&daemon, FC_TEST_DAEMON_STOP_TIMEOUT_MS, &err), FC_OK);
     remove_scratch(&env);
     return test_result();

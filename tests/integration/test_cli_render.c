@@ -173,6 +173,54 @@ static void test_png_sequence(const test_env *env, double centroid[FRAMES])
     }
 }
 
+/* --mesh with a %04d pattern: frame i reads box_000i.obj. Odd frames put an
+ * opaque grey box around that frame's ball, even ones put it far to the side:
+ * the ball shows in even frames only (no blue pixel in odd ones). */
+static void test_per_frame_mesh(const test_env *env)
+{
+    char buf[PATH_CAP];
+    bool ok = true;
+    for (int i = 0; i < FRAMES && ok; i++) {
+        char name[64];
+        snprintf(name, sizeof name, "in/box_%04d.obj", i);
+        FILE *f = fopen(path_in(env, name, buf), "w");
+        if (!f) {
+            ok = false;
+            break;
+        }
+        float cx = i % 2 ? -0.5f + 0.2f * i : 10.0f, lo[3] = {cx - 0.25f, -0.25f, 0.05f},
+              hi[3] = {cx + 0.25f, 0.25f, 0.55f};
+        for (int c = 0; c < 8; c++)
+            fprintf(f, "v %g %g %g\n", (double)(c & 1 ? hi[0] : lo[0]), (double)(c & 2 ? hi[1] : lo[1]),
+                    (double)(c & 4 ? hi[2] : lo[2]));
+        fputs("f 1 3 4 2\nf 5 6 8 7\nf 1 2 6 5\nf 3 7 8 4\nf 1 5 7 3\nf 2 4 8 6\n", f);
+        ok = fclose(f) == 0;
+    }
+    CHECK(ok);
+    char in[PATH_CAP], out[PATH_CAP], mesh[PATH_CAP];
+    cli_result r;
+    snprintf(mesh, sizeof mesh, "%s/in/box_%%04d.obj", env->dir);
+    render(env, (const char *const[]){pattern_input(env, in), NULL}, path_in(env, "mesh/f_%04d.png", out),
+           (const char *const[]){"--mesh", mesh, NULL}, &r);
+    CHECK_MSG(r.status == 0, "render with a per-frame mesh: exit %d\n%s%s", r.status, r.out, r.err);
+    for (int i = 0; i < FRAMES && r.status == 0; i++) {
+        picture png;
+        if (!read_frame_png("mesh", env, i, &png)) {
+            CHECK_MSG(0, "mesh/f_%04d.png missing or undecodable", i);
+            continue;
+        }
+        uint32_t pixels;
+        fluid_centroid_x(png.rgb, png.width, png.height, &pixels);
+        CHECK_MSG(i % 2 ? pixels == 0 : pixels > 30, "frame %d with its box: %u fluid pixels", i, pixels);
+        free(png.rgb);
+    }
+    /* A frame whose mesh file is missing stops the render with an input error naming it. */
+    snprintf(mesh, sizeof mesh, "%s/in/nobox_%%04d.obj", env->dir);
+    render(env, (const char *const[]){pattern_input(env, in), NULL}, path_in(env, "nomesh/f_%04d.png", out),
+           (const char *const[]){"--mesh", mesh, NULL}, &r);
+    CHECK_MSG(r.status == 3 && strstr(r.err, "nobox_0000.obj"), "missing per-frame mesh: exit %d: %s", r.status, r.err);
+}
+
 /* The video has the PNGs' frames, in their order, within `min_psnr` dB. */
 static void check_video(const test_env *env, const char *name, const char *codec, const double centroid[FRAMES],
                         double min_psnr)
@@ -555,6 +603,7 @@ int main(void)
     test_missing_and_corrupt_frames(&env);
     test_interrupt(&env);
     test_orbit(&env);
+    test_per_frame_mesh(&env);
     CHECK_CODE(fc_test_daemon_stop(&daemon, FC_TEST_DAEMON_STOP_TIMEOUT_MS, &err), FC_OK);
     if (getenv("FLUIDCAST_TEST_KEEP"))   /* to look at the images and videos */
         printf("kept %s\n", env.dir);
