@@ -201,6 +201,11 @@ static void test_session_mesh(const char *address)
     fc_camera cam;
     test_ball_camera(SIDE, SIDE, &cam);
     CHECK_CODE(fc_client_set_camera(viewer, &cam, &err), FC_OK);
+    /* A round trip: the viewer's CAMERA is in before the frame is published, so its first image uses it. */
+    fc_session_status *sessions = NULL;
+    uint32_t session_count = 0;
+    CHECK_CODE(fc_client_list_sessions(viewer, &sessions, &session_count, &err), FC_OK);
+    fc_session_list_free(sessions);
     fc_mesh box = box_mesh(1);
     CHECK_CODE(fc_client_upload_mesh(producer, &box, &err), FC_OK);
     fc_frame ball = {0};
