@@ -5,6 +5,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "cli_read_options.h"
 #include "cli_report.h"
 #include "cli_values.h"
 #include "fc_error.h"
@@ -90,12 +91,15 @@ fc_code fc_cli_mesh_parse(const char *value, fc_cli_mesh *out, fc_error *err)
     return FC_OK;
 }
 
-static fc_code send_one(fc_client *client, const fc_cli_mesh *m, uint32_t id, const char *path, fc_error *err)
+static fc_code send_one(fc_client *client, const fc_cli_mesh *m, uint32_t id, const char *path,
+                        const fc_recentring *recentring, fc_error *err)
 {
     fc_mesh_data data;
     fc_code code = fc_read_mesh(path, &data, err);
     if (code != FC_OK)
         return code;
+    for (uint32_t i = 0; recentring && recentring->applied && i < data.vertex_count; i++)
+        fc_cli_recentre_point(recentring, data.vertices + 3 * (size_t)i);
     fc_mesh mesh;
     fc_mesh_defaults(&mesh);
     mesh.id = id;
@@ -112,7 +116,7 @@ static fc_code send_one(fc_client *client, const fc_cli_mesh *m, uint32_t id, co
 }
 
 fc_code fc_cli_meshes_send(fc_client *client, const fc_cli_mesh *meshes, int count, const uint32_t *frame,
-                           fc_error *err)
+                           const fc_recentring *recentring, fc_error *err)
 {
     for (int i = 0; i < count; i++) {
         const fc_cli_mesh *m = &meshes[i];
@@ -125,7 +129,7 @@ fc_code fc_cli_meshes_send(fc_client *client, const fc_cli_mesh *meshes, int cou
         else
             snprintf(path, sizeof path, "%s", m->path);
         if (code == FC_OK)
-            code = send_one(client, m, (uint32_t)i + 1, path, err);
+            code = send_one(client, m, (uint32_t)i + 1, path, recentring, err);
         if (code != FC_OK)
             return code;
     }

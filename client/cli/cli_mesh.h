@@ -12,6 +12,7 @@
 
 #include "fluidcast.h"
 #include "fluidcast_types.h"
+#include "particle_reader.h"
 
 #define FC_CLI_MAX_MESHES 16
 #define FC_CLI_MESH_PATH_MAX 4096
@@ -31,10 +32,13 @@ fc_code fc_cli_mesh_parse(const char *value, fc_cli_mesh *out, fc_error *err);
 
 /* Reads and sends the meshes: the static ones when `frame` is NULL, the
  * per-frame ones (with *frame put into their pattern) otherwise; snapshot
- * sends both with frame 0. FC_ERR_PARSE / FC_ERR_IO / FC_ERR_LIMIT naming the
+ * sends both with frame 0. When the particles were recentred (`recentring`,
+ * may be NULL) the meshes' vertices move by the same offset, so they stay
+ * where the fluid is (their float32 coordinates keep what precision the file's
+ * text or floats gave them). FC_ERR_PARSE / FC_ERR_IO / FC_ERR_LIMIT naming the
  * file for a mesh file that cannot be read; the client's errors otherwise. */
 fc_code fc_cli_meshes_send(fc_client *client, const fc_cli_mesh *meshes, int count, const uint32_t *frame,
-                           fc_error *err);
+                           const fc_recentring *recentring, fc_error *err);
 
 /* The exit status for an error of fc_cli_meshes_send: the input's (a mesh
  * file that cannot be read or sent as it is) or the connection's. */

@@ -149,7 +149,8 @@ static int connect_and_set_up(render_job *job, fc_client **client)
     fc_connect_options connect_options = {.client_name = "fluidcast render", .token = fc_cli_token()};
     if (fc_cli_connect(job->o->view.server, NULL, &connect_options, client, &err) != FC_OK)
         return fc_cli_fail(fc_cli_exit_for_client_error(err.code), "%s", err.message);
-    if (fc_cli_meshes_send(*client, job->o->view.meshes, job->o->view.mesh_count, NULL, &err) != FC_OK)
+    if (fc_cli_meshes_send(*client, job->o->view.meshes, job->o->view.mesh_count, NULL, &job->o->view.recentring,
+                           &err) != FC_OK)
         return fc_cli_fail(fc_cli_mesh_exit(err.code), "%s", err.message);
     if (fc_snapshot_scene_send(*client, &scene, &err) != FC_OK ||
         fc_client_set_settings(*client, &job->settings, &err) != FC_OK)
@@ -189,7 +190,8 @@ static int render_frame(render_job *job, fc_client *client, fc_render_writer *wr
     fc_error err;
     int status = FC_EXIT_OK;
     /* Per-frame meshes (box_%04d.obj) with this frame's number, before its particles. */
-    if (fc_cli_meshes_send(client, view->meshes, view->mesh_count, &job->inputs.numbers[slot], &err) != FC_OK)
+    if (fc_cli_meshes_send(client, view->meshes, view->mesh_count, &job->inputs.numbers[slot], &view->recentring,
+                           &err) != FC_OK)
         return fc_cli_fail(fc_cli_mesh_exit(err.code), "%s", err.message);
     if (fc_client_upload_frame(client, &item->frame, NULL, &stats, &err) != FC_OK ||
         fc_client_set_camera(client, &cam, &err) != FC_OK || fc_client_render(client, &request, &image, &err) != FC_OK)

@@ -49,8 +49,8 @@ static int render_remotely(const fc_snapshot_options *o, const fc_snapshot_scene
     int status = FC_EXIT_OK;
     /* Meshes are read here: a file that cannot be read is the input's fault. */
     const uint32_t frame_zero = 0;
-    if (fc_cli_meshes_send(client, o->meshes, o->mesh_count, NULL, &err) != FC_OK ||
-        fc_cli_meshes_send(client, o->meshes, o->mesh_count, &frame_zero, &err) != FC_OK) {
+    if (fc_cli_meshes_send(client, o->meshes, o->mesh_count, NULL, &o->recentring, &err) != FC_OK ||
+        fc_cli_meshes_send(client, o->meshes, o->mesh_count, &frame_zero, &o->recentring, &err) != FC_OK) {
         fc_client_close(client);
         return fc_cli_fail(fc_cli_mesh_exit(err.code), "%s", err.message);
     }
