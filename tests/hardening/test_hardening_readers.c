@@ -219,6 +219,18 @@ static const broken_file files[] = {
     /* From memory a collection is refused as such, from disk for listing no dataset. */
     {"collection.pvd", "<VTKFile type=\"Collection\"><Collection></Collection></VTKFile>", 0, "collection"},
 
+    /* ---- HDF5 (libhdf5 over the bytes; the signature decides, and a damaged superblock is its reason) ---- */
+    {"nosig.h5", "not hdf5 at all", 0, "not an HDF5 file (no \\x89HDF signature)"},
+    {"signature_only.h5", BIN("\x89HDF\r\n\x1a\n"), "not a readable HDF5 file"},
+    {"superblock_garbage.h5", BIN("\x89HDF\r\n\x1a\n\xff\xff\xff\xff\xff\xff\xff\xff\xff\xff\xff\xff\xff\xff\xff\xff"
+                                  "\xff\xff\xff\xff\xff\xff\xff\xff\xff\xff\xff\xff\xff\xff\xff\xff"),
+     "not a readable HDF5 file"},
+    {"superblock_v0_huge_addresses.h5",
+     BIN("\x89HDF\r\n\x1a\n\x00\x00\x00\x00\x00\x08\x08\x00\x04\x00\x10\x00\x00\x00\x00\x00"
+         "\x00\x00\x00\x00\x00\x00\x00\x00\xff\xff\xff\xff\xff\xff\xff\xff\xff\xff\xff\xff\xff\xff\xff\x7f"
+         "\xff\xff\xff\xff\xff\xff\xff\xff\xff\xff\xff\xff\xff\xff\xff\x7f"),
+     "not a readable HDF5 file"},
+
     /* ---- raw float32 ---- */
     {"empty.f32", "", 0, "empty file"},
     {"one_byte.f32", "\x01", 0, "1 bytes is not a multiple of 12"},
