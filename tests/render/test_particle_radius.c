@@ -157,6 +157,22 @@ static size_t differing_pixels(const fc_image *a, const fc_image *b)
     return n;
 }
 
+/* Pixels of two RGBA8 images whose colours differ by more than `threshold`
+ * (summed over the channels): what a droplet covers, not the last-bit changes
+ * of a view whose depth range followed the largest particle. */
+static size_t visibly_differing_pixels(const fc_image *a, const fc_image *b, int threshold)
+{
+    size_t n = 0;
+    const uint8_t *p = a->pixels, *q = b->pixels;
+    for (size_t i = 0; i < (size_t)a->width * a->height; i++) {
+        int d = 0;
+        for (int c = 0; c < 3; c++)
+            d += abs((int)p[4 * i + c] - (int)q[4 * i + c]);
+        n += d > threshold;
+    }
+    return n;
+}
+
 /* The full look: smoothing, shadow, spray, noise and foam, colour by speed. */
 static fc_settings full_settings(float radius, fc_kernel kernel)
 {
@@ -241,6 +257,37 @@ static void test_thickness_scales_with_radius(render_fixture *f)
               (double)thickness[1]);
 }
 
+/* A spray droplet (particle 5, below the density threshold) drawn at its own
+ * radius: the pixels it changes, against the same frame with the droplet
+ * shrunk to nothing, grow with the square of its radius. */
+static void test_spray_droplet_size(render_fixture *f)
+{
+    const float R = 0.06f;
+    fc_camera cam = axis_camera(1.2, 256, 192);
+    fc_frame frame;
+    fill_blob(&frame, R);
+    frame.radius[36] = 1e-5f;   /* the other droplet out of the way */
+    fc_settings settings = full_settings(0.0f, FC_KERNEL_SPHERE);
+    settings.noise = 0.0f;
+    fc_image none = {0};
+    frame.radius[5] = 1e-5f;
+    CHECK_CODE(render_frame(f, &frame, &cam, &settings, FC_AOV_COLOR, 1, &none), FC_OK);
+    size_t changed[2] = {0, 0};
+    for (int i = 0; i < 2; i++) {
+        frame.radius[5] = R * (float)(i + 1);
+        fc_image img = {0};
+        CHECK_CODE(render_frame(f, &frame, &cam, &settings, FC_AOV_COLOR, 1, &img), FC_OK);
+        changed[i] = img.pixels && none.pixels ? visibly_differing_pixels(&img, &none, 12) : 0;
+        fc_image_free(&img);
+    }
+    double ratio = changed[0] ? (double)changed[1] / (double)changed[0] : 0.0;
+    printf("spray droplet: radius R changes %zu pixels, 2R %zu\n", changed[0], changed[1]);
+    CHECK_MSG(changed[0] > 4 && ratio > 2.5 && ratio < 6.0, "droplet of radius R changed %zu pixels, 2R %zu",
+              changed[0], changed[1]);
+    fc_image_free(&none);
+    fc_frame_free(&frame);
+}
+
 int main(int argc, char **argv)
 {
     render_fixture f;
@@ -249,6 +296,7 @@ int main(int argc, char **argv)
     test_two_radii(&f);
     test_thickness_scales_with_radius(&f);
     test_equal_radii_are_the_setting(&f);
+    test_spray_droplet_size(&f);
     fixture_close(&f);
     return test_result();
 }
