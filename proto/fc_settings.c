@@ -61,6 +61,7 @@ void fc_settings_default(fc_settings *s)
         .color_by = FC_COLOR_BY_NONE,
         .colormap = FC_COLORMAP_VIRIDIS,
         .color_range = {0.0f, 1.0f},
+        .jpeg_subsampling = FC_JPEG_SUBSAMPLING_YUV444,
     };
 }
 
@@ -183,5 +184,8 @@ fc_code fc_settings_validate(const fc_settings *s, fc_error *err)
         code = validate_effects(s, err);
     if (code == FC_OK)
         code = validate_coloring(s, err);
+    if (code == FC_OK && (unsigned)s->jpeg_subsampling > FC_JPEG_SUBSAMPLING_YUV420)
+        code = fc_error_set(err, FC_ERR_INVALID_VALUE, "unknown jpeg_subsampling %u",
+                            (unsigned)s->jpeg_subsampling);
     return code;
 }

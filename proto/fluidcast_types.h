@@ -118,6 +118,15 @@ typedef enum fc_colormap {
     FC_COLORMAP_TURBO = 6
 } fc_colormap;
 
+/* Chroma subsampling of JPEG images (fc_settings.jpeg_subsampling). 4:4:4
+ * keeps every pixel's colour (thin coloured features, colormaps, legends);
+ * 4:2:0 shares one colour among 2x2 pixels: about 20% smaller files and a
+ * faster encode, for streams. */
+typedef enum fc_jpeg_subsampling {
+    FC_JPEG_SUBSAMPLING_YUV444 = 0,
+    FC_JPEG_SUBSAMPLING_YUV420 = 1
+} fc_jpeg_subsampling;
+
 /* Every parameter a user may tune. fc_settings_default() gives convincing water;
  * zero is "off" for the optional effects. */
 typedef struct fc_settings {
@@ -152,6 +161,7 @@ typedef struct fc_settings {
     fc_colormap colormap;      /* the colours the attribute's range runs through */
     float color_range[2];      /* attribute values mapped to the colormap's ends: finite, min < max when
                                   color_by is set; values outside take the end colours, so runs compare */
+    fc_jpeg_subsampling jpeg_subsampling; /* chroma subsampling of JPEG images; other formats ignore it */
 } fc_settings;
 
 /* ---- Meshes ---------------------------------------------------------------

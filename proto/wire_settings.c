@@ -3,6 +3,7 @@
  * names one field of fc_settings (table in PROTOCOL.md). */
 #include "wire.h"
 
+#include <stdbool.h>
 #include <stddef.h>
 
 #include "fc_error.h"
@@ -34,10 +35,11 @@ typedef enum setting_key {
     KEY_COLOR_BY = 22,
     KEY_COLORMAP = 23,
     KEY_COLOR_RANGE = 24,
+    /* 25-31 are reserved (PROTOCOL.md 7.5): unknown until defined. */
+    KEY_JPEG_SUBSAMPLING = 32,
     KEY_END
 } setting_key;
 
-#define SETTINGS_ENTRY_COUNT (KEY_END - 1)
 #define ENTRY_HEADER_SIZE 4u
 #define WORD_SIZE 4u
 
@@ -57,10 +59,11 @@ typedef struct key_spec {
 } key_spec;
 
 _Static_assert(sizeof(fc_smoothing) == sizeof(int) && sizeof(fc_kernel) == sizeof(int) &&
-                   sizeof(fc_color_by) == sizeof(int) && sizeof(fc_colormap) == sizeof(int),
+                   sizeof(fc_color_by) == sizeof(int) && sizeof(fc_colormap) == sizeof(int) &&
+                   sizeof(fc_jpeg_subsampling) == sizeof(int),
                "VALUE_ENUM fields are accessed as int");
-/* read_entry marks the keys seen in one u32. */
-_Static_assert(KEY_END <= 32, "more keys than bits in the seen mask");
+/* read_entry marks the keys seen in one u64. */
+_Static_assert(KEY_END <= 64, "more keys than bits in the seen mask");
 
 #define FIELD(key, field, words, kind) [key] = {#field, words, kind, offsetof(fc_settings, field), 0}
 #define ENUM_FIELD(key, field, max) [key] = {#field, 1, VALUE_ENUM, offsetof(fc_settings, field), max}
@@ -90,7 +93,14 @@ static const key_spec settings_keys[KEY_END] = {
     ENUM_FIELD(KEY_COLOR_BY, color_by, FC_COLOR_BY_DENSITY),
     ENUM_FIELD(KEY_COLORMAP, colormap, FC_COLORMAP_TURBO),
     FIELD(KEY_COLOR_RANGE, color_range, 2, VALUE_F32),
+    ENUM_FIELD(KEY_JPEG_SUBSAMPLING, jpeg_subsampling, FC_JPEG_SUBSAMPLING_YUV420),
 };
+
+/* A key the table defines; the reserved numbers between defined keys have no name. */
+static bool key_defined(uint32_t key)
+{
+    return key >= KEY_RADIUS && key < KEY_END && settings_keys[key].name != NULL;
+}
 
 /* The field a key names, for reading (writer) and for filling in (reader). */
 static const void *field_in(const fc_settings *s, const key_spec *spec)
@@ -118,13 +128,18 @@ static void put_entry(fc_buf *out, setting_key key, const fc_settings *m)
 
 fc_code fc_wire_write_settings(fc_buf *out, uint32_t request_id, const fc_settings *m, fc_error *err)
 {
-    uint32_t length = 4;
-    for (int key = KEY_RADIUS; key < KEY_END; key++)
-        length += ENTRY_HEADER_SIZE + WORD_SIZE * settings_keys[key].words;
+    uint32_t length = 4, entries = 0;
+    for (int key = KEY_RADIUS; key < KEY_END; key++) {
+        if (key_defined((uint32_t)key)) {
+            length += ENTRY_HEADER_SIZE + WORD_SIZE * settings_keys[key].words;
+            entries++;
+        }
+    }
     size_t start = wire_begin_message(out, FC_MSG_SETTINGS, request_id, length);
-    wire_put_u32(out, SETTINGS_ENTRY_COUNT);
+    wire_put_u32(out, entries);
     for (int key = KEY_RADIUS; key < KEY_END; key++)
-        put_entry(out, (setting_key)key, m);
+        if (key_defined((uint32_t)key))
+            put_entry(out, (setting_key)key, m);
     return wire_end_message(out, start, err);
 }
 
@@ -156,7 +171,7 @@ static void read_value(wire_reader *r, setting_key key, fc_settings *s)
 
 /* Reads one entry, checking its structure before its key so that a truncated
  * message is always MALFORMED. `seen` collects the keys read so far. */
-static void read_entry(wire_reader *r, fc_settings *s, uint32_t *seen)
+static void read_entry(wire_reader *r, fc_settings *s, uint64_t *seen)
 {
     uint16_t key = wire_get_u16(r, "key");
     uint16_t words = wire_get_u16(r, "word count");
@@ -164,15 +179,15 @@ static void read_entry(wire_reader *r, fc_settings *s, uint32_t *seen)
         return;
     if (words > wire_remaining(r) / WORD_SIZE)
         wire_fail(r, FC_ERR_MALFORMED, "entry for key %u runs past the payload", key);
-    else if (key < KEY_RADIUS || key >= KEY_END)
+    else if (!key_defined(key))
         wire_fail(r, FC_ERR_INVALID_VALUE, "unknown setting key %u", key);
     else if (words != settings_keys[key].words)
         wire_fail(r, FC_ERR_MALFORMED, "%s takes %u words, not %u", settings_keys[key].name,
                   settings_keys[key].words, words);
-    else if (*seen & (1u << key))
+    else if (*seen & ((uint64_t)1 << key))
         wire_fail(r, FC_ERR_MALFORMED, "%s appears twice", settings_keys[key].name);
     else {
-        *seen |= 1u << key;
+        *seen |= (uint64_t)1 << key;
         read_value(r, (setting_key)key, s);
     }
 }
@@ -181,7 +196,7 @@ fc_code fc_wire_read_settings(const uint8_t *p, size_t n, fc_settings *m, fc_err
 {
     /* Entries are merged into a copy so that any failure leaves *m untouched. */
     fc_settings merged = *m;
-    uint32_t seen = 0;
+    uint64_t seen = 0;
     wire_reader r = wire_reader_start(p, n, "SETTINGS", err);
     uint32_t entries = wire_get_u32(&r, "entry count");
     if (r.code == FC_OK && entries > wire_remaining(&r) / ENTRY_HEADER_SIZE)

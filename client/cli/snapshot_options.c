@@ -230,6 +230,22 @@ static fc_code set_quality(fc_snapshot_options *o, const option_spec *spec, cons
     return fc_cli_parse_uint(spec->name, value, 1, 100, &o->quality, err);
 }
 
+/* 444 (every pixel's colour, the default) or 420 (one colour per 2x2 pixels:
+ * smaller and faster, for streams); sent as the jpeg_subsampling setting. */
+static fc_code set_jpeg_subsampling(fc_snapshot_options *o, const option_spec *spec, const char *value,
+                                    fc_error *err)
+{
+    static const char *const names[] = {"444", "420", NULL};
+    static const fc_jpeg_subsampling values[] = {FC_JPEG_SUBSAMPLING_YUV444, FC_JPEG_SUBSAMPLING_YUV420};
+    int index;
+    fc_code code = fc_cli_parse_choice(spec->name, value, names, &index, err);
+    if (code == FC_OK) {
+        o->has_jpeg_subsampling = true;
+        o->settings.jpeg_subsampling = values[index];
+    }
+    return code;
+}
+
 /* ---- scene images: the files are checked once the command line is complete ---- */
 
 static fc_code set_background(fc_snapshot_options *o, const option_spec *spec, const char *value, fc_error *err)
@@ -303,6 +319,7 @@ static const option_spec options[] = {
     {"--mesh", set_mesh, 0},
     {"--aov", set_aov, 0},
     {"--quality", set_quality, 0},
+    {"--jpeg-subsampling", set_jpeg_subsampling, 0},
     {"--dataset", set_read, 0},
     {"--step", set_read, 0},
     {"--select", set_read, 0},
@@ -402,6 +419,8 @@ static fc_code check_combinations(fc_snapshot_options *o, fc_error *err)
         return fc_error_set(err, FC_ERR_USAGE, "--aov writes float channels: the output must be .exr");
     if (o->has_quality && o->format != FC_FORMAT_JPEG)
         return fc_error_set(err, FC_ERR_USAGE, "--quality applies to .jpg/.jpeg output only");
+    if (o->has_jpeg_subsampling && o->format != FC_FORMAT_JPEG)
+        return fc_error_set(err, FC_ERR_USAGE, "--jpeg-subsampling applies to .jpg/.jpeg output only");
     code = fc_snapshot_check_coloring(o, err);
     return code != FC_OK ? code : fc_snapshot_check_camera(o, err);
 }
@@ -478,6 +497,9 @@ static void print_camera_help(FILE *to)
           "                          view axis, 0 where there is no fluid), thickness,\n"
           "                          normal (view-space surface normal, RGB) or noise\n"
           "  --quality Q             JPEG quality 1..100 (default 90; .jpg/.jpeg only)\n"
+          "  --jpeg-subsampling 444|420\n"
+          "                          JPEG chroma: 444 every pixel's colour (default),\n"
+          "                          420 one per 2x2 pixels, smaller and faster\n"
           "\n",
           to);
 }

@@ -31,6 +31,7 @@ typedef struct fc_snapshot_options {
     const char *cubemap;           /* --cubemap value (six files or a directory), or NULL */
     fc_aov aov;
     bool has_quality;
+    bool has_jpeg_subsampling;     /* --jpeg-subsampling given: settings.jpeg_subsampling holds it */
     bool has_iterations;      /* --iterations given: --smoothing keeps it */
     bool has_density_threshold;   /* --density-threshold given: no spray threshold from the frame's densities */
     bool has_colormap;             /* --colormap given (it needs --color-by) */

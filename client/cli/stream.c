@@ -45,6 +45,7 @@ static int set_up_view(fc_client *c, const fc_stream_options *o, const fc_frame 
     fc_settings settings;
     fc_settings_default(&settings);
     settings.radius = o->radius;
+    settings.jpeg_subsampling = o->jpeg_subsampling;
     fc_cli_choices chosen;
     fc_cli_complete_settings(&settings, first, false, &chosen);
     if (chosen.spray)

@@ -21,6 +21,8 @@ typedef struct fc_stream_options {
     fc_image_format format;
     bool has_quality;
     uint32_t quality;
+    bool has_jpeg_subsampling;
+    fc_jpeg_subsampling jpeg_subsampling; /* --jpeg-subsampling: JPEG chroma (default 4:4:4) */
     uint32_t width, height;
     float radius;                  /* 0: estimated from the first frame */
     bool has_up;

@@ -288,6 +288,7 @@ static int view(viewer *v)
     fc_frame first = {0};
     fc_settings settings;
     fc_settings_default(&settings);
+    settings.jpeg_subsampling = v->opt.jpeg_subsampling;
     fc_camera home;
     if (v->opt.session)
         session_home(&v->opt, &home);

@@ -20,6 +20,8 @@ typedef struct fc_view_options {
     uint32_t file_count;
     uint32_t width, height;       /* initial window size */
     fc_image_format format;       /* how images travel: RAW (default), JPEG or H264 */
+    bool has_jpeg_subsampling;
+    fc_jpeg_subsampling jpeg_subsampling; /* JPEG chroma: 4:2:0 unless --jpeg-subsampling 444 */
     float fps;                    /* playback rate of a sequence */
     bool no_spacemouse;
     bool log_camera;              /* print every camera sent to the daemon (tests, debugging) */

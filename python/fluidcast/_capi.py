@@ -81,6 +81,7 @@ class FcSettings(Structure):
         ("color_by", c_enum),              # fc_color_by
         ("colormap", c_enum),              # fc_colormap
         ("color_range", c_float * 2),
+        ("jpeg_subsampling", c_enum),      # fc_jpeg_subsampling
     ]
 
 

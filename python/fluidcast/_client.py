@@ -11,7 +11,7 @@ import numpy as np
 from . import _capi
 from ._capi import (FcCamera, FcConnectOptions, FcError, FcImageResult, FcRenderRequest, FcServerInfo, FcSessionStatus,
                     FcSettings, FcStreamImage, FcUploadOptions, FcUploadStats)
-from ._enums import (Aov, Code, ColorBy, Colormap, Format, Kernel, Smoothing, Stage, UPLOAD_QUANTIZE16, UPLOAD_ZSTD,
+from ._enums import (Aov, Code, ColorBy, Colormap, Format, JpegSubsampling, Kernel, Smoothing, Stage, UPLOAD_QUANTIZE16, UPLOAD_ZSTD,
                      parse)
 from ._errors import Error, raise_for
 from ._frame import as_frame
@@ -184,7 +184,8 @@ def _request(format, quality, aov):
 
 # ---- settings -------------------------------------------------------------
 
-_SETTING_ENUMS = {"smoothing": Smoothing, "kernel": Kernel, "color_by": ColorBy, "colormap": Colormap}
+_SETTING_ENUMS = {"smoothing": Smoothing, "kernel": Kernel, "color_by": ColorBy, "colormap": Colormap,
+                  "jpeg_subsampling": JpegSubsampling}
 #: fc_settings' field names, in the header's order.
 SETTING_NAMES = tuple(name for name, _ in FcSettings._fields_)
 # fc_settings_default() of proto/fc_settings.c, used only when the library does not export it.
@@ -192,7 +193,8 @@ _FALLBACK_DEFAULTS = dict(radius=0.0, smoothing=Smoothing.NARROW, iterations=4, 
                           fluid_color=(0.02, 0.15, 0.28), absorption=(0.2, 0.07, 0.035), ior=1.33, refraction=0.25,
                           specular=0.6, shininess=60.0, thickness_scale=1.0, thickness_blur=2, noise=0.0, foam=0.0,
                           foam_tau=0.5, foam_decay=0.85, density_threshold=0.0, kernel=Kernel.SPHERE, shadow=1,
-                          exposure=0.0, color_by=ColorBy.NONE, colormap=Colormap.VIRIDIS, color_range=(0.0, 1.0))
+                          exposure=0.0, color_by=ColorBy.NONE, colormap=Colormap.VIRIDIS, color_range=(0.0, 1.0),
+                          jpeg_subsampling=JpegSubsampling.YUV444)
 
 
 def _default_c_settings():
@@ -421,11 +423,12 @@ class Client:
         smoothing, iterations, filter_radius, smooth_scale, fluid_color,
         absorption, ior, refraction, specular, shininess, thickness_scale,
         thickness_blur, noise, foam, foam_tau, foam_decay, density_threshold,
-        kernel, shadow, exposure, color_by, colormap, color_range (see
+        kernel, shadow, exposure, color_by, colormap, color_range,
+        jpeg_subsampling (see
         fluidcast_types.h for each one's meaning and domain). ``smoothing``,
-        ``kernel``, ``color_by`` and ``colormap`` take a :class:`Smoothing`,
-        :class:`Kernel`, :class:`ColorBy`, :class:`Colormap` or its name
-        ("narrow", "anisotropic", "speed", "turbo"); ``fluid_color`` and
+        ``kernel``, ``color_by``, ``colormap`` and ``jpeg_subsampling`` take a :class:`Smoothing`,
+        :class:`Kernel`, :class:`ColorBy`, :class:`Colormap`, :class:`JpegSubsampling` or its name
+        ("narrow", "anisotropic", "speed", "turbo", "yuv420"); ``fluid_color`` and
         ``absorption`` three numbers, ``color_range`` two (min, max). An unknown name raises
         TypeError (and nothing is sent).
 

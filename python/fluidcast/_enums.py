@@ -91,6 +91,12 @@ class Colormap(enum.IntEnum):
     TURBO = 6
 
 
+class JpegSubsampling(enum.IntEnum):
+    """fc_jpeg_subsampling: JPEG chroma, 4:4:4 (every pixel's colour) or 4:2:0 (one per 2x2 pixels)."""
+    YUV444 = 0
+    YUV420 = 1
+
+
 class Stage(enum.IntEnum):
     """fc_stage: the server-side stages whose durations come with every image."""
     UPLOAD = 0
@@ -131,6 +137,7 @@ _PREFIX = {
     Kernel: "FC_KERNEL_",
     ColorBy: "FC_COLOR_BY_",
     Colormap: "FC_COLORMAP_",
+    JpegSubsampling: "FC_JPEG_SUBSAMPLING_",
     Stage: "FC_STAGE_",
 }
 
@@ -143,6 +150,7 @@ C_TYPES = {
     Kernel: "fc_kernel",
     ColorBy: "fc_color_by",
     Colormap: "fc_colormap",
+    JpegSubsampling: "fc_jpeg_subsampling",
     Stage: "fc_stage",
 }
 

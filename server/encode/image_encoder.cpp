@@ -160,13 +160,30 @@ fc_code encode_png(const fc_image &img, uint32_t level, fc_buf *out, fc_error *e
     return write_in_memory("png", spec, OIIO::TypeUInt8, display.data(), out, err);
 }
 
-fc_code encode_jpeg(const fc_image &img, uint32_t quality, fc_buf *out, fc_error *err)
+/* libjpeg's own default, which OpenImageIO keeps unless told, is 4:2:0; a
+ * snapshot asks for 4:4:4 explicitly. Both stay baseline with the standard
+ * Huffman tables and the accurate integer DCT: measured, optimised tables or
+ * progressive files cost more time than they save bytes at these sizes, and
+ * the fast DCT loses precision (bench/RESULTS.md). */
+const char *jpeg_sampling_name(const fc_encode_options &options)
 {
+    return options.jpeg_subsampling == FC_JPEG_SUBSAMPLING_YUV420 ? "4:2:0" : "4:4:4";
+}
+
+fc_code encode_jpeg(const fc_image &img, const fc_encode_options &options, fc_buf *out, fc_error *err)
+{
+    uint32_t quality = options.quality;
     if (quality < 1 || quality > 100)
         return fc_error_set(err, FC_ERR_USAGE, "encode: JPEG quality %u outside 1..100", quality);
+    std::underlying_type_t<fc_jpeg_subsampling> sampling;
+    std::memcpy(&sampling, &options.jpeg_subsampling, sizeof sampling);
+    if (sampling != FC_JPEG_SUBSAMPLING_YUV444 && sampling != FC_JPEG_SUBSAMPLING_YUV420)
+        return fc_error_set(err, FC_ERR_USAGE, "encode: unknown JPEG subsampling %lld", (long long)sampling);
     uint32_t channels = img.channels == 4 ? 3 : img.channels;
     ImageSpec spec((int)img.width, (int)img.height, (int)channels, OIIO::TypeUInt8);
     spec.attribute("Compression", "jpeg:" + std::to_string(quality));
+    if (channels == 3)
+        spec.attribute("jpeg:subsampling", jpeg_sampling_name(options));
     std::vector<uint8_t> display = to_display_u8(img, channels);
     return write_in_memory("jpeg", spec, OIIO::TypeUInt8, display.data(), out, err);
 }
@@ -184,14 +201,14 @@ fc_code encode_exr(const fc_image &img, fc_buf *out, fc_error *err)
     return write_in_memory("openexr", spec, OIIO::TypeFloat, linear.data(), out, err);
 }
 
-fc_code encode_checked(const fc_image &img, fc_image_format format, uint32_t quality, uint32_t png_level,
+fc_code encode_checked(const fc_image &img, fc_image_format format, const fc_encode_options &options,
                        fc_buf *out, fc_error *err)
 {
     switch (format) {
     case FC_FORMAT_PNG:
-        return encode_png(img, png_level, out, err);
+        return encode_png(img, options.png_compression, out, err);
     case FC_FORMAT_JPEG:
-        return encode_jpeg(img, quality, out, err);
+        return encode_jpeg(img, options, out, err);
     case FC_FORMAT_EXR:
         return encode_exr(img, out, err);
     case FC_FORMAT_RAW:
@@ -213,6 +230,15 @@ extern "C" fc_code fc_encode_image(const fc_image *img, fc_image_format format, 
 extern "C" fc_code fc_encode_image_png_level(const fc_image *img, fc_image_format format, uint32_t quality,
                                              uint32_t png_compression, fc_buf *out, fc_error *err)
 {
+    fc_encode_options options = {quality, png_compression, FC_JPEG_SUBSAMPLING_YUV444};
+    return fc_encode_image_with(img, format, &options, out, err);
+}
+
+extern "C" fc_code fc_encode_image_with(const fc_image *img, fc_image_format format,
+                                        const fc_encode_options *options, fc_buf *out, fc_error *err)
+{
+    if (!options)
+        return fc_error_set(err, FC_ERR_USAGE, "encode: no options");
     if (!out)
         return fc_error_set(err, FC_ERR_USAGE, "encode: no output buffer");
     fc_code code = check_image(img, err);
@@ -220,7 +246,7 @@ extern "C" fc_code fc_encode_image_png_level(const fc_image *img, fc_image_forma
         return code;
     size_t len_before = out->len;
     try {
-        code = encode_checked(*img, format, quality, png_compression, out, err);
+        code = encode_checked(*img, format, *options, out, err);
     } catch (const std::bad_alloc &) {
         code = fc_error_set(err, FC_ERR_NOMEM, "encode: out of memory");
     } catch (const std::exception &e) {

@@ -21,7 +21,8 @@ extern "C" {
 /* Encodes img into `out` (appended after out->len) in `format`:
  *   PNG:  U8 RGBA/1-channel as is; F32 converted (colour clamped to [0,1] and sRGB-encoded);
  *         zlib level FC_PNG_DEFAULT_COMPRESSION, SUB filter.
- *   JPEG: like PNG, alpha dropped, `quality` 1..100.
+ *   JPEG: like PNG, alpha dropped, `quality` 1..100, chroma 4:4:4 (baseline, libjpeg-turbo's
+ *         accurate integer DCT and standard Huffman tables: the fastest settings that keep quality).
  *   EXR:  F32 as float32 channels (R,G,B,A; R,G,B for the normal AOV; a single "Z" channel for the
  *         other AOVs); U8 converted to float.
  *   RAW:  the pixel rows as they are.
@@ -35,6 +36,17 @@ fc_code fc_encode_image(const fc_image *img, fc_image_format format, uint32_t qu
  * at level 0). Other formats ignore it. FC_ERR_USAGE above 9. */
 fc_code fc_encode_image_png_level(const fc_image *img, fc_image_format format, uint32_t quality,
                                   uint32_t png_compression, fc_buf *out, fc_error *err);
+
+/* How to encode, beyond the format: the choices a request or the daemon makes. */
+typedef struct fc_encode_options {
+    uint32_t quality;                     /* JPEG 1..100 */
+    uint32_t png_compression;             /* PNG's zlib level 0..9 */
+    fc_jpeg_subsampling jpeg_subsampling; /* JPEG chroma: 4:4:4 or 4:2:0 (libjpeg-turbo's 2x2 luma blocks) */
+} fc_encode_options;
+
+/* fc_encode_image with every choice explicit. FC_ERR_USAGE for a choice out of range. */
+fc_code fc_encode_image_with(const fc_image *img, fc_image_format format, const fc_encode_options *options,
+                             fc_buf *out, fc_error *err);
 
 #ifdef __cplusplus
 }

@@ -148,7 +148,8 @@ static void run_radius_reason(hx_env *env)
 enum { KEY_RADIUS = 1, KEY_SMOOTHING, KEY_ITERATIONS, KEY_COLOR, KEY_ABSORPTION, KEY_IOR, KEY_FILTER_RADIUS,
        KEY_SMOOTH_SCALE, KEY_REFRACTION, KEY_SPECULAR, KEY_SHININESS, KEY_THICKNESS_SCALE, KEY_THICKNESS_BLUR,
        KEY_NOISE, KEY_FOAM, KEY_FOAM_TAU, KEY_FOAM_DECAY, KEY_DENSITY_THRESHOLD,
-       KEY_KERNEL, KEY_SHADOW, KEY_EXPOSURE, KEY_COLOR_BY, KEY_COLORMAP, KEY_COLOR_RANGE };
+       KEY_KERNEL, KEY_SHADOW, KEY_EXPOSURE, KEY_COLOR_BY, KEY_COLORMAP, KEY_COLOR_RANGE,
+       KEY_RESERVED_FIRST = 25, KEY_RESERVED_LAST = 31, KEY_JPEG_SUBSAMPLING = 32 };
 
 typedef struct settings_row {
     const char *name;
@@ -210,6 +211,12 @@ static const settings_row settings_rows[] = {
      FC_ERR_INVALID_VALUE},
     {"color_range with 1 word", KEY_COLOR_RANGE, 1, {0}, FC_ERR_MALFORMED},
     {"color_range with 3 words", KEY_COLOR_RANGE, 3, {0, 0x3f800000u, 0}, FC_ERR_MALFORMED},
+    {"jpeg_subsampling 2", KEY_JPEG_SUBSAMPLING, 1, {2}, FC_ERR_INVALID_VALUE},
+    {"jpeg_subsampling 0xFFFFFFFF", KEY_JPEG_SUBSAMPLING, 1, {0xffffffffu}, FC_ERR_INVALID_VALUE},
+    {"jpeg_subsampling with 2 words", KEY_JPEG_SUBSAMPLING, 2, {1, 0}, FC_ERR_MALFORMED},
+    {"reserved key 25", KEY_RESERVED_FIRST, 1, {0}, FC_ERR_INVALID_VALUE},
+    {"reserved key 31", KEY_RESERVED_LAST, 1, {0}, FC_ERR_INVALID_VALUE},
+    {"key 33 after the table", KEY_JPEG_SUBSAMPLING + 1, 1, {0}, FC_ERR_INVALID_VALUE},
     {"unknown setting key 25", 25, 1, {0}, FC_ERR_INVALID_VALUE},
     {"unknown setting key 65535", 0xffff, 1, {0}, FC_ERR_INVALID_VALUE},
     {"ior with 2 words", KEY_IOR, 2, {0x3fa00000u, 0}, FC_ERR_MALFORMED},

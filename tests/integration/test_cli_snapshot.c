@@ -101,6 +101,27 @@ static void check_magic(const char *path, const uint8_t *magic, size_t n)
     free(data);
 }
 
+/* The luma component's sampling factors (H << 4 | V) in the file's first SOF0
+ * frame header, read from its bytes; 0 when there is none. 0x11: 4:4:4, 0x22: 4:2:0. */
+static int jpeg_luma_sampling(const char *path)
+{
+    size_t size;
+    uint8_t *data = read_whole_file(path, &size);
+    int factors = 0;
+    size_t at = 2;
+    while (data && at + 4 <= size && data[at] == 0xFF) {
+        if (data[at + 1] == 0xC0 && at + 4 + 8 <= size) {
+            factors = data[at + 4 + 7];   /* precision, height, width, components, then component 1: id, HV */
+            break;
+        }
+        if (data[at + 1] == 0xDA)
+            break;
+        at += 2 + ((size_t)data[at + 2] << 8 | data[at + 3]);
+    }
+    free(data);
+    return factors;
+}
+
 /* ---- the tests ---- */
 
 static void test_help_and_version(test_env *env)
@@ -197,6 +218,13 @@ static void test_jpeg_and_exr_magic(test_env *env)
                                         "--server", env->server, "--size", "64x48", "--quality", "80", NULL });
     CHECK_MSG(r.status == 0, "exit %d: %s", r.status, r.err);
     check_magic(scratch(env, "ball.jpg"), (const uint8_t[]){ 0xff, 0xd8, 0xff }, 3);
+    CHECK_MSG(jpeg_luma_sampling(scratch(env, "ball.jpg")) == 0x11, "default JPEG is not 4:4:4");
+    /* Settings key 32 through the daemon: the file the server encoded says 4:2:0. */
+    run(env, &r, (const char *const[]){ "snapshot", scratch(env, "ball.f32"), "-o", scratch(env, "ball420.jpg"),
+                                        "--server", env->server, "--size", "64x48", "--jpeg-subsampling", "420",
+                                        NULL });
+    CHECK_MSG(r.status == 0, "exit %d: %s", r.status, r.err);
+    CHECK_MSG(jpeg_luma_sampling(scratch(env, "ball420.jpg")) == 0x22, "--jpeg-subsampling 420 is not 4:2:0");
     run(env, &r, (const char *const[]){ "snapshot", scratch(env, "ball.f32"), "-o", scratch(env, "ball.exr"),
                                         "--server", env->server, "--size", "64x48", "--smoothing", "none", NULL });
     CHECK_MSG(r.status == 0, "exit %d: %s", r.status, r.err);
@@ -280,6 +308,9 @@ static void test_usage_errors(test_env *env)
     expect_exit(env, 2, (const char *const[]){ "snapshot", ball, "-o", png, "--fov", "180", NULL });
     expect_exit(env, 2, (const char *const[]){ "snapshot", ball, "-o", png, "--server", "localhost:http", NULL });
     expect_exit(env, 2, (const char *const[]){ "snapshot", ball, NULL });
+    expect_exit(env, 2, (const char *const[]){ "snapshot", ball, "-o", png, "--jpeg-subsampling", "420", NULL });
+    expect_exit(env, 2, (const char *const[]){ "snapshot", ball, "-o", scratch(env, "never.jpg"),
+                                               "--jpeg-subsampling", "422", NULL });
     expect_exit(env, 2, (const char *const[]){ "frobnicate", NULL });
     CHECK(access(png, F_OK) != 0);
 }
@@ -328,7 +359,8 @@ static void test_protocol_failure(test_env *env)
 static void remove_scratch(test_env *env)
 {
     const char *names[] = { "ball.f32", "ball.ply", "corners.f32", "broken.ply", "ball.png", "empty.png",
-                            "auto.png", "ball.jpg", "ball.exr", "depth.exr", "radii.ply", "radii.exr" };
+                            "auto.png", "ball.jpg", "ball420.jpg", "ball.exr", "depth.exr", "radii.ply",
+                            "radii.exr" };
     for (size_t i = 0; i < sizeof names / sizeof names[0]; i++)
         unlink(scratch(env, names[i]));
     rmdir(env->dir);

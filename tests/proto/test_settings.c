@@ -3,6 +3,7 @@
  * every SETTINGS key (PROTOCOL.md's table) against hand-encoded bytes. */
 #include <float.h>
 #include <math.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -105,6 +106,7 @@ static void expect_exposure(fc_settings *s) { s->exposure = -1.5f; }
 static void expect_color_by(fc_settings *s) { s->color_by = FC_COLOR_BY_DENSITY; }
 static void expect_colormap(fc_settings *s) { s->colormap = FC_COLORMAP_TURBO; }
 static void expect_color_range(fc_settings *s) { memcpy(s->color_range, (float[2]){-2.0f, 0.5f}, 8); }
+static void expect_jpeg_subsampling(fc_settings *s) { s->jpeg_subsampling = FC_JPEG_SUBSAMPLING_YUV420; }
 
 static const key_case key_cases[] = {
     {1, 1, {0x3E000000u}, expect_radius},                             /* 0.125f */
@@ -131,6 +133,7 @@ static const key_case key_cases[] = {
     {22, 1, {2}, expect_color_by},
     {23, 1, {6}, expect_colormap},
     {24, 2, {0xC0000000u, 0x3F000000u}, expect_color_range},          /* -2, 0.5 */
+    {32, 1, {1}, expect_jpeg_subsampling},                            /* 25-31 reserved */
 };
 #define KEY_COUNT (sizeof key_cases / sizeof key_cases[0])
 
@@ -162,8 +165,8 @@ static void test_encoder_layout(void)
     fc_buf_init(&b);
     fc_error err;
     CHECK_CODE(fc_wire_write_settings(&b, 9, &s, &err), FC_OK);
-    /* 29 words: two colours of 3, twenty-one of 1, a range of 2 */
-    const size_t payload_size = 4 + KEY_COUNT * 4 + 4 * 29;
+    /* 30 words: two colours of 3, twenty-two of 1, a range of 2 */
+    const size_t payload_size = 4 + KEY_COUNT * 4 + 4 * 30;
     CHECK_MSG(b.len == FC_WIRE_HEADER_SIZE + payload_size, "%zu bytes", b.len);
     if (b.len != FC_WIRE_HEADER_SIZE + payload_size) {
         fc_buf_free(&b);
@@ -248,6 +251,8 @@ static const domain_case rejected[] = {
     {23, 7, "colormap"},
     {24, 0x7FC00000u, "color_range"},        /* NaN, 0 */
     {24, 0xFF800000u, "color_range"},        /* -inf, 0 */
+    {32, 2, "jpeg_subsampling"},
+    {32, 0xFFFFFFFFu, "jpeg_subsampling"},
 };
 
 /* The entry for case c: colours carry the value in their first word. */
@@ -376,12 +381,19 @@ static void test_color_range_domain(void)
 static void test_unknown_key_after_the_table(void)
 {
     const uint32_t zero = 0;
-    payload p = one_entry(25, &zero, 1);
     fc_settings s;
     fc_settings_default(&s);
     fc_error err;
-    CHECK_CODE(read_payload(&p, &s, &err), FC_ERR_INVALID_VALUE);
-    CHECK_MSG(strstr(err.message, "25") != NULL, "\"%s\" does not name key 25", err.message);
+    /* The reserved numbers between the defined keys, and those after the last, are unknown. */
+    static const uint16_t unknown[] = {25, 31, 33, 63, 64, 65535};
+    for (size_t i = 0; i < sizeof unknown / sizeof unknown[0]; i++) {
+        payload u = one_entry(unknown[i], &zero, 1);
+        CHECK_CODE(read_payload(&u, &s, &err), FC_ERR_INVALID_VALUE);
+        char key[8];
+        snprintf(key, sizeof key, "%u", unknown[i]);
+        CHECK_MSG(strstr(err.message, key) != NULL, "\"%s\" does not name key %s", err.message, key);
+    }
+    payload p;
     /* A scale is one word: two is a layout error, not a domain error. */
     const uint32_t two_words[2] = {f32_bits(1.0f), f32_bits(1.0f)};
     p = one_entry(8, two_words, 2);

@@ -64,10 +64,10 @@ static void encode_job(const fc_encoder_pool *pool, fc_render_job *job, fc_buf *
     double start = fc_monotonic_ms();
     job->stage_ms[FC_STAGE_QUEUE] += (float)(start - job->rendered_ms);
     fc_buf_reset(encoded);
+    fc_encode_options options = {job->request.quality, pool->png_compression, job->settings.jpeg_subsampling};
     fc_code code = job->request.format == FC_FORMAT_H264
                        ? encode_h264(job, encoded)
-                       : fc_encode_image_png_level(&job->image, job->request.format, job->request.quality,
-                                                   pool->png_compression, encoded, &job->error);
+                       : fc_encode_image_with(&job->image, job->request.format, &options, encoded, &job->error);
     if (code != FC_OK)
         return;
     double end = fc_monotonic_ms();

@@ -14,7 +14,7 @@
 
 /* Every field of fc_settings: a key the codec forgets to carry shows up here.
  * The size check makes a field added later fail the build until it is compared. */
-_Static_assert(sizeof(fc_settings) == 29 * 4, "fc_settings changed: compare its new fields in settings_equal");
+_Static_assert(sizeof(fc_settings) == 30 * 4, "fc_settings changed: compare its new fields in settings_equal");
 static bool settings_equal(const fc_settings *a, const fc_settings *b)
 {
     bool equal = a->radius == b->radius && a->smoothing == b->smoothing && a->iterations == b->iterations &&
@@ -25,7 +25,8 @@ static bool settings_equal(const fc_settings *a, const fc_settings *b)
                  a->foam_decay == b->foam_decay && a->density_threshold == b->density_threshold &&
                  a->kernel == b->kernel && a->shadow == b->shadow && a->exposure == b->exposure &&
                  a->color_by == b->color_by && a->colormap == b->colormap &&
-                 a->color_range[0] == b->color_range[0] && a->color_range[1] == b->color_range[1];
+                 a->color_range[0] == b->color_range[0] && a->color_range[1] == b->color_range[1] &&
+                 a->jpeg_subsampling == b->jpeg_subsampling;
     for (int c = 0; c < 3; c++)
         equal = equal && a->fluid_color[c] == b->fluid_color[c] && a->absorption[c] == b->absorption[c];
     return equal;
