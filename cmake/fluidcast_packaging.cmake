@@ -32,8 +32,10 @@ set(CPACK_DEBIAN_PACKAGE_SHLIBDEPS ON)
 set(CPACK_DEBIAN_PACKAGE_GENERATE_SHLIBS ON)
 # libfluidcast.so.0, which fluidcast needs, is in this package rather than on the system.
 set(CPACK_DEBIAN_PACKAGE_SHLIBDEPS_PRIVATE_DIRS ${CMAKE_BINARY_DIR}/lib)
-# libepoxy opens libEGL.so.1 at run time (dlopen), so dpkg-shlibdeps cannot see it.
-set(CPACK_DEBIAN_PACKAGE_DEPENDS "libegl1")
+# libepoxy opens libEGL.so.1 and the GL library, libOpenGL.so.0 (else libGL.so.1),
+# at run time (dlopen), so dpkg-shlibdeps sees neither; without the GL one
+# fluidcastd aborts at start (found by the container test on a minimal Debian).
+set(CPACK_DEBIAN_PACKAGE_DEPENDS "libegl1, libopengl0 | libgl1")
 # EGL finds Mesa (llvmpipe, or a GPU's driver) through libglvnd's vendor files.
 # fluidcast snapshot --legend draws its text with DejaVu Sans (FC_LEGEND_FONT, client/cli).
 set(CPACK_DEBIAN_PACKAGE_RECOMMENDS "libegl-mesa0, libgl1-mesa-dri, fonts-dejavu-core")

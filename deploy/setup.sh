@@ -42,6 +42,10 @@ PACKAGES=(
   slurm-wlm munge iproute2
   # deploy/kubernetes/validate.cjs runs under Node.js (its npm packages: below)
   nodejs
+  # the container image and the .deb on a fresh Debian 12 (ctest -L container): Debian's
+  # docker engine (dockerd, containerd, runc; deploy/container/engine.sh starts it) and
+  # debootstrap for the base image (deploy/container/make_base.sh)
+  docker.io debootstrap
 )
 
 # The peer benchmark (bench/run_bench.sh, bench/peer/compare_images.sh) also needs VTK and a

@@ -15,7 +15,10 @@ status=0
 # in CI (CI=true) a cluster that does not start fails the run.
 slurm_dir=$(mktemp -d /tmp/fc-slurm-cluster-XXXXXX)
 slurm_cluster=$PWD/deploy/slurm/test-cluster.sh
-trap '"$slurm_cluster" stop "$slurm_dir"; rm -rf "$slurm_dir"' EXIT
+# The container tests' engine (deploy/container/engine.sh), below; both stopped on exit.
+ENGINE_RUN=""
+stop_engine() { [ -z "$ENGINE_RUN" ] || deploy/container/engine.sh stop "$ENGINE_RUN" || true; ENGINE_RUN=""; }
+trap 'stop_engine; "$slurm_cluster" stop "$slurm_dir"; rm -rf "$slurm_dir"' EXIT
 if "$slurm_cluster" start "$slurm_dir"; then
   export SLURM_CONF=$slurm_dir/slurm.conf
 else
@@ -23,7 +26,19 @@ else
   if [ "${CI:-}" = true ]; then status=1; fi
 fi
 
+# The container tests' engine (deploy/container/engine.sh): Debian's dockerd on a
+# socket of its own, its images kept in build/container/engine for reruns;
+# stopped by its PID after the suite, whatever the suite's result.
+if engine=$(deploy/container/engine.sh start build/container/engine); then
+    eval "$engine"
+    ENGINE_RUN=$FC_ENGINE_RUN
+else
+    echo "test: the container engine did not start: the container tests will fail (see above)"
+fi
+# CI runs the container tests: a missing engine fails them instead of skipping them.
+export FC_CONTAINER_REQUIRED=1
 (cd build && ctest --output-on-failure -j "$(nproc)" --timeout 900) || status=1
+stop_engine
 
 echo "test: sanitizer suite (build-asan, FC_SANITIZE=address,undefined)"
 cmake -S . -B build-asan -DCMAKE_BUILD_TYPE=RelWithDebInfo -DFC_SANITIZE=address,undefined > /dev/null

@@ -25,6 +25,7 @@ struct fc_gl_context {
     char egl_vendor[128];
     char renderer[256];
     char version[256];
+    char fallback[320];     /* why --gpu auto took the software platform; "" otherwise */
 };
 
 fc_code fc_gpu_choice_parse(const char *text, fc_gpu_choice *out, fc_error *err)
@@ -210,21 +211,37 @@ static fc_code create_surfaceless(fc_gl_context *ctx, fc_error *err)
     return create_on_display(display, tried, ctx, err);
 }
 
+/* Why auto found no hardware device to render on, for the operator: no
+ * enumeration at all, only software devices, or the first hardware device's
+ * failure (a device the driver lists but the container's cgroup hides fails here). */
+static void describe_fallback(char *out, size_t size, EGLint count, EGLint hardware, const fc_error *device_err)
+{
+    if (count == 0)
+        snprintf(out, size, "no GPU EGL device: EGL enumerates no devices (no EGL_EXT_device_enumeration)");
+    else if (hardware == 0)
+        snprintf(out, size, "no GPU EGL device: %d EGL device(s), all software", (int)count);
+    else
+        snprintf(out, size, "no GPU EGL device usable: %s", device_err->message);
+}
+
 /* The first hardware device that yields a context; else the surfaceless
- * platform. When both fail, the message names both attempts. */
+ * platform, recording why in ctx->fallback. When both fail, the message
+ * names both attempts. */
 static fc_code create_auto(fc_gl_context *ctx, fc_error *err)
 {
     EGLDeviceEXT devices[MAX_EGL_DEVICES];
-    EGLint count = 0;
+    EGLint count = 0, hardware = 0;
     query_devices(devices, &count);
     fc_error device_err = {FC_OK, "no hardware EGL device"};
     for (EGLint i = 0; i < count; i++) {
         if (is_software_device(devices[i]))
             continue;
+        hardware++;
         if (create_on_device(devices[i], (int)i, ctx, &device_err) == FC_OK)
             return FC_OK;
         break;
     }
+    describe_fallback(ctx->fallback, sizeof ctx->fallback, count, hardware, &device_err);
     fc_error software_err;
     if (create_surfaceless(ctx, &software_err) == FC_OK)
         return FC_OK;
@@ -322,6 +339,11 @@ const char *fc_gl_context_renderer(const fc_gl_context *ctx)
 const char *fc_gl_context_version(const fc_gl_context *ctx)
 {
     return ctx->version;
+}
+
+const char *fc_gl_context_fallback(const fc_gl_context *ctx)
+{
+    return ctx->fallback;
 }
 
 bool fc_gl_context_robust(const fc_gl_context *ctx)

@@ -35,6 +35,11 @@ const char *fc_gl_context_egl_vendor(const fc_gl_context *ctx);
 const char *fc_gl_context_renderer(const fc_gl_context *ctx);   /* GL_RENDERER */
 const char *fc_gl_context_version(const fc_gl_context *ctx);    /* GL_VERSION */
 
+/* Why FC_GPU_AUTO fell back to Mesa's surfaceless platform (llvmpipe), e.g.
+ * "no GPU EGL device: 1 EGL device(s), all software"; "" when it did not
+ * (a hardware device, or FC_GPU_SOFTWARE / FC_GPU_INDEX asked for). */
+const char *fc_gl_context_fallback(const fc_gl_context *ctx);
+
 /* Whether the context was created robust, with reset notification. */
 bool fc_gl_context_robust(const fc_gl_context *ctx);
 

@@ -32,6 +32,8 @@ static void test_software_context(void)
               "version %s", fc_gl_context_version(ctx));
     CHECK_MSG(strstr(fc_gl_context_version(ctx), "Core") != NULL, "version %s", fc_gl_context_version(ctx));
     CHECK(strlen(fc_gl_context_egl_vendor(ctx)) > 0);
+    CHECK_MSG(fc_gl_context_fallback(ctx)[0] == '\0', "software asked for, yet a fallback: %s",
+              fc_gl_context_fallback(ctx));
     CHECK_CODE(fc_gl_context_make_current(ctx, &err), FC_OK);
     fc_gl_context_destroy(ctx);
 }
@@ -57,15 +59,22 @@ static void test_robust_context(void)
 }
 
 /* AUTO takes a hardware device when there is one and software otherwise:
- * either way it yields a 4.5 core context. */
+ * either way it yields a 4.5 core context, and it says why when it took
+ * llvmpipe (the daemon logs that). */
 static void test_auto_context(void)
 {
     fc_gpu_choice automatic = {FC_GPU_AUTO, 0};
     fc_gl_context *ctx = NULL;
     fc_error err = {0};
     CHECK_CODE(fc_gl_context_create(&automatic, &ctx, &err), FC_OK);
-    if (ctx)
+    if (ctx) {
         CHECK_MSG(strstr(fc_gl_context_version(ctx), "Core") != NULL, "version %s", fc_gl_context_version(ctx));
+        const char *fallback = fc_gl_context_fallback(ctx);
+        if (strstr(fc_gl_context_renderer(ctx), "llvmpipe"))
+            CHECK_MSG(strncmp(fallback, "no GPU EGL device", 17) == 0, "llvmpipe, and the reason is '%s'", fallback);
+        else
+            CHECK_MSG(fallback[0] == '\0', "%s, yet a fallback: %s", fc_gl_context_renderer(ctx), fallback);
+    }
     fc_gl_context_destroy(ctx);
 }
 

@@ -32,9 +32,23 @@ static fc_code create_pipeline(fc_gpu_state *g, fc_error *err)
     return fc_pipeline_create(&config, &g->pipeline, err);
 }
 
+/* Loud, with the likely causes: an operator who meant to render on a GPU
+ * (--gpu auto) is rendering on the CPU, an order of magnitude slower. */
+static void log_fallback(const fc_gpu_state *g)
+{
+    fc_log_write(g->log, FC_LOG_WARN,
+                 "--gpu auto: %s: rendering with Mesa's llvmpipe (software, on the CPU). Likely causes: no GPU "
+                 "driver; in a container, no NVIDIA container toolkit (--gpus all / --runtime nvidia) or "
+                 "NVIDIA_DRIVER_CAPABILITIES without 'graphics'; /dev/dri/renderD* not readable by this user "
+                 "(groups render, video). --gpu software silences this.",
+                 fc_gl_context_fallback(g->gl));
+}
+
 static fc_code create_all(fc_gpu_state *g, fc_error *err)
 {
     fc_code code = fc_gl_context_create(&g->choice, &g->gl, err);
+    if (code == FC_OK && fc_gl_context_fallback(g->gl)[0] != '\0')
+        log_fallback(g);
     if (code == FC_OK)
         code = create_pipeline(g, err);
     if (code != FC_OK)
