@@ -6,6 +6,8 @@ set -euo pipefail
 PACKAGES=(
   # toolchain
   build-essential cmake pkg-config git
+  # cpack -G DEB (tests/install, tests/container): dpkg-shlibdeps runs file(1)
+  file
   # GL through EGL with no display, software rasterizer (llvmpipe) where there is no GPU
   libepoxy-dev libegl-dev libgl-dev libegl-mesa0 libgl1-mesa-dri
   # image encoding

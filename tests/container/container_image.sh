@@ -12,6 +12,9 @@ require_engine
 image_names "$BUILD"
 ls "$WORK"/context/deb/fluidcast_*.deb > /dev/null || fail "no .deb in $WORK/context/deb (container.deb)"
 
+# The image this tag named before, removed once replaced (each .deb makes a new
+# package layer: reruns would pile up unnamed images of about 1 GB).
+previous=$("$DOCKER" image inspect -f '{{.Id}}' "$RUNTIME_IMAGE" 2> /dev/null || true)
 step "build $RUNTIME_IMAGE (BASE=$BASE_IMAGE, DEB_FROM=prebuilt)"
 DOCKER_BUILDKIT=${DOCKER_BUILDKIT:-1} "$DOCKER" build --network host -f "$SRC/deploy/container/Containerfile" \
     --build-arg BASE="$BASE_IMAGE" --build-arg DEB_FROM=prebuilt -t "$RUNTIME_IMAGE" "$WORK/context" \
@@ -19,6 +22,11 @@ DOCKER_BUILDKIT=${DOCKER_BUILDKIT:-1} "$DOCKER" build --network host -f "$SRC/de
 grep -E '^#[0-9]+ (\[|DONE)' "$WORK/image-build.log" | tail -20 || true
 if matches -E 'build [0-9]+/[0-9]+\] RUN cmake' "$WORK/image-build.log"; then
     fail "the build stage ran although DEB_FROM=prebuilt (no BuildKit?)"
+fi
+
+current=$("$DOCKER" image inspect -f '{{.Id}}' "$RUNTIME_IMAGE")
+if [ -n "$previous" ] && [ "$previous" != "$current" ]; then
+    "$DOCKER" image rm "$previous" > /dev/null 2>&1 || true
 fi
 
 step "what the image declares"
