@@ -5,7 +5,16 @@
 load_average() { cut -d' ' -f1-3 /proc/loadavg; }
 
 # Builds the named targets (Release) in $BUILD_DIR; the build log only on failure.
+# NO_BUILD=1 uses the programs already there (a tree built elsewhere and carried to
+# the machine, whose paths may differ: bench/gpu_check.sh), failing if one is missing.
 build_targets() {
+    if [ "${NO_BUILD:-0}" = 1 ]; then
+        local program
+        for program in "$@"; do
+            [ -x "$BUILD_DIR/bin/$program" ] || { log "NO_BUILD=1 but $BUILD_DIR/bin/$program is missing"; exit 1; }
+        done
+        return 0
+    fi
     log "building $* in $BUILD_DIR"
     cmake -S "$ROOT" -B "$BUILD_DIR" -DCMAKE_BUILD_TYPE=Release >"$WORK/cmake.log" 2>&1 ||
         { cat "$WORK/cmake.log" >&2; exit 1; }

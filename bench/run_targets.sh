@@ -15,7 +15,8 @@
 # the report shows how far a CPU renderer is from them. Builds fluidcast-bench,
 # fluidcast-e2e-bench and fluidcastd (Release, in $BUILD_DIR, default build-bench).
 #
-# Environment: BUILD_DIR; GPU (auto or software); FRAMES (timed frames for 1M particles,
+# Environment: BUILD_DIR; NO_BUILD=1 (the programs in BUILD_DIR as built, nothing rebuilt);
+# GPU (auto or software); FRAMES (timed frames for 1M particles,
 # default 5), LARGE_FRAMES (for 16M, default 3), STREAM_SECONDS (default 10), STEP_TIMEOUT
 # (seconds one step may take, default 600). On 2 cores with llvmpipe it takes about two
 # minutes.

@@ -11,12 +11,28 @@
 
 static const double PI = 3.14159265358979323846;
 
+bool fixture_gpu_choice(fc_gpu_choice *choice)
+{
+    const char *wanted = getenv("FC_TEST_GPU");
+    *choice = (fc_gpu_choice){FC_GPU_SOFTWARE, 0};
+    if (!wanted || !*wanted)
+        return true;
+    fc_error err = {0};
+    if (fc_gpu_choice_parse(wanted, choice, &err) != FC_OK) {
+        fprintf(stderr, "FC_TEST_GPU=%s: %s\n", wanted, err.message);
+        return false;
+    }
+    return true;
+}
+
 bool fixture_open(render_fixture *f)
 {
     *f = (render_fixture){0};
-    fc_gpu_choice software = {FC_GPU_SOFTWARE, 0};
+    fc_gpu_choice gpu;
     fc_error err = {0};
-    if (fc_gl_context_create(&software, &f->gl, &err) != FC_OK) {
+    if (!fixture_gpu_choice(&gpu))
+        return false;
+    if (fc_gl_context_create(&gpu, &f->gl, &err) != FC_OK) {
         fprintf(stderr, "no GL context: %s\n", err.message);
         return false;
     }

@@ -20,8 +20,15 @@ typedef struct render_fixture {
     fc_splat_method splat;   /* forced on the pipeline; FC_SPLAT_AUTO: not forced */
 } render_fixture;
 
-/* A software (llvmpipe) context and a pipeline with built-in shaders; false,
- * after printing why, when either fails. */
+/* The device the render tests run on: FC_TEST_GPU (auto, software or an EGL
+ * device index, as fluidcastd --gpu takes) or, unset, Mesa's llvmpipe, which
+ * every machine has. bench/gpu_check.sh sets it to run the suite on a GPU.
+ * False (with the reason on stderr) for a value fc_gpu_choice_parse refuses. */
+bool fixture_gpu_choice(fc_gpu_choice *choice);
+
+/* A context on fixture_gpu_choice's device (llvmpipe unless FC_TEST_GPU says
+ * otherwise) and a pipeline with built-in shaders; false, after printing why,
+ * when either fails. */
 bool fixture_open(render_fixture *f);
 void fixture_close(render_fixture *f);
 

@@ -15,9 +15,11 @@
 bool smoothing_open(smoothing_fixture *sf)
 {
     *sf = (smoothing_fixture){0};
-    fc_gpu_choice software = {FC_GPU_SOFTWARE, 0};
+    fc_gpu_choice gpu;
     fc_error err = {0};
-    if (fc_gl_context_create(&software, &sf->gl, &err) != FC_OK) {
+    if (!fixture_gpu_choice(&gpu))
+        return false;
+    if (fc_gl_context_create(&gpu, &sf->gl, &err) != FC_OK) {
         fprintf(stderr, "no GL context: %s\n", err.message);
         return false;
     }
