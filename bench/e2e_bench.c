@@ -32,7 +32,8 @@ static e2e_config *make_configs(const e2e_options *o, int *count)
         for (int s = 0; s < o->n_sizes; s++)
             for (int f = 0; f < o->n_formats; f++)
                 configs[n++] = (e2e_config){o->particles[p], o->sizes[s][0], o->sizes[s][1],
-                                            {o->formats[f], o->quality, FC_AOV_COLOR}, o->density};
+                                            {o->formats[f], o->quality, FC_AOV_COLOR}, o->density,
+                                            o->stream_subsampling};
     return configs;
 }
 

@@ -17,6 +17,7 @@ void e2e_options_default(e2e_options *o)
                        .formats = {FC_FORMAT_JPEG, FC_FORMAT_PNG},
                        .n_formats = 2,
                        .quality = 90,
+                       .stream_subsampling = FC_JPEG_SUBSAMPLING_YUV420,
                        .requests = 20,
                        .stream_seconds = 10.0};
 }
@@ -33,6 +34,8 @@ void e2e_options_print_usage(void)
            "  --size LIST            image sizes WxH (default 640x360,1280x720)\n"
            "  --format LIST          jpeg, png, exr, raw (default jpeg,png)\n"
            "  --quality Q            JPEG quality 1..100 (default 90)\n"
+           "  --stream-jpeg-subsampling 420|444\n"
+           "                         the streaming viewer's JPEG chroma (default 420, as fluidcast view)\n"
            "  --requests N           timed requests per configuration, 0 = skip (default 20)\n"
            "  --stream-seconds S     producer run per configuration, 0 = skip (default 10)\n"
            "  --push-fps F           producer rate, 0 = as fast as the server accepts (default 0)\n"
@@ -148,6 +151,13 @@ static fc_code apply_option(const char *name, const char *value, e2e_options *o,
     else if (strcmp(name, "--quality") == 0) {
         if ((code = parse_number(name, value, 1, 100, &v, err)) == FC_OK)
             o->quality = (uint32_t)v;
+    } else if (strcmp(name, "--stream-jpeg-subsampling") == 0) {
+        if (strcmp(value, "420") == 0)
+            o->stream_subsampling = FC_JPEG_SUBSAMPLING_YUV420;
+        else if (strcmp(value, "444") == 0)
+            o->stream_subsampling = FC_JPEG_SUBSAMPLING_YUV444;
+        else
+            return fc_error_set(err, FC_ERR_USAGE, "%s: '%s' is not 420 or 444", name, value);
     } else if (strcmp(name, "--requests") == 0) {
         if ((code = parse_number(name, value, 0, 1000000, &v, err)) == FC_OK)
             o->requests = (int)v;

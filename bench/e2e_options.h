@@ -22,6 +22,8 @@ typedef struct e2e_options {
     double stream_seconds;        /* producer run per configuration; 0 = no streaming part */
     double push_fps;              /* producer rate; 0 = as fast as the server accepts */
     int density;                  /* --density: frames carry a density per particle, as SPH codes send */
+    fc_jpeg_subsampling stream_subsampling; /* --stream-jpeg-subsampling: the viewer's JPEG chroma,
+                                               4:2:0 by default as fluidcast view asks */
 } e2e_options;
 
 /* Defaults: 16k,64k particles, 640x360,1280x720, JPEG q90 and PNG, 20

@@ -10,6 +10,7 @@ typedef struct e2e_config {
     uint32_t width, height;
     fc_render_request request;
     int density;             /* the frame carries densities */
+    fc_jpeg_subsampling stream_subsampling; /* the streaming viewer's JPEG chroma */
 } e2e_config;
 
 typedef struct e2e_scene {

@@ -137,8 +137,11 @@ static fc_code connect_viewer(const e2e_stream_plan *plan, const e2e_config *cfg
                               fc_client **viewer, fc_error *err)
 {
     fc_connect_options options = {.client_name = "e2e-bench viewer", .reply_timeout_ms = VIEWER_TIMEOUT_MS};
+    /* A viewer's stream asks for 4:2:0 JPEG as fluidcast view does (--stream-jpeg-subsampling). */
+    fc_settings settings = scene->settings;
+    settings.jpeg_subsampling = cfg->stream_subsampling;
     fc_code code = fc_client_connect(plan->address, &options, viewer, err);
-    if (code == FC_OK && (code = fc_client_set_settings(*viewer, &scene->settings, err)) == FC_OK &&
+    if (code == FC_OK && (code = fc_client_set_settings(*viewer, &settings, err)) == FC_OK &&
         (code = fc_client_set_camera(*viewer, &scene->camera, err)) == FC_OK)
         code = fc_client_subscribe(*viewer, plan->session, &cfg->request, cfg->width, cfg->height, NULL, err);
     return code;
