@@ -1,0 +1,143 @@
+#!/usr/bin/env bash
+# run_snapshot_vs_vtk.sh — issue 12's end-to-end target: a whole `fluidcast snapshot` to PNG
+# (process start to file written, against a fluidcastd already running) and fluidcast's
+# render alone (fluidcast-bench), each against VTK's vtkOpenGLFluidMapper render-only frame
+# (bench/peer/vtk_fluid_bench.py), on the same drop scene, camera, radius and image size, in
+# one run, interleaved (snapshot, render, VTK for each configuration and repetition).
+# Targets: VTK ms / snapshot ms >= 5 and VTK ms / render ms >= 10.
+#
+#   bench/run_snapshot_vs_vtk.sh > snapshot-vs-vtk.md
+#
+# Both rasterise on the same device: without $DISPLAY, VTK runs under xvfb-run with llvmpipe
+# and fluidcast --gpu software (as bench/run_bench.sh). fluidcast smooths with its
+# narrow-range filter at VTK 9.1's fixed 3 passes and 5-pixel radius.
+#
+# Environment: PARTICLES (default 16k,64k,1m), SIZES (default 1024x768,1920x1080), REPS
+# (repetitions per configuration, default 1; medians), FRAMES (timed frames per bench run,
+# default 2), BUILD_DIR (default build-bench), NO_BUILD=1 (use BUILD_DIR's programs as they are),
+# STEP_TIMEOUT (default 600).
+# Needs: python3-vtk9 python3-numpy xvfb xauth (deploy/setup.sh --bench).
+set -euo pipefail
+
+ROOT=$(cd "$(dirname "$0")/.." && pwd)
+BUILD_DIR=${BUILD_DIR:-$ROOT/build-bench}
+PARTICLES=${PARTICLES:-16k,64k,1m}
+SIZES=${SIZES:-1024x768,1920x1080}
+REPS=${REPS:-1}
+FRAMES=${FRAMES:-2}
+STEP_TIMEOUT=${STEP_TIMEOUT:-600}
+PEER_DIR=$ROOT/bench/peer
+VTK_PYTHON=/usr/bin/python3
+# The drop scene's camera (bench/scene.c, as vtk_fluid_bench.py)
+# shellcheck disable=SC2054  # the commas are inside values
+CAMERA=(--eye 2,-2.9,1.9 --target 0,0,0.25 --up z --fov 40)
+SMOOTHING=(--smoothing narrow --iterations 3 --filter-radius 5)
+
+WORK=$(mktemp -d)
+DAEMON_PID=""
+cleanup() {
+    [ -n "$DAEMON_PID" ] && kill "$DAEMON_PID" 2>/dev/null && wait "$DAEMON_PID" 2>/dev/null
+    rm -rf "$WORK"
+}
+trap cleanup EXIT
+
+log() { echo "run_snapshot_vs_vtk: $*" >&2; }
+. "$ROOT/bench/bench_lib.sh"
+
+if [ -n "${DISPLAY:-}" ]; then
+    GPU=auto
+    run_vtk() { timeout "$STEP_TIMEOUT" "$VTK_PYTHON" "$PEER_DIR/vtk_fluid_bench.py" "$@"; }
+else
+    GPU=software
+    run_vtk() { timeout "$STEP_TIMEOUT" xvfb-run -a env LIBGL_ALWAYS_SOFTWARE=1 "$VTK_PYTHON" "$PEER_DIR/vtk_fluid_bench.py" "$@"; }
+fi
+
+start_daemon() {
+    "$BUILD_DIR/bin/fluidcastd" --gpu "$GPU" --listen 127.0.0.1:0 --port-file "$WORK/port" >"$WORK/daemon.log" 2>&1 &
+    DAEMON_PID=$!
+    for _ in $(seq 100); do [ -s "$WORK/port" ] && return 0; sleep 0.1; done
+    log "fluidcastd did not start: $(cat "$WORK/daemon.log")"; exit 1
+}
+
+# The scene of one particle count, once; prints its radius.
+export_scene() {
+    local path=$WORK/scene_$1.f32
+    [ -f "$path.radius" ] || "$BUILD_DIR/bin/fluidcast-bench" --particles "$1" --write-scene "$path" |
+        awk '{ print $6 }' >"$path.radius"
+    cat "$path.radius"
+}
+
+now_ms() { echo $(( $(date +%s%N) / 1000000 )); }
+
+# One whole snapshot: milliseconds from before the process starts to after it exits (file written).
+snapshot_ms() {
+    local particles=$1 size=$2 radius=$3 start end
+    start=$(now_ms)
+    timeout "$STEP_TIMEOUT" "$BUILD_DIR/bin/fluidcast" snapshot "$WORK/scene_$particles.f32" -o "$WORK/snap.png" \
+        --server "127.0.0.1:$(cat "$WORK/port")" --size "$size" --radius "$radius" "${CAMERA[@]}" "${SMOOTHING[@]}" \
+        >>"$WORK/snapshot.log" 2>&1 || { echo ""; return; }
+    end=$(now_ms)
+    echo $((end - start))
+}
+
+render_ms() {
+    timeout "$STEP_TIMEOUT" "$BUILD_DIR/bin/fluidcast-bench" --gpu "$GPU" --encode none --frames "$FRAMES" \
+        --particles "$1" --size "$2" "${SMOOTHING[@]}" | tee -a "$WORK/bench.log" |
+        awk -F'|' '/^\| [0-9]/ { v = $15; gsub(/ /, "", v); print v; exit }'
+}
+
+vtk_ms() {
+    run_vtk --scene "$WORK/scene_$1.f32" --radius "$3" --size "$2" --frames "$FRAMES" | tee -a "$WORK/vtk.log" |
+        awk -F'|' '/^\| [0-9]/ { v = $7; gsub(/ /, "", v); print v; exit }'
+}
+
+median() { sort -g | awk '{ v[NR] = $1 } END { if (NR) print (NR % 2 ? v[(NR + 1) / 2] : (v[NR / 2] + v[NR / 2 + 1]) / 2) }'; }
+
+main() {
+    "$VTK_PYTHON" -c 'import numpy, vtkmodules.vtkRenderingOpenGL2' 2>/dev/null ||
+        { log "VTK or numpy missing: apt-get install python3-vtk9 python3-numpy"; exit 1; }
+    if [ "${NO_BUILD:-0}" = 1 ]; then   # a tree built already (any build type): its programs as they are
+        local program
+        for program in fluidcast-bench fluidcastd fluidcast; do
+            [ -x "$BUILD_DIR/bin/$program" ] || { log "NO_BUILD=1 but $BUILD_DIR/bin/$program is missing"; exit 1; }
+        done
+    else
+        build_targets fluidcast-bench fluidcastd fluidcast-cli
+    fi
+    start_daemon
+    local load_start date particles size radius rep
+    load_start=$(load_average)
+    date=$(date -u '+%Y-%m-%d %H:%M UTC')
+    : >"$WORK/rows"
+    for particles in ${PARTICLES//,/ }; do
+        radius=$(export_scene "$particles")
+        for size in ${SIZES//,/ }; do
+            : >"$WORK/s" ; : >"$WORK/r" ; : >"$WORK/v"
+            for rep in $(seq "$REPS"); do
+                log "$particles particles, $size, repetition $rep"
+                snapshot_ms "$particles" "$size" "$radius" >>"$WORK/s"
+                render_ms "$particles" "$size" >>"$WORK/r"
+                vtk_ms "$particles" "$size" "$radius" >>"$WORK/v"
+            done
+            echo "$(particle_count "$particles") $size $(median <"$WORK/s") $(median <"$WORK/r") $(median <"$WORK/v")" >>"$WORK/rows"
+        done
+    done
+    echo "## Whole snapshot and render alone against VTK's render-only frame (bench/run_snapshot_vs_vtk.sh)"
+    echo
+    machine_line
+    echo "- fluidcast: $(grep -m1 'GL_RENDERER' "$WORK/bench.log" || true)"
+    echo "- VTK $("$VTK_PYTHON" -c 'import vtkmodules; print(vtkmodules.__version__)'): $(head -n1 "$WORK/vtk.log")"
+    echo "- date: $date; git: $(git_revision)"
+    echo "- load average (1/5/15 min): start $load_start; end $(load_average)"
+    echo "- command: PARTICLES=$PARTICLES SIZES=$SIZES REPS=$REPS FRAMES=$FRAMES bench/run_snapshot_vs_vtk.sh" \
+         "(fluidcast --gpu $GPU; VTK on ${DISPLAY:-xvfb-run + LIBGL_ALWAYS_SOFTWARE=1}); narrow-range 3 passes, radius 5 px"
+    echo
+    echo "| particles | size | snapshot ms (whole) | render ms (fluidcast-bench) | VTK ms (render only) | VTK / snapshot (target >= 5) | VTK / render (target >= 10) |"
+    echo "|---|---|---|---|---|---|---|"
+    awk '{ s = $3 + 0; r = $4 + 0; v = $5 + 0
+           printf "| %s | %s | %s | %s | %s | %s | %s |\n", $1, $2, $3, $4, $5,
+                  (s > 0 && v > 0) ? sprintf("%.2f", v / s) : "–", (r > 0 && v > 0) ? sprintf("%.2f", v / r) : "–" }' "$WORK/rows"
+    log "done"
+}
+
+main
