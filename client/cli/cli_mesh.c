@@ -31,6 +31,12 @@ static fc_code parse_option(const char *text, fc_cli_mesh *m, bool *known, fc_er
         m->hide_near = true;
         return FC_OK;
     }
+    if (strncmp(text, "transforms=", 11) == 0) {
+        if (text[11] == '\0' || strlen(text + 11) >= sizeof m->transforms)
+            return fc_error_set(err, FC_ERR_USAGE, "--mesh: transforms needs a file");
+        snprintf(m->transforms, sizeof m->transforms, "%s", text + 11);
+        return FC_OK;
+    }
     if (strncmp(text, "opacity=", 8) == 0)
         return parse_unit("opacity", text + 8, &m->opacity, err);
     if (strncmp(text, "color=", 6) == 0) {
@@ -76,19 +82,84 @@ fc_code fc_cli_mesh_parse(const char *value, fc_cli_mesh *out, fc_error *err)
         if (!known) {
             if (strchr(colon + 1, '=') || strcmp(colon + 1, "hide_near") == 0)
                 return fc_error_set(err, FC_ERR_USAGE,
-                                    "--mesh: unknown option \"%s\" (color=R,G,B, opacity=X, hide-near)", colon + 1);
+                                    "--mesh: unknown option \"%s\" (color=R,G,B, opacity=X, hide-near, "
+                                    "transforms=FILE)", colon + 1);
             break;
         }
         *colon = '\0';
     }
     snprintf(out->path, sizeof out->path, "%s", text);
     out->per_frame = fc_is_frame_pattern(out->path);
+    if (out->per_frame && out->transforms[0])
+        return fc_error_set(err, FC_ERR_USAGE, "--mesh: a per-frame file (%s) takes no transforms file", out->path);
     if (!out->per_frame && strchr(out->path, '%'))
         return fc_error_set(err, FC_ERR_USAGE, "--mesh: %s is neither a file nor a pattern with one %%d", out->path);
     if (fc_mesh_format_from_path(out->path) == FC_MESH_FILE_UNKNOWN)
         return fc_error_set(err, FC_ERR_USAGE, "--mesh: %s is not a mesh file this command reads (.obj .stl .ply .vtk)",
                             out->path);
     return FC_OK;
+}
+
+/* The particles were shifted by the recentring's offset: a placement moves likewise (world - offset). */
+static void recentre(const fc_recentring *r, float transform[12])
+{
+    for (int k = 0; r && r->applied && k < 3; k++)
+        transform[4 * k + 3] = (float)((double)transform[4 * k + 3] - r->offset[k]);
+}
+
+/* The row of `frame` in a transforms file: "FRAME m00 m01 m02 m03 m10 ... m23" per
+ * line, '#' comments. *found false when the file has no such row. */
+static fc_code find_transform(const char *path, uint32_t frame, float transform[12], bool *found, fc_error *err)
+{
+    *found = false;
+    FILE *f = fopen(path, "r");
+    if (!f)
+        return fc_error_set(err, FC_ERR_IO, "--mesh transforms: cannot open %s", path);
+    char line[1024];
+    unsigned number = 0;
+    fc_code code = FC_OK;
+    while (code == FC_OK && !*found && fgets(line, sizeof line, f)) {
+        number++;
+        char *p = line + strspn(line, " \t");
+        if (*p == '#' || *p == '\n' || *p == '\r' || *p == '\0')
+            continue;
+        char *end;
+        double values[13];
+        int n = 0;
+        for (; n < 13; n++) {
+            values[n] = strtod(p, &end);
+            if (end == p)
+                break;
+            p = end;
+        }
+        p += strspn(p, " \t\r\n");
+        bool finite = true;
+        for (int k = 0; k < n; k++)
+            finite = finite && values[k] == values[k] && values[k] > -3e38 && values[k] < 3e38;
+        if (n != 13 || *p != '\0' || !finite || values[0] < 0 || values[0] != (double)(uint32_t)values[0])
+            code = fc_error_set(err, FC_ERR_PARSE, "%s: line %u: not \"FRAME\" and 12 finite numbers (a 3x4 matrix)",
+                                path, number);
+        else if ((uint32_t)values[0] == frame) {
+            for (int k = 0; k < 12; k++)
+                transform[k] = (float)values[k + 1];
+            *found = true;
+        }
+    }
+    fclose(f);
+    return code;
+}
+
+/* A static mesh with a transforms file goes where its row for `frame` says (no row: it stays). */
+static fc_code move_one(fc_client *client, const fc_cli_mesh *m, uint32_t id, uint32_t frame,
+                        const fc_recentring *recentring, fc_error *err)
+{
+    fc_mesh_transform entry = {.id = id};
+    bool found;
+    fc_code code = find_transform(m->transforms, frame, entry.transform, &found, err);
+    if (code != FC_OK || !found)
+        return code;
+    recentre(recentring, entry.transform);
+    return fc_client_move_meshes(client, &entry, 1, err);
 }
 
 static fc_code send_one(fc_client *client, const fc_cli_mesh *m, uint32_t id, const char *path,
@@ -98,10 +169,9 @@ static fc_code send_one(fc_client *client, const fc_cli_mesh *m, uint32_t id, co
     fc_code code = fc_read_mesh(path, &data, err);
     if (code != FC_OK)
         return code;
-    for (uint32_t i = 0; recentring && recentring->applied && i < data.vertex_count; i++)
-        fc_cli_recentre_point(recentring, data.vertices + 3 * (size_t)i);
     fc_mesh mesh;
     fc_mesh_defaults(&mesh);
+    recentre(recentring, mesh.transform);
     mesh.id = id;
     mesh.flags = m->hide_near ? FC_MESH_HIDE_NEAR : 0;
     mesh.vertex_count = data.vertex_count;
@@ -120,6 +190,12 @@ fc_code fc_cli_meshes_send(fc_client *client, const fc_cli_mesh *meshes, int cou
 {
     for (int i = 0; i < count; i++) {
         const fc_cli_mesh *m = &meshes[i];
+        if (frame && !m->per_frame && m->transforms[0]) {
+            fc_code code = move_one(client, m, (uint32_t)i + 1, *frame, recentring, err);
+            if (code != FC_OK)
+                return code;
+            continue;
+        }
         if (m->per_frame != (frame != NULL))
             continue;
         char path[FC_CLI_MESH_PATH_MAX];

@@ -574,7 +574,7 @@ static void print_shading_help(FILE *to, const fc_settings *d)
             "  --cubemap DIR           or a directory holding px, nx, py, ny, pz and nz\n"
             "                          .png/.jpg/.jpeg/.exr\n"
             "                          (scene images: at most 8192 pixels per side)\n"
-            "  --mesh FILE[:color=R,G,B][:opacity=X][:hide-near]\n"
+            "  --mesh FILE[:color=R,G,B][:opacity=X][:hide-near][:transforms=PLACEMENTS]\n"
             "                          a triangle mesh drawn with the fluid (repeatable, up\n"
             "                          to 16): .obj, .stl, .ply (with faces) or legacy .vtk\n"
             "                          POLYDATA; colour linear RGB 0..1 (default 0.8 grey);\n"
@@ -582,7 +582,8 @@ static void print_shading_help(FILE *to, const fc_settings *d)
             "                          1 is glass over it; hide-near leaves out the faces\n"
             "                          turned toward the camera (a tank's near walls). A\n"
             "                          FILE with %%d (box_%%04d.obj) is read per frame by\n"
-            "                          render, with the frame's number\n"
+            "                          render, with the frame's number; a static FILE moves\n"
+            "                          by PLACEMENTS, lines \"FRAME m00 .. m23\" (3x4 matrix)\n"
             "\n",
             (double)d->fluid_color[0], (double)d->fluid_color[1], (double)d->fluid_color[2],
             (double)d->absorption[0], (double)d->absorption[1], (double)d->absorption[2], (double)d->ior,

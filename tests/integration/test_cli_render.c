@@ -221,6 +221,59 @@ static void test_per_frame_mesh(const test_env *env)
     CHECK_MSG(r.status == 3 && strstr(r.err, "nobox_0000.obj"), "missing per-frame mesh: exit %d: %s", r.status, r.err);
 }
 
+/* --mesh FILE:transforms=PLACEMENTS: one static box about the origin, moved
+ * per frame by a 3x4 matrix: onto the ball in odd frames (x = its centre),
+ * far aside in even ones; the ball shows in even frames only. A placements
+ * line that is not a frame and 12 numbers is an input error naming the line. */
+static void test_mesh_transforms(const test_env *env)
+{
+    char box[PATH_CAP], placements[PATH_CAP], bad[PATH_CAP];
+    FILE *f = fopen(path_in(env, "in/rigid.obj", box), "w");
+    FILE *p = fopen(path_in(env, "in/rigid.txt", placements), "w");
+    FILE *b = fopen(path_in(env, "in/rigid_bad.txt", bad), "w");
+    CHECK(f && p && b);
+    if (!f || !p || !b) {
+        if (f)
+            fclose(f);
+        if (p)
+            fclose(p);
+        if (b)
+            fclose(b);
+        return;
+    }
+    const float lo[3] = {-0.25f, -0.25f, 0.05f}, hi[3] = {0.25f, 0.25f, 0.55f};
+    for (int c = 0; c < 8; c++)
+        fprintf(f, "v %g %g %g\n", (double)(c & 1 ? hi[0] : lo[0]), (double)(c & 2 ? hi[1] : lo[1]),
+                (double)(c & 4 ? hi[2] : lo[2]));
+    fputs("f 1 3 4 2\nf 5 6 8 7\nf 1 2 6 5\nf 3 7 8 4\nf 1 5 7 3\nf 2 4 8 6\n", f);
+    fputs("# frame, then the 3x4 matrix row by row\n", p);
+    for (int i = 0; i < FRAMES; i++)
+        fprintf(p, "%d 1 0 0 %g 0 1 0 0 0 0 1 0\n", i, i % 2 ? -0.5 + 0.2 * i : 10.0);
+    fputs("0 1 0 0 0 0 1 0\n", b);
+    CHECK(fclose(f) == 0 && fclose(p) == 0 && fclose(b) == 0);
+    char in[PATH_CAP], out[PATH_CAP], mesh[2 * PATH_CAP + 16];
+    cli_result r;
+    snprintf(mesh, sizeof mesh, "%s:transforms=%s", box, placements);
+    render(env, (const char *const[]){pattern_input(env, in), NULL}, path_in(env, "rigid/f_%04d.png", out),
+           (const char *const[]){"--mesh", mesh, NULL}, &r);
+    CHECK_MSG(r.status == 0, "render with placements: exit %d\n%s%s", r.status, r.out, r.err);
+    for (int i = 0; i < FRAMES && r.status == 0; i++) {
+        picture png;
+        if (!read_frame_png("rigid", env, i, &png)) {
+            CHECK_MSG(0, "rigid/f_%04d.png missing or undecodable", i);
+            continue;
+        }
+        uint32_t pixels;
+        fluid_centroid_x(png.rgb, png.width, png.height, &pixels);
+        CHECK_MSG(i % 2 ? pixels == 0 : pixels > 30, "frame %d with the box placed: %u fluid pixels", i, pixels);
+        free(png.rgb);
+    }
+    snprintf(mesh, sizeof mesh, "%s:transforms=%s", box, bad);
+    render(env, (const char *const[]){pattern_input(env, in), NULL}, path_in(env, "rigid_bad/f_%04d.png", out),
+           (const char *const[]){"--mesh", mesh, NULL}, &r);
+    CHECK_MSG(r.status == 3 && strstr(r.err, "rigid_bad.txt: line 1"), "bad placements: exit %d: %s", r.status, r.err);
+}
+
 /* The video has the PNGs' frames, in their order, within `min_psnr` dB. */
 static void check_video(const test_env *env, const char *name, const char *codec, const double centroid[FRAMES],
                         double min_psnr)
@@ -604,6 +657,7 @@ int main(void)
     test_interrupt(&env);
     test_orbit(&env);
     test_per_frame_mesh(&env);
+    test_mesh_transforms(&env);
     CHECK_CODE(fc_test_daemon_stop(&daemon, FC_TEST_DAEMON_STOP_TIMEOUT_MS, &err), FC_OK);
     if (getenv("FLUIDCAST_TEST_KEEP"))   /* to look at the images and videos */
         printf("kept %s\n", env.dir);
