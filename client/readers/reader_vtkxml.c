@@ -22,7 +22,8 @@
 #include "reader_fields.h"
 #include "reader_vtkxml_data.h"
 
-enum { VX_MAX_DEPTH = 64, VX_ARRAYS = 4, VX_NAME_MAX = 64 };
+/* VX_ARRAYS: one array per field group (positions, velocity, density, ids, radius). */
+enum { VX_MAX_DEPTH = 64, VX_ARRAYS = 5, VX_NAME_MAX = 64 };
 
 typedef enum vx_element {
     VX_OTHER,
@@ -211,6 +212,8 @@ static void on_data_array(vx_doc *d, vx_element parent, const XML_Char **attrs)
         return; /* Points holds one array */
     if (field == FC_FIELD_NONE)
         return;
+    if (d->array_count == VX_ARRAYS) /* unreachable while each group is taken once; never write past */
+        return vx_fail(d, FC_ERR_PARSE, "DataArray '%s': more than %d arrays", name ? name : "Points", VX_ARRAYS);
     vx_array *a = &d->arrays[d->array_count];
     snprintf(a->name, sizeof a->name, "%s", name ? name : "Points");
     a->first = field;
@@ -218,7 +221,7 @@ static void on_data_array(vx_doc *d, vx_element parent, const XML_Char **attrs)
         if (!fc_field_set_add(&d->fields, (fc_field)(field + k)))
             return vx_fail(d, FC_ERR_PARSE, "DataArray '%s' gives %s a second time", a->name, fc_field_name(field));
     }
-    d->array_count++; /* at most one per field group: fits VX_ARRAYS */
+    d->array_count++;
     describe_array(d, a, attrs);
     if (d->code == FC_OK && a->components != wanted)
         vx_fail(d, FC_ERR_PARSE, "DataArray '%s' has %llu components, %s needs %llu", a->name,

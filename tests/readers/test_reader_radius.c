@@ -2,7 +2,10 @@
  * (FRAME attribute bit 3): PLY and CSV "radius" or "pscale" columns, legacy VTK
  * and VTK XML point data arrays named radius or pscale (BGEO's pscale is in
  * test_reader_bgeo.c); a value that is not a usable radius (0, negative, beyond
- * 1e6) refused naming the particle; a second radius array refused. */
+ * 1e6) refused naming the particle; a second radius array refused; a VTK XML
+ * file with every array the reader maps (positions, velocity, density, ids,
+ * radius) read whole (the fuzzer found the fifth array written past the
+ * reader's table). */
 #include "reader_test_support.h"
 
 static const float RADII[3] = { 0.01f, 0.02f, 0.5f };
@@ -89,10 +92,36 @@ static void test_two_radius_columns(void)
     expect_text_failure(text, FC_FILE_CSV, "two.csv", "radius");
 }
 
+static void test_vtu_with_every_array(void)
+{
+    static const char text[] =
+        "<?xml version=\"1.0\"?>\n<VTKFile type=\"PolyData\" version=\"1.0\"><PolyData>"
+        "<Piece NumberOfPoints=\"3\"><Points><DataArray type=\"Float32\" NumberOfComponents=\"3\" "
+        "format=\"ascii\">1 2 3 4 5 6 7 8 9</DataArray></Points><PointData>"
+        "<DataArray type=\"Float32\" Name=\"velocity\" NumberOfComponents=\"3\" format=\"ascii\">"
+        "0 0 1 0 0 2 0 0 3</DataArray>"
+        "<DataArray type=\"Float64\" Name=\"density\" format=\"ascii\">1000 1001 1002</DataArray>"
+        "<DataArray type=\"Int64\" Name=\"id\" format=\"ascii\">7 8 9</DataArray>"
+        "<DataArray type=\"Float64\" Name=\"pscale\" format=\"ascii\">0.01 0.02 0.5</DataArray>"
+        "</PointData></Piece></PolyData></VTKFile>\n";
+    expect_radii(text, FC_FILE_VTK_XML, "all.vtp");
+    fc_frame frame;
+    fc_error err = { FC_OK, "" };
+    if (fc_read_particles_mem((const uint8_t *)text, strlen(text), FC_FILE_VTK_XML, "all.vtp", &frame, &err) != FC_OK)
+        return;
+    CHECK_MSG(fc_frame_attributes(&frame) == (FC_ATTR_DENSITY | FC_ATTR_VELOCITY | FC_ATTR_IDS | FC_ATTR_RADIUS),
+              "attributes 0x%x", fc_frame_attributes(&frame));
+    CHECK(frame.velocity && frame.velocity[8] == 3.0f);
+    CHECK(frame.density && frame.density[2] == 1002.0f);
+    CHECK(frame.ids && frame.ids[1] == 8);
+    fc_frame_free(&frame);
+}
+
 int main(void)
 {
     test_radius_columns();
     test_bad_radii();
     test_two_radius_columns();
+    test_vtu_with_every_array();
     return test_result();
 }
