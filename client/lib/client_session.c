@@ -124,6 +124,14 @@ fc_code fc_client_leave_session(fc_client *client, fc_error *err)
     code = fc_wire_write_session_leave(&client->tx, id, err);
     if (code == FC_OK)
         code = exchange(client, id, FC_MSG_SESSION_END, err);
+    if (code == FC_ERR_BAD_STATE && client->subscribed && client->stream_ended) {
+        /* The session ended while the leave was on its way: the server's SESSION_END came
+         * first, so it no longer counts us a member and refuses the leave. We are out either way. */
+        client->stream_ended = false;
+        if (err)
+            fc_error_clear(err);
+        code = FC_OK;
+    }
     if (code == FC_OK || !client->broken)
         client->subscribed = false;
     return code;

@@ -361,7 +361,8 @@ fc_code fc_client_request_keyframe(fc_client *client, fc_error *err);
 /* Leaves the session: a producer stops publishing (the session ends for its
  * viewers once its last producer has left or disconnected), a viewer stops
  * receiving images. Waits until the server confirms, so no image of the session
- * arrives after it. FC_ERR_BAD_STATE when the connection is in no session; an
+ * arrives after it. A viewer whose session ended before its leave reached the
+ * server has left too: FC_OK. FC_ERR_BAD_STATE when the connection is in no session; an
  * error the server reported for an earlier request of this client (e.g. a
  * chunk) is returned like fc_client_render does, after the confirmation. */
 fc_code fc_client_leave_session(fc_client *client, fc_error *err);

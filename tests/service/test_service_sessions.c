@@ -4,7 +4,8 @@
  * errors; the session list and its limit; a viewer's own camera re-rendering
  * the current frame, the lossless refresh after JPEG images, RENDER on a
  * viewer, per-image telemetry; leaving, and a producer's disconnect ending the
- * session (after which the name starts a new one). */
+ * session (after which the name starts a new one); a viewer leaving a session
+ * that ended while its leave was on the way is out, not in error. */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -283,6 +284,25 @@ static void test_viewer_leaves(const fc_test_daemon *d)
     fc_client_close(p);
 }
 
+/* The producer ends the session (its leave answered, so the daemon has sent the
+ * viewer SESSION_END) before the viewer, which has not read it, leaves: the
+ * daemon refuses the leave as BAD_STATE, but the viewer is out either way, so
+ * libfluidcast reports success (fluidcast watch --count exited 5 on this race). */
+static void test_leave_after_the_end(const fc_test_daemon *d)
+{
+    fc_client *p = publisher(d, "ending");
+    fc_client *v = svc_client(d, "viewer");
+    fc_render_request raw = {.format = FC_FORMAT_RAW, .aov = FC_AOV_DEPTH};
+    fc_error err;
+    CHECK_CODE(fc_client_subscribe(v, "ending", &raw, SIZE, SIZE, NULL, &err), FC_OK);
+    CHECK_CODE(fc_client_leave_session(p, &err), FC_OK);
+    CHECK_MSG(fc_client_leave_session(v, &err) == FC_OK, "leave after the end: %s", err.message);
+    fc_stream_image img;
+    CHECK_CODE(fc_client_next_image(v, &img, &err), FC_ERR_USAGE);
+    fc_client_close(v);
+    fc_client_close(p);
+}
+
 int main(void)
 {
     char dir[] = "/tmp/fc-service-XXXXXX";
@@ -301,6 +321,7 @@ int main(void)
     test_list_and_limit(&daemon);
     test_viewer_views_and_refresh(&daemon);
     test_viewer_leaves(&daemon);
+    test_leave_after_the_end(&daemon);
     CHECK(svc_stop_daemon(&daemon));
     CHECK_MSG(access(path, F_OK) != 0, "the daemon left its socket file behind");
     rmdir(dir);
