@@ -98,8 +98,10 @@ fc_code fc_wire_read_hello(const uint8_t *p, size_t n, fc_hello *m, fc_error *er
 
 fc_code fc_wire_write_welcome(fc_buf *out, uint32_t request_id, const fc_welcome *m, fc_error *err)
 {
+    bool device = (m->capabilities & FC_CAP_DEVICE) != 0;
     size_t length = WELCOME_FIXED_SIZE + wire_str_size(m->server_version, sizeof m->server_version) +
-                    wire_str_size(m->renderer, sizeof m->renderer);
+                    wire_str_size(m->renderer, sizeof m->renderer) +
+                    (device ? wire_str_size(m->device, sizeof m->device) : 0);
     size_t start = wire_begin_message(out, FC_MSG_WELCOME, request_id, (uint32_t)length);
     wire_put_u32(out, m->version);
     wire_put_u32(out, m->capabilities);
@@ -109,6 +111,8 @@ fc_code fc_wire_write_welcome(fc_buf *out, uint32_t request_id, const fc_welcome
     wire_put_u32(out, m->limits.max_message);
     wire_put_str(out, m->server_version, sizeof m->server_version);
     wire_put_str(out, m->renderer, sizeof m->renderer);
+    if (device)
+        wire_put_str(out, m->device, sizeof m->device);
     return wire_end_message(out, start, err);
 }
 
@@ -124,6 +128,8 @@ fc_code fc_wire_read_welcome(const uint8_t *p, size_t n, fc_welcome *m, fc_error
     welcome.limits.max_message = wire_get_u32(&r, "max_message");
     wire_get_str(&r, welcome.server_version, sizeof welcome.server_version, "server_version");
     wire_get_str(&r, welcome.renderer, sizeof welcome.renderer, "renderer");
+    if (welcome.capabilities & FC_CAP_DEVICE)
+        wire_get_str(&r, welcome.device, sizeof welcome.device, "device");
     wire_expect_end(&r);
     if (r.code != FC_OK)
         return r.code;

@@ -80,12 +80,19 @@ typedef struct fc_limits {
     uint32_t max_message;      /* payload bytes of one message */
 } fc_limits;
 
+/* Capability bit 3 (PROTOCOL.md 9): WELCOME carries `device` after
+ * `renderer`. Asked for by clients that read it; a server that does not grant
+ * it (an older one) sends WELCOME without it, and older clients never ask. */
+#define FC_CAP_DEVICE (1u << 3)
+
 typedef struct fc_welcome {
     uint32_t version;          /* the version chosen for this connection */
     uint32_t capabilities;     /* granted capability bits */
     fc_limits limits;
     char server_version[32];   /* e.g. "fluidcastd 0.1.0" */
     char renderer[128];        /* GL_RENDERER of the daemon's context */
+    char device[128];          /* the GPU device, e.g. "EGL device 0, /dev/dri/renderD128, CUDA 0";
+                                  on the wire only with FC_CAP_DEVICE granted, else "" */
 } fc_welcome;
 
 typedef struct fc_image_reply {

@@ -23,7 +23,8 @@ enum {
     FC_CAP_ZSTD = 1u << 1,         /* packed bodies may be zstd-compressed */
     FC_CAP_QUANTIZE16 = 1u << 2    /* packed bodies may carry 16-bit quantised positions */
 };
-#define FC_CAPS_ALL (FC_CAP_SESSIONS | FC_CAP_ZSTD | FC_CAP_QUANTIZE16)
+/* FC_CAP_DEVICE (bit 3, WELCOME's device) is defined with WELCOME in wire.h. */
+#define FC_CAPS_ALL (FC_CAP_SESSIONS | FC_CAP_ZSTD | FC_CAP_QUANTIZE16 | FC_CAP_DEVICE)
 
 /* Message types of sessions and packed uploads (numbered from 16 so the core
  * protocol can grow below). */

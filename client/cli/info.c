@@ -49,12 +49,14 @@ static void print_server(const fc_server_info *s)
 {
     printf("server:       %s (protocol %u)\n", s->server_version, (unsigned)s->protocol_version);
     printf("renderer:     %s\n", s->renderer);
+    printf("device:       %s\n", s->device[0] ? s->device : "(not reported by this server)");
     printf("limits:       %llu particles per frame, %ux%u pixels, %u-byte messages\n",
            (unsigned long long)s->max_particles, (unsigned)s->max_width, (unsigned)s->max_height,
            (unsigned)s->max_message);
-    printf("capabilities:%s%s%s%s\n", s->capabilities & FC_SERVER_CAN_STREAM ? " sessions" : "",
+    printf("capabilities:%s%s%s%s%s\n", s->capabilities & FC_SERVER_CAN_STREAM ? " sessions" : "",
            s->capabilities & FC_SERVER_CAN_ZSTD ? " zstd" : "",
-           s->capabilities & FC_SERVER_CAN_QUANTIZE16 ? " quantize16" : "", s->capabilities ? "" : " none");
+           s->capabilities & FC_SERVER_CAN_QUANTIZE16 ? " quantize16" : "",
+           s->capabilities & FC_SERVER_CAN_DEVICE ? " device" : "", s->capabilities ? "" : " none");
 }
 
 static void print_sessions(const fc_session_status *list, uint32_t count)

@@ -43,6 +43,8 @@ static void copy_server_info(const fc_welcome *w, fc_server_info *info)
     info->max_height = w->limits.max_height;
     info->max_message = w->limits.max_message;
     info->capabilities = w->capabilities;
+    memcpy(info->device, w->device, sizeof info->device);
+    info->device[sizeof info->device - 1] = '\0';
 }
 
 static fc_code send_hello(fc_client *c, const char *client_name, const char *token, fc_error *err)

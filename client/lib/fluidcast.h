@@ -67,6 +67,9 @@ typedef struct fc_server_info {
     uint32_t max_height;
     uint32_t max_message;         /* largest message payload, in bytes, the server reads */
     uint32_t capabilities;        /* FC_SERVER_CAN_* bits the server granted this connection */
+    char device[128];             /* the daemon's GPU device, e.g. "EGL device 0, /dev/dri/renderD128, CUDA 0"
+                                     or "Mesa surfaceless platform (no device)"; "" from a server that did not
+                                     grant FC_SERVER_CAN_DEVICE (an older one). NUL-terminated */
 } fc_server_info;
 
 /* A rendered image as the server encoded it. `data` is owned by the result:
@@ -282,6 +285,7 @@ void fc_client_close(fc_client *client);
 #define FC_SERVER_CAN_STREAM 0x1u       /* named sessions, streaming, multi-rank frames */
 #define FC_SERVER_CAN_ZSTD 0x2u         /* zstd-compressed uploads */
 #define FC_SERVER_CAN_QUANTIZE16 0x4u   /* 16-bit quantised positions */
+#define FC_SERVER_CAN_DEVICE 0x8u       /* the server names its GPU device (fc_server_info.device) */
 
 /* What the server says about a session. */
 typedef struct fc_session_status {

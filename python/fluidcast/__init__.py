@@ -16,8 +16,8 @@ libfluidcast: see :mod:`fluidcast._library` for where it is looked for
 ($FLUIDCAST_LIBRARY first).
 """
 
-from ._enums import (Aov, Code, ColorBy, Colormap, Format, JpegSubsampling, Kernel, MESH_HIDE_NEAR, SERVER_CAN_QUANTIZE16, SERVER_CAN_STREAM,
-                     SERVER_CAN_ZSTD, Smoothing, Stage)
+from ._enums import (Aov, Code, ColorBy, Colormap, Format, JpegSubsampling, Kernel, MESH_HIDE_NEAR,
+                     SERVER_CAN_DEVICE, SERVER_CAN_QUANTIZE16, SERVER_CAN_STREAM, SERVER_CAN_ZSTD, Smoothing, Stage)
 from ._errors import Error
 from ._frame import Frame
 from ._mesh import Mesh
@@ -27,7 +27,8 @@ from ._client import (Client, Image, SETTING_NAMES, ServerInfo, SessionStatus, S
 
 __all__ = [
     "connect", "Client", "Error", "Code", "Frame", "Mesh", "Image", "StreamImage", "ServerInfo", "SessionStatus",
-    "UploadStats", "Format", "Aov", "Smoothing", "Kernel", "ColorBy", "Colormap", "JpegSubsampling", "Stage", "SETTING_NAMES",
-    "default_settings", "SERVER_CAN_STREAM", "SERVER_CAN_ZSTD", "SERVER_CAN_QUANTIZE16", "MESH_HIDE_NEAR",
+    "UploadStats", "Format", "Aov", "Smoothing", "Kernel", "ColorBy", "Colormap", "JpegSubsampling", "Stage",
+    "SETTING_NAMES", "default_settings", "SERVER_CAN_STREAM", "SERVER_CAN_ZSTD", "SERVER_CAN_QUANTIZE16",
+    "SERVER_CAN_DEVICE", "MESH_HIDE_NEAR",
     "library_path",
 ]

@@ -144,6 +144,7 @@ class FcServerInfo(Structure):
         ("max_height", c_uint32),
         ("max_message", c_uint32),
         ("capabilities", c_uint32),
+        ("device", c_char * 128),
     ]
 
 

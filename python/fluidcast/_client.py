@@ -32,6 +32,7 @@ class ServerInfo(NamedTuple):
     max_height: int
     max_message: int      #: largest message payload, in bytes, the server reads
     capabilities: int     #: SERVER_CAN_* bits granted to this connection
+    device: str = ""      #: the daemon's GPU device ("" from a server without SERVER_CAN_DEVICE)
 
 
 class SessionStatus(NamedTuple):
@@ -336,7 +337,8 @@ class Client:
         #: :class:`ServerInfo` the server announced at connect time
         self.server_info = ServerInfo(info.protocol_version, info.server_version.decode("utf-8", "replace"),
                                       info.renderer.decode("utf-8", "replace"), info.max_particles, info.max_width,
-                                      info.max_height, info.max_message, info.capabilities)
+                                      info.max_height, info.max_message, info.capabilities,
+                                      info.device.decode("utf-8", "replace"))
 
     # -- lifetime --
 

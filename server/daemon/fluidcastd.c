@@ -91,6 +91,7 @@ static void fill_welcome(const fc_daemon_options *options, const fc_render_servi
     w->limits = options->limits;
     snprintf(w->server_version, sizeof w->server_version, "%s", SERVER_VERSION);
     snprintf(w->renderer, sizeof w->renderer, "%s", fc_render_service_renderer(render));
+    snprintf(w->device, sizeof w->device, "%s", fc_render_service_device(render));
 }
 
 static bool is_loopback_host(const char *host)
@@ -280,6 +281,18 @@ static fc_code read_test_hooks(uint64_t *lose_context_at_render, fc_error *err)
     return FC_OK;
 }
 
+/* Each line of what choosing the GPU passed over, as a warning: an operator
+ * who asked for a GPU and got llvmpipe must see why in the first lines. */
+static void log_gpu_notes(const fc_log *log, const char *notes)
+{
+    while (notes && *notes) {
+        const char *end = strchr(notes, '\n');
+        int length = end ? (int)(end - notes) : (int)strlen(notes);
+        fc_log_write(log, FC_LOG_WARN, "%.*s", length, notes);
+        notes = end ? end + 1 : NULL;
+    }
+}
+
 static int run_render_service(const fc_daemon_options *options, const fc_auth_token *token, const fc_log *log,
                               uint64_t lose_context_at_render, fc_metrics *metrics, daemon_sockets *s, int stop_fd)
 {
@@ -292,6 +305,7 @@ static int run_render_service(const fc_daemon_options *options, const fc_auth_to
         .png_compression = options->png_compression,
         .log = log,
         .lose_context_at_render = lose_context_at_render,
+        .metrics = metrics,
     };
     fc_service_notify(log, "STATUS=starting: creating the OpenGL context");
     if (fc_render_service_create(&config, &render, &err) != FC_OK) {
@@ -302,6 +316,8 @@ static int run_render_service(const fc_daemon_options *options, const fc_auth_to
                      "llvmpipe with --gpu software");
         return EXIT_FAILURE;
     }
+    log_gpu_notes(log, fc_render_service_gpu_notes(render));
+    fc_log_write(log, FC_LOG_INFO, "GPU: %s", fc_render_service_device(render));
     fc_log_write(log, FC_LOG_INFO, "EGL vendor: %s", fc_render_service_egl_vendor(render));
     fc_log_write(log, FC_LOG_INFO, "GL_RENDERER: %s", fc_render_service_renderer(render));
     fc_log_write(log, FC_LOG_INFO, "GL_VERSION: %s", fc_render_service_gl_version(render));
@@ -325,7 +341,7 @@ static int run_render_service(const fc_daemon_options *options, const fc_auth_to
         .metrics = metrics,
     };
     fill_welcome(options, render, &ctx.welcome);
-    fc_metrics_set_build_info(metrics, FLUIDCASTD_VERSION, ctx.welcome.renderer, "");
+    fc_metrics_set_build_info(metrics, FLUIDCASTD_VERSION, ctx.welcome.renderer, ctx.welcome.device);
     int status = EXIT_FAILURE;
     if (fc_frame_pool_create(FRAME_POOL_BLOCKS, FRAME_POOL_BYTES, &ctx.frames, &err) == FC_OK &&
         fc_registry_create(options->max_sessions, ctx.frames, &ctx.sessions, &err) == FC_OK)

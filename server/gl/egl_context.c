@@ -7,12 +7,19 @@
 #include <epoxy/gl.h>
 #include <errno.h>
 #include <limits.h>
+#include <stdarg.h>
 #include <stdbool.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "fc_error.h"
+#include "gpu_diagnosis.h"
+
+/* EGL_EXT_device_drm_render_node, newer than Debian 12's libepoxy headers. */
+#ifndef EGL_DRM_RENDER_NODE_FILE_EXT
+#define EGL_DRM_RENDER_NODE_FILE_EXT 0x3377
+#endif
 
 /* More EGL devices than any machine has; eglQueryDevicesEXT reports the real count. */
 #define MAX_EGL_DEVICES 32
@@ -26,7 +33,24 @@ struct fc_gl_context {
     char renderer[256];
     char version[256];
     char fallback[320];     /* why --gpu auto took the software platform; "" otherwise */
+    char device[256];       /* fc_gl_context_device */
+    char notes[2048];       /* fc_gl_context_notes */
 };
+
+static void add_note(fc_gl_context *ctx, const char *format, ...) __attribute__((format(printf, 2, 3)));
+static void add_note(fc_gl_context *ctx, const char *format, ...)
+{
+    size_t used = strlen(ctx->notes);
+    if (used + 1 >= sizeof ctx->notes)
+        return;
+    va_list args;
+    va_start(args, format);
+    vsnprintf(ctx->notes + used, sizeof ctx->notes - used, format, args);
+    va_end(args);
+    used = strlen(ctx->notes);
+    if (used + 1 < sizeof ctx->notes)
+        snprintf(ctx->notes + used, sizeof ctx->notes - used, "\n");
+}
 
 fc_code fc_gpu_choice_parse(const char *text, fc_gpu_choice *out, fc_error *err)
 {
@@ -40,13 +64,16 @@ fc_code fc_gpu_choice_parse(const char *text, fc_gpu_choice *out, fc_error *err)
         *out = (fc_gpu_choice){FC_GPU_SOFTWARE, 0};
         return FC_OK;
     }
+    bool cuda = strncmp(text, "cuda:", 5) == 0;
+    const char *number = cuda ? text + 5 : text;
     char *end = NULL;
     errno = 0;
-    long index = strtol(text, &end, 10);
-    if (text[0] < '0' || text[0] > '9' || *end != '\0' || errno != 0 || index > INT_MAX)
+    long index = strtol(number, &end, 10);
+    if (number[0] < '0' || number[0] > '9' || *end != '\0' || errno != 0 || index > INT_MAX)
         return fc_error_set(err, FC_ERR_USAGE,
-                            "gpu choice '%s': expected \"auto\", \"software\" or a device number", text);
-    *out = (fc_gpu_choice){FC_GPU_INDEX, (int)index};
+                            "gpu choice '%s': expected \"auto\", \"software\", an EGL device number or cuda:N",
+                            text);
+    *out = (fc_gpu_choice){cuda ? FC_GPU_CUDA : FC_GPU_INDEX, (int)index};
     return FC_OK;
 }
 
@@ -194,12 +221,46 @@ static fc_code create_on_display(EGLDisplay display, const char *tried, fc_gl_co
     return FC_OK;
 }
 
+/* The device's CUDA number (EGL_NV_device_cuda), -1 when it has none. */
+static int cuda_number(EGLDeviceEXT device)
+{
+    EGLAttrib value = -1;
+    if (!has_extension(eglQueryDeviceStringEXT(device, EGL_EXTENSIONS), "EGL_NV_device_cuda") ||
+        !eglQueryDeviceAttribEXT(device, EGL_CUDA_DEVICE_NV, &value) || value < 0 || value > INT_MAX)
+        return -1;
+    return (int)value;
+}
+
+/* The device's DRM file, preferring the render node; NULL when the driver does not say. */
+static const char *drm_file(EGLDeviceEXT device)
+{
+    const char *extensions = eglQueryDeviceStringEXT(device, EGL_EXTENSIONS);
+    const char *file = NULL;
+    if (has_extension(extensions, "EGL_EXT_device_drm_render_node"))
+        file = eglQueryDeviceStringEXT(device, EGL_DRM_RENDER_NODE_FILE_EXT);
+    if (!file && has_extension(extensions, "EGL_EXT_device_drm"))
+        file = eglQueryDeviceStringEXT(device, EGL_DRM_DEVICE_FILE_EXT);
+    return file;
+}
+
+static void describe_device(EGLDeviceEXT device, int index, char *out, size_t size)
+{
+    const char *file = drm_file(device);
+    int cuda = cuda_number(device);
+    int n = snprintf(out, size, "EGL device %d%s%s", index, file ? ", " : "", file ? file : "");
+    if (cuda >= 0 && n > 0 && (size_t)n < size)
+        snprintf(out + n, size - (size_t)n, ", CUDA %d", cuda);
+}
+
 static fc_code create_on_device(EGLDeviceEXT device, int index, fc_gl_context *ctx, fc_error *err)
 {
-    char tried[64];
-    snprintf(tried, sizeof tried, "EGL device %d", index);
+    char tried[256];
+    describe_device(device, index, tried, sizeof tried);
     EGLDisplay display = eglGetPlatformDisplayEXT(EGL_PLATFORM_DEVICE_EXT, device, NULL);
-    return create_on_display(display, tried, ctx, err);
+    fc_code code = create_on_display(display, tried, ctx, err);
+    if (code == FC_OK)
+        snprintf(ctx->device, sizeof ctx->device, "%s", tried);
+    return code;
 }
 
 static fc_code create_surfaceless(fc_gl_context *ctx, fc_error *err)
@@ -208,7 +269,10 @@ static fc_code create_surfaceless(fc_gl_context *ctx, fc_error *err)
     if (!has_client_extension("EGL_MESA_platform_surfaceless"))
         return fc_error_set(err, FC_ERR_GL, "EGL: %s: EGL_MESA_platform_surfaceless not supported", tried);
     EGLDisplay display = eglGetPlatformDisplayEXT(EGL_PLATFORM_SURFACELESS_MESA, EGL_DEFAULT_DISPLAY, NULL);
-    return create_on_display(display, tried, ctx, err);
+    fc_code code = create_on_display(display, tried, ctx, err);
+    if (code == FC_OK)
+        snprintf(ctx->device, sizeof ctx->device, "%s (no device)", tried);
+    return code;
 }
 
 /* Why auto found no hardware device to render on, for the operator: no
@@ -224,7 +288,9 @@ static void describe_fallback(char *out, size_t size, EGLint count, EGLint hardw
         snprintf(out, size, "no GPU EGL device usable: %s", device_err->message);
 }
 
-/* The first hardware device that yields a context; else the surfaceless
+/* The first hardware device that yields a context, passing over (with a
+ * note each, fc_gl_context_notes) those whose eglInitialize or context
+ * fails: cgroups hide GPUs the driver still lists. Else the surfaceless
  * platform, recording why in ctx->fallback. When both fail, the message
  * names both attempts. */
 static fc_code create_auto(fc_gl_context *ctx, fc_error *err)
@@ -239,7 +305,7 @@ static fc_code create_auto(fc_gl_context *ctx, fc_error *err)
         hardware++;
         if (create_on_device(devices[i], (int)i, ctx, &device_err) == FC_OK)
             return FC_OK;
-        break;
+        add_note(ctx, "--gpu auto: skipping %s", device_err.message);
     }
     describe_fallback(ctx->fallback, sizeof ctx->fallback, count, hardware, &device_err);
     fc_error software_err;
@@ -258,6 +324,33 @@ static fc_code create_indexed(int index, fc_gl_context *ctx, fc_error *err)
         return fc_error_set(err, FC_ERR_GL, "EGL device %d does not exist: %d EGL device(s) enumerated", index,
                             (int)count);
     return create_on_device(devices[index], index, ctx, err);
+}
+
+/* The EGL device that is CUDA device `cuda` (EGL_CUDA_DEVICE_NV), so the
+ * number Slurm or Kubernetes hands a job picks the GPU CUDA would. */
+static fc_code create_cuda(int cuda, fc_gl_context *ctx, fc_error *err)
+{
+    EGLDeviceEXT devices[MAX_EGL_DEVICES];
+    EGLint count = 0;
+    query_devices(devices, &count);
+    char seen[256] = "";
+    size_t used = 0;
+    for (EGLint i = 0; i < count; i++) {
+        int number = cuda_number(devices[i]);
+        if (number == cuda)
+            return create_on_device(devices[i], (int)i, ctx, err);
+        if (number >= 0 && used < sizeof seen)
+            used += (size_t)snprintf(seen + used, sizeof seen - used, "%s%d", used ? ", " : "", number);
+    }
+    if (used > 0)
+        return fc_error_set(err, FC_ERR_GL, "--gpu cuda:%d: no EGL device is CUDA device %d (the EGL devices are CUDA %s)",
+                            cuda, cuda, seen);
+    char causes[1024];
+    fc_gpu_diagnose(causes, sizeof causes);
+    return fc_error_set(err, FC_ERR_GL,
+                        "--gpu cuda:%d: none of the %d EGL device(s) reports a CUDA device number "
+                        "(EGL_NV_device_cuda): no NVIDIA EGL driver. Likely cause: %s",
+                        cuda, (int)count, causes);
 }
 
 static void copy_string(char *dst, size_t size, const char *src)
@@ -291,6 +384,7 @@ fc_code fc_gl_context_create(const fc_gpu_choice *choice, fc_gl_context **out, f
     case FC_GPU_AUTO: code = create_auto(ctx, err); break;
     case FC_GPU_SOFTWARE: code = create_surfaceless(ctx, err); break;
     case FC_GPU_INDEX: code = create_indexed(choice->index, ctx, err); break;
+    case FC_GPU_CUDA: code = create_cuda(choice->index, ctx, err); break;
     default: code = fc_error_set(err, FC_ERR_USAGE, "unknown gpu mode %d", (int)choice->mode); break;
     }
     if (code == FC_OK)
@@ -344,6 +438,16 @@ const char *fc_gl_context_version(const fc_gl_context *ctx)
 const char *fc_gl_context_fallback(const fc_gl_context *ctx)
 {
     return ctx->fallback;
+}
+
+const char *fc_gl_context_device(const fc_gl_context *ctx)
+{
+    return ctx->device;
+}
+
+const char *fc_gl_context_notes(const fc_gl_context *ctx)
+{
+    return ctx->notes;
 }
 
 bool fc_gl_context_robust(const fc_gl_context *ctx)

@@ -8,9 +8,10 @@
 #include "fluidcast_types.h"
 
 typedef enum fc_gpu_mode {
-    FC_GPU_AUTO = 0,      /* first hardware EGL device; else software */
+    FC_GPU_AUTO = 0,      /* first hardware EGL device that initialises; else software, saying why */
     FC_GPU_SOFTWARE,      /* Mesa surfaceless (llvmpipe) */
-    FC_GPU_INDEX          /* EGL device number `index` as enumerated by eglQueryDevicesEXT */
+    FC_GPU_INDEX,         /* EGL device number `index` as enumerated by eglQueryDevicesEXT */
+    FC_GPU_CUDA           /* the EGL device whose EGL_CUDA_DEVICE_NV is `index` (NVIDIA, EGL_NV_device_cuda) */
 } fc_gpu_mode;
 
 typedef struct fc_gpu_choice {
@@ -18,7 +19,7 @@ typedef struct fc_gpu_choice {
     int index;
 } fc_gpu_choice;
 
-/* Parses "auto", "software" or a device number. */
+/* Parses "auto", "software", an EGL device number or "cuda:N". */
 fc_code fc_gpu_choice_parse(const char *text, fc_gpu_choice *out, fc_error *err);
 
 typedef struct fc_gl_context fc_gl_context;
@@ -34,6 +35,15 @@ fc_code fc_gl_context_make_current(fc_gl_context *ctx, fc_error *err);
 const char *fc_gl_context_egl_vendor(const fc_gl_context *ctx);
 const char *fc_gl_context_renderer(const fc_gl_context *ctx);   /* GL_RENDERER */
 const char *fc_gl_context_version(const fc_gl_context *ctx);    /* GL_VERSION */
+/* Which device the context is on: "EGL device 0, /dev/dri/renderD128, CUDA 0"
+ * (the DRM file and CUDA number where the driver tells), or "Mesa surfaceless
+ * platform (no device)". */
+const char *fc_gl_context_device(const fc_gl_context *ctx);
+/* What --gpu auto passed over, one warning a line ("" when none): the GPU
+ * devices whose eglInitialize or context creation failed, each with why.
+ * Why it then fell back to llvmpipe is fc_gl_context_fallback; the likely
+ * cause, gpu_diagnosis.h. */
+const char *fc_gl_context_notes(const fc_gl_context *ctx);
 
 /* Why FC_GPU_AUTO fell back to Mesa's surfaceless platform (llvmpipe), e.g.
  * "no GPU EGL device: 1 EGL device(s), all software"; "" when it did not

@@ -212,6 +212,39 @@ static void test_welcome_roundtrip(void)
     fc_buf_free(&b);
 }
 
+/* Capability DEVICE: WELCOME carries `device` after `renderer`; without it
+ * the layout is the original one, byte for byte (older clients read it). */
+static void test_welcome_device(void)
+{
+    fc_welcome in = {.version = 1, .capabilities = FC_CAP_DEVICE, .limits = {16, 64, 64, 4096},
+                     .server_version = "fluidcastd 0.1.0", .renderer = "NVIDIA H200/PCIe/SSE2",
+                     .device = "EGL device 1, /dev/dri/renderD129, CUDA 0"};
+    fc_welcome out;
+    fc_buf b;
+    fc_buf_init(&b);
+    fc_error err;
+    CHECK_CODE(fc_wire_write_welcome(&b, 1, &in, &err), FC_OK);
+    size_t n;
+    const uint8_t *p = single_payload(&b, FC_MSG_WELCOME, 1, &n);
+    size_t without = 28 + 2 + strlen(in.server_version) + 2 + strlen(in.renderer);
+    CHECK(n == without + 2 + strlen(in.device));
+    CHECK_CODE(fc_wire_read_welcome(p, n, &out, &err), FC_OK);
+    CHECK(strcmp(out.device, in.device) == 0 && strcmp(out.renderer, in.renderer) == 0);
+    /* Granted but cut off before the field: malformed, not silently empty. */
+    CHECK_CODE(fc_wire_read_welcome(p, without, &out, &err), FC_ERR_MALFORMED);
+    fc_buf_free(&b);
+
+    /* Not granted: no field on the wire, whatever `device` holds; extra bytes are malformed. */
+    in.capabilities = 0;
+    fc_buf_init(&b);
+    CHECK_CODE(fc_wire_write_welcome(&b, 1, &in, &err), FC_OK);
+    p = single_payload(&b, FC_MSG_WELCOME, 1, &n);
+    CHECK(n == without);
+    CHECK_CODE(fc_wire_read_welcome(p, n, &out, &err), FC_OK);
+    CHECK(out.device[0] == '\0');
+    fc_buf_free(&b);
+}
+
 static void test_frame_roundtrip_all_attributes(void)
 {
     enum { N = 5 };
@@ -550,6 +583,7 @@ int main(void)
     test_hello_bytes();
     test_hello_roundtrip();
     test_welcome_roundtrip();
+    test_welcome_device();
     test_frame_roundtrip_all_attributes();
     test_frame_roundtrip_each_attribute_set();
     test_camera_roundtrip();

@@ -17,6 +17,9 @@ def test_connect_and_server_info(client):
     assert info.protocol_version == 1
     assert info.max_width >= SIZE[0] and info.max_height >= SIZE[1]
     assert info.capabilities & fluidcast.SERVER_CAN_STREAM
+    # The daemon names its GPU device (capability DEVICE): llvmpipe here, an EGL device on a GPU.
+    assert info.capabilities & fluidcast.SERVER_CAN_DEVICE
+    assert info.device == "Mesa surfaceless platform (no device)" or info.device.startswith("EGL device ")
     assert not client.closed
 
 

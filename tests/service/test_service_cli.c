@@ -168,7 +168,8 @@ static void test_stream_watch_info(const fc_test_daemon *d, const char *base)
     const char *info_args[] = {"info", "--server", server, NULL};
     cli_run(FLUIDCAST_CLI_PATH, base, info_args, &info);
     CHECK_MSG(info.status == 0 && strstr(info.out, "fluidcastd 0.1.0 (protocol 1)") &&
-                  strstr(info.out, "llvmpipe") && strstr(info.out, "capabilities: sessions zstd quantize16") &&
+                  strstr(info.out, "llvmpipe") && strstr(info.out, "capabilities: sessions zstd quantize16 device") &&
+                  strstr(info.out, "device:       Mesa surfaceless platform (no device)") &&
                   strstr(info.out, "cli: 0 producer(s), 3 viewer(s), 0 frame(s)"),
               "info: status %d, out:\n%s", info.status, info.out);
 

@@ -230,7 +230,8 @@ int main(void)
     if (c) {
         fc_server_info info;
         fc_client_server_info(c, &info);
-        CHECK(info.capabilities == (FC_SERVER_CAN_STREAM | FC_SERVER_CAN_ZSTD | FC_SERVER_CAN_QUANTIZE16));
+        CHECK(info.capabilities ==
+              (FC_SERVER_CAN_STREAM | FC_SERVER_CAN_ZSTD | FC_SERVER_CAN_QUANTIZE16 | FC_SERVER_CAN_DEVICE));
         test_zstd_is_identical_and_smaller(c);
         test_quantised_grid_frame_is_identical(c);
         test_quantised_ball_within_bound(c);

@@ -5,6 +5,7 @@
 #include <string.h>
 
 #include "fc_error.h"
+#include "gl/gpu_diagnosis.h"
 #include "monotonic.h"
 
 /* The textures were made through the pipeline and die with it; the uploaded
@@ -32,16 +33,19 @@ static fc_code create_pipeline(fc_gpu_state *g, fc_error *err)
     return fc_pipeline_create(&config, &g->pipeline, err);
 }
 
-/* Loud, with the likely causes: an operator who meant to render on a GPU
- * (--gpu auto) is rendering on the CPU, an order of magnitude slower. */
+/* Loud, with the likely cause as this process sees it (gpu_diagnosis.h: the
+ * container toolkit's capabilities, the NVIDIA EGL vendor file, /dev/dri and
+ * its permissions): an operator who meant to render on a GPU (--gpu auto) is
+ * rendering on the CPU, an order of magnitude slower. */
 static void log_fallback(const fc_gpu_state *g)
 {
+    char causes[1024];
+    fc_gpu_diagnose(causes, sizeof causes);
     fc_log_write(g->log, FC_LOG_WARN,
-                 "--gpu auto: %s: rendering with Mesa's llvmpipe (software, on the CPU). Likely causes: no GPU "
-                 "driver; in a container, no NVIDIA container toolkit (--gpus all / --runtime nvidia) or "
-                 "NVIDIA_DRIVER_CAPABILITIES without 'graphics'; /dev/dri/renderD* not readable by this user "
-                 "(groups render, video). --gpu software silences this.",
-                 fc_gl_context_fallback(g->gl));
+                 "--gpu auto: %s: rendering with Mesa's llvmpipe (software, on the CPU). Likely cause: %s. In a "
+                 "container: the NVIDIA container toolkit (--gpus all / --runtime nvidia) with "
+                 "NVIDIA_DRIVER_CAPABILITIES=graphics,utility, or --device /dev/dri. --gpu software silences this.",
+                 fc_gl_context_fallback(g->gl), causes);
 }
 
 static fc_code create_all(fc_gpu_state *g, fc_error *err)

@@ -1,6 +1,7 @@
 /* render_service.c — the GL thread and the plumbing around it (see render_service.h). */
 #include "gpu/render_service.h"
 
+#include <epoxy/gl.h>
 #include <errno.h>
 #include <pthread.h>
 #include <stdbool.h>
@@ -22,6 +23,8 @@ typedef struct gl_identity {
     char renderer[128];
     char egl_vendor[128];
     char gl_version[128];
+    char device[256];
+    char notes[2048];
     bool robust;
 } gl_identity;
 
@@ -127,6 +130,21 @@ static void explain_failure(fc_render_job *job, fc_gpu_failure failure, fc_gl_re
     fc_gpu_state_explain(failure, reset, request, &job->error);
 }
 
+/* The GPU's dedicated and available memory, for the metrics, where the
+ * driver reports them (NVIDIA's GL_NVX_gpu_memory_info, in KiB); two integer
+ * queries on the GL thread, after the render so they never delay one. */
+static void report_gpu_memory(fc_metrics *metrics)
+{
+    enum { TOTAL_KIB = 0x9048, AVAILABLE_KIB = 0x9049 };   /* GL_GPU_MEMORY_INFO_*_NVX */
+    if (!metrics || !epoxy_has_gl_extension("GL_NVX_gpu_memory_info"))
+        return;
+    GLint total = 0, available = 0;
+    glGetIntegerv(TOTAL_KIB, &total);
+    glGetIntegerv(AVAILABLE_KIB, &available);
+    fc_metrics_set(metrics, FC_METRIC_GPU_MEMORY_TOTAL, (int64_t)total * 1024);
+    fc_metrics_set(metrics, FC_METRIC_GPU_MEMORY_AVAILABLE, (int64_t)available * 1024);
+}
+
 static void render_job(fc_render_service *rs, fc_render_job *job)
 {
     double start = fc_monotonic_ms();
@@ -140,6 +158,7 @@ static void render_job(fc_render_service *rs, fc_render_job *job)
     fc_gl_reset reset;
     fc_gpu_failure failure = fc_gpu_state_diagnose(&rs->gpu, code, simulate_loss, &reset);
     if (code == FC_OK && failure == FC_GPU_FINE) {
+        report_gpu_memory(rs->config.metrics);
         job->rendered_ms = fc_monotonic_ms();
         fc_encoder_pool_submit(rs->encoders, job);
         return;
@@ -171,6 +190,8 @@ static void *gl_main(void *arg)
         snprintf(id->renderer, sizeof id->renderer, "%s", fc_gl_context_renderer(rs->gpu.gl));
         snprintf(id->egl_vendor, sizeof id->egl_vendor, "%s", fc_gl_context_egl_vendor(rs->gpu.gl));
         snprintf(id->gl_version, sizeof id->gl_version, "%s", fc_gl_context_version(rs->gpu.gl));
+        snprintf(id->device, sizeof id->device, "%s", fc_gl_context_device(rs->gpu.gl));
+        snprintf(id->notes, sizeof id->notes, "%s", fc_gl_context_notes(rs->gpu.gl));
         id->robust = fc_gl_context_robust(rs->gpu.gl);
     }
     report_start(rs, code, &err);
@@ -261,6 +282,16 @@ void fc_render_service_destroy(fc_render_service *rs)
 const char *fc_render_service_renderer(const fc_render_service *rs)
 {
     return rs->identity.renderer;
+}
+
+const char *fc_render_service_device(const fc_render_service *rs)
+{
+    return rs->identity.device;
+}
+
+const char *fc_render_service_gpu_notes(const fc_render_service *rs)
+{
+    return rs->identity.notes;
 }
 
 const char *fc_render_service_egl_vendor(const fc_render_service *rs)

@@ -12,6 +12,7 @@
 #include "gl/egl_context.h"
 #include "gpu/render_job.h"
 #include "log.h"
+#include "metrics/metrics.h"
 
 typedef struct fc_render_service fc_render_service;
 
@@ -24,6 +25,9 @@ typedef struct fc_render_service_config {
     /* Test hook: the N-th request that reaches the GPU reports a lost context
      * (an unknown reset) and the real recovery follows; 0 = never. */
     uint64_t lose_context_at_render;
+    /* Where the GL thread reports the GPU's memory after each render, when
+     * the driver tells (GL_NVX_gpu_memory_info); NULL: nowhere. */
+    fc_metrics *metrics;
 } fc_render_service_config;
 
 /* Starts the GL thread, waits until it has created the context and compiled
@@ -40,6 +44,10 @@ void fc_render_service_destroy(fc_render_service *rs);
 const char *fc_render_service_renderer(const fc_render_service *rs);
 const char *fc_render_service_egl_vendor(const fc_render_service *rs);
 const char *fc_render_service_gl_version(const fc_render_service *rs);
+/* The device the context is on (fc_gl_context_device) and what choosing it
+ * passed over, one warning a line (fc_gl_context_notes; "" when none). */
+const char *fc_render_service_device(const fc_render_service *rs);
+const char *fc_render_service_gpu_notes(const fc_render_service *rs);
 /* Whether that context is robust (a GPU reset can be noticed and recovered from). */
 bool fc_render_service_robust(const fc_render_service *rs);
 

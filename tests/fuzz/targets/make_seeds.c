@@ -269,6 +269,18 @@ static fc_code write_welcome(fc_buf *out)
     return fc_wire_write_welcome(out, 1, &m, NULL);
 }
 
+/* WELCOME with capability DEVICE: the optional `device` field after `renderer`. */
+static fc_code write_welcome_device(fc_buf *out)
+{
+    fc_welcome m = {.version = 1,
+                    .capabilities = FC_CAP_DEVICE,
+                    .limits = {.max_particles = 1000000, .max_width = 4096, .max_height = 4096, .max_message = 1 << 26},
+                    .server_version = "fluidcastd 0.1.0",
+                    .renderer = "llvmpipe",
+                    .device = "EGL device 0, /dev/dri/renderD128, CUDA 0"};
+    return fc_wire_write_welcome(out, 1, &m, NULL);
+}
+
 /* Particles first .. first + count - 1 of the seed particles. */
 static fc_frame seed_part(size_t first, size_t count, bool with_attributes)
 {
@@ -556,6 +568,7 @@ static int write_messages(const char *dir)
 {
     static const seed_file singles[] = {
         {"hello.bin", write_hello},     {"welcome.bin", write_welcome},
+        {"welcome_device.bin", write_welcome_device},
         {"frame.bin", write_frame_positions}, {"frame_attributes.bin", write_frame_all},
         {"frame_radius.bin", write_frame_radius}, {"frame_attributes_radius.bin", write_frame_all_radius},
         {"camera.bin", write_camera},   {"settings.bin", write_settings},
