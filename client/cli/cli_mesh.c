@@ -67,7 +67,7 @@ fc_code fc_cli_mesh_parse(const char *value, fc_cli_mesh *out, fc_error *err)
     *out = (fc_cli_mesh){.color = {0.8f, 0.8f, 0.8f}, .opacity = 1.0f};
     size_t len = strlen(value);
     if (len == 0 || len >= FC_CLI_MESH_PATH_MAX)
-        return fc_error_set(err, FC_ERR_USAGE, "--mesh needs a mesh file (.obj .stl .ply .vtk)");
+        return fc_error_set(err, FC_ERR_USAGE, "--mesh needs a mesh file (.obj .stl .ply .vtk .vtp)");
     char text[FC_CLI_MESH_PATH_MAX];
     memcpy(text, value, len + 1);
     /* Options from the right; the first segment that is none ends them. */
@@ -95,7 +95,7 @@ fc_code fc_cli_mesh_parse(const char *value, fc_cli_mesh *out, fc_error *err)
     if (!out->per_frame && strchr(out->path, '%'))
         return fc_error_set(err, FC_ERR_USAGE, "--mesh: %s is neither a file nor a pattern with one %%d", out->path);
     if (fc_mesh_format_from_path(out->path) == FC_MESH_FILE_UNKNOWN)
-        return fc_error_set(err, FC_ERR_USAGE, "--mesh: %s is not a mesh file this command reads (.obj .stl .ply .vtk)",
+        return fc_error_set(err, FC_ERR_USAGE, "--mesh: %s is not a mesh file this command reads (.obj .stl .ply .vtk .vtp)",
                             out->path);
     return FC_OK;
 }

@@ -1,6 +1,6 @@
 /* cli_mesh.h — `--mesh FILE[:color=R,G,B][:opacity=X][:hide-near]` of
  * `fluidcast snapshot` and `fluidcast render`: mesh files (client/meshes:
- * .obj .stl .ply .vtk) read here and sent as MESH (PROTOCOL.md section 12),
+ * .obj .stl .ply .vtk .vtp) read here and sent as MESH (PROTOCOL.md section 12),
  * mesh i of the command line as id i + 1. A FILE with a %d conversion
  * (box_%04d.obj) is a per-frame mesh: `render` reads it again for every frame
  * with the frame's number; `snapshot` takes it with number 0. A static FILE

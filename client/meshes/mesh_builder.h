@@ -35,5 +35,6 @@ fc_code fc_read_mesh_obj(fc_cursor *c, fc_mesh_builder *b, fc_error *err);
 fc_code fc_read_mesh_stl(fc_cursor *c, fc_mesh_builder *b, fc_error *err);
 fc_code fc_read_mesh_ply(fc_cursor *c, fc_mesh_builder *b, fc_error *err);
 fc_code fc_read_mesh_vtk(fc_cursor *c, fc_mesh_builder *b, fc_error *err);
+fc_code fc_read_mesh_vtp(fc_cursor *c, fc_mesh_builder *b, fc_error *err);
 
 #endif

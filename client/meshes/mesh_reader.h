@@ -4,7 +4,8 @@
  * last vertex), STL (binary and ascii), PLY with a face element (ascii,
  * binary little- and big-endian) and legacy VTK POLYDATA (POLYGONS and
  * TRIANGLE_STRIPS, ascii and binary, the 4.x and the 5.1 OFFSETS/CONNECTIVITY
- * layouts). A bad file gets FC_ERR_PARSE naming the file and the place (line
+ * layouts) and VTK XML PolyData .vtp (one Piece's Polys; ascii, base64 or
+ * appended raw data, zlib-compressed or not). A bad file gets FC_ERR_PARSE naming the file and the place (line
  * or byte offset) and what is wrong, never a crash; a file beyond the protocol's
  * limits (2^24 vertices or triangles) FC_ERR_LIMIT. */
 #ifndef FC_MESH_READER_H
@@ -20,7 +21,8 @@ typedef enum fc_mesh_format {
     FC_MESH_FILE_OBJ,
     FC_MESH_FILE_STL,
     FC_MESH_FILE_PLY,
-    FC_MESH_FILE_VTK
+    FC_MESH_FILE_VTK,
+    FC_MESH_FILE_VTP
 } fc_mesh_format;
 
 /* The arrays of a mesh read from a file (malloc'd; fc_mesh_data_free). */
@@ -33,7 +35,7 @@ typedef struct fc_mesh_data {
 
 void fc_mesh_data_free(fc_mesh_data *m);
 
-/* From the extension, case-insensitive: .obj .stl .ply .vtk. */
+/* From the extension, case-insensitive: .obj .stl .ply .vtk .vtp. */
 fc_mesh_format fc_mesh_format_from_path(const char *path);
 
 /* Reads a mesh file of the format its name says. FC_ERR_IO when it cannot be

@@ -15,7 +15,7 @@ set -euo pipefail
 here=$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)
 all_targets=(fuzz_reader_f32 fuzz_reader_ply fuzz_reader_vtk fuzz_reader_csv fuzz_reader_bgeo fuzz_reader_npy fuzz_reader_vtkxml fuzz_reader_hdf5 fuzz_wire_messages fuzz_wire_session
              fuzz_wire_settings fuzz_wire_mesh fuzz_srv_answer fuzz_camera_path fuzz_mesh_obj fuzz_mesh_stl fuzz_mesh_ply
-             fuzz_mesh_vtk)
+             fuzz_mesh_vtk fuzz_mesh_vtp)
 missing_packages="apt-get install clang-14 libclang-rt-14-dev"
 
 if [[ $# -lt 1 ]]; then

@@ -431,18 +431,44 @@ static bool write_box_obj(const char *path, const float lo[3], const float hi[3]
     return fclose(f) == 0;
 }
 
+/* The same box as VTK XML PolyData (ascii; six quads in Polys). */
+static bool write_box_vtp(const char *path, const float lo[3], const float hi[3])
+{
+    FILE *f = fopen(path, "w");
+    if (!f)
+        return false;
+    fputs("<VTKFile type=\"PolyData\" version=\"1.0\" byte_order=\"LittleEndian\">\n<PolyData>\n"
+          "<Piece NumberOfPoints=\"8\" NumberOfPolys=\"6\">\n<Points>\n"
+          "<DataArray type=\"Float32\" NumberOfComponents=\"3\" format=\"ascii\">\n", f);
+    for (int c = 0; c < 8; c++)
+        fprintf(f, "%g %g %g\n", (double)(c & 1 ? hi[0] : lo[0]), (double)(c & 2 ? hi[1] : lo[1]),
+                (double)(c & 4 ? hi[2] : lo[2]));
+    fputs("</DataArray>\n</Points>\n<Polys>\n<DataArray type=\"Int64\" Name=\"connectivity\" format=\"ascii\">\n"
+          "0 2 3 1 4 5 7 6 0 1 5 4 2 6 7 3 0 4 6 2 1 3 7 5\n</DataArray>\n"
+          "<DataArray type=\"Int64\" Name=\"offsets\" format=\"ascii\">4 8 12 16 20 24</DataArray>\n"
+          "</Polys>\n</Piece>\n</PolyData>\n</VTKFile>\n", f);
+    return fclose(f) == 0;
+}
+
 /* --mesh through the real daemon: a box between the camera (y = -4) and the
  * ball leaves no fluid in the depth image, as glass it hides nothing; a closed
  * tank around the ball hides it unless hide-near culls its near wall; a %d
  * pattern takes frame 0 in a snapshot; bad options are usage errors, a missing
- * or broken mesh file an input error (exit 3) naming it. */
+ * or broken mesh file an input error (exit 3) naming it. The wall as a .vtp
+ * hides the ball as the .obj one does. */
 static void test_mesh(const test_env *env)
 {
+    static const char strips_vtp[] = "<VTKFile type=\"PolyData\"><PolyData><Piece NumberOfPoints=\"0\" "
+                                     "NumberOfStrips=\"1\"><Points><DataArray type=\"Float32\" "
+                                     "NumberOfComponents=\"3\" format=\"ascii\"/></Points></Piece></PolyData>"
+                                     "</VTKFile>";
     char path[PATH_SIZE];
     bool ok = write_box_obj(scratch(env, "wall.obj", path), (float[3]){-3, -2, -3}, (float[3]){3, -1.8f, 3}) &&
               write_box_obj(scratch(env, "wall_0000.obj", path), (float[3]){-3, -2, -3}, (float[3]){3, -1.8f, 3}) &&
               write_box_obj(scratch(env, "tank.obj", path), (float[3]){-1, -1, -1}, (float[3]){1, 1, 1}) &&
-              write_bytes(scratch(env, "broken.obj", path), (const uint8_t *)"v 0 0\n", 6);
+              write_box_vtp(scratch(env, "wall.vtp", path), (float[3]){-3, -2, -3}, (float[3]){3, -1.8f, 3}) &&
+              write_bytes(scratch(env, "broken.obj", path), (const uint8_t *)"v 0 0\n", 6) &&
+              write_bytes(scratch(env, "strips.vtp", path), (const uint8_t *)strips_vtp, strlen(strips_vtp));
     CHECK(ok);
     if (!ok)
         return;
@@ -460,6 +486,13 @@ static void test_mesh(const test_env *env)
         if (render(env, "ball.f32", "mesh_wall.exr", FLAGS("--aov", "depth", "--mesh", wall_arg), &wall)) {
             CHECK_MSG(nonzero(&wall) == 0, "behind the wall %zu fluid pixels", nonzero(&wall));
             fc_decoded_image_free(&wall);
+        }
+        char vtp_arg[PATH_SIZE];
+        fc_decoded_image vtp;
+        snprintf(vtp_arg, sizeof vtp_arg, "%s", scratch(env, "wall.vtp", path));
+        if (render(env, "ball.f32", "mesh_vtp.exr", FLAGS("--aov", "depth", "--mesh", vtp_arg), &vtp)) {
+            CHECK_MSG(nonzero(&vtp) == 0, "behind the .vtp wall %zu fluid pixels", nonzero(&vtp));
+            fc_decoded_image_free(&vtp);
         }
         if (render(env, "ball.f32", "mesh_glass.exr", FLAGS("--aov", "depth", "--mesh", glass_arg), &glass)) {
             CHECK_MSG(nonzero(&glass) == fluid, "behind glass %zu fluid pixels of %zu", nonzero(&glass), fluid);
@@ -486,6 +519,7 @@ static void test_mesh(const test_env *env)
     expect_exit(env, 2, "ball.f32", FLAGS("--mesh", "box.obj:shiny=1"), "shiny");
     expect_exit(env, 3, "ball.f32", FLAGS("--mesh", scratch(env, "missing.obj", path)), "missing.obj");
     expect_exit(env, 3, "ball.f32", FLAGS("--mesh", scratch(env, "broken.obj", path)), "three numbers");
+    expect_exit(env, 3, "ball.f32", FLAGS("--mesh", scratch(env, "strips.vtp", path)), "no Polys");
 }
 
 /* --color-by: speed on a frame with velocities changes the image and

@@ -1,6 +1,9 @@
 /* test_mesh_readers.c — the mesh readers (client/meshes): OBJ, STL (binary and
  * ascii), PLY with faces (ascii, binary little- and big-endian) and legacy VTK
- * POLYDATA (ascii and binary, 4.x and 5.1 cell layouts), each file built byte
+ * POLYDATA (ascii and binary, 4.x and 5.1 cell layouts) and VTK XML PolyData
+ * (.vtp: ascii and appended raw built here; ascii, base64 binary, appended
+ * zlib and appended base64 written by VTK's vtkXMLPolyDataWriter into
+ * $FC_VTP_MESH_FIXTURES by make_vtp_mesh_fixtures.py), each file built byte
  * by byte here, read to exact vertices and triangles (polygons fanned, strips
  * wound alike, OBJ's negative indices). Hostile inputs: a table of broken
  * files per format, each refused with FC_ERR_PARSE (or LIMIT) and a message
@@ -305,6 +308,125 @@ static void test_vtk(void)
     expect_refused("nothing.vtk", "hello\n", FC_ERR_PARSE, "not a legacy VTK");
 }
 
+/* ---- VTK XML PolyData (.vtp) ---- */
+
+static const char vtp_head[] =
+    "<?xml version=\"1.0\"?>\n<VTKFile type=\"PolyData\" version=\"0.1\" byte_order=\"LittleEndian\">\n"
+    "<PolyData>\n<Piece NumberOfPoints=\"5\" NumberOfPolys=\"2\" NumberOfStrips=\"0\">\n"
+    "<PointData Normals=\"Normals\"><DataArray type=\"Float32\" Name=\"Normals\" NumberOfComponents=\"3\" "
+    "format=\"ascii\">0 0 1 0 0 1 0 0 1 0 0 1 0 0 1</DataArray></PointData>\n";
+
+static void vtp_ascii(bytes *b, const char *offsets, const char *connectivity)
+{
+    bytes_printf(b, "%s<Points><DataArray type=\"Float64\" NumberOfComponents=\"3\" format=\"ascii\">\n"
+                    "0 0 0 1 0 0 1 1 0 0 1 0 2 0.5 1</DataArray></Points>\n<Polys>\n"
+                    "<DataArray type=\"Int32\" Name=\"connectivity\" format=\"ascii\">%s</DataArray>\n"
+                    "<DataArray type=\"Int32\" Name=\"offsets\" format=\"ascii\">%s</DataArray>\n"
+                    "</Polys>\n</Piece>\n</PolyData>\n</VTKFile>\n", vtp_head, connectivity, offsets);
+}
+
+/* The ascii mesh with other cells, refused with `needle` in the message. */
+static void vtp_refused(const char *name, const char *offsets, const char *connectivity, const char *needle)
+{
+    bytes b = {0};
+    vtp_ascii(&b, offsets, connectivity);
+    bytes_append(&b, "", 1); /* a C string for expect_refused */
+    expect_refused(name, (const char *)b.data, FC_ERR_PARSE, needle);
+    bytes_free(&b);
+}
+
+/* The same mesh with its arrays appended raw: UInt32 headers, float points, Int64 cells. */
+static void vtp_appended(bytes *b)
+{
+    bytes_printf(b, "%s<Points><DataArray type=\"Float32\" NumberOfComponents=\"3\" format=\"appended\" offset=\"0\"/>"
+                    "</Points>\n<Polys>\n"
+                    "<DataArray type=\"Int64\" Name=\"connectivity\" format=\"appended\" offset=\"64\"/>\n"
+                    "<DataArray type=\"Int64\" Name=\"offsets\" format=\"appended\" offset=\"124\"/>\n"
+                    "</Polys>\n</Piece>\n</PolyData>\n<AppendedData encoding=\"raw\">\n_", vtp_head);
+    bytes_uint(b, 60, 4, false);
+    for (int i = 0; i < 15; i++)
+        bytes_f32(b, quad_vertices[i], false);
+    bytes_uint(b, 56, 4, false);
+    const uint64_t connectivity[7] = {0, 1, 2, 3, 1, 4, 2}, offsets[2] = {4, 7};
+    for (int i = 0; i < 7; i++)
+        bytes_uint(b, connectivity[i], 8, false);
+    bytes_uint(b, 16, 4, false);
+    for (int i = 0; i < 2; i++)
+        bytes_uint(b, offsets[i], 8, false);
+    bytes_printf(b, "\n</AppendedData>\n</VTKFile>\n");
+}
+
+static bool load_file(const char *path, bytes *b)
+{
+    FILE *f = fopen(path, "rb");
+    if (f == NULL)
+        return false;
+    uint8_t chunk[4096];
+    size_t got;
+    while ((got = fread(chunk, 1, sizeof chunk, f)) > 0)
+        bytes_append(b, chunk, got);
+    fclose(f);
+    return true;
+}
+
+/* The files VTK's writer made: exact triangles in every mode, the strips-only one refused. */
+static void test_vtp_fixtures(const char *dir)
+{
+    static const char *const files[] = {"ascii.vtp", "binary_zlib.vtp", "appended_zlib.vtp", "appended_base64.vtp"};
+    char path[512];
+    for (size_t i = 0; i < sizeof files / sizeof files[0]; i++) {
+        bytes b = {0};
+        snprintf(path, sizeof path, "%s/%s", dir, files[i]);
+        if (!load_file(path, &b)) {
+            printf("no VTK-written %s (python3-vtk9 missing?): byte-built .vtp files only\n", path);
+            return;
+        }
+        expect_read(files[i], &b, quad_vertices, 5, quad_triangles, 3);
+        if (i == 2)
+            sweep(files[i], &b);
+        bytes_free(&b);
+    }
+    bytes b = {0};
+    snprintf(path, sizeof path, "%s/strips.vtp", dir);
+    CHECK(load_file(path, &b));
+    fc_mesh_data m;
+    fc_error err = {FC_OK, ""};
+    fc_code code = read_bytes("strips.vtp", &b, &m, &err);
+    CHECK_MSG(code == FC_ERR_PARSE && strstr(err.message, "no Polys") && strstr(err.message, "1 strips"),
+              "strips.vtp: %d %s", (int)code, err.message);
+    bytes_free(&b);
+}
+
+static void test_vtp(void)
+{
+    bytes b = {0};
+    vtp_ascii(&b, "4 7", "0 1 2 3 1 4 2");
+    expect_read("ascii.vtp", &b, quad_vertices, 5, quad_triangles, 3);
+    sweep("ascii.vtp", &b);
+    bytes_free(&b);
+    vtp_appended(&b);
+    expect_read("raw.vtp", &b, quad_vertices, 5, quad_triangles, 3);
+    sweep("raw.vtp", &b);
+    bytes_free(&b);
+
+    vtp_refused("order.vtp", "4 3", "0 1 2 3 1 4 2", "offsets[1]");
+    vtp_refused("past.vtp", "4 7", "0 1 2 3 1 9 2", "not a point index");
+    vtp_refused("short.vtp", "4 8", "0 1 2 3 1 4 2", "connectivity");
+    vtp_refused("two.vtp", "2 7", "0 1 2 3 1 4 2", "at least 3");
+    expect_refused("lines.vtp", "<VTKFile type=\"PolyData\"><PolyData><Piece NumberOfPoints=\"2\" NumberOfLines=\"1\">"
+                   "<Points><DataArray type=\"Float32\" NumberOfComponents=\"3\" format=\"ascii\">0 0 0 1 1 1"
+                   "</DataArray></Points></Piece></PolyData></VTKFile>", FC_ERR_PARSE, "1 lines");
+    expect_refused("pieces.vtp", "<VTKFile type=\"PolyData\"><PolyData><Piece NumberOfPoints=\"0\"/>"
+                   "<Piece NumberOfPoints=\"0\"/></PolyData></VTKFile>", FC_ERR_PARSE, "second Piece");
+    expect_refused("grid.vtp", "<VTKFile type=\"UnstructuredGrid\"/>", FC_ERR_PARSE, "not PolyData");
+    expect_refused("nothing.vtp", "hello", FC_ERR_PARSE, "XML");
+    const char *fixtures = getenv("FC_VTP_MESH_FIXTURES");
+    if (fixtures)
+        test_vtp_fixtures(fixtures);
+    else
+        printf("FC_VTP_MESH_FIXTURES not set: byte-built .vtp files only\n");
+}
+
 static void test_dispatch(void)
 {
     fc_mesh_data m;
@@ -313,6 +435,7 @@ static void test_dispatch(void)
     CHECK_CODE(fc_read_mesh("/nonexistent/dir/x.obj", &m, &err), FC_ERR_IO);
     CHECK(fc_mesh_format_from_path("A.OBJ") == FC_MESH_FILE_OBJ && fc_mesh_format_from_path("b.Stl") ==
           FC_MESH_FILE_STL);
+    CHECK(fc_mesh_format_from_path("tank.VTP") == FC_MESH_FILE_VTP);
 }
 
 int main(void)
@@ -321,6 +444,7 @@ int main(void)
     test_stl();
     test_ply();
     test_vtk();
+    test_vtp();
     test_dispatch();
     return test_result();
 }
