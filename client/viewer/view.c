@@ -114,8 +114,8 @@ static void show_image(viewer *v, fc_view_image *img)
                      sizeof line);
     fc_view_window_set_hud(&v->win, line);
     if (v->opt.log_camera)
-        printf("shown %llu: %ux%u%s\n", (unsigned long long)img->generation, (unsigned)img->width,
-               (unsigned)img->height, img->preview ? " preview" : ""), fflush(stdout);
+        printf("shown %llu: %ux%u frame %u%s\n", (unsigned long long)img->generation, (unsigned)img->width,
+               (unsigned)img->height, (unsigned)img->frame_index, img->preview ? " preview" : ""), fflush(stdout);
 }
 
 static void handle_window(viewer *v, const SDL_WindowEvent *w)
@@ -183,6 +183,7 @@ static void script_step(viewer *v)
             return;
         v->step_started_ms = 0.0;
         break;
+    case FC_VIEW_STEP_RESIZE: fc_view_script_resize(v->win.window, s->dx, s->dy); break;
     case FC_VIEW_STEP_QUIT: v->ctl.quit = true; break;
     case FC_VIEW_STEP_DONE: break;
     }

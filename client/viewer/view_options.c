@@ -184,7 +184,7 @@ void fc_view_print_help(FILE *to)
           "  --log-camera            print each camera sent to the daemon\n"
           "  --test-script SCRIPT    test hook: run ';'-separated commands (wait, drag DX DY,\n"
           "                          pan DX DY, dclick DX DY, shot FILE.bmp, key K, sleep MS,\n"
-          "                          quit) against the window\n"
+          "                          resize W H, quit) against the window\n"
           "  -h, --help              show this help\n"
           "\n",
           to);

@@ -31,6 +31,9 @@ static fc_code parse_step(const char *text, fc_view_step *s, fc_error *err)
     else if ((strcmp(word, "drag") == 0 || strcmp(word, "pan") == 0 || strcmp(word, "dclick") == 0) &&
              sscanf(text, " %*s %d %d", &s->dx, &s->dy) == 2)
         s->kind = word[1] == 'c' ? FC_VIEW_STEP_DCLICK : word[0] == 'd' ? FC_VIEW_STEP_DRAG : FC_VIEW_STEP_PAN;
+    else if (strcmp(word, "resize") == 0 && sscanf(text, " %*s %d %d", &s->dx, &s->dy) == 2 && s->dx > 0 &&
+             s->dy > 0)
+        s->kind = FC_VIEW_STEP_RESIZE;
     else if (strcmp(word, "sleep") == 0 && sscanf(text, " %*s %d", &s->dx) == 1 && s->dx >= 0)
         s->kind = FC_VIEW_STEP_SLEEP;
     else if (n == 2 && strcmp(word, "key") == 0 && (s->key = key_named(arg)) >= 0)
@@ -114,4 +117,9 @@ void fc_view_script_push_double_click(int x, int y)
     push_button(SDL_MOUSEBUTTONUP, SDL_BUTTON_LEFT, x, y, 1);
     push_button(SDL_MOUSEBUTTONDOWN, SDL_BUTTON_LEFT, x, y, 2);
     push_button(SDL_MOUSEBUTTONUP, SDL_BUTTON_LEFT, x, y, 2);
+}
+
+void fc_view_script_resize(SDL_Window *window, int width, int height)
+{
+    SDL_SetWindowSize(window, width, height);
 }

@@ -9,11 +9,14 @@
  *     key K           a key press (one character: r f s n p q, or "space")
  *     shot FILE.bmp   writes what the window shows
  *     sleep MS        lets MS milliseconds pass (events keep being handled)
+ *     resize W H      asks for a W x H window (SDL_SetWindowSize), as a user's
+ *                     drag of its border does
  *     quit            ends the viewer (exit status 0)
  * Not meant for users; documented in --help as a test hook. */
 #ifndef FC_VIEW_SCRIPT_H
 #define FC_VIEW_SCRIPT_H
 
+#include <SDL.h>
 #include <stdbool.h>
 
 #include "fluidcast_types.h"
@@ -27,12 +30,13 @@ typedef enum fc_view_step_kind {
     FC_VIEW_STEP_DCLICK,
     FC_VIEW_STEP_SHOT,
     FC_VIEW_STEP_SLEEP,
+    FC_VIEW_STEP_RESIZE,
     FC_VIEW_STEP_QUIT
 } fc_view_step_kind;
 
 typedef struct fc_view_step {
     fc_view_step_kind kind;
-    int dx, dy;                   /* drag, pan; dx: milliseconds of sleep */
+    int dx, dy;                   /* drag, pan; dx: milliseconds of sleep; resize: W, H */
     int key;                      /* SDL keycode */
     char path[256];
 } fc_view_step;
@@ -46,5 +50,8 @@ fc_code fc_view_script_parse(const char *text, fc_view_step **steps, int *count,
 void fc_view_script_push_drag(int button, int x, int y, int dx, int dy);
 void fc_view_script_push_key(int key);
 void fc_view_script_push_double_click(int x, int y);
+/* Resizes the window; its SDL_WINDOWEVENT_SIZE_CHANGED then comes through
+ * the event queue like a user's resize. */
+void fc_view_script_resize(SDL_Window *window, int width, int height);
 
 #endif

@@ -12,6 +12,16 @@
  *               fluid) leaves the camera alone
  *   spacemouse  under umockdev-run with tests/input's Compact holding +X:
  *               the camera pans (its target moves against the view's right)
+ *   quality     several drags 100 ms apart: the images shown while moving
+ *               are the half-size previews (160x120), and once the camera has
+ *               been still the last image is the full 320x240 one
+ *   resize      `resize 400 300`: once the resize settles the daemon renders
+ *               at the new size and the image shown is 400x300, not a preview
+ *   playback    three files, the slab shifted by SHIFT along y and z from one
+ *               to the next: the sequence plays (several frames shown), space
+ *               pauses it, each n shows the next file (frame index + 1, mod 3)
+ *               and the fluid's centre in the window moves by about the same
+ *               step from file 0 to 1 as from 1 to 2
  *   h264        the slab published to a session (by this test, through
  *               libfluidcast); `view --session --format h264` decodes the
  *               daemon's H.264 stream and draws it as `draw` requires
@@ -47,10 +57,14 @@ extern char **environ;
 #define WIDTH 320
 #define HEIGHT 240
 #define DRAG_PX 80
+#define RESIZED_W 400
+#define RESIZED_H 300
+#define FILES 3
+#define SHIFT 0.12f
 
 /* A slab of particles, long along x, so that turning it changes its picture:
  * its positions into p (NULL: only counted); returns the count. */
-static uint64_t slab_points(float *p)
+static uint64_t slab_points(float *p, float shift)
 {
     const float s = 0.0625f;
     uint64_t n = 0;
@@ -60,24 +74,24 @@ static uint64_t slab_points(float *p)
                 if (i * i / 144.0 + j * j / 16.0 + k * k / 16.0 <= 1.0) {
                     if (p) {
                         p[3 * n] = i * s;
-                        p[3 * n + 1] = j * s;
-                        p[3 * n + 2] = k * s;
+                        p[3 * n + 1] = j * s + shift;
+                        p[3 * n + 2] = k * s + shift;
                     }
                     n++;
                 }
     return n;
 }
 
-static bool write_slab(const char *path)
+static bool write_slab(const char *path, float shift)
 {
     FILE *f = fopen(path, "wb");
     if (!f)
         return false;
     fc_frame frame = {0};
     fc_error err;
-    bool ok = fc_frame_alloc(&frame, slab_points(NULL), 0, &err) == FC_OK;
+    bool ok = fc_frame_alloc(&frame, slab_points(NULL, 0), 0, &err) == FC_OK;
     if (ok) {
-        slab_points(frame.positions);
+        slab_points(frame.positions, shift);
         ok = fwrite(frame.positions, 12, frame.count, f) == frame.count;
     }
     fc_frame_free(&frame);
@@ -93,9 +107,9 @@ static fc_client *publish_slab(const char *server, const char *name)
     fc_error err;
     bool ok = fc_client_connect(server, &options, &c, &err) == FC_OK &&
               fc_client_publish(c, name, NULL, &err) == FC_OK &&
-              fc_frame_alloc(&frame, slab_points(NULL), 0, &err) == FC_OK;
+              fc_frame_alloc(&frame, slab_points(NULL, 0), 0, &err) == FC_OK;
     if (ok) {
-        slab_points(frame.positions);
+        slab_points(frame.positions, 0);
         ok = fc_client_send_frame(c, &frame, &err) == FC_OK;
     }
     fc_frame_free(&frame);
@@ -216,6 +230,7 @@ static double mean_abs_difference(const fc_decoded_image *a, const fc_decoded_im
 typedef struct scene {
     char dir[64];
     char slab[128];
+    char more[FILES - 1][128];    /* playback: the slab shifted once, twice */
     char server[32];
     const char *cli;
     const char *input_dir;
@@ -347,13 +362,157 @@ static int test_pick(const char *log)
     return 0;
 }
 
+
+typedef struct shown_image {
+    unsigned width, height, frame;
+    bool preview;
+    const char *at;               /* where its line starts in the log */
+} shown_image;
+
+/* The images the viewer showed ("shown G: WxH frame I[ preview]" lines), in order; their count. */
+static int find_shown(const char *log, shown_image *out, int max)
+{
+    int n = 0;
+    for (const char *p = strstr(log, "shown "); p && n < max; p = strstr(p + 1, "\nshown ")) {
+        if (*p == '\n')
+            p++;
+        shown_image s = {.at = p};
+        const char *eol = strchr(p, '\n');
+        const char *tag = strstr(p, " preview");
+        s.preview = tag && (!eol || tag < eol);
+        if (sscanf(p, "shown %*u: %ux%u frame %u", &s.width, &s.height, &s.frame) == 3)
+            out[n++] = s;
+    }
+    return n;
+}
+
+#define MAX_SHOWN 512
+
+static int test_quality(const char *log)
+{
+    static shown_image shown[MAX_SHOWN];
+    int n = find_shown(log, shown, MAX_SHOWN);
+    REQUIRE_MSG(n >= 3, "expected a full image, previews, a full image:\n%s", log);
+    REQUIRE_MSG(!shown[0].preview && shown[0].width == WIDTH && shown[0].height == HEIGHT,
+                "the first image is %ux%u%s, not the full %dx%d", shown[0].width, shown[0].height,
+                shown[0].preview ? " preview" : "", WIDTH, HEIGHT);
+    int previews = 0;
+    for (int i = 0; i < n; i++)
+        if (shown[i].preview) {
+            previews++;
+            CHECK_MSG(shown[i].width == WIDTH / 2 && shown[i].height == HEIGHT / 2,
+                      "a preview of %ux%u, not the halved %dx%d", shown[i].width, shown[i].height, WIDTH / 2,
+                      HEIGHT / 2);
+        }
+    const shown_image *last = &shown[n - 1];
+    printf("quality: %d images shown, %d of them previews; the last %ux%u%s\n", n, previews, last->width,
+           last->height, last->preview ? " preview" : "");
+    REQUIRE_MSG(previews > 0, "no preview shown while dragging:\n%s", log);
+    REQUIRE_MSG(!last->preview && last->width == WIDTH && last->height == HEIGHT,
+                "at rest the last image is %ux%u%s, not the full %dx%d", last->width, last->height,
+                last->preview ? " preview" : "", WIDTH, HEIGHT);
+    return 0;
+}
+
+static int test_resize(const char *log)
+{
+    static shown_image shown[MAX_SHOWN];
+    int n = find_shown(log, shown, MAX_SHOWN);
+    REQUIRE_MSG(n >= 2, "expected an image before and after the resize:\n%s", log);
+    REQUIRE(shown[0].width == WIDTH && shown[0].height == HEIGHT);
+    const shown_image *last = &shown[n - 1];
+    printf("resize: the last image %ux%u%s (window %dx%d)\n", last->width, last->height,
+           last->preview ? " preview" : "", RESIZED_W, RESIZED_H);
+    REQUIRE_MSG(!last->preview && last->width == RESIZED_W && last->height == RESIZED_H,
+                "after the resize the image is %ux%u%s, not %dx%d:\n%s", last->width, last->height,
+                last->preview ? " preview" : "", RESIZED_W, RESIZED_H, log);
+    logged_camera c;
+    REQUIRE(find_camera(log, NULL, false, &c));
+    CHECK(c.width == RESIZED_W && c.height == RESIZED_H);
+    const char *shot = strstr(log, "shot: ");
+    int w = 0, h = 0;
+    REQUIRE(shot && sscanf(strstr(shot, "("), "(%dx%d)", &w, &h) == 2);
+    CHECK(w == RESIZED_W && h == RESIZED_H);
+    return 0;
+}
+
+/* Centre of the fluid's (blue) pixels in a screenshot; false when there are none. */
+static bool fluid_centre(const char *bmp, double centre[2])
+{
+    fc_decoded_image img = {0};
+    if (!decode_bmp(bmp, &img))
+        return false;
+    double sx = 0, sy = 0, count = 0;
+    const uint8_t *px = img.pixels;
+    for (uint32_t y = 0; y < img.height; y++)
+        for (uint32_t x = 0; x < img.width; x++) {
+            const uint8_t *p = px + ((size_t)y * img.width + x) * img.channels;
+            if ((int)p[2] - (int)p[0] > 40)
+                sx += x, sy += y, count++;
+        }
+    fc_decoded_image_free(&img);
+    if (count < 20)
+        return false;
+    centre[0] = sx / count;
+    centre[1] = sy / count;
+    return true;
+}
+
+static int test_playback(const scene *s, const char *log)
+{
+    static shown_image shown[MAX_SHOWN];
+    int n = find_shown(log, shown, MAX_SHOWN);
+    const char *pause = strstr(log, "shot: ");
+    REQUIRE_MSG(pause != NULL, "no screenshots:\n%s", log);
+    /* playing: before the first shot (after the pause) more than one file was shown */
+    bool seen[FILES] = {false};
+    int distinct = 0;
+    for (int i = 0; i < n && shown[i].at < pause; i++)
+        if (shown[i].frame < FILES && !seen[shown[i].frame])
+            seen[shown[i].frame] = true, distinct++;
+    printf("playback: %d of %d files shown while playing\n", distinct, FILES);
+    CHECK_MSG(distinct >= 2, "the sequence did not play:\n%s", log);
+    /* each shot: the frame of the last image shown before it */
+    double centre[FILES][2];
+    bool have[FILES] = {false};
+    int previous = -1;
+    const char *shot = pause;
+    for (int k = 0; k < FILES; k++, shot = strstr(shot + 1, "shot: ")) {
+        REQUIRE_MSG(shot != NULL, "%d screenshots expected:\n%s", FILES, log);
+        int frame = -1;
+        for (int i = 0; i < n && shown[i].at < shot; i++)
+            frame = (int)shown[i].frame;
+        REQUIRE(frame >= 0 && frame < FILES);
+        if (previous >= 0)
+            CHECK_MSG(frame == (previous + 1) % FILES, "n stepped from file %d to %d", previous, frame);
+        previous = frame;
+        char bmp[128];
+        snprintf(bmp, sizeof bmp, "%s/step%d.bmp", s->dir, k);
+        REQUIRE_MSG(fluid_centre(bmp, centre[frame]), "no fluid in %s", bmp);
+        have[frame] = true;
+        printf("playback: shot %d shows file %d, the fluid's centre at %.1f, %.1f\n", k, frame, centre[frame][0],
+               centre[frame][1]);
+    }
+    REQUIRE_MSG(have[0] && have[1] && have[2], "the steps did not show every file");
+    double d01[2] = {centre[1][0] - centre[0][0], centre[1][1] - centre[0][1]};
+    double d12[2] = {centre[2][0] - centre[1][0], centre[2][1] - centre[1][1]};
+    double l01 = hypot(d01[0], d01[1]), l12 = hypot(d12[0], d12[1]);
+    double cosine = (d01[0] * d12[0] + d01[1] * d12[1]) / (l01 * l12 + 1e-9);
+    printf("playback: the centre moved %.1f px from file 0 to 1, %.1f px from 1 to 2 (cosine %.3f)\n", l01, l12,
+           cosine);
+    CHECK(l01 > 5.0 && l12 > 5.0);
+    CHECK(cosine > 0.9);
+    CHECK(l12 > 0.5 * l01 && l12 < 2.0 * l01);
+    return 0;
+}
+
 static int run_viewer(const scene *s, const char *mode, char **log)
 {
     char script[512], a[128], b[128], out[128];
     snprintf(a, sizeof a, "%s/before.bmp", s->dir);
     snprintf(b, sizeof b, "%s/after.bmp", s->dir);
     snprintf(out, sizeof out, "%s/view.out", s->dir);
-    const char *argv[24];
+    const char *argv[32];
     int n = 0;
     char ioctl[256], device[256];
     if (strcmp(mode, "spacemouse") == 0) {
@@ -366,6 +525,19 @@ static int run_viewer(const scene *s, const char *mode, char **log)
     } else if (strcmp(mode, "pick") == 0) {
         snprintf(script, sizeof script, "wait; dclick 0 0; wait; dclick %d %d; wait; quit", -WIDTH / 2 + 4,
                  HEIGHT / 2 - 4);
+    } else if (strcmp(mode, "quality") == 0) {
+        /* each drag restarts the 300 ms still timer: the camera moves for about half a second */
+        snprintf(script, sizeof script,
+                 "wait; drag 20 0; sleep 120; drag 20 0; sleep 120; drag 20 0; sleep 120; drag 20 0; wait; quit");
+    } else if (strcmp(mode, "resize") == 0) {
+        /* the sleep lets the window's SIZE_CHANGED event arrive before `wait` looks */
+        snprintf(script, sizeof script, "wait; resize %d %d; sleep 400; wait; shot %s; quit", RESIZED_W, RESIZED_H,
+                 a);
+    } else if (strcmp(mode, "playback") == 0) {
+        snprintf(script, sizeof script,
+                 "wait; sleep 800; key space; sleep 200; wait; shot %s/step0.bmp; key n; wait; shot %s/step1.bmp; "
+                 "key n; wait; shot %s/step2.bmp; quit",
+                 s->dir, s->dir, s->dir);
     } else if (strcmp(mode, "draw") == 0 || strcmp(mode, "h264") == 0) {
         snprintf(script, sizeof script, "wait; shot %s; quit", a);
     } else {
@@ -387,6 +559,9 @@ static int run_viewer(const scene *s, const char *mode, char **log)
         argv[n++] = "--format";
         argv[n++] = "h264";
     }
+    if (strcmp(mode, "playback") == 0)
+        for (int i = 1; i < FILES; i++)
+            argv[n++] = s->more[i - 1];
     if (strcmp(mode, "spacemouse") != 0)
         argv[n++] = "--no-spacemouse";
     argv[n] = NULL;
@@ -400,13 +575,19 @@ static int run_viewer(const scene *s, const char *mode, char **log)
         return test_drag(s, *log, a, b);
     if (strcmp(mode, "pick") == 0)
         return test_pick(*log);
+    if (strcmp(mode, "quality") == 0)
+        return test_quality(*log);
+    if (strcmp(mode, "resize") == 0)
+        return test_resize(*log);
+    if (strcmp(mode, "playback") == 0)
+        return test_playback(s, *log);
     return test_spacemouse(*log);
 }
 
 int main(int argc, char **argv)
 {
     if (argc < 4) {
-        fprintf(stderr, "usage: test_viewer draw|drag|pick|spacemouse|h264 FLUIDCAST_CLI TESTS_INPUT_DIR [GALLERY_PNG]\n");
+        fprintf(stderr, "usage: test_viewer draw|drag|pick|spacemouse|h264|quality|resize|playback FLUIDCAST_CLI TESTS_INPUT_DIR [GALLERY_PNG]\n");
         return 2;
     }
     const char *mode = argv[1];
@@ -418,7 +599,11 @@ int main(int argc, char **argv)
     REQUIRE(mkdtemp(s.dir) != NULL);
     REQUIRE(chdir(s.dir) == 0); /* the p key writes its PNG here */
     snprintf(s.slab, sizeof s.slab, "%s/slab.f32", s.dir);
-    REQUIRE(write_slab(s.slab));
+    REQUIRE(write_slab(s.slab, 0));
+    for (int i = 1; i < FILES; i++) {
+        snprintf(s.more[i - 1], sizeof s.more[i - 1], "%s/slab%d.f32", s.dir, i);
+        REQUIRE(write_slab(s.more[i - 1], SHIFT * i));
+    }
     fc_test_daemon d;
     fc_error err;
     /* h264: no lossless PNG refresh, so what the window shows is the decoded H.264 picture. */
