@@ -49,14 +49,6 @@ typedef struct vp_doc {
 
 static const char *const array_names[VP_ARRAYS] = {"Points", "connectivity", "offsets"};
 
-static const char *attribute(const XML_Char **attrs, const char *name)
-{
-    for (size_t i = 0; attrs[i] != NULL; i += 2)
-        if (strcmp(attrs[i], name) == 0)
-            return attrs[i + 1];
-    return NULL;
-}
-
 static void vp_fail(vp_doc *d, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
 static void vp_fail(vp_doc *d, const char *fmt, ...)
 {
@@ -75,30 +67,15 @@ static void vp_fail(vp_doc *d, const char *fmt, ...)
 /* An absent count is 0 (VTK omits none, but hand-written files may). */
 static bool count_attribute(const XML_Char **attrs, const char *name, uint64_t *out)
 {
-    const char *text = attribute(attrs, name);
+    const char *text = fc_vx_attribute(attrs, name);
     *out = 0;
     return text == NULL || fc_span_to_count(fc_span_trim((fc_span){text, strlen(text)}), out);
 }
 
-static bool parse_type(const char *text, fc_scalar_type *type)
-{
-    static const struct {
-        const char *name;
-        fc_scalar_type type;
-    } types[] = {{"Int8", FC_SCALAR_I8},   {"UInt8", FC_SCALAR_U8},   {"Int16", FC_SCALAR_I16},
-                 {"UInt16", FC_SCALAR_U16}, {"Int32", FC_SCALAR_I32}, {"UInt32", FC_SCALAR_U32},
-                 {"Int64", FC_SCALAR_I64}, {"UInt64", FC_SCALAR_U64}, {"Float32", FC_SCALAR_F32},
-                 {"Float64", FC_SCALAR_F64}};
-    for (size_t i = 0; text != NULL && i < sizeof types / sizeof types[0]; i++)
-        if (strcmp(text, types[i].name) == 0)
-            return *type = types[i].type, true;
-    return false;
-}
-
 static void on_file(vp_doc *d, const XML_Char **attrs)
 {
-    const char *type = attribute(attrs, "type"), *order = attribute(attrs, "byte_order");
-    const char *header = attribute(attrs, "header_type"), *compressor = attribute(attrs, "compressor");
+    const char *type = fc_vx_attribute(attrs, "type"), *order = fc_vx_attribute(attrs, "byte_order");
+    const char *header = fc_vx_attribute(attrs, "header_type"), *compressor = fc_vx_attribute(attrs, "compressor");
     if (type == NULL || strcmp(type, "PolyData") != 0)
         return vp_fail(d, "VTKFile type '%.40s' is not PolyData", type ? type : "(none)");
     d->big_endian = order != NULL && strcmp(order, "BigEndian") == 0;
@@ -128,18 +105,18 @@ static void on_data_array(vp_doc *d, int which, const XML_Char **attrs)
     if (a->present)
         return vp_fail(d, "a second '%s' DataArray", array_names[which]);
     a->present = true;
-    const char *format = attribute(attrs, "format"), *components = attribute(attrs, "NumberOfComponents");
+    const char *format = fc_vx_attribute(attrs, "format"), *components = fc_vx_attribute(attrs, "NumberOfComponents");
     a->components = 1;
     if (components != NULL && !fc_span_to_count(fc_span_trim((fc_span){components, strlen(components)}), &a->components))
         return vp_fail(d, "DataArray '%s': NumberOfComponents is not a count", array_names[which]);
     if (a->components != (which == VP_POINTS ? 3u : 1u))
         return vp_fail(d, "DataArray '%s' has %llu components, expected %u", array_names[which],
                        (unsigned long long)a->components, which == VP_POINTS ? 3u : 1u);
-    if (!parse_type(attribute(attrs, "type"), &a->type))
+    if (!fc_vx_scalar_type(fc_vx_attribute(attrs, "type"), &a->type))
         return vp_fail(d, "DataArray '%s': type is not a numeric VTK type", array_names[which]);
     if (format != NULL && strcmp(format, "appended") == 0) {
         a->format = VP_APPENDED;
-        if (!count_attribute(attrs, "offset", &a->offset) || attribute(attrs, "offset") == NULL)
+        if (!count_attribute(attrs, "offset", &a->offset) || fc_vx_attribute(attrs, "offset") == NULL)
             return vp_fail(d, "DataArray '%s': appended without a non-negative offset", array_names[which]);
     } else if (format != NULL && (strcmp(format, "binary") == 0 || strcmp(format, "ascii") == 0)) {
         a->format = format[0] == 'b' ? VP_BINARY : VP_ASCII;
@@ -167,7 +144,7 @@ static void XMLCALL on_start(void *user, const XML_Char *name, const XML_Char **
     } else if (strcmp(parent, "VTKFile") == 0 && strcmp(name, "PolyData") == 0) {
         kind = "PolyData";
     } else if (strcmp(parent, "VTKFile") == 0 && strcmp(name, "AppendedData") == 0) {
-        const char *encoding = attribute(attrs, "encoding");
+        const char *encoding = fc_vx_attribute(attrs, "encoding");
         d->have_appended = true;
         d->appended_base64 = encoding == NULL || strcmp(encoding, "base64") == 0;
         if (!d->appended_base64 && strcmp(encoding, "raw") != 0)
@@ -180,7 +157,7 @@ static void XMLCALL on_start(void *user, const XML_Char *name, const XML_Char **
     } else if (strcmp(name, "DataArray") == 0 && strcmp(parent, "Points") == 0) {
         on_data_array(d, VP_POINTS, attrs);
     } else if (strcmp(name, "DataArray") == 0 && strcmp(parent, "Polys") == 0) {
-        const char *array = attribute(attrs, "Name");
+        const char *array = fc_vx_attribute(attrs, "Name");
         if (array != NULL && strcmp(array, "connectivity") == 0)
             on_data_array(d, VP_CONNECTIVITY, attrs);
         else if (array != NULL && strcmp(array, "offsets") == 0)
@@ -202,40 +179,10 @@ static void XMLCALL on_text(void *user, const XML_Char *text, int len)
 {
     vp_doc *d = user;
     vp_array *a = d->collecting;
-    if (a == NULL || len <= 0)
-        return;
-    if (a->text_len + (size_t)len > a->text_cap) {
-        size_t cap = a->text_cap ? a->text_cap : 256;
-        while (cap < a->text_len + (size_t)len)
-            cap *= 2;
-        char *grown = realloc(a->text, cap);
-        if (grown == NULL) {
-            d->code = fc_error_set(d->err, FC_ERR_NOMEM, "%s: out of memory for DataArray text", d->c->name);
-            XML_StopParser(d->parser, XML_FALSE);
-            return;
-        }
-        a->text = grown;
-        a->text_cap = cap;
+    if (a != NULL && len > 0 && !fc_vx_text_append(&a->text, &a->text_len, &a->text_cap, text, (size_t)len)) {
+        d->code = fc_error_set(d->err, FC_ERR_NOMEM, "%s: out of memory for DataArray text", d->c->name);
+        XML_StopParser(d->parser, XML_FALSE);
     }
-    memcpy(a->text + a->text_len, text, (size_t)len);
-    a->text_len += (size_t)len;
-}
-
-/* Where appended data starts (after "<AppendedData ...>"); xml_size is what expat gets. */
-static const uint8_t *find_appended(const fc_cursor *c, size_t *xml_size)
-{
-    static const char tag[] = "<AppendedData";
-    *xml_size = c->size;
-    for (size_t i = 0; i + sizeof tag - 1 <= c->size; i++) {
-        if (c->data[i] != '<' || memcmp(c->data + i, tag, sizeof tag - 1) != 0)
-            continue;
-        const uint8_t *close = memchr(c->data + i, '>', c->size - i);
-        if (close == NULL)
-            return NULL;
-        *xml_size = (size_t)(close + 1 - c->data);
-        return close + 1;
-    }
-    return NULL;
 }
 
 static fc_code parse_xml(vp_doc *d, size_t size, bool complete)
@@ -407,7 +354,7 @@ fc_code fc_read_mesh_vtp(fc_cursor *c, fc_mesh_builder *b, fc_error *err)
     d->c = c;
     d->err = err;
     size_t xml_size = 0;
-    const uint8_t *appended = find_appended(c, &xml_size);
+    const uint8_t *appended = fc_vx_find_appended(c->data, c->size, &xml_size);
     fc_code code = parse_xml(d, xml_size, appended == NULL);
     if (code == FC_OK && !d->have_file)
         code = fc_error_set(err, FC_ERR_PARSE, "%s: no VTKFile element", c->name);

@@ -69,15 +69,6 @@ typedef struct vx_doc {
 
 /* ---- attributes and errors from inside expat's callbacks ---- */
 
-static const char *attribute(const XML_Char **attributes, const char *name)
-{
-    for (size_t i = 0; attributes[i] != NULL; i += 2) {
-        if (strcmp(attributes[i], name) == 0)
-            return attributes[i + 1];
-    }
-    return NULL;
-}
-
 /* Records the first error (with the XML line) and stops the parser. */
 static void vx_fail(vx_doc *d, fc_code code, const char *fmt, ...) __attribute__((format(printf, 3, 4)));
 static void vx_fail(vx_doc *d, fc_code code, const char *fmt, ...)
@@ -103,8 +94,8 @@ static bool parse_count(const char *text, uint64_t *out)
 
 static void on_file(vx_doc *d, const XML_Char **attrs)
 {
-    const char *type = attribute(attrs, "type"), *order = attribute(attrs, "byte_order");
-    const char *header = attribute(attrs, "header_type"), *compressor = attribute(attrs, "compressor");
+    const char *type = fc_vx_attribute(attrs, "type"), *order = fc_vx_attribute(attrs, "byte_order");
+    const char *header = fc_vx_attribute(attrs, "header_type"), *compressor = fc_vx_attribute(attrs, "compressor");
     if (type == NULL || (strcmp(type, "UnstructuredGrid") != 0 && strcmp(type, "PolyData") != 0)) {
         if (type != NULL && strcmp(type, "Collection") == 0)
             return vx_fail(d, FC_ERR_PARSE, "a .pvd collection, not a dataset: name it .pvd, or give one of its files");
@@ -129,25 +120,8 @@ static void on_piece(vx_doc *d, const XML_Char **attrs)
     if (++d->pieces > 1)
         return vx_fail(d, FC_ERR_PARSE, "a second Piece: only single-piece files are read (merge the pieces or give "
                                         "the piece files one by one)");
-    if (!parse_count(attribute(attrs, "NumberOfPoints"), &d->points))
+    if (!parse_count(fc_vx_attribute(attrs, "NumberOfPoints"), &d->points))
         return vx_fail(d, FC_ERR_PARSE, "Piece lacks a non-negative integer NumberOfPoints");
-}
-
-static bool parse_type(const char *text, fc_scalar_type *type)
-{
-    static const struct { const char *name; fc_scalar_type type; } types[] = {
-        { "Int8", FC_SCALAR_I8 },   { "UInt8", FC_SCALAR_U8 },   { "Int16", FC_SCALAR_I16 },
-        { "UInt16", FC_SCALAR_U16 }, { "Int32", FC_SCALAR_I32 }, { "UInt32", FC_SCALAR_U32 },
-        { "Int64", FC_SCALAR_I64 }, { "UInt64", FC_SCALAR_U64 }, { "Float32", FC_SCALAR_F32 },
-        { "Float64", FC_SCALAR_F64 },
-    };
-    for (size_t i = 0; text != NULL && i < sizeof types / sizeof types[0]; i++) {
-        if (strcmp(text, types[i].name) == 0) {
-            *type = types[i].type;
-            return true;
-        }
-    }
-    return false;
 }
 
 /* The field a point data array's name gives (case-insensitive), with the component count it needs. */
@@ -175,17 +149,17 @@ static fc_field point_data_field(const char *name, uint64_t *components)
 
 static void describe_array(vx_doc *d, vx_array *a, const XML_Char **attrs)
 {
-    const char *type = attribute(attrs, "type"), *format = attribute(attrs, "format");
-    const char *components = attribute(attrs, "NumberOfComponents");
+    const char *type = fc_vx_attribute(attrs, "type"), *format = fc_vx_attribute(attrs, "format");
+    const char *components = fc_vx_attribute(attrs, "NumberOfComponents");
     a->components = 1;
     if (components != NULL && !parse_count(components, &a->components))
         return vx_fail(d, FC_ERR_PARSE, "DataArray '%s': NumberOfComponents '%.30s' is not a count", a->name, components);
-    if (!parse_type(type, &a->type))
+    if (!fc_vx_scalar_type(type, &a->type))
         return vx_fail(d, FC_ERR_PARSE, "DataArray '%s': type '%.30s' is not a numeric VTK type", a->name,
                        type ? type : "(none)");
     if (format != NULL && strcmp(format, "appended") == 0) {
         a->format = VX_APPENDED_FORMAT;
-        if (!parse_count(attribute(attrs, "offset"), &a->offset))
+        if (!parse_count(fc_vx_attribute(attrs, "offset"), &a->offset))
             return vx_fail(d, FC_ERR_PARSE, "DataArray '%s': appended without a non-negative offset", a->name);
     } else if (format != NULL && strcmp(format, "binary") == 0) {
         a->format = VX_BINARY;
@@ -203,7 +177,7 @@ static void describe_array(vx_doc *d, vx_array *a, const XML_Char **attrs)
 /* A DataArray directly in Points (the positions) or PointData (mapped by name, others ignored). */
 static void on_data_array(vx_doc *d, vx_element parent, const XML_Char **attrs)
 {
-    const char *name = attribute(attrs, "Name");
+    const char *name = fc_vx_attribute(attrs, "Name");
     uint64_t wanted = 3;
     fc_field field = FC_FIELD_X;
     if (parent == VX_POINT_DATA)
@@ -265,7 +239,7 @@ static void XMLCALL on_start(void *user, const XML_Char *name, const XML_Char **
     else if (kind == VX_DATA_ARRAY)
         on_data_array(d, d->stack[d->depth - 1], attrs);
     else if (kind == VX_APPENDED) {
-        const char *encoding = attribute(attrs, "encoding");
+        const char *encoding = fc_vx_attribute(attrs, "encoding");
         d->have_appended = true;
         d->appended_base64 = encoding == NULL || strcmp(encoding, "base64") == 0;
         if (!d->appended_base64 && strcmp(encoding, "raw") != 0)
@@ -287,46 +261,12 @@ static void XMLCALL on_text(void *user, const XML_Char *text, int len)
 {
     vx_doc *d = user;
     vx_array *a = d->collecting;
-    if (a == NULL || len <= 0)
-        return;
-    if (a->text_len + (size_t)len > a->text_cap) {
-        size_t cap = a->text_cap ? a->text_cap : 256;
-        while (cap < a->text_len + (size_t)len)
-            cap *= 2;
-        char *grown = realloc(a->text, cap);
-        if (grown == NULL)
-            return vx_fail(d, FC_ERR_NOMEM, "DataArray '%s': cannot allocate %zu bytes of text", a->name, cap);
-        a->text = grown;
-        a->text_cap = cap;
-    }
-    memcpy(a->text + a->text_len, text, (size_t)len);
-    a->text_len += (size_t)len;
+    if (a != NULL && len > 0 && !fc_vx_text_append(&a->text, &a->text_len, &a->text_cap, text, (size_t)len))
+        vx_fail(d, FC_ERR_NOMEM, "DataArray '%s': cannot allocate memory for %zu bytes of text", a->name,
+                a->text_len + (size_t)len);
 }
 
 /* ---- the XML part ---- */
-
-/* Where raw or base64 appended data starts: after the '_' that follows the AppendedData start tag. */
-static const uint8_t *find_appended(const fc_cursor *c, size_t *xml_size)
-{
-    static const char tag[] = "<AppendedData";
-    const uint8_t *at = NULL;
-    for (size_t i = 0; i + sizeof tag - 1 <= c->size && at == NULL; i++) {
-        const uint8_t *hit = memchr(c->data + i, '<', c->size - i);
-        if (hit == NULL)
-            break;
-        i = (size_t)(hit - c->data);
-        if (c->size - i >= sizeof tag - 1 && memcmp(hit, tag, sizeof tag - 1) == 0)
-            at = hit;
-    }
-    *xml_size = c->size;
-    if (at == NULL)
-        return NULL;
-    const uint8_t *close = memchr(at, '>', c->size - (size_t)(at - c->data));
-    if (close == NULL)
-        return NULL;
-    *xml_size = (size_t)(close + 1 - c->data); /* up to and including the start tag */
-    return close + 1;
-}
 
 static fc_code parse_xml(vx_doc *d, const uint8_t *data, size_t size, bool complete)
 {
@@ -482,7 +422,7 @@ fc_code fc_read_vtkxml(fc_cursor *c, fc_frame *frame, fc_error *err)
     d->c = c;
     d->err = err;
     size_t xml_size = 0;
-    const uint8_t *appended = find_appended(c, &xml_size);
+    const uint8_t *appended = fc_vx_find_appended(c->data, c->size, &xml_size);
     fc_code code = parse_xml(d, c->data, xml_size, appended == NULL);
     if (code == FC_OK && !d->have_file)
         code = fc_error_set(err, FC_ERR_PARSE, "%s: no VTKFile element", c->name);
