@@ -25,7 +25,12 @@ fi
 work=$1
 shift
 targets=("$@")
-[[ ${#targets[@]} -gt 0 ]] || targets=("${all_targets[@]}")
+# fuzz_reader_hdf5 runs only when named: Debian 12's libhdf5 1.10.8 itself reads past a buffer of its own on
+# some damaged compact datasets (H5VM_memcpyvv under H5Dread, found by this target in CI), which the storage
+# size it reports does not reveal; a bounded run in CI would fail at random on libhdf5's bug, not ours.
+default_targets=()
+for t in "${all_targets[@]}"; do [[ $t == fuzz_reader_hdf5 ]] || default_targets+=("$t"); done
+[[ ${#targets[@]} -gt 0 ]] || targets=("${default_targets[@]}")
 total_seconds=${FC_FUZZ_SECONDS:-120}
 cmake_command=${CMAKE:-cmake}
 
