@@ -41,7 +41,7 @@ typedef struct viewer {
     bool have_image;
     fc_view_step *steps;
     int step_count, step;
-    double step_started_ms;       /* when the current step first ran (sleep) */
+    double step_started_ms;       /* when the current step first ran (sleep, wait) */
     int status;
     bool detached;                /* the worker outlives the loop (see fc_view_link_stop) */
     bool session_over;            /* the session ended: the window stays with its last image */
@@ -152,6 +152,29 @@ static void spacemouse_frame(viewer *v)
         fc_view_control_camera_moved(&v->ctl, &cam, now_ms());
 }
 
+/* Whether the image at rest has arrived; past the step's limit the viewer
+ * ends with status 7 and what it waited for (test hook). */
+static bool wait_over(viewer *v, int limit_ms)
+{
+    if (v->step_started_ms == 0.0)
+        v->step_started_ms = now_ms();
+    bool settled = fc_view_control_settled(&v->ctl);
+    bool current = v->have_image && v->shown.generation == v->ctl.sent.generation;
+    if (settled && current) {
+        v->step_started_ms = 0.0;
+        return true;
+    }
+    if (now_ms() - v->step_started_ms >= limit_ms) {
+        v->status = fc_cli_fail(FC_EXIT_CONNECTION,
+                                "--test-script: wait: no image at rest after %d s (camera %s, %s, request %llu)",
+                                limit_ms / 1000, settled ? "still" : "moving",
+                                v->have_image ? "an older image shown" : "no image yet",
+                                (unsigned long long)v->ctl.sent.generation);
+        v->ctl.quit = true;
+    }
+    return false;
+}
+
 /* One step of the test script, when its condition holds. */
 static void script_step(viewer *v)
 {
@@ -163,7 +186,7 @@ static void script_step(viewer *v)
     fc_error err;
     switch (s->kind) {
     case FC_VIEW_STEP_WAIT:
-        if (!fc_view_control_settled(&v->ctl) || !v->have_image || v->shown.generation != v->ctl.sent.generation)
+        if (!wait_over(v, s->dx))
             return;
         break;
     case FC_VIEW_STEP_DRAG: fc_view_script_push_drag(SDL_BUTTON_LEFT, width / 2, height / 2, s->dx, s->dy); break;

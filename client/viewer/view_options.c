@@ -182,7 +182,7 @@ void fc_view_print_help(FILE *to)
           "                          smaller, faster), 444 every pixel's colour\n"
           "  --no-spacemouse         do not look for a SpaceMouse\n"
           "  --log-camera            print each camera sent to the daemon\n"
-          "  --test-script SCRIPT    test hook: run ';'-separated commands (wait, drag DX DY,\n"
+          "  --test-script SCRIPT    test hook: run ';'-separated commands (wait [S], drag DX DY,\n"
           "                          pan DX DY, dclick DX DY, shot FILE.bmp, key K, sleep MS,\n"
           "                          resize W H, quit) against the window\n"
           "  -h, --help              show this help\n"

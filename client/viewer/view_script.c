@@ -9,6 +9,7 @@
 #include "fc_error.h"
 
 #define DRAG_MOTIONS 10
+#define WAIT_LIMIT_S 60
 
 static int key_named(const char *name)
 {
@@ -24,8 +25,11 @@ static fc_code parse_step(const char *text, fc_view_step *s, fc_error *err)
     char word[16] = "", arg[256] = "";
     int n = sscanf(text, " %15s %255s", word, arg);
     memset(s, 0, sizeof *s);
-    if (n >= 1 && strcmp(word, "wait") == 0)
+    int seconds = WAIT_LIMIT_S;
+    if (strcmp(word, "wait") == 0 && (n == 1 || (sscanf(text, " %*s %d", &seconds) == 1 && seconds >= 0))) {
         s->kind = FC_VIEW_STEP_WAIT;
+        s->dx = seconds * 1000;
+    }
     else if (n >= 1 && strcmp(word, "quit") == 0)
         s->kind = FC_VIEW_STEP_QUIT;
     else if ((strcmp(word, "drag") == 0 || strcmp(word, "pan") == 0 || strcmp(word, "dclick") == 0) &&

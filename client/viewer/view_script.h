@@ -1,8 +1,11 @@
 /* view_script.h — the viewer's test hook (--test-script): a list of
  * ';'-separated commands that drive the window through the same SDL events a
  * user makes, so tests under Xvfb exercise the real event handling:
- *     wait            until the image on screen answers the latest request at
- *                     full size (the camera has been still and it arrived)
+ *     wait [S]        until the image on screen answers the latest request at
+ *                     full size (the camera has been still and it arrived);
+ *                     after S seconds (default 60) without it the viewer
+ *                     exits with status 7 and says what it waited for, so a
+ *                     test fails with a reason instead of its own timeout
  *     drag DX DY      a left-button drag by DX, DY pixels from the centre
  *     pan DX DY       the same with the right button
  *     dclick DX DY    a left double-click DX, DY pixels from the centre
@@ -36,7 +39,7 @@ typedef enum fc_view_step_kind {
 
 typedef struct fc_view_step {
     fc_view_step_kind kind;
-    int dx, dy;                   /* drag, pan; dx: milliseconds of sleep; resize: W, H */
+    int dx, dy;                   /* drag, pan; dx: milliseconds of sleep or of wait's limit; resize: W, H */
     int key;                      /* SDL keycode */
     char path[256];
 } fc_view_step;

@@ -33,6 +33,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include <sys/wait.h>
+#include <time.h>
 #include <unistd.h>
 
 #include "fc_error.h"
@@ -135,6 +136,13 @@ static int run(const char *const *argv, const char *out_path)
         result = WEXITSTATUS(status);
     posix_spawn_file_actions_destroy(&actions);
     return result;
+}
+
+static double now_ms(void)
+{
+    struct timespec t;
+    clock_gettime(CLOCK_MONOTONIC, &t);
+    return t.tv_sec * 1e3 + t.tv_nsec / 1e6;
 }
 
 static char *read_text(const char *path)
@@ -506,6 +514,19 @@ static int test_playback(const scene *s, const char *log)
     return 0;
 }
 
+/* `wait 2` with no image ever coming: the viewer gives up after its limit,
+ * not the test's, with exit status 7 and what it waited for. */
+static int test_wait_limit(int status, double took_ms, const char *log)
+{
+    REQUIRE(log != NULL);
+    printf("wait_limit: exit status %d after %.0f ms:\n%s", status, took_ms, log);
+    CHECK_MSG(status == 7, "exit status %d, 7 expected", status);
+    CHECK(strstr(log, "wait: no image at rest after 2 s") != NULL);
+    CHECK(strstr(log, "no image yet") != NULL);
+    CHECK_MSG(took_ms >= 2000.0 && took_ms < 30000.0, "gave up after %.0f ms", took_ms);
+    return 0;
+}
+
 static int run_viewer(const scene *s, const char *mode, char **log)
 {
     char script[512], a[128], b[128], out[128];
@@ -538,6 +559,8 @@ static int run_viewer(const scene *s, const char *mode, char **log)
                  "wait; sleep 800; key space; sleep 200; wait; shot %s/step0.bmp; key n; wait; shot %s/step1.bmp; "
                  "key n; wait; shot %s/step2.bmp; quit",
                  s->dir, s->dir, s->dir);
+    } else if (strcmp(mode, "wait_limit") == 0) {
+        snprintf(script, sizeof script, "wait 2; quit");
     } else if (strcmp(mode, "draw") == 0 || strcmp(mode, "h264") == 0) {
         snprintf(script, sizeof script, "wait; shot %s; quit", a);
     } else {
@@ -559,15 +582,21 @@ static int run_viewer(const scene *s, const char *mode, char **log)
         argv[n++] = "--format";
         argv[n++] = "h264";
     }
+    if (strcmp(mode, "wait_limit") == 0)
+        argv[2] = "--session=nobody-publishes";   /* a session no producer ever fills: no image comes */
     if (strcmp(mode, "playback") == 0)
         for (int i = 1; i < FILES; i++)
             argv[n++] = s->more[i - 1];
     if (strcmp(mode, "spacemouse") != 0)
         argv[n++] = "--no-spacemouse";
     argv[n] = NULL;
+    double started = now_ms();
     int status = run(argv, out);
+    double took = now_ms() - started;
     fc_client_close(producer);
     *log = read_text(out);
+    if (strcmp(mode, "wait_limit") == 0)
+        return test_wait_limit(status, took, *log);
     REQUIRE_MSG(status == 0 && *log, "the viewer exited with %d:\n%s", status, *log ? *log : "");
     if (strcmp(mode, "draw") == 0 || h264)
         return test_draw(s, *log, a);
@@ -587,7 +616,7 @@ static int run_viewer(const scene *s, const char *mode, char **log)
 int main(int argc, char **argv)
 {
     if (argc < 4) {
-        fprintf(stderr, "usage: test_viewer draw|drag|pick|spacemouse|h264|quality|resize|playback FLUIDCAST_CLI TESTS_INPUT_DIR [GALLERY_PNG]\n");
+        fprintf(stderr, "usage: test_viewer draw|drag|pick|spacemouse|h264|quality|resize|playback|wait_limit FLUIDCAST_CLI TESTS_INPUT_DIR [GALLERY_PNG]\n");
         return 2;
     }
     const char *mode = argv[1];
