@@ -1,7 +1,8 @@
 /* video_encoder.h — a video file of RGBA8 frames, encoded with libavcodec and
  * muxed with libavformat: .mp4 as H.264 (libx264) or, where libavcodec was
  * built without it, MPEG-4 part 2; .webm as VP9 (libvpx-vp9). yuv420p at a
- * constant frame rate; the quality is a constant-rate factor. */
+ * constant frame rate; the quality is a constant-rate factor. libav itself is
+ * in fluidcast-video.so, which fc_video_open loads (cli_module.h). */
 #ifndef FC_VIDEO_ENCODER_H
 #define FC_VIDEO_ENCODER_H
 
@@ -28,8 +29,10 @@ typedef struct fc_video_params {
 } fc_video_params;
 
 /* Creates the file and writes its header. FC_ERR_USAGE for an odd size or a
- * path that is not .mp4/.webm; FC_ERR_IO when libavcodec has none of the
- * path's encoders, or naming the file when it cannot be created. */
+ * path that is not .mp4/.webm; FC_ERR_IO when fluidcast-video.so cannot be
+ * loaded (cli_module.h: the message names it and says why), when libavcodec
+ * has none of the path's encoders, or naming the file when it cannot be
+ * created. */
 fc_code fc_video_open(const char *path, const fc_video_params *params, fc_video_encoder **out, fc_error *err);
 
 /* The libavcodec encoder in use, e.g. "libx264". */

@@ -6,8 +6,10 @@
 #      package and the udev rule are there; every header compiles alone.
 #   2. A consumer (tests/install/consumer) and examples/producer.c build against
 #      that tree only, shared and static, with pkg-config and with find_package.
-#   3. fluidcastd from the tree renders for each of them (a PNG each).
-#   4. cpack -G DEB: name, Depends, files; dpkg -x and run what it holds, and
+#   3. fluidcastd from the tree renders for each of them (a PNG each); the installed
+#      fluidcast draws a legend and writes an .mp4 through its modules (<libdir>/fluidcast).
+#   4. cpack -G DEB: name, Depends (the modules' libraries too), files; dpkg -x and
+#      run what it holds (the CLI's modules included), and
 #      apt-get's simulation resolves its Depends on this system.
 # Never installs anything onto this machine.
 #
@@ -60,6 +62,12 @@ for f in fluidcastConfig.cmake fluidcastConfigVersion.cmake fluidcastTargets.cma
     need_file "$R$LIBDIR/cmake/fluidcast/$f"
 done
 need_file "$R$PREFIX/lib/udev/rules.d/70-fluidcast-spacemouse.rules"
+# The CLI's modules (client/cli/cli_module.h): OpenImageIO and libav, loaded only by the commands that use them.
+MODULES="fluidcast-image.so fluidcast-video.so"
+for m in $MODULES; do need_file "$R$LIBDIR/fluidcast/$m"; done
+if readelf -d "$R$BINDIR/fluidcast" | grep NEEDED | matches -e libOpenImageIO -e libavformat; then
+    fail "the installed fluidcast links OpenImageIO or libavformat itself"
+fi
 for u in fluidcastd.service fluidcastd.socket fluidcastd@.service; do
     need_file "$R$PREFIX/lib/systemd/system/$u"
     matches "^ExecStart=$BINDIR/fluidcastd " < "$R$PREFIX/lib/systemd/system/$u" || [ "$u" = fluidcastd.socket ] ||
@@ -75,7 +83,8 @@ fi
 if grep -rlF -e "$BUILD" -e "$SRC/" "$R$LIBDIR/pkgconfig" "$R$LIBDIR/cmake" "$R$INCLUDEDIR/fluidcast"; then
     fail "installed files name the build or source tree"
 fi
-for f in "$R$BINDIR/fluidcastd" "$R$BINDIR/fluidcast" "$R$LIBDIR/libfluidcast.so.$VERSION"; do
+for f in "$R$BINDIR/fluidcastd" "$R$BINDIR/fluidcast" "$R$LIBDIR/libfluidcast.so.$VERSION" \
+         "$R$LIBDIR/fluidcast/fluidcast-image.so" "$R$LIBDIR/fluidcast/fluidcast-video.so"; do
     if readelf -d "$f" | grep -E 'RPATH|RUNPATH' | matches -F "$BUILD"; then fail "$f keeps the build tree's RPATH"; fi
 done
 # The library holds the protocol functions its headers declare.
@@ -163,6 +172,26 @@ for prog in "$WORK/producer_pc_shared" "$CB/producer_shared" "$CB/producer_stati
 done
 LD_LIBRARY_PATH="$R$LIBDIR" "$R$BINDIR/fluidcast" info --server "$ADDR" > "$WORK/info.txt" ||
     fail "the installed fluidcast info failed"
+# A small ball of particles, some moving, for the commands that need the modules.
+{
+    echo "x,y,z,vx,vy,vz"
+    for i in $(seq -4 4); do for j in $(seq -4 4); do for k in $(seq -4 4); do
+        [ $((i * i + j * j + k * k)) -le 16 ] && echo "0.$((i + 5)),0.$((j + 5)),0.$((k + 5)),0,0,$(((i + 4) % 3))"
+    done; done; done
+} > "$WORK/ball.csv"
+# The installed fluidcast finds its modules next to itself (bin/ -> <libdir>/fluidcast).
+check_modules() {   # FLUIDCAST EXTRA_LD_LIBRARY_PATH TAG
+    LD_LIBRARY_PATH="$2" "$1" snapshot "$WORK/ball.csv" -o "$WORK/legend-$3.png" --server "$ADDR" --size 96x64 \
+        --color-by speed --range 0:2 --legend > "$WORK/legend-$3.txt" 2>&1 ||
+        { cat "$WORK/legend-$3.txt"; fail "$1 snapshot --legend failed (fluidcast-image.so)"; }
+    matches "^legend: columns" < "$WORK/legend-$3.txt" || fail "$1 drew no legend"
+    check_png "$WORK/legend-$3.png"
+    LD_LIBRARY_PATH="$2" "$1" render "$WORK/ball.csv" "$WORK/ball.csv" -o "$WORK/video-$3.mp4" --server "$ADDR" \
+        --size 96x64 > "$WORK/video-$3.txt" 2>&1 ||
+        { cat "$WORK/video-$3.txt"; fail "$1 render to .mp4 failed (fluidcast-video.so)"; }
+    [ "$(head -c 8 "$WORK/video-$3.mp4" | tail -c 4)" = ftyp ] || fail "$WORK/video-$3.mp4 is not an MP4"
+}
+check_modules "$R$BINDIR/fluidcast" "$R$LIBDIR" installed
 stop_daemon
 if [ -n "$PYPKG" ]; then
     step "the installed Python package"
@@ -194,14 +223,16 @@ cat "$WORK/deb-info.txt"
 for field in Package Version Architecture Maintainer Section Description Depends; do
     grep -q "^ $field: ." "$WORK/deb-info.txt" || fail "the .deb has no $field"
 done
-for dep in libc6 libzstd1 libegl1; do
+# What the CLI's modules load must be there too (the daemon needs it as well).
+for dep in libc6 libzstd1 libegl1 libopenimageio2.4 libavformat59; do
     grep "^ Depends:" "$WORK/deb-info.txt" | matches -w "$dep" || fail "Depends lacks $dep"
 done
 dpkg-deb -c "$DEB" | awk '{print $6}' > "$WORK/deb-files.txt"
 for f in "$BINDIR/fluidcastd" "$BINDIR/fluidcast" "$LIBDIR/libfluidcast.so.$VERSION" "$LIBDIR/libfluidcast.so.$SOMAJOR" \
          "$LIBDIR/libfluidcast.so" "$LIBDIR/libfluidcast.a" "$INCLUDEDIR/fluidcast/fluidcast.h" \
          "$INCLUDEDIR/fluidcast/fluidcast_types.h" "$LIBDIR/pkgconfig/fluidcast.pc" \
-         "$LIBDIR/cmake/fluidcast/fluidcastConfig.cmake" "$PREFIX/lib/udev/rules.d/70-fluidcast-spacemouse.rules"; do
+         "$LIBDIR/cmake/fluidcast/fluidcastConfig.cmake" "$PREFIX/lib/udev/rules.d/70-fluidcast-spacemouse.rules" \
+         "$LIBDIR/fluidcast/fluidcast-image.so" "$LIBDIR/fluidcast/fluidcast-video.so"; do
     grep -qx "\.$f" "$WORK/deb-files.txt" || fail "the .deb lacks $f"
 done
 
@@ -214,6 +245,7 @@ LD_LIBRARY_PATH="$X$LIBDIR" "$X$BINDIR/fluidcastd" --help | matches -- "--port-f
 start_daemon "$X$BINDIR/fluidcastd" "$X$LIBDIR"
 LD_LIBRARY_PATH="$X$LIBDIR" "$CB/consumer_shared" "$ADDR" "$WORK/from_deb.png" || fail "no render from the .deb's daemon and library"
 check_png "$WORK/from_deb.png"
+check_modules "$X$BINDIR/fluidcast" "$X$LIBDIR" deb
 stop_daemon
 
 if command -v apt-get > /dev/null; then
