@@ -9,7 +9,7 @@
 #include "snapshot.h"
 #include "spacemouse_dump.h"
 #include "stream.h"
-#include "view.h"
+#include "view_command.h"
 #include "watch.h"
 #include "wire.h"
 
@@ -70,7 +70,7 @@ int main(int argc, char **argv)
     if (strcmp(command, "watch") == 0)
         return fc_watch_main(argc - 2, argv + 2);
     if (strcmp(command, "view") == 0)
-        return fc_view_main(argc - 2, argv + 2);
+        return fc_view_command(argc - 2, argv + 2);
     if (strcmp(command, "info") == 0)
         return fc_info_main(argc - 2, argv + 2);
     if (strcmp(command, "spacemouse") == 0)

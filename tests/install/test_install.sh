@@ -7,7 +7,8 @@
 #   2. A consumer (tests/install/consumer) and examples/producer.c build against
 #      that tree only, shared and static, with pkg-config and with find_package.
 #   3. fluidcastd from the tree renders for each of them (a PNG each); the installed
-#      fluidcast draws a legend and writes an .mp4 through its modules (<libdir>/fluidcast).
+#      fluidcast draws a legend, writes an .mp4 and runs `view` through its modules
+#      (<libdir>/fluidcast).
 #   4. cpack -G DEB: name, Depends (the modules' libraries too), files; dpkg -x and
 #      run what it holds (the CLI's modules included), and
 #      apt-get's simulation resolves its Depends on this system.
@@ -62,11 +63,11 @@ for f in fluidcastConfig.cmake fluidcastConfigVersion.cmake fluidcastTargets.cma
     need_file "$R$LIBDIR/cmake/fluidcast/$f"
 done
 need_file "$R$PREFIX/lib/udev/rules.d/70-fluidcast-spacemouse.rules"
-# The CLI's modules (client/cli/cli_module.h): OpenImageIO and libav, loaded only by the commands that use them.
-MODULES="fluidcast-image.so fluidcast-video.so"
+# The CLI's modules (client/cli/cli_module.h): OpenImageIO, libav and SDL2, loaded only by the commands that use them.
+MODULES="fluidcast-image.so fluidcast-video.so fluidcast-view.so"
 for m in $MODULES; do need_file "$R$LIBDIR/fluidcast/$m"; done
-if readelf -d "$R$BINDIR/fluidcast" | grep NEEDED | matches -e libOpenImageIO -e libavformat; then
-    fail "the installed fluidcast links OpenImageIO or libavformat itself"
+if readelf -d "$R$BINDIR/fluidcast" | grep NEEDED | matches -e libOpenImageIO -e libav -e libSDL2; then
+    fail "the installed fluidcast links OpenImageIO, libav or SDL2 itself"
 fi
 for u in fluidcastd.service fluidcastd.socket fluidcastd@.service; do
     need_file "$R$PREFIX/lib/systemd/system/$u"
@@ -84,7 +85,8 @@ if grep -rlF -e "$BUILD" -e "$SRC/" "$R$LIBDIR/pkgconfig" "$R$LIBDIR/cmake" "$R$
     fail "installed files name the build or source tree"
 fi
 for f in "$R$BINDIR/fluidcastd" "$R$BINDIR/fluidcast" "$R$LIBDIR/libfluidcast.so.$VERSION" \
-         "$R$LIBDIR/fluidcast/fluidcast-image.so" "$R$LIBDIR/fluidcast/fluidcast-video.so"; do
+         "$R$LIBDIR/fluidcast/fluidcast-image.so" "$R$LIBDIR/fluidcast/fluidcast-video.so" \
+         "$R$LIBDIR/fluidcast/fluidcast-view.so"; do
     if readelf -d "$f" | grep -E 'RPATH|RUNPATH' | matches -F "$BUILD"; then fail "$f keeps the build tree's RPATH"; fi
 done
 # The library holds the protocol functions its headers declare.
@@ -190,6 +192,9 @@ check_modules() {   # FLUIDCAST EXTRA_LD_LIBRARY_PATH TAG
         --size 96x64 > "$WORK/video-$3.txt" 2>&1 ||
         { cat "$WORK/video-$3.txt"; fail "$1 render to .mp4 failed (fluidcast-video.so)"; }
     [ "$(head -c 8 "$WORK/video-$3.mp4" | tail -c 4)" = ftyp ] || fail "$WORK/video-$3.mp4 is not an MP4"
+    LD_LIBRARY_PATH="$2" "$1" view --help > "$WORK/view-$3.txt" 2>&1 ||
+        { cat "$WORK/view-$3.txt"; fail "$1 view --help failed (fluidcast-view.so)"; }
+    matches "^usage: fluidcast view" < "$WORK/view-$3.txt" || fail "$1 view --help printed no usage"
 }
 check_modules "$R$BINDIR/fluidcast" "$R$LIBDIR" installed
 stop_daemon
@@ -224,7 +229,7 @@ for field in Package Version Architecture Maintainer Section Description Depends
     grep -q "^ $field: ." "$WORK/deb-info.txt" || fail "the .deb has no $field"
 done
 # What the CLI's modules load must be there too (the daemon needs it as well).
-for dep in libc6 libzstd1 libegl1 libopenimageio2.4 libavformat59; do
+for dep in libc6 libzstd1 libegl1 libopenimageio2.4 libavformat59 libsdl2-2.0-0; do
     grep "^ Depends:" "$WORK/deb-info.txt" | matches -w "$dep" || fail "Depends lacks $dep"
 done
 dpkg-deb -c "$DEB" | awk '{print $6}' > "$WORK/deb-files.txt"
@@ -232,7 +237,8 @@ for f in "$BINDIR/fluidcastd" "$BINDIR/fluidcast" "$LIBDIR/libfluidcast.so.$VERS
          "$LIBDIR/libfluidcast.so" "$LIBDIR/libfluidcast.a" "$INCLUDEDIR/fluidcast/fluidcast.h" \
          "$INCLUDEDIR/fluidcast/fluidcast_types.h" "$LIBDIR/pkgconfig/fluidcast.pc" \
          "$LIBDIR/cmake/fluidcast/fluidcastConfig.cmake" "$PREFIX/lib/udev/rules.d/70-fluidcast-spacemouse.rules" \
-         "$LIBDIR/fluidcast/fluidcast-image.so" "$LIBDIR/fluidcast/fluidcast-video.so"; do
+         "$LIBDIR/fluidcast/fluidcast-image.so" "$LIBDIR/fluidcast/fluidcast-video.so" \
+         "$LIBDIR/fluidcast/fluidcast-view.so"; do
     grep -qx "\.$f" "$WORK/deb-files.txt" || fail "the .deb lacks $f"
 done
 

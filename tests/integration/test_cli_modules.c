@@ -4,10 +4,11 @@
  *   - --version and a whole snapshot (a --background image included: the server
  *     decodes it) load neither OpenImageIO nor libav;
  *   - --legend loads fluidcast-image.so and OpenImageIO (and with it libav) and draws the legend;
- *     a render to .mp4 loads fluidcast-video.so and libavformat and writes an MP4;
+ *     a render to .mp4 loads fluidcast-video.so and libavformat and writes an MP4; `view` runs
+ *     from fluidcast-view.so with SDL2 (its window and pictures: tests/viewer);
  *   - with FLUIDCAST_MODULE_DIR on an empty directory, or on modules that are
- *     not what they should be, exactly those two fail (exit 6, the module and
- *     the loader's reason named) and everything else still works. */
+ *     not what they should be, exactly those fail (exit 6, `view` 2; the module
+ *     and the loader's reason named) and everything else still works. */
 #include <dirent.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -95,8 +96,8 @@ static bool loaded(const traced_run *t, const char *library)
 }
 
 /* The libraries a command that reads, renders and writes a PNG never needs. */
-static const char *const heavy[] = {"libOpenImageIO.so", "libavformat.so", "fluidcast-image.so",
-                                    "fluidcast-video.so"};
+static const char *const heavy[] = {"libOpenImageIO.so", "libavformat.so", "libavcodec.so", "libSDL2",
+                                    "fluidcast-image.so", "fluidcast-video.so", "fluidcast-view.so"};
 
 static void check_light(const traced_run *t, const char *what)
 {
@@ -259,7 +260,19 @@ static void test_video_loads_libav(test_env *env)
     free(mp4);
 }
 
-/* Without the modules: the two commands that need them fail, naming the module and the loader's reason. */
+/* `view` is the module's: its help comes from there, with SDL2 loaded and nothing of the image module. */
+static void test_view_loads_viewer(test_env *env)
+{
+    traced_run t;
+    run_traced(env, NULL, (const char *const[]){"view", "--help", NULL}, &t);
+    CHECK_MSG(t.r.status == 0, "view --help: exit %d: %s", t.r.status, t.r.err);
+    CHECK_MSG(strstr(t.r.out, "usage: fluidcast view") != NULL, "stdout: %s", t.r.out);
+    CHECK_MSG(loaded(&t, "fluidcast-view.so") && loaded(&t, "libSDL2"), "view did not load its module and SDL2");
+    CHECK_MSG(!loaded(&t, "libOpenImageIO.so"), "view loaded OpenImageIO");
+    free(t.trace);
+}
+
+/* Without the modules: the commands that need them fail, naming the module and the loader's reason. */
 static void test_missing_modules(test_env *env)
 {
     char dir[PATH_SIZE], in[PATH_SIZE], out[PATH_SIZE];
@@ -290,6 +303,12 @@ static void test_missing_modules(test_env *env)
                   strstr(t.r.err, "No such file or directory"),
               "stderr: %s", t.r.err);
     CHECK_MSG(access(out, F_OK) != 0, "%s was created", out);
+    free(t.trace);
+    run_traced(env, dir, (const char *const[]){"view", "--help", NULL}, &t);
+    CHECK_CODE(t.r.status, 2);
+    CHECK_MSG(strstr(t.r.err, "fluidcast view needs the module fluidcast-view.so") &&
+                  strstr(t.r.err, "No such file or directory"),
+              "stderr: %s", t.r.err);
     free(t.trace);
 }
 
@@ -335,6 +354,7 @@ int main(void)
         return 1;
     }
     test_version(&env);
+    test_view_loads_viewer(&env);
     fc_test_daemon daemon;
     fc_error err;
     if (fc_test_daemon_start(&daemon, NULL, FC_TEST_DAEMON_START_TIMEOUT_MS, &err) != FC_OK) {
