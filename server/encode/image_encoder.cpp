@@ -1,6 +1,7 @@
-/* image_encoder.cpp — fc_encode_image over OpenImageIO, the server's only C++.
+/* image_encoder.cpp — fc_encode_image over OpenImageIO (JPEG, EXR) and
+ * fluidcast's own PNG writer (png_encoder.h), the server's only C++.
  *
- * Writers are handed an in-memory IOVecOutput proxy so nothing touches the
+ * OpenImageIO's writers are handed an in-memory IOVecOutput proxy so nothing touches the
  * file system. Every exception stops at the C boundary (fc_encode_image). */
 #include "image_encoder.h"
 
@@ -16,6 +17,7 @@
 #include <vector>
 
 #include "fc_error.h"
+#include "png_encoder.h"
 
 namespace {
 
@@ -137,27 +139,23 @@ fc_code write_in_memory(const char *writer, const ImageSpec &spec, TypeDesc type
     return append_bytes(out, file.data(), file.size(), err);
 }
 
-/* libpng's row filter flags (png.h), which "png:filter" passes through. */
-enum { PNG_FILTER_FLAG_NONE = 0x08, PNG_FILTER_FLAG_SUB = 0x10 };
-
+/* PNG through fluidcast's own writer (png_encoder.h): the same zlib levels
+ * and SUB filter OpenImageIO's writer was given before, deflated in strips on
+ * several threads; OpenImageIO's writer deflates on one. */
 fc_code encode_png(const fc_image &img, uint32_t level, fc_buf *out, fc_error *err)
 {
     if (level > FC_PNG_MAX_COMPRESSION)
         return fc_error_set(err, FC_ERR_USAGE, "encode: PNG compression %u outside 0..%u", level,
                             FC_PNG_MAX_COMPRESSION);
-    ImageSpec spec((int)img.width, (int)img.height, (int)img.channels, OIIO::TypeUInt8);
-    /* PNG stores straight alpha; without this OpenImageIO would assume our
-     * pixels are premultiplied and divide colour by alpha. */
-    spec.attribute("oiio:UnassociatedAlpha", 1);
-    /* Speed: one cheap filter instead of libpng's per-row choice among all
-     * five, which costs more than the deflating at low levels (OpenImageIO
-     * ignores "compression" "zip:N" for PNG; it reads these two). */
-    spec.attribute("png:compressionLevel", (int)level);
-    spec.attribute("png:filter", level == 0 ? PNG_FILTER_FLAG_NONE : PNG_FILTER_FLAG_SUB);
-    if (img.type == FC_PIXEL_U8)
-        return write_in_memory("png", spec, OIIO::TypeUInt8, img.pixels, out, err);
-    std::vector<uint8_t> display = to_display_u8(img, img.channels);
-    return write_in_memory("png", spec, OIIO::TypeUInt8, display.data(), out, err);
+    fc_png_rows rows = {nullptr, img.width, img.height, img.channels};
+    std::vector<uint8_t> display;
+    if (img.type == FC_PIXEL_U8) {
+        rows.pixels = static_cast<const uint8_t *>(img.pixels);
+    } else {
+        display = to_display_u8(img, img.channels);
+        rows.pixels = display.data();
+    }
+    return fc_png_encode(&rows, level, 0, out, err);
 }
 
 /* libjpeg's own default, which OpenImageIO keeps unless told, is 4:2:0; a

@@ -1,5 +1,7 @@
-/* image_encoder.h — in-memory image encoding with OpenImageIO (PNG, JPEG, EXR)
- * through an IOProxy: no temporary files. C interface over image_encoder.cpp. */
+/* image_encoder.h — in-memory image encoding: PNG by fluidcast's own writer
+ * (png_encoder.h: zlib in strips on several threads), JPEG and EXR with
+ * OpenImageIO through an IOProxy; no temporary files. C interface over
+ * image_encoder.cpp. */
 #ifndef FC_IMAGE_ENCODER_H
 #define FC_IMAGE_ENCODER_H
 
@@ -14,20 +16,22 @@ extern "C" {
 /* PNG's zlib level when none is chosen. With the SUB row filter, level 4
  * encodes a rendered 1280x720 RGBA image about 3.5 times faster than
  * OpenImageIO's default (level 6, libpng's adaptive filters) into a file
- * about 4% larger (bench/RESULTS.md). */
+ * about 4% larger, on one core; png_encoder.h spreads it over several
+ * (bench/RESULTS.md). */
 #define FC_PNG_DEFAULT_COMPRESSION 4u
 #define FC_PNG_MAX_COMPRESSION 9u
 
 /* Encodes img into `out` (appended after out->len) in `format`:
  *   PNG:  U8 RGBA/1-channel as is; F32 converted (colour clamped to [0,1] and sRGB-encoded);
- *         zlib level FC_PNG_DEFAULT_COMPRESSION, SUB filter.
+ *         zlib level FC_PNG_DEFAULT_COMPRESSION, SUB filter, deflated in strips on up to
+ *         FC_PNG_MAX_THREADS threads (png_encoder.h); 1 channel: grey, 3: RGB, 4: RGBA.
  *   JPEG: like PNG, alpha dropped, `quality` 1..100, chroma 4:4:4 (baseline, libjpeg-turbo's
  *         accurate integer DCT and standard Huffman tables: the fastest settings that keep quality).
  *   EXR:  F32 as float32 channels (R,G,B,A; R,G,B for the normal AOV; a single "Z" channel for the
  *         other AOVs); U8 converted to float.
  *   RAW:  the pixel rows as they are.
  * H.264 is a stream, not a file: h264_encoder.h (FC_ERR_USAGE here).
- * FC_ERR_ENCODE with OpenImageIO's message on failure. */
+ * FC_ERR_ENCODE with OpenImageIO's (or zlib's) message on failure. */
 fc_code fc_encode_image(const fc_image *img, fc_image_format format, uint32_t quality,
                         fc_buf *out, fc_error *err);
 

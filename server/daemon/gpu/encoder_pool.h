@@ -1,5 +1,7 @@
-/* encoder_pool.h — the threads that encode rendered images (OpenImageIO) and
- * build the reply messages, so encoding one frame overlaps rendering the next. */
+/* encoder_pool.h — the threads that encode rendered images (image_encoder.h)
+ * and build the reply messages, so encoding one frame overlaps rendering the
+ * next. A PNG is deflated in strips on threads of its own besides
+ * (png_encoder.h): one image can use the cores the GL thread leaves idle. */
 #ifndef FC_DAEMON_ENCODER_POOL_H
 #define FC_DAEMON_ENCODER_POOL_H
 
