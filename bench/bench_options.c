@@ -46,7 +46,9 @@ void bench_options_print_usage(void)
         printf(" %s", smoothing_names[i].name);
     printf("\n--image writes each configuration's last frame there, so it ends up with the last one's.\n"
            "--profile prints after each row where its time goes: every pass's wall time with the GL\n"
-           "queue drained around it, its fragment shader invocations, the sprites' sizes, and the GPU\n"
+           "queue drained around it, the process's CPU time over it (on llvmpipe: the pass's work,\n"
+           "steadier than wall time on a loaded machine), its fragment shader invocations, the\n"
+           "sprites' sizes, and the GPU\n"
            "memory split into particle buffers, render targets and the readback buffer.\n"
            "--shader-dir loads the *.glsl files from DIR, to time shader changes without rebuilding.\n"
            "--filter-radius sets the kernel half-width in pixels of the bilateral, binomial and\n"

@@ -51,6 +51,7 @@ void bench_sprite_diameters(const fc_frame *frame, const fc_camera *cam, float r
 typedef struct pass_series {
     const char *name;
     float *ms;
+    float *cpu_ms;
     float *fragments;
     int n;
 } pass_series;
@@ -66,8 +67,9 @@ static pass_series *series_of(pass_series *all, int *count, const char *name, in
         return NULL;
     pass_series *s = &all[(*count)++];
     *s = (pass_series){.name = name, .ms = calloc((size_t)frames, sizeof(float)),
+                       .cpu_ms = calloc((size_t)frames, sizeof(float)),
                        .fragments = calloc((size_t)frames, sizeof(float))};
-    return s->ms && s->fragments ? s : NULL;
+    return s->ms && s->cpu_ms && s->fragments ? s : NULL;
 }
 
 /* Sums the samples of one frame per pass name (a pass may run several times). */
@@ -79,6 +81,7 @@ static fc_code collect(const fc_pass_sample *samples, int n, int frame, int fram
         if (!s)
             return fc_error_set(err, FC_ERR_NOMEM, "out of memory (or too many passes) for the profile");
         s->ms[frame] += (float)samples[i].ms;
+        s->cpu_ms[frame] += (float)samples[i].cpu_ms;
         s->fragments[frame] += (float)samples[i].fragments;
         s->n = frame + 1;
     }
@@ -100,16 +103,19 @@ static void print_table(pass_series *all, int count, int frames, uint64_t partic
            settings->iterations,
            settings->smooth_scale, sprite_px[0], sprite_px[1], sprite_px[2],
            splat == FC_SPLAT_COMPUTE ? "compute" : "fragment");
-    printf("| pass | ms | fragments | fragments / pixel | fragments / particle |\n|---|---|---|---|---|\n");
-    float total = 0.0f;
+    printf("| pass | ms | CPU ms | fragments | fragments / pixel | fragments / particle |\n"
+           "|---|---|---|---|---|---|\n");
+    float total = 0.0f, total_cpu = 0.0f;
     const float pixels = (float)cam->width * (float)cam->height;
     for (int i = 0; i < count; i++) {
-        float ms = median_of(all[i].ms, frames), fragments = median_of(all[i].fragments, frames);
+        float ms = median_of(all[i].ms, frames), cpu_ms = median_of(all[i].cpu_ms, frames);
+        float fragments = median_of(all[i].fragments, frames);
         total += ms;
-        printf("| %s | %.2f | %.0f | %.2f | %.1f |\n", all[i].name, ms, fragments, fragments / pixels,
+        total_cpu += cpu_ms;
+        printf("| %s | %.2f | %.2f | %.0f | %.2f | %.1f |\n", all[i].name, ms, cpu_ms, fragments, fragments / pixels,
                fragments / (float)particles);
     }
-    printf("| sum | %.2f | | | |\n\n", total);
+    printf("| sum | %.2f | %.2f | | | |\n\n", total, total_cpu);
     fflush(stdout);
 }
 
@@ -133,6 +139,7 @@ fc_code bench_profile_config(fc_pipeline *pipe, int frames, const fc_camera *cam
         print_table(all, count, frames, particles, cam, settings, sprite_px, fc_pipeline_last_splat(pipe));
     for (int i = 0; i < count; i++) {
         free(all[i].ms);
+        free(all[i].cpu_ms);
         free(all[i].fragments);
     }
     fc_image_free(&img);

@@ -14,11 +14,15 @@ enum { LOC_FLOOR_PLANE = 10, LOC_SOURCE_SIZE = 52 };
 enum { UNIT_SPLAT_DEPTH = 0 };
 
 /* The compute splat wins while a typical sprite (at the depth of the
- * particles' centre) is at most this many pixels across: measured crossover
- * on llvmpipe, where both splats take equal time, 14-17 px from 64k to 256k
- * particles (bench/RESULTS.md fifth round; 11 px in the third round, before
- * the compute splat's bounding box and position reads got cheaper). */
-#define COMPUTE_SPLAT_MAX_TYPICAL_PX 14.0f
+ * particles' centre) is at most this many pixels across. Measured on
+ * llvmpipe with the pass's wall and CPU time (bench/RESULTS.md, "The splat
+ * and the smoothing on llvmpipe", 2026-12-02): the compute splat took less
+ * of both at every size tried up to the largest-sprite limit below (16 px:
+ * 28 against 35 ms wall, 35 px: 39 against 48, 55 px: 33 against 82), as it
+ * runs on every rasterizer thread while the point sprites' set-up is serial.
+ * Earlier rounds put the crossover at 11, then 14 px, measured as the whole
+ * process's CPU time before the pinhole fill. */
+#define COMPUTE_SPLAT_MAX_TYPICAL_PX 64.0f
 /* The compute splat is used only while no sprite can be wider than this.
  * One invocation walks a whole sprite, and llvmpipe ends every invocation's
  * loops after 65535 iterations in all (gallivm's loop limiter): a sprite of

@@ -5,10 +5,10 @@
 
 #include "gl_util.h"
 
-static double now_ms(void)
+static double clock_ms(clockid_t clock)
 {
     struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
+    clock_gettime(clock, &ts);
     return (double)ts.tv_sec * 1e3 + (double)ts.tv_nsec * 1e-6;
 }
 
@@ -40,7 +40,8 @@ void fc_pass_profile_begin(fc_pass_profile *p, const char *name)
     p->samples[p->count] = (fc_pass_sample){.name = name, .fragments = -1};
     if (p->has_statistics)
         glBeginQuery(GL_FRAGMENT_SHADER_INVOCATIONS_ARB, p->fragment_query);
-    p->started_ms = now_ms();
+    p->started_ms = clock_ms(CLOCK_MONOTONIC);
+    p->started_cpu_ms = clock_ms(CLOCK_PROCESS_CPUTIME_ID);
 }
 
 void fc_pass_profile_end(fc_pass_profile *p)
@@ -49,7 +50,8 @@ void fc_pass_profile_end(fc_pass_profile *p)
         return;
     glFinish();
     fc_pass_sample *s = &p->samples[p->count++];
-    s->ms = now_ms() - p->started_ms;
+    s->ms = clock_ms(CLOCK_MONOTONIC) - p->started_ms;
+    s->cpu_ms = clock_ms(CLOCK_PROCESS_CPUTIME_ID) - p->started_cpu_ms;
     if (!p->has_statistics)
         return;
     glEndQuery(GL_FRAGMENT_SHADER_INVOCATIONS_ARB);

@@ -1,7 +1,7 @@
 /* pass_profile.h — an optional profile of one render, pass by pass, for the
  * benchmark: each pass's wall time with the GL queue drained before and after
  * it (on a software rasterizer that is the pass's own CPU time; on a GPU it
- * adds the drain's latency), and the fragment shader invocations it ran
+ * adds the drain's latency), the process's CPU time over it, and the fragment shader invocations it ran
  * (ARB_pipeline_statistics_query; -1 where the driver lacks it). Draining
  * serialises the passes, so a profiled render is slower than a plain one;
  * disabled, begin and end do nothing. */
@@ -21,6 +21,7 @@ typedef struct fc_pass_profile {
     bool has_statistics;      /* fragment counts available */
     GLuint fragment_query;
     double started_ms;
+    double started_cpu_ms;
     int count;
     fc_pass_sample samples[FC_PASS_PROFILE_MAX];
 } fc_pass_profile;

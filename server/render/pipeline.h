@@ -160,10 +160,14 @@ void fc_pipeline_trim(fc_pipeline *p);
 /* ---- Profiling, for the benchmark (see pass_profile.h) ---- */
 
 /* One pass of a profiled render: its wall time with the GL queue drained
- * around it, and the fragment shader invocations it ran (-1: not counted). */
+ * around it, the process's CPU time over the same span (on a software
+ * rasterizer its worker threads' work on the pass, which other processes'
+ * load stretches less than the wall time), and the fragment shader
+ * invocations it ran (-1: not counted). */
 typedef struct fc_pass_sample {
     const char *name;
     double ms;
+    double cpu_ms;
     int64_t fragments;
 } fc_pass_sample;
 

@@ -202,10 +202,12 @@ static void test_choice_by_sprite_size(void)
     fc_view_from_camera(&cam, lo, hi, radius, &view);
     CHECK(fc_depth_pass_choose(&view, lo, hi, radius, FC_SPLAT_AUTO) == FC_SPLAT_COMPUTE);
     CHECK(fc_depth_pass_choose(&view, lo, hi, radius, FC_SPLAT_FRAGMENT) == FC_SPLAT_FRAGMENT);
-    /* 20 times the radius: 40 px across. */
+    /* 20 times the radius: 40 px across, still the compute splat's; 40 times: 80 px. */
     fc_view_from_camera(&cam, lo, hi, 20.0f * radius, &view);
-    CHECK(fc_depth_pass_choose(&view, lo, hi, 20.0f * radius, FC_SPLAT_AUTO) == FC_SPLAT_FRAGMENT);
-    CHECK(fc_depth_pass_choose(&view, lo, hi, 20.0f * radius, FC_SPLAT_COMPUTE) == FC_SPLAT_COMPUTE);
+    CHECK(fc_depth_pass_choose(&view, lo, hi, 20.0f * radius, FC_SPLAT_AUTO) == FC_SPLAT_COMPUTE);
+    fc_view_from_camera(&cam, lo, hi, 40.0f * radius, &view);
+    CHECK(fc_depth_pass_choose(&view, lo, hi, 40.0f * radius, FC_SPLAT_AUTO) == FC_SPLAT_FRAGMENT);
+    CHECK(fc_depth_pass_choose(&view, lo, hi, 40.0f * radius, FC_SPLAT_COMPUTE) == FC_SPLAT_COMPUTE);
     /* Half the radius, seen from 0.52: 9.5 px at the centre's depth, but the
      * nearest particles may lie 0.02 from the eye, 250 px across. */
     cam = axis_camera(0.52, 640, 360);
