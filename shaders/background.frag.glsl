@@ -18,7 +18,11 @@ float window_depth(float z);
 layout(binding = 0) uniform sampler2D client_image;   // linear RGB(A), rows bottom to top as uploaded top-down
 
 layout(location = 5) uniform vec2 viewport;
+#ifdef FC_VARIANT
+const bool use_client_image = FC_USE_CLIENT_IMAGE;   // shader_variants.h
+#else
 layout(location = 30) uniform bool use_client_image;
+#endif
 layout(location = 31) uniform vec2 image_scale;       // viewport uv -> image uv around the centre (cover fit)
 
 layout(location = 0) out vec4 radiance;      // the background texture (RGBA16F), linear HDR

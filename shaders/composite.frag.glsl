@@ -41,9 +41,17 @@ layout(location = 11) uniform float specular_strength;   // k_s of eq. 13
 layout(location = 12) uniform float particle_radius;     // world units; thinner fluid fades out
 layout(location = 13) uniform float shininess;           // α of eq. 13
 layout(location = 14) uniform float foam;                // settings.foam: how fast foam turns opaque
-layout(location = 15) uniform bool use_environment_map;  // else the procedural scene is reflected
 layout(location = 18) uniform vec2 foam_noise_range;     // mean |N| where foam starts and where it is complete
+#ifdef FC_VARIANT
+// A shader variant (shader_variants.h): features that are off are compiled out.
+const bool use_environment_map = FC_USE_ENVIRONMENT_MAP;
+const bool colored = FC_COLORED;
+#define HAS_FOAM FC_HAS_FOAM
+#else
+layout(location = 15) uniform bool use_environment_map;  // else the procedural scene is reflected
 layout(location = 47) uniform bool colored;              // the fluid's colour is the thickness's (colour by attribute)
+#define HAS_FOAM (foam > 0.0)
+#endif
 // Texture sizes, which may exceed the image in use (targets only grow): the
 // background holds a viewport-sized image in its lower-left corner, the
 // thickness one of thickness_size (half the viewport or less when blurred).
@@ -127,9 +135,9 @@ vec3 shade_fluid(ivec2 p, float z, vec3 behind_here)
 
     vec3 fluid = mix(refracted, reflected, fresnel) + highlight * highlight_radiance;
     // Foam is a diffuse white layer on the surface, lit like one. Without
-    // foam there is no noise texture to read: the uniform branch keeps the
-    // fetches out (a GPU skips them; llvmpipe runs and discards them).
-    if (foam > 0.0) {
+    // foam there is no noise texture to read: the variant without it has
+    // no fetches (a branch on a uniform would: llvmpipe runs both sides).
+    if (HAS_FOAM) {
         float foam_amount = min(foam * smoothstep(foam_noise_range.x, foam_noise_range.y, noise_magnitude(p, z)), 1.0);
         vec3 foam_lit = foam_color * (0.6 + 0.4 * max(dot(n, light_view), 0.0));
         fluid = mix(fluid, foam_lit, foam_amount);

@@ -16,18 +16,27 @@ layout(location = 23) uniform vec3 floor_axis_v;     // unit, in the floor plane
 layout(location = 24) uniform float floor_height;    // the floor is dot(x, world_up) = floor_height
 layout(location = 25) uniform float checker_size;    // world units
 layout(location = 26) uniform float pixel_angle;     // radians one pixel spans at the image centre
+#ifdef FC_VARIANT
+// A shader variant (shader_variants.h): the features are constants, and the
+// compiler removes the code of those that are off, which a software
+// rasterizer would otherwise run for every pixel and discard.
+const bool has_floor = FC_HAS_FLOOR;
+const bool has_shadow = FC_HAS_SHADOW;
+const bool has_mesh_shadow = FC_HAS_MESH_SHADOW;
+#else
 layout(location = 27) uniform bool has_floor;        // false: sky all around (a client background replaces the floor)
+layout(location = 36) uniform bool has_shadow;
+layout(location = 39) uniform bool has_mesh_shadow;
+#endif
 layout(location = 28) uniform float exposure_scale;  // 2^exposure
 layout(location = 29) uniform bool tone_map;         // true: 8-bit output, false: linear HDR (float output)
 layout(location = 32) uniform mat4 sun_shadow;        // world point -> shadow map, (u w, v w, 0, w), uv in [0,1]
-layout(location = 36) uniform bool has_shadow;
 layout(location = 37) uniform vec3 shadow_extinction;  // per world unit of the fluid's thickness seen from the sun
 layout(location = 38) uniform vec2 shadow_uv_scale;    // the map's share of its texture
 
 layout(binding = 5) uniform sampler2D shadow_thickness; // the fluid's thickness along sun rays, world units
 // Meshes (mesh_pass.c): seen from the sun through the same transform, the
 // nearest opaque mesh's and the nearest fluid's distance from the sun.
-layout(location = 39) uniform bool has_mesh_shadow;
 layout(location = 48) uniform vec4 sun_depth_uv_scale;   // xy: the fluid's depth map's share, zw: the meshes'
 layout(location = 49) uniform float mesh_shadow_bias;    // world units a surface may lie behind its own depth
 layout(binding = 6) uniform sampler2D fluid_sun_depth;   // linear depth from the sun, 0 = no fluid

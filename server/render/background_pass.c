@@ -4,10 +4,14 @@
 #include "fc_error.h"
 #include "gl_util.h"
 #include "shader_program.h"
+#include "shader_variants.h"
 
 /* Locations and units fixed by layout() in background.frag.glsl and fluid_pixel.frag.glsl. */
 enum { LOC_FLOOR_PLANE = 16, LOC_DEPTH_PROJECTION = 17, LOC_USE_CLIENT_IMAGE = 30, LOC_IMAGE_SCALE = 31 };
 enum { UNIT_CLIENT_IMAGE = 0 };
+
+static const char *const program_files[] = {"fullscreen.vert.glsl", "camera.frag.glsl", "environment.frag.glsl",
+                                            "fluid_pixel.frag.glsl", "background.frag.glsl"};
 
 fc_code fc_background_pass_create(const char *shader_dir, fc_background_pass *pass, fc_error *err)
 {
@@ -16,31 +20,39 @@ fc_code fc_background_pass_create(const char *shader_dir, fc_background_pass *pa
     glCreateFramebuffers(1, &pass->framebuffer);
     const GLenum outputs[] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1};
     glNamedFramebufferDrawBuffers(pass->framebuffer, 2, outputs);
-    const char *files[] = {"fullscreen.vert.glsl", "camera.frag.glsl", "environment.frag.glsl",
-                           "fluid_pixel.frag.glsl", "background.frag.glsl"};
-    return fc_program_build(shader_dir, files, sizeof files / sizeof files[0], &pass->program, err);
+    /* The default look's variant now; others on first use. */
+    return fc_program_variants_create(&pass->programs, shader_dir, program_files,
+                                      sizeof program_files / sizeof program_files[0],
+                                      FC_FEATURE_FLOOR | FC_FEATURE_SHADOW, err);
 }
 
 void fc_background_pass_destroy(fc_background_pass *pass)
 {
-    glDeleteProgram(pass->program);
+    fc_program_variants_destroy(&pass->programs);
     glDeleteVertexArrays(1, &pass->empty_vertex_array);
     glDeleteFramebuffers(1, &pass->framebuffer);
     fc_render_target_release(&pass->target);
-    pass->program = pass->empty_vertex_array = pass->framebuffer = 0;
+    pass->empty_vertex_array = pass->framebuffer = 0;
 }
 
 /* The part of the image's uv square the view shows: all of one axis, the
  * centre of the other, so the image covers the view without distortion. */
-static void apply_client_image(const fc_scene_textures *scene, const fc_view *view)
+static bool uses_client_image(const fc_scene_textures *scene)
 {
-    bool use = scene && scene->background;
-    glUniform1i(LOC_USE_CLIENT_IMAGE, use);
+    return scene && scene->background;
+}
+
+static void apply_client_image(const fc_scene_textures *scene, const fc_view *view, uint64_t uniforms)
+{
+    bool use = uses_client_image(scene);
+    if (fc_uniform_active(uniforms, LOC_USE_CLIENT_IMAGE))
+        glUniform1i(LOC_USE_CLIENT_IMAGE, use);
     if (!use)
         return;
     float view_aspect = (float)view->width / (float)view->height;
     float ratio = view_aspect / scene->background_aspect;
-    glUniform2f(LOC_IMAGE_SCALE, ratio < 1.0f ? ratio : 1.0f, ratio < 1.0f ? 1.0f : 1.0f / ratio);
+    if (fc_uniform_active(uniforms, LOC_IMAGE_SCALE))
+        glUniform2f(LOC_IMAGE_SCALE, ratio < 1.0f ? ratio : 1.0f, ratio < 1.0f ? 1.0f : 1.0f / ratio);
     glBindTextureUnit(UNIT_CLIENT_IMAGE, scene->background);
 }
 
@@ -62,7 +74,11 @@ static fc_code bind_outputs(const fc_background_pass *pass, const fc_render_targ
 fc_code fc_background_pass_run(fc_background_pass *pass, const fc_view *view, const fc_environment *env,
                                const fc_scene_textures *scene, const fc_render_target *composite, fc_error *err)
 {
-    fc_code code = fc_render_target_resize(&pass->target, view->width, view->height, err);
+    unsigned features = fc_environment_features(env) | (uses_client_image(scene) ? FC_FEATURE_CLIENT_IMAGE : 0u);
+    const fc_program_variant *program = NULL;
+    fc_code code = fc_program_variants_get(&pass->programs, features, &program, err);
+    if (code == FC_OK)
+        code = fc_render_target_resize(&pass->target, view->width, view->height, err);
     if (code == FC_OK)
         code = bind_outputs(pass, composite, view, err);
     if (code != FC_OK)
@@ -74,11 +90,13 @@ fc_code fc_background_pass_run(fc_background_pass *pass, const fc_view *view, co
     glDisable(GL_BLEND);
     /* Only an sRGB composite target encodes: the background texture is linear RGBA16F. */
     glEnable(GL_FRAMEBUFFER_SRGB);
-    glUseProgram(pass->program);
-    fc_environment_apply(env, view);
-    apply_client_image(scene, view);
-    glUniform4fv(LOC_FLOOR_PLANE, 1, env->floor_plane);
-    glUniform2f(LOC_DEPTH_PROJECTION, view->p22, view->p32);
+    glUseProgram(program->program);
+    fc_environment_apply_to(env, view, program->uniforms);
+    apply_client_image(scene, view, program->uniforms);
+    if (fc_uniform_active(program->uniforms, LOC_FLOOR_PLANE))
+        glUniform4fv(LOC_FLOOR_PLANE, 1, env->floor_plane);
+    if (fc_uniform_active(program->uniforms, LOC_DEPTH_PROJECTION))
+        glUniform2f(LOC_DEPTH_PROJECTION, view->p22, view->p32);
     fc_gl_draw_fullscreen(pass->empty_vertex_array);
     glDisable(GL_FRAMEBUFFER_SRGB);
     glDisable(GL_DEPTH_TEST);

@@ -11,9 +11,10 @@
 #include "environment.h"
 #include "render_target.h"
 #include "scene_textures.h"
+#include "shader_variants.h"
 
 typedef struct fc_background_pass {
-    GLuint program;
+    fc_program_variants programs;   /* by the features a render uses (shader_variants.h) */
     GLuint empty_vertex_array;
     fc_render_target target;   /* RGBA16F linear radiance, bilinear so refraction samples smoothly */
     GLuint framebuffer;        /* target's colour and the composite target's colour and depth */

@@ -4,6 +4,7 @@
 #include "gl_util.h"
 #include "normal_pass.h"
 #include "shader_program.h"
+#include "shader_variants.h"
 
 /* Uniform locations fixed by layout(location) in camera.frag.glsl, composite.frag.glsl and fluid_pixel.frag.glsl. */
 enum {
@@ -36,6 +37,9 @@ enum { UNIT_SURFACE_DEPTH = 0, UNIT_THICKNESS = 1, UNIT_BACKGROUND = 2, UNIT_ENV
 #define FOAM_START 0.22f
 #define FOAM_FULL 0.45f
 
+static const char *const shade_files[] = {"fullscreen.vert.glsl", "camera.frag.glsl", "environment.frag.glsl",
+                                          "surface_normal.frag.glsl", "fluid_pixel.frag.glsl", "composite.frag.glsl"};
+
 fc_code fc_composite_pass_create(const char *shader_dir, fc_composite_pass *pass, fc_error *err)
 {
     *pass = (fc_composite_pass){
@@ -45,22 +49,23 @@ fc_code fc_composite_pass_create(const char *shader_dir, fc_composite_pass *pass
     glCreateVertexArrays(1, &pass->empty_vertex_array);
     const char *mask[] = {"fullscreen.vert.glsl", "camera.frag.glsl", "fluid_pixel.frag.glsl",
                           "fluid_mask.frag.glsl"};
-    const char *shade[] = {"fullscreen.vert.glsl", "camera.frag.glsl", "environment.frag.glsl",
-                           "surface_normal.frag.glsl", "fluid_pixel.frag.glsl", "composite.frag.glsl"};
     fc_code code = fc_program_build(shader_dir, mask, sizeof mask / sizeof mask[0], &pass->mask_program, err);
+    /* The default look's variant now; others on first use. */
     if (code == FC_OK)
-        code = fc_program_build(shader_dir, shade, sizeof shade / sizeof shade[0], &pass->program, err);
+        code = fc_program_variants_create(&pass->programs, shader_dir, shade_files,
+                                          sizeof shade_files / sizeof shade_files[0],
+                                          FC_FEATURE_FLOOR | FC_FEATURE_SHADOW, err);
     return code;
 }
 
 void fc_composite_pass_destroy(fc_composite_pass *pass)
 {
     glDeleteProgram(pass->mask_program);
-    glDeleteProgram(pass->program);
+    fc_program_variants_destroy(&pass->programs);
     glDeleteVertexArrays(1, &pass->empty_vertex_array);
     fc_render_target_release(&pass->srgb_target);
     fc_render_target_release(&pass->float_target);
-    pass->mask_program = pass->program = pass->empty_vertex_array = 0;
+    pass->mask_program = pass->empty_vertex_array = 0;
 }
 
 /* Schlick's reflectance at normal incidence for a fluid of index `ior` in air. */
@@ -73,7 +78,15 @@ static float fresnel_f0(float ior)
 /* Absorption is given per particle radius of thickness (so a scene looks the
  * same in any unit) and applied per world unit; refraction is per pixel of
  * projected thickness (composite.frag.glsl), unit-free already. */
-static void apply_material(const fc_settings *settings, bool colored)
+/* Whether the composite draws foam: it needs the noise. */
+static bool has_foam(const fc_settings *settings)
+{
+    return settings->foam > 0.0f && settings->noise > 0.0f;
+}
+
+#define ACTIVE(location) fc_uniform_active(uniforms, location)
+
+static void apply_material(const fc_settings *settings, bool colored, uint64_t uniforms)
 {
     const float per_radius = 1.0f / settings->radius;
     float absorption[3] = {settings->absorption[0], settings->absorption[1], settings->absorption[2]};
@@ -83,39 +96,54 @@ static void apply_material(const fc_settings *settings, bool colored)
      * shifted towards the water's channel that absorbs least. */
     if (colored)
         absorption[0] = absorption[1] = absorption[2] = (absorption[0] + absorption[1] + absorption[2]) / 3.0f;
-    glUniform1i(LOC_COLORED, colored);
-    glUniform3fv(LOC_FLUID_COLOR, 1, settings->fluid_color);
-    glUniform3f(LOC_ABSORPTION, absorption[0] * per_radius, absorption[1] * per_radius, absorption[2] * per_radius);
-    glUniform1f(LOC_FRESNEL_F0, fresnel_f0(settings->ior));
-    glUniform1f(LOC_REFRACTION, settings->refraction);
-    glUniform1f(LOC_SPECULAR, settings->specular);
-    glUniform1f(LOC_SHININESS, settings->shininess);
+    if (ACTIVE(LOC_COLORED))
+        glUniform1i(LOC_COLORED, colored);
+    if (ACTIVE(LOC_FLUID_COLOR))
+        glUniform3fv(LOC_FLUID_COLOR, 1, settings->fluid_color);
+    if (ACTIVE(LOC_ABSORPTION))
+        glUniform3f(LOC_ABSORPTION, absorption[0] * per_radius, absorption[1] * per_radius,
+                    absorption[2] * per_radius);
+    if (ACTIVE(LOC_FRESNEL_F0))
+        glUniform1f(LOC_FRESNEL_F0, fresnel_f0(settings->ior));
+    if (ACTIVE(LOC_REFRACTION))
+        glUniform1f(LOC_REFRACTION, settings->refraction);
+    if (ACTIVE(LOC_SPECULAR))
+        glUniform1f(LOC_SPECULAR, settings->specular);
+    if (ACTIVE(LOC_SHININESS))
+        glUniform1f(LOC_SHININESS, settings->shininess);
     /* No noise, no foam; the range must stay non-empty even then (smoothstep). */
-    bool foam = settings->foam > 0.0f && settings->noise > 0.0f;
+    bool foam = has_foam(settings);
     float noise = foam ? settings->noise : 1.0f;
-    glUniform1f(LOC_FOAM, foam ? settings->foam : 0.0f);
-    glUniform2f(LOC_FOAM_NOISE_RANGE, FOAM_START * noise, FOAM_FULL * noise);
+    if (ACTIVE(LOC_FOAM))
+        glUniform1f(LOC_FOAM, foam ? settings->foam : 0.0f);
+    if (ACTIVE(LOC_FOAM_NOISE_RANGE))
+        glUniform2f(LOC_FOAM_NOISE_RANGE, FOAM_START * noise, FOAM_FULL * noise);
 }
 
 /* The thickness may have any resolution: the shader maps pixels to its texels. */
-static void bind_thickness(const fc_render_target *thickness, const fc_view *view)
+static void bind_thickness(const fc_render_target *thickness, const fc_view *view, uint64_t uniforms)
 {
     glBindTextureUnit(UNIT_THICKNESS, thickness->color);
-    glUniform2f(LOC_THICKNESS_TEXEL_UV, 1.0f / (float)thickness->texture_width,
-                1.0f / (float)thickness->texture_height);
-    glUniform2f(LOC_THICKNESS_PER_PIXEL, (float)thickness->width / (float)view->width,
-                (float)thickness->height / (float)view->height);
-    glUniform2f(LOC_THICKNESS_SIZE, (float)thickness->width, (float)thickness->height);
+    if (ACTIVE(LOC_THICKNESS_TEXEL_UV))
+        glUniform2f(LOC_THICKNESS_TEXEL_UV, 1.0f / (float)thickness->texture_width,
+                    1.0f / (float)thickness->texture_height);
+    if (ACTIVE(LOC_THICKNESS_PER_PIXEL))
+        glUniform2f(LOC_THICKNESS_PER_PIXEL, (float)thickness->width / (float)view->width,
+                    (float)thickness->height / (float)view->height);
+    if (ACTIVE(LOC_THICKNESS_SIZE))
+        glUniform2f(LOC_THICKNESS_SIZE, (float)thickness->width, (float)thickness->height);
 }
 
-static void bind_inputs(const fc_composite_inputs *in, const fc_view *view, float radius)
+static void bind_inputs(const fc_composite_inputs *in, const fc_view *view, float radius, uint64_t uniforms)
 {
-    fc_surface_normal_bind(in->surface_depth, in->noise, radius);
-    bind_thickness(in->thickness, view);
+    fc_surface_normal_bind(in->surface_depth, in->noise, radius, uniforms);
+    bind_thickness(in->thickness, view, uniforms);
     glBindTextureUnit(UNIT_BACKGROUND, in->background->color);
-    glUniform2f(LOC_BACKGROUND_TEXTURE_SIZE, (float)in->background->texture_width,
-                (float)in->background->texture_height);
-    glUniform1i(LOC_USE_ENVIRONMENT_MAP, in->environment_map != 0);
+    if (ACTIVE(LOC_BACKGROUND_TEXTURE_SIZE))
+        glUniform2f(LOC_BACKGROUND_TEXTURE_SIZE, (float)in->background->texture_width,
+                    (float)in->background->texture_height);
+    if (ACTIVE(LOC_USE_ENVIRONMENT_MAP))
+        glUniform1i(LOC_USE_ENVIRONMENT_MAP, in->environment_map != 0);
     if (in->environment_map) {
         glBindTextureUnit(UNIT_ENVIRONMENT_MAP, in->environment_map);
         glEnable(GL_TEXTURE_CUBE_MAP_SEAMLESS);
@@ -152,6 +180,20 @@ static void draw_mask(const fc_composite_pass *pass, const fc_composite_inputs *
     glStencilOp(GL_KEEP, GL_KEEP, GL_KEEP);
 }
 
+/* The shader variant a render needs (shader_variants.h). A cube map replaces
+ * the scene in reflections, the only place the composite shows it. */
+static unsigned shade_features(const fc_composite_inputs *in, const fc_environment *env, const fc_settings *settings)
+{
+    unsigned features = in->environment_map ? FC_FEATURE_ENVIRONMENT_MAP : fc_environment_features(env);
+    if (in->noise)
+        features |= FC_FEATURE_NOISE;
+    if (in->noise && has_foam(settings))
+        features |= FC_FEATURE_FOAM;
+    if (in->colored)
+        features |= FC_FEATURE_COLORED;
+    return features;
+}
+
 fc_code fc_composite_pass_target(fc_composite_pass *pass, const fc_view *view, bool want_u8,
                                  const fc_render_target **target, fc_error *err)
 {
@@ -164,8 +206,11 @@ fc_code fc_composite_pass_run(fc_composite_pass *pass, const fc_composite_inputs
                               const fc_environment *env, const fc_settings *settings, bool want_u8,
                               const fc_render_target **result, fc_error *err)
 {
+    const fc_program_variant *shade = NULL;
+    fc_code code = fc_program_variants_get(&pass->programs, shade_features(in, env, settings), &shade, err);
     const fc_render_target *target = NULL;
-    fc_code code = fc_composite_pass_target(pass, view, want_u8, &target, err);
+    if (code == FC_OK)
+        code = fc_composite_pass_target(pass, view, want_u8, &target, err);
     if (code != FC_OK)
         return code;
     fc_render_target_bind(target);
@@ -178,12 +223,15 @@ fc_code fc_composite_pass_run(fc_composite_pass *pass, const fc_composite_inputs
     apply_fluid_pixel(pass->mask_program, view, env);
     glProgramUniform2f(pass->mask_program, LOC_DEPTH_PROJECTION, view->p22, view->p32);   /* it writes the fluid's depth */
     draw_mask(pass, in, target);
-    glUseProgram(pass->program);
-    fc_environment_apply(env, view);
-    glUniform3fv(LOC_LIGHT_VIEW, 1, env->light_view);
-    glUniform4fv(LOC_FLOOR_PLANE, 1, env->floor_plane);
-    apply_material(settings, in->colored);
-    bind_inputs(in, view, settings->radius);
+    glUseProgram(shade->program);
+    uint64_t uniforms = shade->uniforms;
+    fc_environment_apply_to(env, view, uniforms);
+    if (ACTIVE(LOC_LIGHT_VIEW))
+        glUniform3fv(LOC_LIGHT_VIEW, 1, env->light_view);
+    if (ACTIVE(LOC_FLOOR_PLANE))
+        glUniform4fv(LOC_FLOOR_PLANE, 1, env->floor_plane);
+    apply_material(settings, in->colored, uniforms);
+    bind_inputs(in, view, settings->radius, uniforms);
     fc_gl_draw_fullscreen(pass->empty_vertex_array);   /* the stencil keeps it to the fluid */
     glDisable(GL_STENCIL_TEST);
     glDisable(GL_FRAMEBUFFER_SRGB);

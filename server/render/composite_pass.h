@@ -10,10 +10,12 @@
 
 #include "environment.h"
 #include "render_target.h"
+#include "shader_variants.h"
 
 typedef struct fc_composite_pass {
     GLuint mask_program;    /* stencil and depth on fluid pixels (fluid_mask.frag.glsl) */
-    GLuint program;         /* the fluid's shading, on the stencil (composite.frag.glsl) */
+    fc_program_variants programs;   /* the fluid's shading, on the stencil (composite.frag.glsl), by the
+                                       features a render uses (shader_variants.h) */
     GLuint empty_vertex_array;
     fc_render_target srgb_target;    /* GL_SRGB8_ALPHA8: display-ready 8-bit output, with depth */
     fc_render_target float_target;   /* GL_RGBA32F: linear output, with depth */

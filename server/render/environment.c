@@ -4,6 +4,8 @@
 #include <epoxy/gl.h>
 #include <math.h>
 
+#include "shader_program.h"
+#include "shader_variants.h"
 #include "vec3.h"
 
 /* Uniform locations fixed by layout(location) in camera.frag.glsl and environment.frag.glsl. */
@@ -141,34 +143,90 @@ void fc_environment_for_view(const fc_view *view, const fc_camera *cam, const fl
     env->pixel_angle = cy;
 }
 
+unsigned fc_environment_features(const fc_environment *env)
+{
+    unsigned features = 0;
+    if (env->has_floor)
+        features |= FC_FEATURE_FLOOR;
+    if (env->has_shadow)
+        features |= FC_FEATURE_SHADOW;
+    if (env->has_shadow && env->has_mesh_shadow)
+        features |= FC_FEATURE_MESH_SHADOW;
+    return features;
+}
+
 void fc_environment_apply(const fc_environment *env, const fc_view *view)
 {
-    glUniform2f(LOC_FOCAL, view->fx, view->fy);
-    glUniformMatrix3fv(LOC_VIEW_TO_WORLD, 1, GL_FALSE, view->view_to_world);
-    glUniform3fv(LOC_EYE_WORLD, 1, view->eye);
-    glUniform2f(LOC_VIEWPORT, (float)view->width, (float)view->height);
-    glUniform3fv(LOC_WORLD_UP, 1, env->up);
-    glUniform3fv(LOC_SUN_DIRECTION, 1, env->sun);
-    glUniform3fv(LOC_FLOOR_AXIS_U, 1, env->floor_u);
-    glUniform3fv(LOC_FLOOR_AXIS_V, 1, env->floor_v);
-    glUniform1f(LOC_FLOOR_HEIGHT, env->floor_height);
-    glUniform1f(LOC_CHECKER_SIZE, env->checker_size);
-    glUniform1f(LOC_PIXEL_ANGLE, env->pixel_angle);
-    glUniform1i(LOC_HAS_FLOOR, env->has_floor);
-    glUniform1f(LOC_EXPOSURE_SCALE, env->exposure_scale);
-    glUniform1i(LOC_TONE_MAP, env->tone_map);
-    glUniform1i(LOC_HAS_SHADOW, env->has_shadow);
+    fc_environment_apply_to(env, view, FC_ALL_UNIFORMS);
+}
+
+/* Each setter only where the program has the uniform (fc_uniform_active). */
+#define ACTIVE(location) fc_uniform_active(uniforms, location)
+
+static void apply_camera(const fc_view *view, uint64_t uniforms)
+{
+    if (ACTIVE(LOC_FOCAL))
+        glUniform2f(LOC_FOCAL, view->fx, view->fy);
+    if (ACTIVE(LOC_VIEW_TO_WORLD))
+        glUniformMatrix3fv(LOC_VIEW_TO_WORLD, 1, GL_FALSE, view->view_to_world);
+    if (ACTIVE(LOC_EYE_WORLD))
+        glUniform3fv(LOC_EYE_WORLD, 1, view->eye);
+    if (ACTIVE(LOC_VIEWPORT))
+        glUniform2f(LOC_VIEWPORT, (float)view->width, (float)view->height);
+}
+
+static void apply_scene(const fc_environment *env, uint64_t uniforms)
+{
+    if (ACTIVE(LOC_WORLD_UP))
+        glUniform3fv(LOC_WORLD_UP, 1, env->up);
+    if (ACTIVE(LOC_SUN_DIRECTION))
+        glUniform3fv(LOC_SUN_DIRECTION, 1, env->sun);
+    if (ACTIVE(LOC_FLOOR_AXIS_U))
+        glUniform3fv(LOC_FLOOR_AXIS_U, 1, env->floor_u);
+    if (ACTIVE(LOC_FLOOR_AXIS_V))
+        glUniform3fv(LOC_FLOOR_AXIS_V, 1, env->floor_v);
+    if (ACTIVE(LOC_FLOOR_HEIGHT))
+        glUniform1f(LOC_FLOOR_HEIGHT, env->floor_height);
+    if (ACTIVE(LOC_CHECKER_SIZE))
+        glUniform1f(LOC_CHECKER_SIZE, env->checker_size);
+    if (ACTIVE(LOC_PIXEL_ANGLE))
+        glUniform1f(LOC_PIXEL_ANGLE, env->pixel_angle);
+    if (ACTIVE(LOC_HAS_FLOOR))
+        glUniform1i(LOC_HAS_FLOOR, env->has_floor);
+    if (ACTIVE(LOC_EXPOSURE_SCALE))
+        glUniform1f(LOC_EXPOSURE_SCALE, env->exposure_scale);
+    if (ACTIVE(LOC_TONE_MAP))
+        glUniform1i(LOC_TONE_MAP, env->tone_map);
+}
+
+static void apply_shadows(const fc_environment *env, uint64_t uniforms)
+{
+    if (ACTIVE(LOC_HAS_SHADOW))
+        glUniform1i(LOC_HAS_SHADOW, env->has_shadow);
     if (env->has_shadow) {
-        glUniformMatrix4fv(LOC_SUN_SHADOW, 1, GL_FALSE, env->shadow_transform);
-        glUniform3fv(LOC_SHADOW_EXTINCTION, 1, env->shadow_extinction);
-        glUniform2fv(LOC_SHADOW_UV_SCALE, 1, env->shadow_uv_scale);
+        if (ACTIVE(LOC_SUN_SHADOW))
+            glUniformMatrix4fv(LOC_SUN_SHADOW, 1, GL_FALSE, env->shadow_transform);
+        if (ACTIVE(LOC_SHADOW_EXTINCTION))
+            glUniform3fv(LOC_SHADOW_EXTINCTION, 1, env->shadow_extinction);
+        if (ACTIVE(LOC_SHADOW_UV_SCALE))
+            glUniform2fv(LOC_SHADOW_UV_SCALE, 1, env->shadow_uv_scale);
         glBindTextureUnit(UNIT_SHADOW_MAP, env->shadow_map);
         glBindTextureUnit(UNIT_FLUID_SUN_DEPTH, env->fluid_sun_depth);
     }
-    glUniform1i(LOC_HAS_MESH_SHADOW, env->has_shadow && env->has_mesh_shadow);
-    glUniform4f(LOC_SUN_DEPTH_UV_SCALE, env->fluid_sun_depth_uv_scale[0], env->fluid_sun_depth_uv_scale[1],
-                env->mesh_sun_depth_uv_scale[0], env->mesh_sun_depth_uv_scale[1]);
-    glUniform1f(LOC_MESH_SHADOW_BIAS, env->mesh_shadow_bias);
+    if (ACTIVE(LOC_HAS_MESH_SHADOW))
+        glUniform1i(LOC_HAS_MESH_SHADOW, env->has_shadow && env->has_mesh_shadow);
+    if (ACTIVE(LOC_SUN_DEPTH_UV_SCALE))
+        glUniform4f(LOC_SUN_DEPTH_UV_SCALE, env->fluid_sun_depth_uv_scale[0], env->fluid_sun_depth_uv_scale[1],
+                    env->mesh_sun_depth_uv_scale[0], env->mesh_sun_depth_uv_scale[1]);
+    if (ACTIVE(LOC_MESH_SHADOW_BIAS))
+        glUniform1f(LOC_MESH_SHADOW_BIAS, env->mesh_shadow_bias);
     if (env->has_shadow && env->has_mesh_shadow)
         glBindTextureUnit(UNIT_MESH_SUN_DEPTH, env->mesh_sun_depth);
+}
+
+void fc_environment_apply_to(const fc_environment *env, const fc_view *view, uint64_t uniforms)
+{
+    apply_camera(view, uniforms);
+    apply_scene(env, uniforms);
+    apply_shadows(env, uniforms);
 }

@@ -5,6 +5,7 @@
 
 #include <epoxy/gl.h>
 #include <stdbool.h>
+#include <stdint.h>
 
 #include "fluidcast_types.h"
 #include "view.h"
@@ -48,5 +49,13 @@ void fc_environment_for_view(const fc_view *view, const fc_camera *cam, const fl
 /* Sets the uniforms of camera.frag.glsl and environment.frag.glsl on the
  * program in use. */
 void fc_environment_apply(const fc_environment *env, const fc_view *view);
+
+/* The same, only those of the active locations `uniforms` (a shader variant's,
+ * fc_program_uniform_locations). */
+void fc_environment_apply_to(const fc_environment *env, const fc_view *view, uint64_t uniforms);
+
+/* The shader variant features (shader_variants.h) this environment uses:
+ * FC_FEATURE_FLOOR, FC_FEATURE_SHADOW, FC_FEATURE_MESH_SHADOW. */
+unsigned fc_environment_features(const fc_environment *env);
 
 #endif

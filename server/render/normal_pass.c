@@ -25,11 +25,15 @@ void fc_normal_pass_destroy(fc_normal_pass *pass)
     pass->program = pass->empty_vertex_array = 0;
 }
 
-void fc_surface_normal_bind(const fc_render_target *surface_depth, const fc_render_target *noise, float radius)
+void fc_surface_normal_bind(const fc_render_target *surface_depth, const fc_render_target *noise, float radius,
+                            uint64_t uniforms)
 {
-    glUniform1f(LOC_PARTICLE_RADIUS, radius);
-    glUniform1i(LOC_HAS_NOISE, noise != NULL);
-    glUniform2i(LOC_SURFACE_SIZE, (GLint)surface_depth->width, (GLint)surface_depth->height);
+    if (fc_uniform_active(uniforms, LOC_PARTICLE_RADIUS))
+        glUniform1f(LOC_PARTICLE_RADIUS, radius);
+    if (fc_uniform_active(uniforms, LOC_HAS_NOISE))
+        glUniform1i(LOC_HAS_NOISE, noise != NULL);
+    if (fc_uniform_active(uniforms, LOC_SURFACE_SIZE))
+        glUniform2i(LOC_SURFACE_SIZE, (GLint)surface_depth->width, (GLint)surface_depth->height);
     glBindTextureUnit(UNIT_SURFACE_DEPTH, surface_depth->color);
     if (noise)
         glBindTextureUnit(UNIT_NOISE, noise->color);
@@ -49,7 +53,7 @@ fc_code fc_normal_pass_run(fc_normal_pass *pass, const fc_render_target *surface
     glUseProgram(pass->program);
     glUniform2f(LOC_FOCAL, view->fx, view->fy);
     glUniform2f(LOC_VIEWPORT, (float)view->width, (float)view->height);
-    fc_surface_normal_bind(surface_depth, noise, radius);
+    fc_surface_normal_bind(surface_depth, noise, radius, FC_ALL_UNIFORMS);
     fc_gl_draw_fullscreen(pass->empty_vertex_array);
     *result = &pass->target;
     return fc_gl_check("normal pass", err);

@@ -4,6 +4,7 @@
 #define FC_NORMAL_PASS_H
 
 #include <epoxy/gl.h>
+#include <stdint.h>
 
 #include "render_target.h"
 #include "view.h"
@@ -19,8 +20,10 @@ void fc_normal_pass_destroy(fc_normal_pass *pass);
 
 /* Sets the inputs of surface_normal.frag.glsl on the program in use: the
  * smoothed depth, the noise texture (NULL: no noise, none is read) and the
- * particle radius. */
-void fc_surface_normal_bind(const fc_render_target *surface_depth, const fc_render_target *noise, float radius);
+ * particle radius; of the uniforms only those among the active locations
+ * `uniforms` (fc_program_uniform_locations; FC_ALL_UNIFORMS: all). */
+void fc_surface_normal_bind(const fc_render_target *surface_depth, const fc_render_target *noise, float radius,
+                            uint64_t uniforms);
 
 fc_code fc_normal_pass_run(fc_normal_pass *pass, const fc_render_target *surface_depth,
                            const fc_render_target *noise, const fc_view *view, float radius,

@@ -430,9 +430,10 @@ static fc_code color_particles(fc_pipeline *p, const fc_settings *settings, fc_a
 
 /* Renders a particle and a spray droplet into tiny images through every
  * stage and shading option. Drivers compile shader variants lazily at the
- * first draw, and some (llvmpipe) report a bogus duration for the first
- * timer query of a context; warming up keeps both out of the first real
- * request's timings. */
+ * first draw (and the background and composite passes build theirs for the
+ * features a render uses, shader_variants.h), and some (llvmpipe) report a
+ * bogus duration for the first timer query of a context; warming up keeps
+ * both out of the first real request's timings. */
 static fc_code warm_up(fc_pipeline *p, fc_error *err)
 {
     float positions[6] = {0.0f, 0.0f, 0.0f, 1.5f, 0.0f, 0.0f};
@@ -442,8 +443,7 @@ static fc_code warm_up(fc_pipeline *p, fc_error *err)
                         .width = 8, .height = 8};
     fc_settings settings = {.radius = 1.0f, .smoothing = FC_SMOOTHING_CURVATURE, .iterations = 1,
                             .smooth_scale = 1.0f, .ior = 1.33f, .shininess = 1.0f, .thickness_scale = 0.5f,
-                            .thickness_blur = 1, .noise = 1.0f, .foam = 1.0f, .foam_tau = 1.0f,
-                            .density_threshold = 0.5f};
+                            .thickness_blur = 1, .foam_tau = 1.0f, .density_threshold = 0.5f, .shadow = 1};
     fc_code code = upload_frame(p, &frame, err);
     if (code == FC_OK)
         code = order_for(p, &settings, err);
@@ -454,6 +454,9 @@ static fc_code warm_up(fc_pipeline *p, fc_error *err)
     const fc_aov images[] = {FC_AOV_COLOR, FC_AOV_NORMAL, FC_AOV_COLOR};
     for (size_t i = 0; i < sizeof images / sizeof images[0] && code == FC_OK; i++) {
         settings.kernel = i == 2 ? FC_KERNEL_ANISOTROPIC : FC_KERNEL_SPHERE;
+        /* The first image has the default look (its shader variants,
+         * shader_variants.h), the others noise and foam. */
+        settings.noise = settings.foam = i == 0 ? 0.0f : 1.0f;
         code = shape_particles(p, &settings, err);
         if (code != FC_OK)
             break;
@@ -468,6 +471,7 @@ static fc_code warm_up(fc_pipeline *p, fc_error *err)
     p->particles.shapes = 0;
     p->particles.has_radii = p->particles.sized = false;
     fc_anisotropy_trim(&p->anisotropy);   /* a pipeline holds no ellipsoids until a render asks for them */
+    fc_shadow_pass_trim(&p->shadow);      /* nor a shadow map */
     p->attributes.count = 0;
     p->attributes.reorderable = false;
     p->frame = (fc_frame){0};   /* the warm-up's frame dies here */

@@ -73,15 +73,39 @@ static fc_code load_source(const char *dir, const char *file, const char **sourc
     return FC_OK;
 }
 
-static fc_code compile(const char *dir, const char *file, GLenum stage, GLuint *shader, fc_error *err)
+/* The source as the strings glShaderSource takes: the #version line, the
+ * defines, a #line directive that keeps the driver's line numbers those of
+ * the file, and the rest. Every shader of ours starts with #version. */
+static GLsizei split_source(const char *source, const char *defines, const char *strings[4])
+{
+    if (!defines) {
+        strings[0] = source;
+        return 1;
+    }
+    const char *rest = strchr(source, '\n');
+    rest = rest ? rest + 1 : source + strlen(source);
+    strings[0] = source;
+    strings[1] = defines;
+    strings[2] = "\n#line 2\n";
+    strings[3] = rest;
+    return 4;
+}
+
+static fc_code compile(const char *dir, const char *defines, const char *file, GLenum stage, GLuint *shader,
+                       fc_error *err)
 {
     const char *source;
     char *owned;
     fc_code code = load_source(dir, file, &source, &owned, err);
     if (code != FC_OK)
         return code;
+    const char *strings[4];
+    GLint lengths[4] = {-1, -1, -1, -1};
+    GLsizei n = split_source(source, defines, strings);
+    if (n > 1)
+        lengths[0] = (GLint)(strings[3] - source);   /* the #version line alone */
     GLuint s = glCreateShader(stage);
-    glShaderSource(s, 1, &source, NULL);
+    glShaderSource(s, n, strings, lengths);
     glCompileShader(s);
     free(owned);
     GLint ok = GL_FALSE;
@@ -125,6 +149,12 @@ static GLenum library_stage(const char *const *files, size_t count, size_t i)
 fc_code fc_program_build(const char *shader_dir, const char *const *files, size_t count, GLuint *program,
                          fc_error *err)
 {
+    return fc_program_build_defines(shader_dir, NULL, files, count, program, err);
+}
+
+fc_code fc_program_build_defines(const char *shader_dir, const char *defines, const char *const *files, size_t count,
+                                 GLuint *program, fc_error *err)
+{
     if (count == 0 || count > MAX_PROGRAM_FILES)
         return fc_error_set(err, FC_ERR_USAGE, "a program needs 1 to %d shader files, got %zu",
                             MAX_PROGRAM_FILES, count);
@@ -136,7 +166,7 @@ fc_code fc_program_build(const char *shader_dir, const char *const *files, size_
     GLuint p = glCreateProgram();
     fc_code code = FC_OK;
     for (size_t i = 0; i < count && code == FC_OK; i++) {
-        code = compile(shader_dir, files[i], library_stage(files, count, i), &shaders[i], err);
+        code = compile(shader_dir, defines, files[i], library_stage(files, count, i), &shaders[i], err);
         if (code == FC_OK)
             glAttachShader(p, shaders[i]);
     }
@@ -153,4 +183,40 @@ fc_code fc_program_build(const char *shader_dir, const char *const *files, size_
     }
     *program = p;
     return FC_OK;
+}
+
+/* Whether uniforms of `type` hold values (scalars, vectors, matrices) rather
+ * than name a texture unit or an image. */
+static bool is_value_type(GLenum type)
+{
+    switch (type) {
+    case GL_FLOAT: case GL_FLOAT_VEC2: case GL_FLOAT_VEC3: case GL_FLOAT_VEC4:
+    case GL_INT: case GL_INT_VEC2: case GL_INT_VEC3: case GL_INT_VEC4:
+    case GL_UNSIGNED_INT: case GL_UNSIGNED_INT_VEC2: case GL_UNSIGNED_INT_VEC3: case GL_UNSIGNED_INT_VEC4:
+    case GL_BOOL: case GL_BOOL_VEC2: case GL_BOOL_VEC3: case GL_BOOL_VEC4:
+    case GL_FLOAT_MAT2: case GL_FLOAT_MAT3: case GL_FLOAT_MAT4:
+    case GL_FLOAT_MAT2x3: case GL_FLOAT_MAT2x4: case GL_FLOAT_MAT3x2:
+    case GL_FLOAT_MAT3x4: case GL_FLOAT_MAT4x2: case GL_FLOAT_MAT4x3:
+        return true;
+    default:
+        return false;
+    }
+}
+
+/* Samplers (bound by layout(binding), never set) are left out: the driver
+ * gives them locations of its own choosing, which may be one that a variant's
+ * missing uniform leaves free, and a setter must not mistake one for it. */
+uint64_t fc_program_uniform_locations(GLuint program)
+{
+    GLint count = 0;
+    glGetProgramInterfaceiv(program, GL_UNIFORM, GL_ACTIVE_RESOURCES, &count);
+    uint64_t active = 0;
+    const GLenum properties[] = {GL_LOCATION, GL_TYPE};
+    for (GLint i = 0; i < count; i++) {
+        GLint values[2] = {-1, 0};
+        glGetProgramResourceiv(program, GL_UNIFORM, (GLuint)i, 2, properties, 2, NULL, values);
+        if (values[0] >= 0 && values[0] < 64 && is_value_type((GLenum)values[1]))
+            active |= UINT64_C(1) << values[0];
+    }
+    return active;
 }

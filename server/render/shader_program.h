@@ -4,7 +4,9 @@
 #define FC_SHADER_PROGRAM_H
 
 #include <epoxy/gl.h>
+#include <stdbool.h>
 #include <stddef.h>
+#include <stdint.h>
 
 #include "fluidcast_types.h"
 
@@ -22,5 +24,25 @@ GLenum fc_shader_stage(const char *file);
  * failure. */
 fc_code fc_program_build(const char *shader_dir, const char *const *files, size_t count, GLuint *program,
                          fc_error *err);
+
+/* fc_program_build with `defines` (preprocessor lines, e.g. "#define FC_X 1")
+ * placed after the #version line of every file; NULL: none. Line numbers in
+ * the driver's messages stay those of the files. */
+fc_code fc_program_build_defines(const char *shader_dir, const char *defines, const char *const *files, size_t count,
+                                 GLuint *program, fc_error *err);
+
+/* The active uniforms of a linked program among the explicit locations 0..63,
+ * as bits (bit L: location L). The compiler drops the uniforms a program does
+ * not use (all of a feature a shader variant leaves out), and setting one of
+ * those is GL_INVALID_OPERATION with some drivers: setters check this first. */
+uint64_t fc_program_uniform_locations(GLuint program);
+
+/* Every location: for programs whose uniforms are all in use. */
+#define FC_ALL_UNIFORMS UINT64_MAX
+
+static inline bool fc_uniform_active(uint64_t uniforms, int location)
+{
+    return location >= 0 && location < 64 && ((uniforms >> location) & 1u);
+}
 
 #endif
