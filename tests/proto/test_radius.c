@@ -145,6 +145,17 @@ static void test_matches_brute_force_on_awkward_sets(void)
     check_exact("uniform cloud", &uniform_cloud);
     fc_frame_free(&uniform_cloud);
 
+    /* Counts that are not a multiple of the pilot's 4 lanes: the padding after
+     * the samples (infinitely far) must never be anybody's neighbour. */
+    static const int odd_counts[] = {2, 3, 5, 7, 4093};
+    for (size_t k = 0; k < sizeof odd_counts / sizeof odd_counts[0]; k++) {
+        fc_frame odd = make_frame(odd_counts[k]);
+        for (int i = 0; i < odd_counts[k]; i++)
+            set_point(&odd, i, uniform(&r), uniform(&r), uniform(&r));
+        check_exact("uniform cloud, count not a multiple of 4", &odd);
+        fc_frame_free(&odd);
+    }
+
     /* A dense cluster, a sparse cube, isolated outliers far away and exact duplicates. */
     fc_frame mixed = make_frame(4000);
     for (int i = 0; i < 2400; i++)
