@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # gpu_check.sh — what to run the moment an NVIDIA GPU is lent (issue 12): the render test
-# suite on the GPU through EGL's device platform, then bench/run_targets.sh, into one
-# report. Under 8 minutes, and it needs nothing but a built tree and the runtime libraries.
+# suite on the GPU through EGL's device platform, then the PNG writer on the host's cores
+# (fluidcast-png-bench, some seconds), then bench/run_targets.sh, into one report. Under 8 minutes, and it needs nothing but a built tree and the runtime libraries.
 #
 #   bench/gpu_check.sh --prepare     # here: a slim Release tree in build-gpu (what to carry)
 #   bench/gpu_check.sh [REPORT]      # there: runs; REPORT defaults to $OUT/gpu-report.md
@@ -28,7 +28,7 @@ GPU=${GPU:-auto}
 TEST_BUDGET=${TEST_BUDGET:-240}
 TARGETS_BUDGET=${TARGETS_BUDGET:-200}
 TEST_JOBS=${TEST_JOBS:-4}
-BENCH_PROGRAMS=(fluidcast-bench fluidcast-e2e-bench fluidcastd)
+BENCH_PROGRAMS=(fluidcast-bench fluidcast-e2e-bench fluidcastd fluidcast-png-bench)
 
 log() { echo "gpu_check: $*" >&2; }
 
@@ -96,6 +96,16 @@ run_tests() {
     fi
 }
 
+# The daemon's PNG writer on this host's cores: the encoder is the whole cost once the
+# render takes milliseconds. bench/peer/fluidcast.png is a real render (1280x720 RGBA).
+run_png_bench() {
+    echo "## PNG encoding on $(nproc) cores (fluidcast-png-bench, bench/peer/fluidcast.png)"
+    echo
+    timeout 60 "$BUILD_DIR/bin/fluidcast-png-bench" --threads 1,2,4,8,0 --level 1,4 --rounds 9 \
+        "$ROOT/bench/peer/fluidcast.png" 2>&1 || echo "- fluidcast-png-bench exit $?"
+    echo
+}
+
 main() {
     if [ "${1:-}" = "--prepare" ]; then
         prepare
@@ -112,6 +122,7 @@ main() {
         device_lines
         echo
         run_tests "$scratch/tests.log"
+        run_png_bench
     } >"$report"
     [ -n "${OUT:-}" ] && cp "$scratch/tests.log" "$OUT/gpu-tests.log" 2>/dev/null
     log "tests done: $(grep -E 'tests passed|tests failed' "$scratch/tests.log" | tail -n 1)"

@@ -138,10 +138,15 @@ static int deflate_strip(strip_work *w, uint32_t k, z_stream *z, uint8_t *filter
     return rc;
 }
 
-/* Takes strips until none is left; one z_stream and filter buffer per thread. */
+/* Takes strips until none is left; one z_stream and filter buffer per thread.
+ * A thread that starts after the others took every strip leaves at once,
+ * before allocating anything (on a loaded machine helpers start late). */
 static void *strip_worker(void *arg)
 {
     strip_work *w = arg;
+    unsigned k = atomic_fetch_add(&w->next, 1);
+    if (k >= w->strips->count)
+        return NULL;
     z_stream z;
     memset(&z, 0, sizeof z);
     /* Raw deflate (negative window bits): the PNG writer adds zlib's header
@@ -149,15 +154,14 @@ static void *strip_worker(void *arg)
      * what libpng uses for filtered rows at these levels. */
     int init = deflateInit2(&z, w->level, Z_DEFLATED, -15, 8, Z_DEFAULT_STRATEGY);
     uint8_t *filtered = malloc((size_t)(w->strip_rows + w->dict_rows) * w->row_bytes);
-    unsigned k;
-    while ((k = atomic_fetch_add(&w->next, 1)) < w->strips->count) {
+    do {
         if (init != Z_OK)
             w->zlib_code[k] = init;
         else if (!filtered)
             w->zlib_code[k] = Z_MEM_ERROR;
         else
             w->zlib_code[k] = deflate_strip(w, k, &z, filtered);
-    }
+    } while ((k = atomic_fetch_add(&w->next, 1)) < w->strips->count);
     free(filtered);
     if (init == Z_OK)
         deflateEnd(&z);

@@ -1,0 +1,251 @@
+/* png_bench.c — fluidcast-png-bench: the daemon's PNG writer (png_encoder.h)
+ * timed on real images at several zlib levels and thread counts, in memory.
+ *
+ * Every configuration encodes every image once per round, rounds interleaved
+ * (a shared machine's load falls on all of them alike); per image the median
+ * wall time and the median CPU time of the process (all threads) count. */
+#define _POSIX_C_SOURCE 200809L
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+#include <unistd.h>
+
+#include "fc_error.h"
+#include "image_decoder.h"
+#include "png_encoder.h"
+
+enum { MAX_LIST = 16, MAX_IMAGES = 256 };
+
+typedef struct png_bench_options {
+    unsigned threads[MAX_LIST];
+    unsigned n_threads;
+    uint32_t levels[MAX_LIST];
+    unsigned n_levels;
+    unsigned rounds;
+    uint32_t channels;   /* 4, or 3 (alpha dropped) */
+    uint32_t synthetic_w, synthetic_h;
+} png_bench_options;
+
+static void usage(void)
+{
+    printf("usage: fluidcast-png-bench [--threads LIST] [--level LIST] [--rounds N] [--rgb] FILE.png...\n"
+           "       fluidcast-png-bench [...] --synthetic WxH\n"
+           "Times fluidcastd's PNG writer (rows in strips deflated on several threads) on each\n"
+           "image, decoded to 8-bit RGBA first (--rgb: alpha dropped), in memory.\n"
+           "  --threads LIST   thread counts, 0 = automatic (default 1,2,4,8,0)\n"
+           "  --level LIST     zlib levels 0..9 (default 4, fluidcastd's default)\n"
+           "  --rounds N       encodes of every image per configuration (default 7): medians\n"
+           "  --synthetic WxH  one generated image (a gradient with noise) instead of files\n"
+           "Prints a markdown table: per image, median wall ms, MB/s of RGBA/RGB bytes,\n"
+           "median CPU ms of all threads, bytes, and the speed-up over the first thread count.\n");
+}
+
+static unsigned parse_list(const char *s, unsigned max_value, unsigned *out)
+{
+    unsigned n = 0;
+    while (*s && n < MAX_LIST) {
+        char *end;
+        unsigned long v = strtoul(s, &end, 10);
+        if (end == s || v > max_value)
+            return 0;
+        out[n++] = (unsigned)v;
+        s = *end == ',' ? end + 1 : end;
+        if (end == s && *s)
+            return 0;
+    }
+    return n;
+}
+
+static double clock_ms(clockid_t clock)
+{
+    struct timespec t;
+    clock_gettime(clock, &t);
+    return t.tv_sec * 1e3 + t.tv_nsec / 1e6;
+}
+
+static int compare_double(const void *a, const void *b)
+{
+    double x = *(const double *)a, y = *(const double *)b;
+    return x < y ? -1 : x > y;
+}
+
+static double median(double *v, unsigned n)
+{
+    qsort(v, n, sizeof *v, compare_double);
+    return n % 2 ? v[n / 2] : (v[n / 2 - 1] + v[n / 2]) / 2;
+}
+
+/* Reads and decodes one file to 8-bit rows of `channels`. */
+static int load_image(const char *path, uint32_t channels, fc_png_rows *rows)
+{
+    FILE *f = fopen(path, "rb");
+    if (!f)
+        return 0;
+    fseek(f, 0, SEEK_END);
+    long size = ftell(f);
+    fseek(f, 0, SEEK_SET);
+    uint8_t *bytes = size > 0 ? malloc((size_t)size) : NULL;
+    int ok = bytes && fread(bytes, 1, (size_t)size, f) == (size_t)size;
+    fclose(f);
+    fc_image img = {0};
+    fc_error err;
+    ok = ok && fc_decode_image_bytes(bytes, (size_t)size, 65536, &img, &err) == FC_OK && img.type == FC_PIXEL_U8;
+    free(bytes);
+    if (!ok) {
+        fprintf(stderr, "fluidcast-png-bench: %s: not an 8-bit image\n", path);
+        free(img.pixels);
+        return 0;
+    }
+    uint8_t *px = img.pixels;
+    size_t pixels = (size_t)img.width * img.height;
+    for (size_t i = 0; channels == 3 && i < pixels; i++)
+        memmove(px + i * 3, px + i * 4, 3);
+    *rows = (fc_png_rows){px, img.width, img.height, channels};
+    return 1;
+}
+
+/* A gradient with noise in its low bits: compressible like a render, not trivially. */
+static fc_png_rows synthetic(uint32_t w, uint32_t h, uint32_t channels)
+{
+    size_t n = (size_t)w * h * channels;
+    uint8_t *px = malloc(n);
+    uint32_t state = 1;
+    for (size_t i = 0; px && i < n; i++) {
+        state = state * 1664525u + 1013904223u;
+        size_t pixel = i / channels;
+        px[i] = (uint8_t)((pixel % w) * 3 + (pixel / w) * 2 + (i % channels) * 50 + ((state >> 29) & 3));
+    }
+    return (fc_png_rows){px, w, h, channels};
+}
+
+static int parse_args(int argc, char **argv, png_bench_options *o, int *first_file)
+{
+    *o = (png_bench_options){.threads = {1, 2, 4, 8, 0}, .n_threads = 5, .levels = {4}, .n_levels = 1, .rounds = 7,
+                             .channels = 4};
+    int i = 1;
+    for (; i < argc && strncmp(argv[i], "--", 2) == 0; i++) {
+        const char *a = argv[i], *v = i + 1 < argc ? argv[i + 1] : "";
+        unsigned one[MAX_LIST];
+        if (strcmp(a, "--help") == 0) {
+            usage();
+            exit(0);
+        } else if (strcmp(a, "--rgb") == 0) {
+            o->channels = 3;
+        } else if (strcmp(a, "--threads") == 0 && (o->n_threads = parse_list(v, 64, o->threads)) > 0) {
+            i++;
+        } else if (strcmp(a, "--level") == 0 && (o->n_levels = parse_list(v, 9, o->levels)) > 0) {
+            i++;
+        } else if (strcmp(a, "--rounds") == 0 && parse_list(v, 1000, one) == 1 && one[0] > 0) {
+            o->rounds = one[0];
+            i++;
+        } else if (strcmp(a, "--synthetic") == 0 && sscanf(v, "%ux%u", &o->synthetic_w, &o->synthetic_h) == 2 &&
+                   o->synthetic_w > 0 && o->synthetic_h > 0) {
+            i++;
+        } else {
+            fprintf(stderr, "fluidcast-png-bench: bad option %s %s (--help)\n", a, v);
+            return 0;
+        }
+    }
+    *first_file = i;
+    if (i == argc && o->synthetic_w == 0) {
+        usage();
+        return 0;
+    }
+    return 1;
+}
+
+/* One configuration's medians, summed over the images. */
+typedef struct png_bench_row {
+    double wall_ms, cpu_ms;
+    size_t bytes;
+} png_bench_row;
+
+static int run(const png_bench_options *o, const fc_png_rows *images, unsigned n_images, uint32_t level,
+               png_bench_row *rows)
+{
+    unsigned configs = o->n_threads;
+    double *wall = calloc((size_t)configs * n_images * o->rounds, sizeof *wall);
+    double *cpu = calloc((size_t)configs * n_images * o->rounds, sizeof *cpu);
+    fc_buf out;
+    fc_buf_init(&out);
+    int ok = wall && cpu;
+    for (unsigned r = 0; ok && r < o->rounds; r++) {
+        for (unsigned c = 0; ok && c < configs; c++) {
+            for (unsigned i = 0; ok && i < n_images; i++) {
+                fc_error err;
+                fc_buf_reset(&out);
+                double w0 = clock_ms(CLOCK_MONOTONIC), c0 = clock_ms(CLOCK_PROCESS_CPUTIME_ID);
+                ok = fc_png_encode(&images[i], level, o->threads[c], &out, &err) == FC_OK;
+                size_t at = ((size_t)c * n_images + i) * o->rounds + r;
+                wall[at] = clock_ms(CLOCK_MONOTONIC) - w0;
+                cpu[at] = clock_ms(CLOCK_PROCESS_CPUTIME_ID) - c0;
+                if (!ok)
+                    fprintf(stderr, "fluidcast-png-bench: %s\n", err.message);
+                if (r == 0)
+                    rows[c].bytes += out.len;
+            }
+        }
+    }
+    for (unsigned c = 0; ok && c < configs; c++) {
+        for (unsigned i = 0; i < n_images; i++) {
+            size_t at = ((size_t)c * n_images + i) * o->rounds;
+            rows[c].wall_ms += median(wall + at, o->rounds);
+            rows[c].cpu_ms += median(cpu + at, o->rounds);
+        }
+    }
+    fc_buf_free(&out);
+    free(wall);
+    free(cpu);
+    return ok;
+}
+
+static void print_rows(const png_bench_options *o, unsigned n_images, size_t pixel_bytes, uint32_t level,
+                       const png_bench_row *rows)
+{
+    for (unsigned c = 0; c < o->n_threads; c++) {
+        char threads[32];
+        if (o->threads[c] == 0)
+            snprintf(threads, sizeof threads, "auto (%u)", fc_png_default_threads());
+        else
+            snprintf(threads, sizeof threads, "%u", o->threads[c]);
+        printf("| %u | %s | %u | %.2f | %.1f | %.2f | %zu | %.2f |\n", level, threads, n_images,
+               rows[c].wall_ms / n_images, pixel_bytes / 1e3 / rows[c].wall_ms, rows[c].cpu_ms / n_images,
+               rows[c].bytes / n_images, rows[0].wall_ms / rows[c].wall_ms);
+    }
+}
+
+int main(int argc, char **argv)
+{
+    png_bench_options o;
+    int first;
+    if (!parse_args(argc, argv, &o, &first))
+        return 2;
+    fc_png_rows images[MAX_IMAGES];
+    unsigned n = 0;
+    size_t pixel_bytes = 0;
+    if (o.synthetic_w)
+        images[n++] = synthetic(o.synthetic_w, o.synthetic_h, o.channels);
+    for (int i = first; i < argc && n < MAX_IMAGES; i++)
+        if (load_image(argv[i], o.channels, &images[n]))
+            n++;
+    for (unsigned i = 0; i < n; i++)
+        pixel_bytes += (size_t)images[i].width * images[i].height * images[i].channels;
+    if (n == 0 || !images[0].pixels)
+        return 1;
+    printf("fluidcast-png-bench: %u image(s), %zu bytes of pixels, %u channels, %ld online cores, %u rounds\n\n", n,
+           pixel_bytes, o.channels, sysconf(_SC_NPROCESSORS_ONLN), o.rounds);
+    printf("| level | threads | images | wall ms per image | MB/s | CPU ms per image | bytes per image | speed-up |\n");
+    printf("|---|---|---|---|---|---|---|---|\n");
+    int status = 0;
+    for (unsigned l = 0; l < o.n_levels && status == 0; l++) {
+        png_bench_row rows[MAX_LIST] = {{0}};
+        if (!run(&o, images, n, o.levels[l], rows))
+            status = 1;
+        else
+            print_rows(&o, n, pixel_bytes, o.levels[l], rows);
+    }
+    for (unsigned i = 0; i < n; i++)
+        free((void *)images[i].pixels);
+    return status;
+}
