@@ -36,6 +36,12 @@ layout(location = 3) uniform float depth_jump;   // the paper's threshold, half-
 layout(location = 40) uniform ivec2 source_size;   // the image in use; the texture may be larger (stale texels)
 
 layout(binding = 0, rg32f) uniform writeonly image2D filtered;   // filtered depth, unfiltered depth
+// False once the image written holds this run's background already (the
+// third pass on, separable_filter.c): background pixels (depth 0) come out
+// as exactly (0, 0) in every pass, so only the fluid is stored. llvmpipe
+// stores an image lane by lane, a third of the filter's time; 60% of a
+// typical image is background.
+uniform bool store_background;
 
 // Invocations are laid out over the image, each one RUN pixels long along the axis.
 layout(local_size_x = 8, local_size_y = 8) in;
@@ -153,5 +159,7 @@ void main()
             add_tap(pixel[k], i, ahead[k], start + k + i < length, behind[k], start + k - i >= 0);
     }
     for (int k = 0; k < RUN && start + k < length; k++)
-        imageStore(filtered, first + k * axis, vec4(pixel[k].sum / pixel[k].weight_sum, pixel[k].unfiltered, 0.0, 0.0));
+        if (store_background || pixel[k].z > 0.0)
+            imageStore(filtered, first + k * axis,
+                       vec4(pixel[k].sum / pixel[k].weight_sum, pixel[k].unfiltered, 0.0, 0.0));
 }

@@ -14,13 +14,15 @@ float splat_depth_at(ivec2 p);   // +inf where no particle is, and outside the i
 
 layout(location = 50) uniform float fill_reach_depth;   // reach in pixels times the depth there
 layout(location = 51) uniform float fill_max_step;      // depths across a gap differ by less
+layout(location = 53) uniform int fill_steps;           // the walks' length, at most max_reach: no depth in
+                                                        // front of the near plane lets a farther find count
 
 const int max_reach = 6;
 
 // The nearest fluid from p along d within reach: its depth and distance (0 if none).
 vec2 fluid_along(ivec2 p, ivec2 d)
 {
-    for (int k = 1; k <= max_reach; k++) {
+    for (int k = 1; k <= min(fill_steps, max_reach); k++) {
         float z = splat_depth_at(p + k * d);
         if (!isinf(z))
             return float(k) <= fill_reach_depth / z ? vec2(z, float(k)) : vec2(0.0);

@@ -7,10 +7,10 @@
 /* Uniforms of depth_filter_common.glsl, looked up by name: a filter that
  * does not use one (the binomial one has a single kernel size) lets the
  * linker drop it, and setting a dropped location would be an error. */
-enum { AXIS, PIXEL_SCALE, PARTICLE_RADIUS, DEPTH_JUMP, FIXED_RADIUS, RADII_PER_KERNEL, SOURCE_SIZE };
-static const char *const UNIFORM_NAMES[FC_FILTER_UNIFORMS] = {"axis", "pixel_scale", "particle_radius",
-                                                              "depth_jump", "fixed_radius", "radii_per_kernel",
-                                                              "source_size"};
+enum { AXIS, PIXEL_SCALE, PARTICLE_RADIUS, DEPTH_JUMP, FIXED_RADIUS, RADII_PER_KERNEL, SOURCE_SIZE, STORE_BACKGROUND };
+static const char *const UNIFORM_NAMES[FC_FILTER_UNIFORMS] = {"axis",         "pixel_scale",      "particle_radius",
+                                                              "depth_jump",   "fixed_radius",     "radii_per_kernel",
+                                                              "source_size",  "store_background"};
 /* MAX_KERNEL_RADIUS of depth_filter_common.glsl. */
 #define MAX_KERNEL_RADIUS 64u
 
@@ -72,6 +72,7 @@ fc_code fc_separable_filter_begin(fc_separable_filter *f, const fc_render_target
     uint32_t radius = grid->filter_radius < MAX_KERNEL_RADIUS ? grid->filter_radius : MAX_KERNEL_RADIUS;
     glUniform1i(f->uniform[FIXED_RADIUS], (GLint)radius);
     glUniform1f(f->uniform[RADII_PER_KERNEL], f->radii_per_kernel);
+    f->passes_since_begin = 0;
     return FC_OK;
 }
 
@@ -89,6 +90,9 @@ const fc_render_target *fc_separable_filter_pass(fc_separable_filter *f, const f
     const fc_render_target *destination = source == &f->ping_pong[0] ? &f->ping_pong[1] : &f->ping_pong[0];
     glUniform2i(f->uniform[AXIS], axis == 0, axis == 1);
     glUniform2i(f->uniform[SOURCE_SIZE], (GLint)source->width, (GLint)source->height);
+    /* The first pass writes ping_pong[0], the second ping_pong[1]: every pixel. */
+    glUniform1i(f->uniform[STORE_BACKGROUND], f->passes_since_begin < 2);
+    f->passes_since_begin++;
     glBindTextureUnit(0, source->color);
     if (f->group_size[0] > 0) {
         dispatch_pass(f, destination, axis);

@@ -13,7 +13,7 @@
 #include "render_target.h"
 #include "smoothing_params.h"
 
-#define FC_FILTER_UNIFORMS 7
+#define FC_FILTER_UNIFORMS 8
 /* A compute filter's invocation filters this many consecutive pixels along
  * the axis (RUN of the *.comp.glsl filters). */
 #define FC_FILTER_RUN 8u
@@ -25,6 +25,7 @@ typedef struct fc_separable_filter {
     GLint group_size[2];             /* compute: invocations of a workgroup in x and y; 0: fragment */
     float radii_per_kernel;          /* automatic half-width, in projected particle radii */
     fc_render_target ping_pong[2];   /* of the format the shader writes, sized to the input */
+    uint32_t passes_since_begin;     /* the first two write every pixel of both targets */
 } fc_separable_filter;
 
 /* Links depth_filter_common.glsl and `shader_file` into a filter writing
@@ -42,7 +43,10 @@ fc_code fc_separable_filter_begin(fc_separable_filter *f, const fc_render_target
                                   const fc_smoothing_params *grid, fc_error *err);
 
 /* One 1-D pass along `axis` (0 = x, 1 = y) from `source` into the ping-pong
- * target that is not `source`; returns that target. */
+ * target that is not `source`; returns that target. A filter may leave the
+ * background (depth 0, which every pass keeps at exactly 0) unwritten from
+ * the third pass after begin on: by then both targets hold this run's
+ * background (the shader's `store_background`, false from then on). */
 const fc_render_target *fc_separable_filter_pass(fc_separable_filter *f, const fc_render_target *source, int axis);
 
 /* begin, then grid->iterations pairs of x and y passes; *result is the last
