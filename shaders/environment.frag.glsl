@@ -33,6 +33,7 @@ layout(location = 29) uniform bool tone_map;         // true: 8-bit output, fals
 layout(location = 32) uniform mat4 sun_shadow;        // world point -> shadow map, (u w, v w, 0, w), uv in [0,1]
 layout(location = 37) uniform vec3 shadow_extinction;  // per world unit of the fluid's thickness seen from the sun
 layout(location = 38) uniform vec2 shadow_uv_scale;    // the map's share of its texture
+layout(location = 40) uniform vec2 shadow_uv_last;     // its last texel centres, uv
 
 layout(binding = 5) uniform sampler2D shadow_thickness; // the fluid's thickness along sun rays, world units
 // Meshes (mesh_pass.c): seen from the sun through the same transform, the
@@ -80,10 +81,6 @@ float filtered_checker(vec2 uv, float width)
     return 0.5 - 0.5 * i.x * i.y;
 }
 
-// Light reaching a floor point from the sun through the fluid (Beer-Lambert
-// on the thickness the fluid has along the sun ray), per channel; 1 outside
-// the shadow map. A box of 4x4 texels softens the edge like a sun of
-// finite size would.
 // The share of sunlight the opaque meshes let reach `s` (a point through
 // sun_shadow): 4 taps of a depth comparison, softening the edge a little.
 float mesh_sun_visibility(vec4 s)
@@ -112,6 +109,10 @@ bool in_front_of_fluid(vec4 s)
     return fluid <= 0.0 || s.w < fluid;
 }
 
+// Light reaching a floor point from the sun through the fluid (Beer-Lambert
+// on the thickness the fluid has along the sun ray), per channel; 1 outside
+// the shadow map. The map holds a box of 4x4 texels already (shadow_box.frag.glsl),
+// softening the edge like a sun of finite size would.
 vec3 sun_transmission_of(vec3 hit, bool may_be_in_front)
 {
     if (!has_shadow)
@@ -123,14 +124,8 @@ vec3 sun_transmission_of(vec3 hit, bool may_be_in_front)
     float meshes = mesh_sun_visibility(s);
     if (may_be_in_front && in_front_of_fluid(s))
         return vec3(meshes);
-    vec2 texel = 1.0 / vec2(textureSize(shadow_thickness, 0));
-    vec2 last = shadow_uv_scale - 0.5 * texel;   // the last texel centres of the map
-    float t = 0.0;
-    for (int i = 0; i < 4; i++) {
-        vec2 corner = vec2(i & 1, i >> 1) * 2.0 - 1.0;   // four bilinear taps: a 4x4-texel box
-        t += texture(shadow_thickness, min(uv * shadow_uv_scale + texel * corner, last)).r;
-    }
-    return meshes * exp(-shadow_extinction * (t / 4.0));
+    float t = texture(shadow_thickness, min(uv * shadow_uv_scale, shadow_uv_last)).r;
+    return meshes * exp(-shadow_extinction * t);
 }
 
 // The floor lies below all the fluid.

@@ -29,6 +29,7 @@ enum {
     LOC_SHADOW_EXTINCTION = 37,
     LOC_SHADOW_UV_SCALE = 38,
     LOC_HAS_MESH_SHADOW = 39,
+    LOC_SHADOW_UV_LAST = 40,
     LOC_SUN_DEPTH_UV_SCALE = 48,
     LOC_MESH_SHADOW_BIAS = 49
 };
@@ -210,6 +211,8 @@ static void apply_shadows(const fc_environment *env, uint64_t uniforms)
             glUniform3fv(LOC_SHADOW_EXTINCTION, 1, env->shadow_extinction);
         if (ACTIVE(LOC_SHADOW_UV_SCALE))
             glUniform2fv(LOC_SHADOW_UV_SCALE, 1, env->shadow_uv_scale);
+        if (ACTIVE(LOC_SHADOW_UV_LAST))
+            glUniform2fv(LOC_SHADOW_UV_LAST, 1, env->shadow_uv_last);
         glBindTextureUnit(UNIT_SHADOW_MAP, env->shadow_map);
         glBindTextureUnit(UNIT_FLUID_SUN_DEPTH, env->fluid_sun_depth);
     }

@@ -28,6 +28,7 @@ typedef struct fc_environment {
     GLuint shadow_map;            /* R32F thickness along sun rays, world units */
     float shadow_transform[16];   /* world point -> (u w, v w, 0, w), (u, v) in [0, 1] over the map */
     float shadow_uv_scale[2];     /* the map's share of its texture */
+    float shadow_uv_last[2];      /* the uv of its last texel centres */
     float shadow_extinction[3];   /* per world unit of that thickness */
     GLuint fluid_sun_depth;       /* R32F the fluid's linear depth from the sun (shadow_pass.h), 0 = no fluid */
     float fluid_sun_depth_uv_scale[2];

@@ -4,6 +4,8 @@
 #include <math.h>
 
 #include "anisotropy.h"
+#include "gl_util.h"
+#include "shader_program.h"
 #include "vec3.h"
 #include "view.h"
 
@@ -23,9 +25,17 @@
  * of the beam whatever its colour: this much per particle radius. */
 #define REFRACTED_OUT_PER_RADIUS 0.3f
 
+/* Uniform locations fixed by layout(location) in shadow_box.frag.glsl. */
+enum { LOC_BOX_TEXEL = 0, LOC_BOX_LAST = 1 };
+
 fc_code fc_shadow_pass_create(const char *shader_dir, fc_shadow_pass *pass, fc_error *err)
 {
-    fc_code code = fc_depth_pass_create(shader_dir, &pass->splat, err);
+    pass->box = fc_render_target_init(GL_R32F, false, true);
+    glCreateVertexArrays(1, &pass->empty_vertex_array);
+    const char *box[] = {"fullscreen.vert.glsl", "shadow_box.frag.glsl"};
+    fc_code code = fc_program_build(shader_dir, box, sizeof box / sizeof box[0], &pass->box_program, err);
+    if (code == FC_OK)
+        code = fc_depth_pass_create(shader_dir, &pass->splat, err);
     return code == FC_OK ? fc_thickness_pass_create(shader_dir, &pass->blur, err) : code;
 }
 
@@ -33,6 +43,31 @@ void fc_shadow_pass_destroy(fc_shadow_pass *pass)
 {
     fc_depth_pass_destroy(&pass->splat);
     fc_thickness_pass_destroy(&pass->blur);
+    fc_render_target_release(&pass->box);
+    glDeleteProgram(pass->box_program);
+    glDeleteVertexArrays(1, &pass->empty_vertex_array);
+    pass->box_program = pass->empty_vertex_array = 0;
+}
+
+/* The 4x4-texel box of `map` into pass->box, of the same size (so of the
+ * same texture size: both only grow, from the same requests). */
+static fc_code box_map(fc_shadow_pass *pass, const fc_render_target *map, fc_error *err)
+{
+    fc_code code = fc_render_target_resize(&pass->box, map->width, map->height, err);
+    if (code != FC_OK)
+        return code;
+    fc_render_target_bind(&pass->box);
+    glDisable(GL_DEPTH_TEST);
+    glDisable(GL_STENCIL_TEST);
+    glDisable(GL_BLEND);
+    glDisable(GL_FRAMEBUFFER_SRGB);
+    glUseProgram(pass->box_program);
+    float texel[2] = {1.0f / (float)map->texture_width, 1.0f / (float)map->texture_height};
+    glUniform2f(LOC_BOX_TEXEL, texel[0], texel[1]);
+    glUniform2f(LOC_BOX_LAST, ((float)map->width - 0.5f) * texel[0], ((float)map->height - 0.5f) * texel[1]);
+    glBindTextureUnit(0, map->color);
+    fc_gl_draw_fullscreen(pass->empty_vertex_array);
+    return fc_gl_check("shadow map box", err);
 }
 
 /* A camera on the sun's side of the box, framing its bounding sphere. */
@@ -88,15 +123,23 @@ fc_code fc_shadow_pass_run(fc_shadow_pass *pass, const fc_particle_buffer *parti
     fc_pass_profile_end(profile);
     fc_thickness_params params = {.radius = settings->radius, .scale = 1.0f, .blur = MAP_BLUR,
                                   .floor_plane = no_floor, .profile = profile, .full_splat = &pass->splat.thickness};
-    const fc_render_target *map = NULL;
+    const fc_render_target *blurred = NULL;
     if (code == FC_OK)
-        code = fc_thickness_pass_run(&pass->blur, particles, &view, &params, &map, err);
+        code = fc_thickness_pass_run(&pass->blur, particles, &view, &params, &blurred, err);
+    if (code == FC_OK) {
+        fc_pass_profile_begin(profile, "shadow box");
+        code = box_map(pass, blurred, err);
+        fc_pass_profile_end(profile);
+    }
     if (code != FC_OK)
         return code;
     map_transform(&view, env->shadow_transform);
     /* The map may fill only the lower-left part of its texture (targets only grow). */
+    const fc_render_target *map = &pass->box;
     env->shadow_uv_scale[0] = (float)map->width / (float)map->texture_width;
     env->shadow_uv_scale[1] = (float)map->height / (float)map->texture_height;
+    env->shadow_uv_last[0] = ((float)map->width - 0.5f) / (float)map->texture_width;
+    env->shadow_uv_last[1] = ((float)map->height - 0.5f) / (float)map->texture_height;
     env->shadow_map = map->color;
     env->has_shadow = true;
     env->fluid_sun_depth = pass->splat.target.color;
@@ -112,10 +155,12 @@ void fc_shadow_pass_tally(const fc_shadow_pass *pass, fc_gpu_memory *m)
 {
     fc_depth_pass_tally(&pass->splat, m);
     fc_thickness_pass_tally(&pass->blur, m);
+    fc_render_target_tally(&pass->box, m);
 }
 
 void fc_shadow_pass_trim(fc_shadow_pass *pass)
 {
     fc_depth_pass_trim(&pass->splat);
     fc_thickness_pass_trim(&pass->blur);
+    fc_render_target_release(&pass->box);
 }

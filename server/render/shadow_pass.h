@@ -19,6 +19,10 @@ typedef struct fc_shadow_pass {
      * a CPU rasterizer), the thickness pass blurs it. */
     fc_depth_pass splat;
     fc_thickness_pass blur;
+    /* The blurred map boxed once more for the floor's one tap (shadow_box.frag.glsl). */
+    fc_render_target box;
+    GLuint box_program;
+    GLuint empty_vertex_array;
     fc_view sun_view;   /* the sun's camera of the last run: the meshes' shadows are cast through it */
 } fc_shadow_pass;
 
