@@ -8,8 +8,9 @@
 #   bench/run_cli_startup.sh before=/path/to/old/fluidcast after=build-bench/bin/fluidcast > startup.md
 #
 # Without arguments: BUILD_DIR's fluidcast alone. Environment: PARTICLES (default 64k), SIZE (default
-# 1024x768), REPS (default 20), BUILD_DIR (default build-bench: its fluidcastd and fluidcast-bench serve
-# and make the scene), NO_BUILD=1.
+# 1024x768), REPS (default 20), ESTIMATE=1 (leave --radius out: the command estimates it from the
+# particles, as a user's snapshot does), BUILD_DIR (default build-bench: its fluidcastd and
+# fluidcast-bench serve and make the scene), NO_BUILD=1.
 set -euo pipefail
 
 ROOT=$(cd "$(dirname "$0")/.." && pwd)
@@ -49,8 +50,10 @@ RADIUS=$("$BUILD_DIR/bin/fluidcast-bench" --particles "$PARTICLES" --write-scene
 
 LOAD_START=$(load_average)
 DATE=$(date -u '+%Y-%m-%d %H:%M UTC')
+RADIUS_ARGS=(--radius "$RADIUS")
+[ "${ESTIMATE:-0}" = 1 ] && RADIUS_ARGS=()
 SNAPSHOT_ARGS=(snapshot "$WORK/scene.f32" -o "$WORK/snap.png" --server "127.0.0.1:$(cat "$WORK/port")" --size "$SIZE"
-               --radius "$RADIUS" "${CAMERA[@]}" "${SMOOTHING[@]}")
+               "${RADIUS_ARGS[@]}" "${CAMERA[@]}" "${SMOOTHING[@]}")
 # Each (binary, command) pair once per round, rounds repeated; the child's own rusage from wait4.
 TABLE=$(python3 - "$REPS" "$@" -- "${SNAPSHOT_ARGS[@]}" <<'EOF'
 import os, statistics, sys, time
@@ -89,7 +92,7 @@ echo
 machine_line
 echo "- date: $DATE; git: $(git_revision); load average (1/5/15 min): start $LOAD_START; end $(load_average)"
 echo "- daemon: $BUILD_DIR/bin/fluidcastd --gpu software (llvmpipe), running throughout; scene: fluidcast-bench --particles $PARTICLES --write-scene"
-echo "- command: ${0#"$ROOT"/} $* (REPS=$REPS, interleaved); snapshot as bench/run_snapshot_vs_vtk.sh: \`fluidcast snapshot scene.f32 -o snap.png --size $SIZE --radius $RADIUS ${CAMERA[*]} ${SMOOTHING[*]}\`"
+echo "- command: ${0#"$ROOT"/} $* (REPS=$REPS, ESTIMATE=${ESTIMATE:-0}, interleaved); snapshot as bench/run_snapshot_vs_vtk.sh: \`fluidcast ${SNAPSHOT_ARGS[*]/#$WORK\//}\`"
 for spec in "$@"; do
     echo "- ${spec%%=*}: ${spec#*=}, $(ldd "${spec#*=}" | wc -l) shared libraries in ldd"
 done
