@@ -23,10 +23,12 @@ layout(location = 26) uniform float pixel_angle;     // radians one pixel spans 
 const bool has_floor = FC_HAS_FLOOR;
 const bool has_shadow = FC_HAS_SHADOW;
 const bool has_mesh_shadow = FC_HAS_MESH_SHADOW;
+const bool floor_only = FC_FLOOR_ONLY;   // every pixel of the draw sees the floor (background_regions.h)
 #else
 layout(location = 27) uniform bool has_floor;        // false: sky all around (a client background replaces the floor)
 layout(location = 36) uniform bool has_shadow;
 layout(location = 39) uniform bool has_mesh_shadow;
+const bool floor_only = false;
 #endif
 layout(location = 28) uniform float exposure_scale;  // 2^exposure
 layout(location = 29) uniform bool tone_map;         // true: 8-bit output, false: linear HDR (float output)
@@ -164,7 +166,7 @@ vec3 scene_radiance(vec3 origin, vec3 dir)
 {
     float height = dot(origin, world_up) - floor_height;
     float descent = -dot(dir, world_up);
-    if (has_floor && height > 0.0 && descent > 0.0) {
+    if (floor_only || (has_floor && height > 0.0 && descent > 0.0)) {
         float distance = height / descent;
         return floor_radiance(origin + distance * dir, distance, descent);
     }

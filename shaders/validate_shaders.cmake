@@ -21,7 +21,7 @@ endfunction()
 # the defines after its #version line as the renderer puts them (a copy in
 # the working directory; glslangValidator takes -D only when linking).
 set(FEATURES FC_HAS_FLOOR FC_HAS_SHADOW FC_HAS_MESH_SHADOW FC_USE_CLIENT_IMAGE FC_USE_ENVIRONMENT_MAP FC_HAS_FOAM
-    FC_COLORED FC_HAS_NOISE)
+    FC_COLORED FC_HAS_NOISE FC_FLOOR_ONLY)
 function(validate_variant path value)
   set(defines "#define FC_VARIANT 1\n")
   foreach(feature IN LISTS FEATURES)

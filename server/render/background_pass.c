@@ -1,17 +1,24 @@
 /* background_pass.c — the scene behind the fluid. */
 #include "background_pass.h"
 
+#include "background_regions.h"
+
 #include "fc_error.h"
 #include "gl_util.h"
 #include "shader_program.h"
 #include "shader_variants.h"
 
-/* Locations and units fixed by layout() in background.frag.glsl and fluid_pixel.frag.glsl. */
-enum { LOC_FLOOR_PLANE = 16, LOC_DEPTH_PROJECTION = 17, LOC_USE_CLIENT_IMAGE = 30, LOC_IMAGE_SCALE = 31 };
+/* Locations and units fixed by layout() in background.frag.glsl, fluid_pixel.frag.glsl and fullscreen_clip.vert.glsl. */
+enum { LOC_FLOOR_PLANE = 16, LOC_DEPTH_PROJECTION = 17, LOC_USE_CLIENT_IMAGE = 30, LOC_IMAGE_SCALE = 31,
+       LOC_CLIP_PLANES = 56 };
 enum { UNIT_CLIENT_IMAGE = 0 };
 
-static const char *const program_files[] = {"fullscreen.vert.glsl", "camera.frag.glsl", "environment.frag.glsl",
-                                            "fluid_pixel.frag.glsl", "background.frag.glsl"};
+static const char *const program_files[] = {"fullscreen_clip.vert.glsl", "camera.frag.glsl",
+                                            "environment.frag.glsl", "fluid_pixel.frag.glsl", "background.frag.glsl"};
+/* The default look's variants (background_regions.h): sky, band, floor with and without the shadow. */
+static const unsigned default_features[] = {
+    0u, FC_FEATURE_FLOOR | FC_FEATURE_SHADOW, FC_FEATURE_FLOOR | FC_FEATURE_SHADOW | FC_FEATURE_FLOOR_ONLY,
+    FC_FEATURE_FLOOR | FC_FEATURE_FLOOR_ONLY};
 
 fc_code fc_background_pass_create(const char *shader_dir, fc_background_pass *pass, fc_error *err)
 {
@@ -20,10 +27,15 @@ fc_code fc_background_pass_create(const char *shader_dir, fc_background_pass *pa
     glCreateFramebuffers(1, &pass->framebuffer);
     const GLenum outputs[] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1};
     glNamedFramebufferDrawBuffers(pass->framebuffer, 2, outputs);
-    /* The default look's variant now; others on first use. */
-    return fc_program_variants_create(&pass->programs, shader_dir, program_files,
-                                      sizeof program_files / sizeof program_files[0],
-                                      FC_FEATURE_FLOOR | FC_FEATURE_SHADOW, err);
+    /* The default look's variants now; others on first use. */
+    fc_code code = fc_program_variants_create(&pass->programs, shader_dir, program_files,
+                                              sizeof program_files / sizeof program_files[0],
+                                              default_features[0], err);
+    for (size_t i = 1; i < sizeof default_features / sizeof default_features[0] && code == FC_OK; i++) {
+        const fc_program_variant *v = NULL;
+        code = fc_program_variants_get(&pass->programs, default_features[i], &v, err);
+    }
+    return code;
 }
 
 void fc_background_pass_destroy(fc_background_pass *pass)
@@ -71,14 +83,40 @@ static fc_code bind_outputs(const fc_background_pass *pass, const fc_render_targ
     return FC_OK;
 }
 
+/* One region of the image with its variant. */
+static fc_code draw_region(fc_background_pass *pass, const fc_background_draw *draw, const fc_view *view,
+                           const fc_environment *env, const fc_scene_textures *scene, fc_error *err)
+{
+    const fc_program_variant *program = NULL;
+    fc_code code = fc_program_variants_get(&pass->programs, draw->features, &program, err);
+    if (code != FC_OK)
+        return code;
+    uint64_t uniforms = program->uniforms;
+    glUseProgram(program->program);
+    fc_environment_apply_to(env, view, uniforms);
+    apply_client_image(scene, view, uniforms);
+    if (fc_uniform_active(uniforms, LOC_FLOOR_PLANE))
+        glUniform4fv(LOC_FLOOR_PLANE, 1, env->floor_plane);
+    if (fc_uniform_active(uniforms, LOC_DEPTH_PROJECTION))
+        glUniform2f(LOC_DEPTH_PROJECTION, view->p22, view->p32);
+    if (fc_uniform_active(uniforms, LOC_CLIP_PLANES))
+        glUniform3fv(LOC_CLIP_PLANES, 2, &draw->clip_planes[0][0]);
+    if (draw->scissored) {
+        glEnable(GL_SCISSOR_TEST);
+        glScissor(draw->scissor[0], draw->scissor[1], draw->scissor[2], draw->scissor[3]);
+    }
+    fc_gl_draw_fullscreen(pass->empty_vertex_array);
+    glDisable(GL_SCISSOR_TEST);
+    return FC_OK;
+}
+
 fc_code fc_background_pass_run(fc_background_pass *pass, const fc_view *view, const fc_environment *env,
                                const fc_scene_textures *scene, const fc_render_target *composite, fc_error *err)
 {
     unsigned features = fc_environment_features(env) | (uses_client_image(scene) ? FC_FEATURE_CLIENT_IMAGE : 0u);
-    const fc_program_variant *program = NULL;
-    fc_code code = fc_program_variants_get(&pass->programs, features, &program, err);
-    if (code == FC_OK)
-        code = fc_render_target_resize(&pass->target, view->width, view->height, err);
+    fc_background_draw draws[FC_BACKGROUND_DRAWS_MAX];
+    int count = fc_background_regions(view, env, features, draws);
+    fc_code code = fc_render_target_resize(&pass->target, view->width, view->height, err);
     if (code == FC_OK)
         code = bind_outputs(pass, composite, view, err);
     if (code != FC_OK)
@@ -88,17 +126,17 @@ fc_code fc_background_pass_run(fc_background_pass *pass, const fc_view *view, co
     glDepthMask(GL_TRUE);
     glDisable(GL_STENCIL_TEST);
     glDisable(GL_BLEND);
+    glEnable(GL_CLIP_DISTANCE0);
+    glEnable(GL_CLIP_DISTANCE1);
     /* Only an sRGB composite target encodes: the background texture is linear RGBA16F. */
     glEnable(GL_FRAMEBUFFER_SRGB);
-    glUseProgram(program->program);
-    fc_environment_apply_to(env, view, program->uniforms);
-    apply_client_image(scene, view, program->uniforms);
-    if (fc_uniform_active(program->uniforms, LOC_FLOOR_PLANE))
-        glUniform4fv(LOC_FLOOR_PLANE, 1, env->floor_plane);
-    if (fc_uniform_active(program->uniforms, LOC_DEPTH_PROJECTION))
-        glUniform2f(LOC_DEPTH_PROJECTION, view->p22, view->p32);
-    fc_gl_draw_fullscreen(pass->empty_vertex_array);
+    for (int i = 0; i < count && code == FC_OK; i++)
+        code = draw_region(pass, &draws[i], view, env, scene, err);
+    glDisable(GL_CLIP_DISTANCE0);
+    glDisable(GL_CLIP_DISTANCE1);
     glDisable(GL_FRAMEBUFFER_SRGB);
     glDisable(GL_DEPTH_TEST);
+    if (code != FC_OK)
+        return code;
     return fc_gl_check("background pass", err);
 }

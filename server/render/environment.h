@@ -29,6 +29,8 @@ typedef struct fc_environment {
     float shadow_transform[16];   /* world point -> (u w, v w, 0, w), (u, v) in [0, 1] over the map */
     float shadow_uv_scale[2];     /* the map's share of its texture */
     float shadow_uv_last[2];      /* the uv of its last texel centres */
+    float shadow_box_lo[3];       /* a world box holding all that casts the shadow, blur included: */
+    float shadow_box_hi[3];       /* sun rays that miss it leave the map's thickness 0 */
     float shadow_extinction[3];   /* per world unit of that thickness */
     GLuint fluid_sun_depth;       /* R32F the fluid's linear depth from the sun (shadow_pass.h), 0 = no fluid */
     float fluid_sun_depth_uv_scale[2];

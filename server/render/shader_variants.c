@@ -10,7 +10,7 @@
 
 static const char *const feature_defines[FC_SHADER_FEATURE_COUNT] = {
     "FC_HAS_FLOOR", "FC_HAS_SHADOW", "FC_HAS_MESH_SHADOW", "FC_USE_CLIENT_IMAGE",
-    "FC_USE_ENVIRONMENT_MAP", "FC_HAS_FOAM", "FC_COLORED", "FC_HAS_NOISE",
+    "FC_USE_ENVIRONMENT_MAP", "FC_HAS_FOAM", "FC_COLORED", "FC_HAS_NOISE", "FC_FLOOR_ONLY",
 };
 
 void fc_shader_defines(unsigned features, char *out, size_t size)

@@ -25,12 +25,13 @@ typedef enum fc_shader_feature {
     FC_FEATURE_ENVIRONMENT_MAP = 1u << 4,  /* FC_USE_ENVIRONMENT_MAP: a cube map reflected (composite.frag.glsl) */
     FC_FEATURE_FOAM = 1u << 5,             /* FC_HAS_FOAM: foam (composite.frag.glsl) */
     FC_FEATURE_COLORED = 1u << 6,          /* FC_COLORED: colour by attribute (composite.frag.glsl) */
-    FC_FEATURE_NOISE = 1u << 7             /* FC_HAS_NOISE: surface noise (surface_normal.frag.glsl) */
+    FC_FEATURE_NOISE = 1u << 7,            /* FC_HAS_NOISE: surface noise (surface_normal.frag.glsl) */
+    FC_FEATURE_FLOOR_ONLY = 1u << 8        /* FC_FLOOR_ONLY: every pixel sees the floor, no sky (background_regions.h) */
 } fc_shader_feature;
 
-#define FC_SHADER_FEATURE_COUNT 8
-/* Programs one cache keeps; a render uses one, a session a few. */
-#define FC_PROGRAM_VARIANTS_MAX 6
+#define FC_SHADER_FEATURE_COUNT 9
+/* Programs one cache keeps; a render uses up to four (background_regions.h), a session a few renders' worth. */
+#define FC_PROGRAM_VARIANTS_MAX 12
 
 typedef struct fc_program_variant {
     unsigned features;

@@ -24,6 +24,10 @@
  * own, per channel) and by refraction at its surfaces, which bends it out
  * of the beam whatever its colour: this much per particle radius. */
 #define REFRACTED_OUT_PER_RADIUS 0.3f
+/* Texels of the map around the particles' box where the splat, blur and box
+ * may still leave thickness (a sprite's conservative bounds, MAP_BLUR, the
+ * box and two bilinear lookups take fewer than half of these). */
+#define SHADOW_REACH_TEXELS 16.0f
 
 /* Uniform locations fixed by layout(location) in shadow_box.frag.glsl. */
 enum { LOC_BOX_TEXEL = 0, LOC_BOX_LAST = 1 };
@@ -93,6 +97,19 @@ static void sun_camera(const float lo[3], const float hi[3], float radius, const
     }
 }
 
+/* The world box the shadow comes from: the particles' grown by their reach
+ * and by SHADOW_REACH_TEXELS of the map (which spans about 2.04 extents). */
+static void shadow_box(const float lo[3], const float hi[3], float reach, fc_environment *env)
+{
+    float half[3] = {0.5f * (hi[0] - lo[0]), 0.5f * (hi[1] - lo[1]), 0.5f * (hi[2] - lo[2])};
+    float extent = sqrtf(fc_dot3(half, half)) + reach;
+    float grow = reach + SHADOW_REACH_TEXELS * 2.04f * extent / (float)MAP_SIZE;
+    for (int i = 0; i < 3; i++) {
+        env->shadow_box_lo[i] = lo[i] - grow;
+        env->shadow_box_hi[i] = hi[i] + grow;
+    }
+}
+
 /* World point -> (u w, v w, 0, w) with (u, v) in [0, 1] over the map:
  * uv = 0.5 ndc + 0.5 and ndc = f x / w, w the distance in front of the sun's
  * camera. Column-major like fc_view.view. */
@@ -134,6 +151,7 @@ fc_code fc_shadow_pass_run(fc_shadow_pass *pass, const fc_particle_buffer *parti
     if (code != FC_OK)
         return code;
     map_transform(&view, env->shadow_transform);
+    shadow_box(lo, hi, reach, env);
     /* The map may fill only the lower-left part of its texture (targets only grow). */
     const fc_render_target *map = &pass->box;
     env->shadow_uv_scale[0] = (float)map->width / (float)map->texture_width;
