@@ -132,7 +132,8 @@ static bool number_in(const char *name, const char *prefix, size_t prefix_len, c
 static fc_code first_existing(const char *pattern, uint32_t *first, fc_error *err)
 {
     conversion c;
-    find_conversion(pattern, &c);
+    if (!find_conversion(pattern, &c))
+        return fc_error_set(err, FC_ERR_USAGE, "\"%s\" is not a frame pattern with one %%d", pattern);
     char prefix[PATH_CAP], suffix[PATH_CAP], wildcard[2 * PATH_CAP + 2];
     size_t prefix_len = put_literal(prefix, 0, sizeof prefix, pattern, c.at);
     const char *rest = pattern + c.at + c.length;

@@ -115,7 +115,7 @@ static fc_code read_cells_legacy(vtk_reader *r, uint64_t cells, uint64_t size, b
     uint64_t used = 0;
     fc_code code = FC_OK;
     for (uint64_t i = 0; i < cells && code == FC_OK; i++) {
-        uint64_t n;
+        uint64_t n = 0;   /* read_index leaves it unset when it fails */
         code = read_index(r, FC_SCALAR_I32, MAX_CORNERS + 1.0, &n, err);
         for (uint64_t j = 0; j < n && code == FC_OK; j++)
             code = read_index(r, FC_SCALAR_I32, 4294967296.0, &r->corners[j], err);
