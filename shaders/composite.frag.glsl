@@ -44,9 +44,9 @@ layout(location = 14) uniform float foam;                // settings.foam: how f
 layout(location = 18) uniform vec2 foam_noise_range;     // mean |N| where foam starts and where it is complete
 #ifdef FC_VARIANT
 // A shader variant (shader_variants.h): features that are off are compiled out.
-const bool use_environment_map = FC_USE_ENVIRONMENT_MAP;
-const bool colored = FC_COLORED;
-#define HAS_FOAM FC_HAS_FOAM
+const bool use_environment_map = FC_USE_ENVIRONMENT_MAP != 0;
+const bool colored = FC_COLORED != 0;
+#define HAS_FOAM (FC_HAS_FOAM != 0)
 #else
 layout(location = 15) uniform bool use_environment_map;  // else the procedural scene is reflected
 layout(location = 47) uniform bool colored;              // the fluid's colour is the thickness's (colour by attribute)

@@ -20,10 +20,10 @@ layout(location = 26) uniform float pixel_angle;     // radians one pixel spans 
 // A shader variant (shader_variants.h): the features are constants, and the
 // compiler removes the code of those that are off, which a software
 // rasterizer would otherwise run for every pixel and discard.
-const bool has_floor = FC_HAS_FLOOR;
-const bool has_shadow = FC_HAS_SHADOW;
-const bool has_mesh_shadow = FC_HAS_MESH_SHADOW;
-const bool floor_only = FC_FLOOR_ONLY;   // every pixel of the draw sees the floor (background_regions.h)
+const bool has_floor = FC_HAS_FLOOR != 0;
+const bool has_shadow = FC_HAS_SHADOW != 0;
+const bool has_mesh_shadow = FC_HAS_MESH_SHADOW != 0;
+const bool floor_only = FC_FLOOR_ONLY != 0;   // every pixel of the draw sees the floor (background_regions.h)
 #else
 layout(location = 27) uniform bool has_floor;        // false: sky all around (a client background replaces the floor)
 layout(location = 36) uniform bool has_shadow;

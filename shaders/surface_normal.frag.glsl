@@ -13,7 +13,7 @@ layout(location = 0) uniform vec2 focal;               // P[0][0], P[1][1]
 layout(location = 5) uniform vec2 viewport;
 layout(location = 12) uniform float particle_radius;   // world units
 #ifdef FC_VARIANT
-const bool has_noise = FC_HAS_NOISE;                   // shader_variants.h
+const bool has_noise = FC_HAS_NOISE != 0;                   // shader_variants.h
 #else
 layout(location = 19) uniform bool has_noise;          // false: N is 0 everywhere and is not read
 #endif

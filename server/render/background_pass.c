@@ -11,7 +11,7 @@
 /* Locations and units fixed by layout() in background.frag.glsl, fluid_pixel.frag.glsl and fullscreen_clip.vert.glsl. */
 enum { LOC_FLOOR_PLANE = 16, LOC_DEPTH_PROJECTION = 17, LOC_USE_CLIENT_IMAGE = 30, LOC_IMAGE_SCALE = 31,
        LOC_CLIP_PLANES = 56 };
-enum { UNIT_CLIENT_IMAGE = 0 };
+enum { UNIT_SURFACE_DEPTH = 0, UNIT_CLIENT_IMAGE = 8 };
 
 static const char *const program_files[] = {"fullscreen_clip.vert.glsl", "camera.frag.glsl",
                                             "environment.frag.glsl", "fluid_pixel.frag.glsl", "background.frag.glsl"};
@@ -27,13 +27,15 @@ fc_code fc_background_pass_create(const char *shader_dir, fc_background_pass *pa
     glCreateFramebuffers(1, &pass->framebuffer);
     const GLenum outputs[] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1};
     glNamedFramebufferDrawBuffers(pass->framebuffer, 2, outputs);
+    pass->writes_mask = epoxy_has_gl_extension("GL_ARB_shader_stencil_export");
     /* The default look's variants now; others on first use. */
+    unsigned mask = pass->writes_mask ? FC_FEATURE_FLUID_MASK : 0u;
     fc_code code = fc_program_variants_create(&pass->programs, shader_dir, program_files,
                                               sizeof program_files / sizeof program_files[0],
-                                              default_features[0], err);
+                                              default_features[0] | mask, err);
     for (size_t i = 1; i < sizeof default_features / sizeof default_features[0] && code == FC_OK; i++) {
         const fc_program_variant *v = NULL;
-        code = fc_program_variants_get(&pass->programs, default_features[i], &v, err);
+        code = fc_program_variants_get(&pass->programs, default_features[i] | mask, &v, err);
     }
     return code;
 }
@@ -110,10 +112,32 @@ static fc_code draw_region(fc_background_pass *pass, const fc_background_draw *d
     return FC_OK;
 }
 
+bool fc_background_pass_writes_mask(const fc_background_pass *pass)
+{
+    return pass->writes_mask;
+}
+
+/* The composite's mask (composite_pass.c) laid down with the background:
+ * every pixel passes the depth test and takes the stencil its fragment
+ * exports, 1 on the fluid. */
+static void begin_mask(const fc_render_target *fluid_depth)
+{
+    glBindTextureUnit(UNIT_SURFACE_DEPTH, fluid_depth->color);
+    glEnable(GL_STENCIL_TEST);
+    glStencilMask(0xff);
+    glStencilFunc(GL_ALWAYS, 0, 0xff);
+    glStencilOp(GL_KEEP, GL_KEEP, GL_REPLACE);
+}
+
 fc_code fc_background_pass_run(fc_background_pass *pass, const fc_view *view, const fc_environment *env,
-                               const fc_scene_textures *scene, const fc_render_target *composite, fc_error *err)
+                               const fc_scene_textures *scene, const fc_render_target *fluid_depth,
+                               const fc_render_target *composite, fc_error *err)
 {
     unsigned features = fc_environment_features(env) | (uses_client_image(scene) ? FC_FEATURE_CLIENT_IMAGE : 0u);
+    if (fluid_depth && !pass->writes_mask)
+        return fc_error_set(err, FC_ERR_GL, "background pass: the driver cannot write the fluid's mask");
+    if (fluid_depth)
+        features |= FC_FEATURE_FLUID_MASK;
     fc_background_draw draws[FC_BACKGROUND_DRAWS_MAX];
     int count = fc_background_regions(view, env, features, draws);
     fc_code code = fc_render_target_resize(&pass->target, view->width, view->height, err);
@@ -125,6 +149,8 @@ fc_code fc_background_pass_run(fc_background_pass *pass, const fc_view *view, co
     glDepthFunc(GL_ALWAYS);
     glDepthMask(GL_TRUE);
     glDisable(GL_STENCIL_TEST);
+    if (fluid_depth)
+        begin_mask(fluid_depth);
     glDisable(GL_BLEND);
     glEnable(GL_CLIP_DISTANCE0);
     glEnable(GL_CLIP_DISTANCE1);
@@ -136,6 +162,7 @@ fc_code fc_background_pass_run(fc_background_pass *pass, const fc_view *view, co
     glDisable(GL_CLIP_DISTANCE1);
     glDisable(GL_FRAMEBUFFER_SRGB);
     glDisable(GL_DEPTH_TEST);
+    glDisable(GL_STENCIL_TEST);
     if (code != FC_OK)
         return code;
     return fc_gl_check("background pass", err);

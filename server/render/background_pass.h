@@ -7,6 +7,7 @@
 #define FC_BACKGROUND_PASS_H
 
 #include <epoxy/gl.h>
+#include <stdbool.h>
 
 #include "environment.h"
 #include "render_target.h"
@@ -18,6 +19,7 @@ typedef struct fc_background_pass {
     GLuint empty_vertex_array;
     fc_render_target target;   /* RGBA16F linear radiance, bilinear so refraction samples smoothly */
     GLuint framebuffer;        /* target's colour and the composite target's colour and depth */
+    bool writes_mask;          /* the driver has ARB_shader_stencil_export: the pass can lay down the mask */
 } fc_background_pass;
 
 fc_code fc_background_pass_create(const char *shader_dir, fc_background_pass *pass, fc_error *err);
@@ -27,8 +29,16 @@ void fc_background_pass_destroy(fc_background_pass *pass);
  * the view, keeping its aspect ratio and cropping what overhangs evenly.
  * Draws into pass->target and into `composite` (a target with depth, at
  * least the view's size): the background colour, and the depth of the floor,
- * else of the far plane. */
+ * else of the far plane. With `fluid_depth` (the smoothed linear depth; only
+ * where fc_background_pass_writes_mask, and not with opaque meshes, which the
+ * mask must be tested against) it also does the composite's mask: the
+ * fluid's depth and stencil 1 where the fluid is in front of the floor, 0
+ * elsewhere (fc_composite_inputs.masked). */
 fc_code fc_background_pass_run(fc_background_pass *pass, const fc_view *view, const fc_environment *env,
-                               const fc_scene_textures *scene, const fc_render_target *composite, fc_error *err);
+                               const fc_scene_textures *scene, const fc_render_target *fluid_depth,
+                               const fc_render_target *composite, fc_error *err);
+
+/* Whether the driver lets the pass lay down the composite's mask (ARB_shader_stencil_export). */
+bool fc_background_pass_writes_mask(const fc_background_pass *pass);
 
 #endif

@@ -174,6 +174,12 @@ static void draw_mask(const fc_composite_pass *pass, const fc_composite_inputs *
     glBindTextureUnit(UNIT_SURFACE_DEPTH, in->surface_depth->color);
     fc_gl_draw_fullscreen(pass->empty_vertex_array);
     glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+}
+
+/* The shading runs where the mask's stencil is 1, whichever pass laid it down. */
+static void shade_on_mask(void)
+{
+    glEnable(GL_STENCIL_TEST);
     glDepthMask(GL_FALSE);
     glDisable(GL_DEPTH_TEST);
     glStencilFunc(GL_EQUAL, 1, 0xff);
@@ -220,9 +226,12 @@ fc_code fc_composite_pass_run(fc_composite_pass *pass, const fc_composite_inputs
         glEnable(GL_FRAMEBUFFER_SRGB);
     else
         glDisable(GL_FRAMEBUFFER_SRGB);
-    apply_fluid_pixel(pass->mask_program, view, env);
-    glProgramUniform2f(pass->mask_program, LOC_DEPTH_PROJECTION, view->p22, view->p32);   /* it writes the fluid's depth */
-    draw_mask(pass, in, target);
+    if (!in->masked) {
+        apply_fluid_pixel(pass->mask_program, view, env);
+        glProgramUniform2f(pass->mask_program, LOC_DEPTH_PROJECTION, view->p22, view->p32);   /* it writes the fluid's depth */
+        draw_mask(pass, in, target);
+    }
+    shade_on_mask();
     glUseProgram(shade->program);
     uint64_t uniforms = shade->uniforms;
     fc_environment_apply_to(env, view, uniforms);

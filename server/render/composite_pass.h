@@ -31,6 +31,8 @@ typedef struct fc_composite_inputs {
     bool colored;                            /* the thickness carries the fluid's colour (thickness_pass.h) */
     bool depth_tested;                       /* opaque meshes lie in the depth buffer: fluid behind them stays
                                                 hidden (else the fluid's depth is written wherever it is) */
+    bool masked;                             /* the background pass laid down the mask already: the stencil
+                                                and the fluid's depth (fc_background_pass_run), not depth_tested */
 } fc_composite_inputs;
 
 fc_code fc_composite_pass_create(const char *shader_dir, fc_composite_pass *pass, fc_error *err);

@@ -243,7 +243,11 @@ static fc_code composite_stage(fc_pipeline *p, const render_job *job, const fc_r
 {
     fc_composite_inputs inputs = {surface, thickness, &p->background.target, NULL,
                                   job->scene ? job->scene->environment_map : 0, job->colored,
-                                  fc_mesh_any_opaque(job->meshes, job->mesh_count)};
+                                  fc_mesh_any_opaque(job->meshes, job->mesh_count), false};
+    /* The background pass lays down the composite's mask where the driver
+     * lets it and no opaque mesh must be tested against (one full-screen
+     * pass fewer on a CPU rasterizer). */
+    inputs.masked = !inputs.depth_tested && fc_background_pass_writes_mask(&p->background);
     bool want_u8 = job->want_u8;
     fc_environment env = job->env;   /* the shadow pass adds its map */
     fc_stage_timer_begin(&p->timer, FC_STAGE_COMPOSITE);
@@ -261,7 +265,8 @@ static fc_code composite_stage(fc_pipeline *p, const render_job *job, const fc_r
         code = fc_composite_pass_target(&p->composite, job->view, want_u8, &target, err);
     if (code == FC_OK) {
         fc_pass_profile_begin(profile, "background");
-        code = fc_background_pass_run(&p->background, job->view, &env, job->scene, target, err);
+        code = fc_background_pass_run(&p->background, job->view, &env, job->scene,
+                                      inputs.masked ? surface : NULL, target, err);
         fc_pass_profile_end(profile);
     }
     if (code == FC_OK && job->mesh_count > 0) {

@@ -11,14 +11,15 @@
 static const char *const feature_defines[FC_SHADER_FEATURE_COUNT] = {
     "FC_HAS_FLOOR", "FC_HAS_SHADOW", "FC_HAS_MESH_SHADOW", "FC_USE_CLIENT_IMAGE",
     "FC_USE_ENVIRONMENT_MAP", "FC_HAS_FOAM", "FC_COLORED", "FC_HAS_NOISE", "FC_FLOOR_ONLY",
+    "FC_FLUID_MASK",
 };
 
 void fc_shader_defines(unsigned features, char *out, size_t size)
 {
     size_t used = (size_t)snprintf(out, size, "#define FC_VARIANT 1\n");
     for (int i = 0; i < FC_SHADER_FEATURE_COUNT && used < size; i++)
-        used += (size_t)snprintf(out + used, size - used, "#define %s %s\n", feature_defines[i],
-                                 features & (1u << i) ? "true" : "false");
+        used += (size_t)snprintf(out + used, size - used, "#define %s %d\n", feature_defines[i],
+                                 features & (1u << i) ? 1 : 0);
 }
 
 static fc_code build(const fc_program_variants *v, unsigned features, fc_program_variant *slot, fc_error *err)

@@ -5,8 +5,8 @@
  * render does not use (foam, noise, a cube map, a client background, mesh
  * shadows) costs as much as one it does. Built with the feature's switch as a
  * constant, the compiler removes what is off. Each feature has a define
- * (below) that the shaders read under #ifdef FC_VARIANT; without it (other
- * programs that link the same files) the switch stays a uniform. */
+ * (below), 1 or 0, that the shaders read under #ifdef FC_VARIANT; without it
+ * (other programs that link the same files) the switch stays a uniform. */
 #ifndef FC_SHADER_VARIANTS_H
 #define FC_SHADER_VARIANTS_H
 
@@ -16,7 +16,7 @@
 
 #include "fluidcast_types.h"
 
-/* The features and the defines the shaders see (true or false). */
+/* The features and the defines the shaders see (1 or 0). */
 typedef enum fc_shader_feature {
     FC_FEATURE_FLOOR = 1u << 0,            /* FC_HAS_FLOOR: the built-in floor (environment.frag.glsl) */
     FC_FEATURE_SHADOW = 1u << 1,           /* FC_HAS_SHADOW: the fluid's shadow on it */
@@ -26,10 +26,12 @@ typedef enum fc_shader_feature {
     FC_FEATURE_FOAM = 1u << 5,             /* FC_HAS_FOAM: foam (composite.frag.glsl) */
     FC_FEATURE_COLORED = 1u << 6,          /* FC_COLORED: colour by attribute (composite.frag.glsl) */
     FC_FEATURE_NOISE = 1u << 7,            /* FC_HAS_NOISE: surface noise (surface_normal.frag.glsl) */
-    FC_FEATURE_FLOOR_ONLY = 1u << 8        /* FC_FLOOR_ONLY: every pixel sees the floor, no sky (background_regions.h) */
+    FC_FEATURE_FLOOR_ONLY = 1u << 8,       /* FC_FLOOR_ONLY: every pixel sees the floor, no sky (background_regions.h) */
+    FC_FEATURE_FLUID_MASK = 1u << 9        /* FC_FLUID_MASK: the background lays down the composite's stencil and
+                                              the fluid's depth (background.frag.glsl, ARB_shader_stencil_export) */
 } fc_shader_feature;
 
-#define FC_SHADER_FEATURE_COUNT 9
+#define FC_SHADER_FEATURE_COUNT 10
 /* Programs one cache keeps; a render uses up to four (background_regions.h), a session a few renders' worth. */
 #define FC_PROGRAM_VARIANTS_MAX 12
 
@@ -60,7 +62,7 @@ fc_code fc_program_variants_get(fc_program_variants *v, unsigned features, const
                                 fc_error *err);
 
 /* The defines of `features` as fc_program_build_defines takes them: FC_VARIANT
- * and every feature's define, true or false; `out` holds at least
+ * and every feature's define, 1 or 0; `out` holds at least
  * FC_SHADER_DEFINES_MAX bytes. */
 #define FC_SHADER_DEFINES_MAX 512
 void fc_shader_defines(unsigned features, char *out, size_t size);
