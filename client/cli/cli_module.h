@@ -3,6 +3,7 @@
  *   fluidcast-image.so  OpenImageIO (--legend: the server's image decoded and encoded again)
  *   fluidcast-video.so  libavcodec/libavformat/libswscale (render to .mp4/.webm)
  *   fluidcast-view.so   the whole of `fluidcast view`: SDL2, libavcodec's decoders, the SpaceMouse
+ *   fluidcast-hdf5.so   the HDF5 particle reader (libhdf5), for HDF5 input files
  * Linked into the executable, their libraries (OpenImageIO alone pulls in 261)
  * cost every run about 0.2 s of CPU to load, a command that never touches them
  * included (bench/RESULTS.md, "The CLI's start-up"). A missing or broken module
@@ -14,7 +15,7 @@
  * the same layout in the build tree.
  *
  * A module exports one const object, its interface: a struct of function
- * pointers declared by the CLI (image_module.h, video_module.h, view_module.h) whose first
+ * pointers declared by the CLI (image_module.h, video_module.h, view_module.h, hdf5_module.h) whose first
  * member is the interface's ABI version, checked here. */
 #ifndef FC_CLI_MODULE_H
 #define FC_CLI_MODULE_H

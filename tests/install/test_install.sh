@@ -63,11 +63,12 @@ for f in fluidcastConfig.cmake fluidcastConfigVersion.cmake fluidcastTargets.cma
     need_file "$R$LIBDIR/cmake/fluidcast/$f"
 done
 need_file "$R$PREFIX/lib/udev/rules.d/70-fluidcast-spacemouse.rules"
-# The CLI's modules (client/cli/cli_module.h): OpenImageIO, libav and SDL2, loaded only by the commands that use them.
-MODULES="fluidcast-image.so fluidcast-video.so fluidcast-view.so"
+# The CLI's modules (client/cli/cli_module.h): OpenImageIO, libav, SDL2 and libhdf5, loaded only by the commands
+# that use them.
+MODULES="fluidcast-image.so fluidcast-video.so fluidcast-view.so fluidcast-hdf5.so"
 for m in $MODULES; do need_file "$R$LIBDIR/fluidcast/$m"; done
-if readelf -d "$R$BINDIR/fluidcast" | grep NEEDED | matches -e libOpenImageIO -e libav -e libSDL2; then
-    fail "the installed fluidcast links OpenImageIO, libav or SDL2 itself"
+if readelf -d "$R$BINDIR/fluidcast" | grep NEEDED | matches -e libOpenImageIO -e libav -e libSDL2 -e libhdf5; then
+    fail "the installed fluidcast links OpenImageIO, libav, SDL2 or libhdf5 itself"
 fi
 for u in fluidcastd.service fluidcastd.socket fluidcastd@.service; do
     need_file "$R$PREFIX/lib/systemd/system/$u"
@@ -86,7 +87,7 @@ if grep -rlF -e "$BUILD" -e "$SRC/" "$R$LIBDIR/pkgconfig" "$R$LIBDIR/cmake" "$R$
 fi
 for f in "$R$BINDIR/fluidcastd" "$R$BINDIR/fluidcast" "$R$LIBDIR/libfluidcast.so.$VERSION" \
          "$R$LIBDIR/fluidcast/fluidcast-image.so" "$R$LIBDIR/fluidcast/fluidcast-video.so" \
-         "$R$LIBDIR/fluidcast/fluidcast-view.so"; do
+         "$R$LIBDIR/fluidcast/fluidcast-view.so" "$R$LIBDIR/fluidcast/fluidcast-hdf5.so"; do
     if readelf -d "$f" | grep -E 'RPATH|RUNPATH' | matches -F "$BUILD"; then fail "$f keeps the build tree's RPATH"; fi
 done
 # The library holds the protocol functions its headers declare.
@@ -195,6 +196,15 @@ check_modules() {   # FLUIDCAST EXTRA_LD_LIBRARY_PATH TAG
     LD_LIBRARY_PATH="$2" "$1" view --help > "$WORK/view-$3.txt" 2>&1 ||
         { cat "$WORK/view-$3.txt"; fail "$1 view --help failed (fluidcast-view.so)"; }
     matches "^usage: fluidcast view" < "$WORK/view-$3.txt" || fail "$1 view --help printed no usage"
+    # An HDF5 file through fluidcast-hdf5.so, when tests/readers' h5py fixtures were made in this build.
+    local h5=$BUILD/tests/readers/hdf5_fixtures/swift_f32.h5
+    if [ -f "$h5" ]; then
+        LD_LIBRARY_PATH="$2" "$1" snapshot "$h5" -o "$WORK/hdf5-$3.png" --server "$ADDR" --size 96x64 --up z \
+            > "$WORK/hdf5-$3.txt" 2>&1 || { cat "$WORK/hdf5-$3.txt"; fail "$1 snapshot of $h5 failed (fluidcast-hdf5.so)"; }
+        check_png "$WORK/hdf5-$3.png"
+    else
+        echo "no HDF5 fixtures in $BUILD (h5py): the installed HDF5 module is not run"
+    fi
 }
 check_modules "$R$BINDIR/fluidcast" "$R$LIBDIR" installed
 stop_daemon
@@ -228,8 +238,9 @@ cat "$WORK/deb-info.txt"
 for field in Package Version Architecture Maintainer Section Description Depends; do
     grep -q "^ $field: ." "$WORK/deb-info.txt" || fail "the .deb has no $field"
 done
-# What the CLI's modules load must be there too (the daemon needs it as well).
-for dep in libc6 libzstd1 libegl1 libopenimageio2.4 libavformat59 libsdl2-2.0-0; do
+# What the CLI's modules load must be there too (the daemon needs most of it as well; libhdf5 only
+# fluidcast-hdf5.so links, so its presence shows that dpkg-shlibdeps read the modules).
+for dep in libc6 libzstd1 libegl1 libopenimageio2.4 libavformat59 libsdl2-2.0-0 libhdf5-103-1; do
     grep "^ Depends:" "$WORK/deb-info.txt" | matches -w "$dep" || fail "Depends lacks $dep"
 done
 dpkg-deb -c "$DEB" | awk '{print $6}' > "$WORK/deb-files.txt"
@@ -238,7 +249,7 @@ for f in "$BINDIR/fluidcastd" "$BINDIR/fluidcast" "$LIBDIR/libfluidcast.so.$VERS
          "$INCLUDEDIR/fluidcast/fluidcast_types.h" "$LIBDIR/pkgconfig/fluidcast.pc" \
          "$LIBDIR/cmake/fluidcast/fluidcastConfig.cmake" "$PREFIX/lib/udev/rules.d/70-fluidcast-spacemouse.rules" \
          "$LIBDIR/fluidcast/fluidcast-image.so" "$LIBDIR/fluidcast/fluidcast-video.so" \
-         "$LIBDIR/fluidcast/fluidcast-view.so"; do
+         "$LIBDIR/fluidcast/fluidcast-view.so" "$LIBDIR/fluidcast/fluidcast-hdf5.so"; do
     grep -qx "\.$f" "$WORK/deb-files.txt" || fail "the .deb lacks $f"
 done
 

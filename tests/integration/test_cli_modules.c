@@ -5,10 +5,11 @@
  *     decodes it) load neither OpenImageIO nor libav;
  *   - --legend loads fluidcast-image.so and OpenImageIO (and with it libav) and draws the legend;
  *     a render to .mp4 loads fluidcast-video.so and libavformat and writes an MP4; `view` runs
- *     from fluidcast-view.so with SDL2 (its window and pictures: tests/viewer);
+ *     from fluidcast-view.so with SDL2 (its window and pictures: tests/viewer); an HDF5 file is
+ *     read through fluidcast-hdf5.so and libhdf5 (its contents: cli_hdf5);
  *   - with FLUIDCAST_MODULE_DIR on an empty directory, or on modules that are
- *     not what they should be, exactly those fail (exit 6, `view` 2; the module
- *     and the loader's reason named) and everything else still works. */
+ *     not what they should be, exactly those fail (exit 6, `view` 2, HDF5 input 3;
+ *     the module and the loader's reason named) and everything else still works. */
 #include <dirent.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -96,8 +97,9 @@ static bool loaded(const traced_run *t, const char *library)
 }
 
 /* The libraries a command that reads, renders and writes a PNG never needs. */
-static const char *const heavy[] = {"libOpenImageIO.so", "libavformat.so", "libavcodec.so", "libSDL2",
-                                    "fluidcast-image.so", "fluidcast-video.so", "fluidcast-view.so"};
+static const char *const heavy[] = {"libOpenImageIO.so", "libavformat.so", "libavcodec.so", "libSDL2", "libhdf5",
+                                    "fluidcast-image.so", "fluidcast-video.so", "fluidcast-view.so",
+                                    "fluidcast-hdf5.so"};
 
 static void check_light(const traced_run *t, const char *what)
 {
@@ -272,6 +274,37 @@ static void test_view_loads_viewer(test_env *env)
     free(t.trace);
 }
 
+/* An HDF5 file (tests/readers' h5py fixtures, FC_HDF5_FIXTURES; skipped without them): read through
+ * fluidcast-hdf5.so and libhdf5, rendered; without the module, exit 3 naming it. */
+static void test_hdf5_loads_its_reader(test_env *env)
+{
+    const char *fixtures = getenv("FC_HDF5_FIXTURES");
+    char h5[PATH_SIZE], out[PATH_SIZE], dir[PATH_SIZE];
+    snprintf(h5, sizeof h5, "%s/swift_f32.h5", fixtures ? fixtures : "");
+    if (!fixtures || access(h5, R_OK) != 0) {
+        printf("no HDF5 fixtures (h5py): the HDF5 module's part is skipped\n");
+        return;
+    }
+    traced_run t;
+    const char *args[] = {"snapshot", h5, "-o", scratch(env, "h5.png", out), "--server", env->server, "--size",
+                          "64x48", "--up", "z", NULL};
+    run_traced(env, NULL, args, &t);
+    CHECK_MSG(t.r.status == 0, "snapshot of %s: exit %d: %s", h5, t.r.status, t.r.err);
+    CHECK_MSG(loaded(&t, "fluidcast-hdf5.so") && loaded(&t, "libhdf5"), "an HDF5 file did not load its reader");
+    CHECK_MSG(!loaded(&t, "libOpenImageIO.so") && !loaded(&t, "libSDL2"), "an HDF5 file loaded other modules");
+    free(t.trace);
+    fc_decoded_image img;
+    if (t.r.status == 0 && decode_png(out, &img))
+        fc_decoded_image_free(&img);
+    unlink(out);
+    run_traced(env, scratch(env, "no-modules", dir), args, &t);
+    CHECK_CODE(t.r.status, 3);
+    CHECK_MSG(strstr(t.r.err, "reading HDF5 needs the module fluidcast-hdf5.so") &&
+                  strstr(t.r.err, "No such file or directory"),
+              "stderr: %s", t.r.err);
+    free(t.trace);
+}
+
 /* Without the modules: the commands that need them fail, naming the module and the loader's reason. */
 static void test_missing_modules(test_env *env)
 {
@@ -366,6 +399,7 @@ int main(void)
     test_snapshot_is_light(&env);
     test_legend_loads_images(&env);
     test_video_loads_libav(&env);
+    test_hdf5_loads_its_reader(&env);
     test_missing_modules(&env);
     test_broken_modules(&env);
     CHECK_CODE(fc_test_daemon_stop(&daemon, FC_TEST_DAEMON_STOP_TIMEOUT_MS, &err), FC_OK);
