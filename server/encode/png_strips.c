@@ -1,8 +1,10 @@
 /* png_strips.c — see png_strips.h. */
+#define _GNU_SOURCE /* sched_getaffinity, CPU_COUNT */
 #include "png_strips.h"
 
 #include <limits.h>
 #include <pthread.h>
+#include <sched.h>
 #include <stdatomic.h>
 #include <stdbool.h>
 #include <stdlib.h>
@@ -30,9 +32,19 @@ typedef struct strip_work {
     atomic_uint next;
 } strip_work;
 
+/* The cores this process may run on: under Slurm, a container or taskset
+ * that is the affinity mask, fewer than the machine's online cores. */
+static long usable_cores(void)
+{
+    cpu_set_t set;
+    if (sched_getaffinity(0, sizeof set, &set) == 0 && CPU_COUNT(&set) > 0)
+        return CPU_COUNT(&set);
+    return sysconf(_SC_NPROCESSORS_ONLN);
+}
+
 unsigned fc_png_default_threads(void)
 {
-    long cores = sysconf(_SC_NPROCESSORS_ONLN);
+    long cores = usable_cores();
     if (cores < 1)
         return 1;
     return cores < (long)FC_PNG_MAX_THREADS ? (unsigned)cores : FC_PNG_MAX_THREADS;

@@ -50,7 +50,7 @@ typedef struct fc_png_strips {
 } fc_png_strips;
 
 /* Filters and deflates `rows` at zlib `level` (0..9) on up to `threads`
- * threads (0: one per online core, at most FC_PNG_MAX_THREADS; never more
+ * threads (0: fc_png_default_threads(); never more
  * than there are strips). The calling thread works too; if a thread cannot be
  * started, the others do its share. FC_ERR_NOMEM, or FC_ERR_ENCODE with
  * zlib's code; out is empty then. */
@@ -62,7 +62,8 @@ uint32_t fc_png_strips_adler(const fc_png_strips *strips);
 
 void fc_png_strips_free(fc_png_strips *strips);
 
-/* One per online core, at most FC_PNG_MAX_THREADS, at least 1. */
+/* One per core this process may use (its affinity mask: Slurm, containers,
+ * taskset), at most FC_PNG_MAX_THREADS, at least 1. */
 unsigned fc_png_default_threads(void);
 
 #ifdef __cplusplus
