@@ -1,9 +1,10 @@
 #version 450 core
 // Compositing (van der Laan et al. 2009, §3.5, eqs. 13-15): Fresnel between
 // the refracted background and the reflected environment, Phong specular,
-// grey foam where the surface noise is strong. The last of three passes
-// (composite_pass.c): it runs only where fluid_mask.frag.glsl set the
-// stencil, over the colour and depth background.frag.glsl wrote.
+// grey foam where the surface noise is strong. The last of two or three
+// passes (composite_pass.c): it runs only where the mask set the stencil
+// (fluid_mask.frag.glsl, or background.frag.glsl where the driver can export
+// the stencil), over the colour and depth background.frag.glsl wrote.
 
 layout(early_fragment_tests) in;
 

@@ -1,8 +1,9 @@
 #version 450 core
 // Which pixels the composite shades as fluid, and the depths written for
 // them and for the floor: linked into the background program
-// (background.frag.glsl: the floor's depth) and the two composite programs
-// (composite_pass.c), which must agree on all of it.
+// (background.frag.glsl: the floor's depth, and the mask where it lays it
+// down) and the two composite programs (composite_pass.c), which must agree
+// on all of it.
 
 vec3 view_ray(vec2 window);
 
