@@ -3,7 +3,9 @@
 // bounding spheres) in one splat, like surface_splat.frag.glsl
 // but without the rasterizer: one invocation per particle walks the pixels of
 // its sphere's projected bounding box (sphere_bounds.glsl), row by row over
-// the columns the silhouette can reach, and ray-casts each (sphere_ray.glsl,
+// the columns the silhouette can reach (splat_walk_rows.glsl) or, for sprites
+// of at most 2x2 pixels, without a loop (splat_walk_tiny.glsl), and
+// ray-casts each (sphere_ray.glsl,
 // thickness_chord.glsl: the fragment splat's arithmetic, so both find the
 // same pixels and depths).
 // The nearest depth wins by imageAtomicMin on the float's bits, which order
@@ -12,9 +14,9 @@
 // Atomics on storage buffers instead of images measured no faster on
 // llvmpipe (bench/RESULTS.md, fifth round).
 // surface_resolve.comp.glsl turns both into the fragment splat's images.
-// Faster on llvmpipe for small sprites, where a point sprite's set-up costs
-// more than its few pixels (bench/RESULTS.md, third round); depth_pass.c
-// chooses.
+// Faster on llvmpipe than point sprites up to at least 64 px, where their
+// set-up is serial (bench/RESULTS.md, "The splat and the smoothing on
+// llvmpipe"); depth_pass.c chooses.
 
 // The particle's shape, sphere or ellipsoid (sphere_shape.comp.glsl,
 // ellipsoid_shape.comp.glsl): its view-space centre and bounding radius, and
@@ -60,33 +62,11 @@ void splat_pixel(ivec2 p, vec3 centre)
     }
 }
 
-// The columns of row y whose rays may meet the sphere, within [lo, hi]: the
-// walk skips the corners of the bounding box. A ray d = (a, v, -1) (a, v:
-// the pixel centre's NDC over the focal lengths) meets the sphere where
-// (d·c)² >= |d|² k, k = |c|² - r²: for a fixed row a quadratic in a,
-// qa a² + 2 qb a + qc >= 0, whose discriminant works out to
-// k (r² (1 + v²) - (c.y + v c.z)²), free of the cancellation the textbook
-// form suffers. It lies between its roots when it opens downwards (qa < 0),
-// as it does unless the eye is inside the sphere's tangent cylinder along x.
-// A row the sphere only grazes keeps the column where it would touch, and
-// the quarter pixel of margin on each side absorbs rounding (a few hundredths
-// of a pixel even at the widest sprites): the ray cast decides each pixel,
-// the span must only hold every one it could accept.
-ivec2 row_span(int y, vec3 centre, float radius, ivec2 lo, ivec2 hi)
-{
-    float v = ((float(y) + 0.5) / viewport.y * 2.0 - 1.0) / projection.y;
-    float r2 = radius * radius;
-    float qa = r2 - centre.y * centre.y - centre.z * centre.z;
-    float k = dot(centre, centre) - r2;
-    if (qa >= 0.0 || k <= 0.0)
-        return ivec2(lo.x, hi.x);
-    float qb = centre.x * (v * centre.y - centre.z);
-    float across = centre.y + v * centre.z;
-    float root = sqrt(k * max(r2 * (1.0 + v * v) - across * across, 0.0));
-    vec2 a = vec2(-qb + root, -qb - root) / qa;   // ascending: qa < 0
-    vec2 x = (a * projection.x + 1.0) * 0.5 * viewport.x - 0.5;
-    return ivec2(max(lo.x, int(ceil(x.x - MARGIN_PIXELS))), min(hi.x, int(floor(x.y + MARGIN_PIXELS))));
-}
+// The pixels of the box [lo, hi] whose rays may meet the particle, each
+// passed to splat_pixel: splat_walk_rows.glsl (any size) or
+// splat_walk_tiny.glsl (boxes of at most 2x2 pixels), compute_splat.c
+// links one of them.
+void walk_pixels(ivec2 lo, ivec2 hi, vec3 centre, float reach);
 
 void main()
 {
@@ -114,9 +94,5 @@ void main()
     vec2 last = (vec2(x_range.y, y_range.y) + 1.0) * 0.5 * viewport - 0.5 + MARGIN_PIXELS;
     ivec2 lo = max(ivec2(ceil(first)), ivec2(0));
     ivec2 hi = min(ivec2(floor(last)), ivec2(viewport) - 1);
-    for (int y = lo.y; y <= hi.y; y++) {
-        ivec2 span = row_span(y, centre, reach, lo, hi);
-        for (int x = span.x; x <= span.y; x++)
-            splat_pixel(ivec2(x, y), centre);
-    }
+    walk_pixels(lo, hi, centre, reach);
 }

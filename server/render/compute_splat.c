@@ -2,6 +2,7 @@
 #include "compute_splat.h"
 
 #include <math.h>
+#include <stdbool.h>
 
 #include "anisotropy.h"
 #include "fc_error.h"
@@ -74,18 +75,35 @@ static uint64_t dispatch_limit(GLint max_texels, GLint alignment)
     return limit > 0 ? limit : step;
 }
 
+/* The walks' libraries, by fc_splat_walk. */
+static const char *const WALKS[FC_SPLAT_WALKS] = {"splat_walk_rows.glsl", "splat_walk_tiny.glsl"};
+
+/* The splat of spheres or of ellipsoids (sphere_shape.comp.glsl,
+ * ellipsoid_shape.comp.glsl) with each walk. */
+static fc_code build_splats(const char *shader_dir, bool ellipsoids, GLuint programs[FC_SPLAT_WALKS], fc_error *err)
+{
+    for (int w = 0; w < FC_SPLAT_WALKS; w++) {
+        const char *spheres[] = {"sphere_bounds.glsl", "sphere_ray.glsl", "thickness_chord.glsl",
+                                 "sphere_shape.comp.glsl", WALKS[w], "surface_splat.comp.glsl"};
+        const char *shaped[] = {"sphere_bounds.glsl", "ellipsoid_bounds.glsl", "sphere_ray.glsl",
+                                "ellipsoid_ray.glsl", "thickness_chord.glsl", "ellipsoid_shape.comp.glsl",
+                                WALKS[w], "surface_splat.comp.glsl"};
+        const char *const *files = ellipsoids ? shaped : spheres;
+        size_t count = ellipsoids ? sizeof shaped / sizeof shaped[0] : sizeof spheres / sizeof spheres[0];
+        fc_code code = fc_program_build(shader_dir, files, count, &programs[w], err);
+        if (code != FC_OK)
+            return code;
+    }
+    return FC_OK;
+}
+
 fc_code fc_compute_splat_create(const char *shader_dir, fc_compute_splat *s, fc_error *err)
 {
     *s = (fc_compute_splat){0};
-    const char *splat[] = {"sphere_bounds.glsl", "sphere_ray.glsl", "thickness_chord.glsl", "sphere_shape.comp.glsl",
-                           "surface_splat.comp.glsl"};
-    const char *ellipsoids[] = {"sphere_bounds.glsl", "ellipsoid_bounds.glsl", "sphere_ray.glsl", "ellipsoid_ray.glsl",
-                                "thickness_chord.glsl", "ellipsoid_shape.comp.glsl", "surface_splat.comp.glsl"};
     const char *resolve[] = {"pinhole_fill.glsl", "surface_resolve.comp.glsl"};
-    fc_code code = fc_program_build(shader_dir, splat, sizeof splat / sizeof splat[0], &s->splat_program, err);
+    fc_code code = build_splats(shader_dir, false, s->splat_program, err);
     if (code == FC_OK)
-        code = fc_program_build(shader_dir, ellipsoids, sizeof ellipsoids / sizeof ellipsoids[0],
-                                &s->ellipsoid_program, err);
+        code = build_splats(shader_dir, true, s->ellipsoid_program, err);
     if (code == FC_OK)
         code = fc_program_build(shader_dir, resolve, 2, &s->resolve_program, err);
     if (code != FC_OK)
@@ -109,8 +127,10 @@ static void release_images(fc_compute_splat *s)
 
 void fc_compute_splat_destroy(fc_compute_splat *s)
 {
-    glDeleteProgram(s->splat_program);
-    glDeleteProgram(s->ellipsoid_program);
+    for (int w = 0; w < FC_SPLAT_WALKS; w++) {
+        glDeleteProgram(s->splat_program[w]);
+        glDeleteProgram(s->ellipsoid_program[w]);
+    }
     glDeleteProgram(s->resolve_program);
     glDeleteTextures(1, &s->positions);
     glDeleteTextures(1, &s->ratios);
@@ -153,7 +173,7 @@ static void dispatch(const fc_compute_splat *s, GLuint program, const fc_particl
         glTextureBufferRange(s->ratios, GL_R32F, particles->radii, (GLintptr)(first * RATIO_BYTES),
                              (GLsizeiptr)(count * RATIO_BYTES));
     glProgramUniform1ui(program, LOC_PARTICLE_COUNT, (GLuint)count);
-    if (program == s->ellipsoid_program)
+    if (particles->shapes)
         glProgramUniform1ui(program, LOC_FIRST_PARTICLE, (GLuint)first);
     GLuint groups = (GLuint)((count + SPLAT_GROUP - 1) / SPLAT_GROUP);
     GLuint per_row = groups < SPLAT_GROUPS_PER_ROW ? groups : SPLAT_GROUPS_PER_ROW;
@@ -167,10 +187,20 @@ static float max_chord(const fc_particle_buffer *particles, float radius)
     return 2.0f * fc_anisotropy_reach(particles, radius);
 }
 
-static void splat(const fc_compute_splat *s, const fc_particle_buffer *particles, const fc_view *view,
-                  float radius, const float *floor_plane, double units)
+/* Below this extent (pixels, along an axis) a box [centre - e/2 - 0.25,
+ * centre + e/2 + 0.25] is shorter than 2 and holds at most two pixel centres;
+ * a hair less, for the float arithmetic of the bounds. */
+#define TINY_WALK_MAX_PX 1.49f
+/* largest_px is r f / d; a sphere's exact silhouette is wider by 1 / sqrt(1 -
+ * r^2 / d^2), which for spheres this small on screen stays far below this. */
+#define SILHOUETTE_SLACK 1.02f
+
+static void splat(fc_compute_splat *s, const fc_particle_buffer *particles, const fc_view *view, float radius,
+                  float largest_px, const float *floor_plane, double units)
 {
-    GLuint program = particles->shapes ? s->ellipsoid_program : s->splat_program;
+    fc_splat_walk walk = largest_px * SILHOUETTE_SLACK < TINY_WALK_MAX_PX ? FC_SPLAT_WALK_TINY : FC_SPLAT_WALK_ROWS;
+    s->last_walk = walk;
+    GLuint program = particles->shapes ? s->ellipsoid_program[walk] : s->splat_program[walk];
     glProgramUniformMatrix4fv(program, LOC_VIEW_MATRIX, 1, GL_FALSE, view->view);
     glProgramUniform4f(program, LOC_PROJECTION, view->fx, view->fy, view->p22, view->p32);
     glProgramUniform2f(program, LOC_VIEWPORT, (float)view->width, (float)view->height);
@@ -217,8 +247,8 @@ static void resolve(const fc_compute_splat *s, const fc_view *view, float longes
 }
 
 fc_code fc_compute_splat_run(fc_compute_splat *s, const fc_particle_buffer *particles, const fc_view *view,
-                             float radius, const float *floor_plane, GLuint depth, GLuint thickness,
-                             fc_error *err)
+                             float radius, float largest_px, const float *floor_plane, GLuint depth,
+                             GLuint thickness, fc_error *err)
 {
     fc_code code = reserve(s, view->width, view->height, err);
     if (code != FC_OK)
@@ -229,7 +259,7 @@ fc_code fc_compute_splat_run(fc_compute_splat *s, const fc_particle_buffer *part
         glClearTexImage(s->thickness_sum, 0, GL_RED_INTEGER, GL_UNSIGNED_INT, &no_thickness);
     double units = units_per_chord(particles->count);
     if (particles->count > 0)
-        splat(s, particles, view, radius, floor_plane, units);
+        splat(s, particles, view, radius, largest_px, floor_plane, units);
     fc_pinhole_fill_apply(s->resolve_program, view, radius);
     resolve(s, view, max_chord(particles, radius), floor_plane != NULL, units, depth, thickness);
     return fc_gl_check("compute surface splat", err);

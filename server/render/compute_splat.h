@@ -12,9 +12,14 @@
 #include "particle_buffer.h"
 #include "view.h"
 
+/* How an invocation walks its particle's pixels: row by row over the
+ * silhouette's spans, or (where no box holds more than 2x2 pixel centres) the
+ * four candidates without a loop. */
+typedef enum { FC_SPLAT_WALK_ROWS, FC_SPLAT_WALK_TINY, FC_SPLAT_WALKS } fc_splat_walk;
+
 typedef struct fc_compute_splat {
-    GLuint splat_program;              /* spheres */
-    GLuint ellipsoid_program;          /* the particles' ellipsoids (anisotropy.h), where the buffer names them */
+    GLuint splat_program[FC_SPLAT_WALKS];       /* spheres, by walk */
+    GLuint ellipsoid_program[FC_SPLAT_WALKS];   /* the particles' ellipsoids (anisotropy.h), where the buffer names them */
     GLuint resolve_program;
     GLuint positions;                  /* buffer texture (RGB32F) over the particle buffer, during a run */
     GLuint ratios;                     /* buffer texture (R32F) over the radius ratios, during a sized run */
@@ -23,6 +28,7 @@ typedef struct fc_compute_splat {
     GLuint thickness_sum;     /* R32UI: thickness in fixed point */
     uint32_t width, height;   /* of the two images, the largest image splatted so far; 0 before the first run */
     uint32_t allocations;     /* times the images were (re)allocated */
+    fc_splat_walk last_walk;  /* of the last run with particles */
 } fc_compute_splat;
 
 fc_code fc_compute_splat_create(const char *shader_dir, fc_compute_splat *s, fc_error *err);
@@ -31,10 +37,13 @@ void fc_compute_splat_destroy(fc_compute_splat *s);
 /* Writes the particles' linear depth (0 = no fluid) into `depth` and, when
  * `floor_plane` is not NULL, their thickness above it into `thickness`: both
  * R32F textures of the view's size, as the fragment splat and its resolve
- * leave them. Ellipsoids where particles->shapes names them. */
+ * leave them. Ellipsoids where particles->shapes names them. `largest_px`
+ * bounds every particle's projected extent in pixels along either axis (its
+ * bounding sphere's, depth_pass.c): below 1.5 no box can hold more than two
+ * pixel centres per axis, and the loop-free walk draws the same pixels. */
 fc_code fc_compute_splat_run(fc_compute_splat *s, const fc_particle_buffer *particles, const fc_view *view,
-                             float radius, const float *floor_plane, GLuint depth, GLuint thickness,
-                             fc_error *err);
+                             float radius, float largest_px, const float *floor_plane, GLuint depth,
+                             GLuint thickness, fc_error *err);
 
 /* Adds the two images' bytes and allocations to m's render targets. */
 void fc_compute_splat_tally(const fc_compute_splat *s, fc_gpu_memory *m);

@@ -176,8 +176,8 @@ fc_code fc_depth_pass_run(fc_depth_pass *pass, const fc_particle_buffer *particl
         choice = FC_SPLAT_FRAGMENT;
     pass->last_used = choice;
     if (pass->last_used == FC_SPLAT_COMPUTE)
-        return fc_compute_splat_run(&pass->compute, particles, view, radius, floor_plane, pass->target.color,
-                                    pass->thickness.color, err);
+        return fc_compute_splat_run(&pass->compute, particles, view, radius, largest_sprite_px(view, reach),
+                                    floor_plane, pass->target.color, pass->thickness.color, err);
     return fragment_splat(pass, particles, view, radius, floor_plane, err);
 }
 

@@ -661,6 +661,11 @@ fc_splat_method fc_pipeline_last_splat(const fc_pipeline *p)
     return p->depth.last_used;
 }
 
+fc_splat_walk fc_pipeline_last_splat_walk(const fc_pipeline *p)
+{
+    return p->depth.compute.last_walk;
+}
+
 fc_particle_attributes *fc_pipeline_particle_attributes(fc_pipeline *p)
 {
     return &p->attributes;

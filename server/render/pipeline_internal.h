@@ -22,4 +22,7 @@ void fc_pipeline_force_splat(fc_pipeline *p, fc_splat_method method);
 /* The splat the last render used: FC_SPLAT_FRAGMENT or FC_SPLAT_COMPUTE. */
 fc_splat_method fc_pipeline_last_splat(const fc_pipeline *p);
 
+/* How the compute splat walked each particle's pixels when it last ran. */
+fc_splat_walk fc_pipeline_last_splat_walk(const fc_pipeline *p);
+
 #endif

@@ -4,9 +4,10 @@
  * the same ray casts), and thickness sums equal up to summation order and
  * the compute splat's fixed point. A pixel either splat loses at a
  * silhouette shows as a depth or coverage difference. Once with spheres
- * about 6 pixels across, once with spheres under a pixel across, where
+ * about 6 pixels across, twice with spheres under a pixel across, where
  * whether a sphere covers a pixel centre at all is decided at the edge of
- * the compute splat's bounding box. The analytic checks
+ * the compute splat's bounding box, and which the compute splat walks
+ * without loops (splat_walk_tiny.glsl). The analytic checks
  * of each splat are in test_sphere_depth.c and test_thickness.c. */
 #include <math.h>
 #include <stdio.h>
@@ -21,6 +22,9 @@
 /* Spheres about 6 pixels across at the cloud's centre, and about 0.9. */
 #define RADIUS_LARGE 0.01f
 #define RADIUS_SMALL 0.0015f
+/* About 0.75 pixel across at the centre, 0.9 at the nearest: boxes of up to
+ * 2x2 pixel centres, the most the compute splat's loop-free walk takes. */
+#define RADIUS_TWO_BY_TWO 0.0028f
 
 /* A deterministic cloud in the unit cube (a 32-bit LCG: the same on every platform). */
 static void random_cloud(float *positions, int count)
@@ -49,6 +53,10 @@ static void test_same_depth(render_fixture *f, const float *positions, float rad
 {
     fc_image a = {0}, b = {0};
     render_both(f, positions, radius, FC_AOV_DEPTH, &a, &b);
+    /* Spheres under a pixel across are walked without loops (at most 2x2 pixels each). */
+    fc_splat_walk walk = radius < RADIUS_LARGE ? FC_SPLAT_WALK_TINY : FC_SPLAT_WALK_ROWS;
+    CHECK_MSG(fc_pipeline_last_splat_walk(f->pipeline) == walk, "radius %g: walk %d, not %d", radius,
+              (int)fc_pipeline_last_splat_walk(f->pipeline), (int)walk);
     int covered = 0, differ = 0;
     for (uint32_t row = 0; row < HEIGHT; row++)
         for (uint32_t x = 0; x < WIDTH; x++) {
@@ -91,6 +99,8 @@ int main(void)
     test_same_thickness(&f, positions, RADIUS_LARGE, 10);
     test_same_depth(&f, positions, RADIUS_SMALL, WIDTH * HEIGHT / 40);
     test_same_thickness(&f, positions, RADIUS_SMALL, 2);
+    test_same_depth(&f, positions, RADIUS_TWO_BY_TWO, WIDTH * HEIGHT / 20);
+    test_same_thickness(&f, positions, RADIUS_TWO_BY_TWO, 2);
     fixture_close(&f);
     return test_result();
 }
