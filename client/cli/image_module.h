@@ -19,10 +19,10 @@
 
 typedef struct fc_image_module {
     uint32_t abi;   /* FC_IMAGE_MODULE_ABI: first, checked when the module is opened */
-    /* fc_decode_image_bytes (server/encode/image_decoder.h): a PNG, JPEG or EXR
+    /* fc_decode_image_bytes (proto/image/image_decoder.h): a PNG, JPEG or EXR
      * file's bytes into RGBA; free the pixels with free(). */
     fc_code (*decode)(const uint8_t *data, size_t size, uint32_t max_side, fc_image *out, fc_error *err);
-    /* fc_encode_image (server/encode/image_encoder.h): appended to `out`. */
+    /* fc_encode_image (proto/image/image_encoder.h): appended to `out`. */
     fc_code (*encode)(const fc_image *img, fc_image_format format, uint32_t quality, fc_buf *out, fc_error *err);
 } fc_image_module;
 

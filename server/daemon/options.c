@@ -6,7 +6,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "encode/image_encoder.h"
+#include "image_encoder.h"
 #include "fc_error.h"
 
 enum { MAX_ENCODERS = 64 };

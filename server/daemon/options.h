@@ -34,7 +34,7 @@ typedef struct fc_daemon_options {
     uint32_t chunk_timeout_ms; /* how long a multi-rank frame may wait for its chunks */
     uint32_t refresh_ms;       /* quiet time before a lossless refresh of a lossy stream image; 0 = never */
     uint32_t encoders;         /* encoder threads; 0 = min(4, cores) */
-    uint32_t png_compression;  /* PNG's zlib level 0..9 (encode/image_encoder.h) */
+    uint32_t png_compression;  /* PNG's zlib level 0..9 (proto/image/image_encoder.h) */
     uint32_t max_sessions;     /* named sessions at once */
     uint32_t max_connections;  /* client connections at once; more are refused with LIMIT */
     uint32_t idle_timeout_ms;  /* close a connection with no complete message for this long; 0 = never */

@@ -9,7 +9,7 @@
 #include <stdbool.h>
 
 #include "fluidcast_types.h"
-#include "../image.h"
+#include "image.h"
 #include "gpu_memory.h"
 
 typedef struct fc_pipeline fc_pipeline;

@@ -15,7 +15,7 @@
 #include <stddef.h>
 #include <stdint.h>
 
-#include "../image.h"
+#include "image.h"
 #include "gpu_memory.h"
 #include "render_target.h"
 

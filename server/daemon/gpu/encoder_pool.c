@@ -4,7 +4,7 @@
 #include <stdlib.h>
 #include <unistd.h>
 
-#include "encode/image_encoder.h"
+#include "image_encoder.h"
 #include "fc_error.h"
 #include "gpu/h264_stream.h"
 #include "monotonic.h"

@@ -20,7 +20,7 @@ typedef struct fc_render_service_config {
     fc_gpu_choice gpu;
     const char *shader_dir;   /* NULL: shaders built into the binary */
     unsigned encoders;        /* encoder threads, >= 1 */
-    uint32_t png_compression; /* PNG's zlib level 0..9 (encode/image_encoder.h) */
+    uint32_t png_compression; /* PNG's zlib level 0..9 (proto/image/image_encoder.h) */
     const fc_log *log;        /* GPU failures and recoveries are logged here */
     /* Test hook: the N-th request that reaches the GPU reports a lost context
      * (an unknown reset) and the real recovery follows; 0 = never. */

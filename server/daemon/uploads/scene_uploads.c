@@ -3,7 +3,7 @@
 
 #include <stdlib.h>
 
-#include "encode/image_decoder.h"
+#include "image_decoder.h"
 #include "fc_error.h"
 
 fc_scene_part *fc_scene_part_ref(fc_scene_part *part)

@@ -1,6 +1,6 @@
 /* image.h — a CPU image as the render pipeline reads it back and the encoder consumes it. */
-#ifndef FC_SERVER_IMAGE_H
-#define FC_SERVER_IMAGE_H
+#ifndef FC_IMAGE_H
+#define FC_IMAGE_H
 
 #include <stddef.h>
 #include <stdint.h>

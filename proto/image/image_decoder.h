@@ -8,7 +8,7 @@
 #include <stdint.h>
 
 #include "fluidcast_types.h"
-#include "../image.h"
+#include "image.h"
 
 #ifdef __cplusplus
 extern "C" {

@@ -7,7 +7,7 @@
 
 #include "fluidcast_types.h"
 #include "wire.h"
-#include "../image.h"
+#include "image.h"
 
 #ifdef __cplusplus
 extern "C" {
