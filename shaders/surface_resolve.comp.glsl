@@ -28,10 +28,12 @@ void main()
     ivec2 p = ivec2(gl_GlobalInvocationID.xy);
     if (any(greaterThanEqual(p, source_size)))
         return;
+#ifndef FC_THICKNESS_ONLY   // defined with the splat's (compute_splat.c): no depth was splatted
     float z = splat_depth_at(p);
     if (isinf(z))
         z = filled_depth(p);
     imageStore(depth_out, p, vec4(isinf(z) ? 0.0 : z));
+#endif
     if (chord_per_unit > 0.0)
         imageStore(thickness_out, p, vec4(float(imageLoad(thickness_sum, p).r) * chord_per_unit));
 }

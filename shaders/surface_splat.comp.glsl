@@ -53,9 +53,13 @@ void splat_pixel(ivec2 p, vec3 centre)
     // gather: most spheres are behind another already, and only the nearer
     // ones need the atomic. A stale load can only read a larger depth than
     // the current one, so no nearer depth is lost.
+    // FC_THICKNESS_ONLY (compute_splat.c, for the sun's view without
+    // meshes): nobody reads the depth, and its load and atomic go.
+#ifndef FC_THICKNESS_ONLY
     uint bits = floatBitsToUint(depth);
     if (ndc_z >= -1.0 && bits < imageLoad(nearest_depth, p).r)
         imageAtomicMin(nearest_depth, p, bits);
+#endif
     if (units_per_chord > 0.0) {
         float share = min(thickness_above_floor(pixel, depth, chord) / max_chord, 1.0);
         imageAtomicAdd(thickness_sum, p, uint(share * units_per_chord + 0.5));

@@ -78,9 +78,13 @@ static uint64_t dispatch_limit(GLint max_texels, GLint alignment)
 /* The walks' libraries, by fc_splat_walk. */
 static const char *const WALKS[FC_SPLAT_WALKS] = {"splat_walk_rows.glsl", "splat_walk_tiny.glsl"};
 
+/* The preprocessor lines of each output (FC_THICKNESS_ONLY in surface_splat.comp.glsl, surface_resolve.comp.glsl). */
+static const char *const OUTPUT_DEFINES[FC_SPLAT_OUTPUTS] = {NULL, "#define FC_THICKNESS_ONLY 1\n"};
+
 /* The splat of spheres or of ellipsoids (sphere_shape.comp.glsl,
- * ellipsoid_shape.comp.glsl) with each walk. */
-static fc_code build_splats(const char *shader_dir, bool ellipsoids, GLuint programs[FC_SPLAT_WALKS], fc_error *err)
+ * ellipsoid_shape.comp.glsl) with each walk, for one output. */
+static fc_code build_splats(const char *shader_dir, fc_splat_output output, bool ellipsoids,
+                            GLuint programs[FC_SPLAT_WALKS], fc_error *err)
 {
     for (int w = 0; w < FC_SPLAT_WALKS; w++) {
         const char *spheres[] = {"sphere_bounds.glsl", "sphere_ray.glsl", "thickness_chord.glsl",
@@ -90,7 +94,7 @@ static fc_code build_splats(const char *shader_dir, bool ellipsoids, GLuint prog
                                 WALKS[w], "surface_splat.comp.glsl"};
         const char *const *files = ellipsoids ? shaped : spheres;
         size_t count = ellipsoids ? sizeof shaped / sizeof shaped[0] : sizeof spheres / sizeof spheres[0];
-        fc_code code = fc_program_build(shader_dir, files, count, &programs[w], err);
+        fc_code code = fc_program_build_defines(shader_dir, OUTPUT_DEFINES[output], files, count, &programs[w], err);
         if (code != FC_OK)
             return code;
     }
@@ -101,11 +105,14 @@ fc_code fc_compute_splat_create(const char *shader_dir, fc_compute_splat *s, fc_
 {
     *s = (fc_compute_splat){0};
     const char *resolve[] = {"pinhole_fill.glsl", "surface_resolve.comp.glsl"};
-    fc_code code = build_splats(shader_dir, false, s->splat_program, err);
-    if (code == FC_OK)
-        code = build_splats(shader_dir, true, s->ellipsoid_program, err);
-    if (code == FC_OK)
-        code = fc_program_build(shader_dir, resolve, 2, &s->resolve_program, err);
+    fc_code code = FC_OK;
+    for (int o = 0; o < FC_SPLAT_OUTPUTS && code == FC_OK; o++) {
+        code = build_splats(shader_dir, (fc_splat_output)o, false, s->splat_program[o], err);
+        if (code == FC_OK)
+            code = build_splats(shader_dir, (fc_splat_output)o, true, s->ellipsoid_program[o], err);
+        if (code == FC_OK)
+            code = fc_program_build_defines(shader_dir, OUTPUT_DEFINES[o], resolve, 2, &s->resolve_program[o], err);
+    }
     if (code != FC_OK)
         return code;
     glCreateTextures(GL_TEXTURE_BUFFER, 1, &s->positions);
@@ -127,11 +134,13 @@ static void release_images(fc_compute_splat *s)
 
 void fc_compute_splat_destroy(fc_compute_splat *s)
 {
-    for (int w = 0; w < FC_SPLAT_WALKS; w++) {
-        glDeleteProgram(s->splat_program[w]);
-        glDeleteProgram(s->ellipsoid_program[w]);
+    for (int o = 0; o < FC_SPLAT_OUTPUTS; o++) {
+        for (int w = 0; w < FC_SPLAT_WALKS; w++) {
+            glDeleteProgram(s->splat_program[o][w]);
+            glDeleteProgram(s->ellipsoid_program[o][w]);
+        }
+        glDeleteProgram(s->resolve_program[o]);
     }
-    glDeleteProgram(s->resolve_program);
     glDeleteTextures(1, &s->positions);
     glDeleteTextures(1, &s->ratios);
     release_images(s);
@@ -195,12 +204,12 @@ static float max_chord(const fc_particle_buffer *particles, float radius)
  * r^2 / d^2), which for spheres this small on screen stays far below this. */
 #define SILHOUETTE_SLACK 1.02f
 
-static void splat(fc_compute_splat *s, const fc_particle_buffer *particles, const fc_view *view, float radius,
-                  float largest_px, const float *floor_plane, double units)
+static void splat(fc_compute_splat *s, fc_splat_output output, const fc_particle_buffer *particles,
+                  const fc_view *view, float radius, float largest_px, const float *floor_plane, double units)
 {
     fc_splat_walk walk = largest_px * SILHOUETTE_SLACK < TINY_WALK_MAX_PX ? FC_SPLAT_WALK_TINY : FC_SPLAT_WALK_ROWS;
     s->last_walk = walk;
-    GLuint program = particles->shapes ? s->ellipsoid_program[walk] : s->splat_program[walk];
+    GLuint program = particles->shapes ? s->ellipsoid_program[output][walk] : s->splat_program[output][walk];
     glProgramUniformMatrix4fv(program, LOC_VIEW_MATRIX, 1, GL_FALSE, view->view);
     glProgramUniform4f(program, LOC_PROJECTION, view->fx, view->fy, view->p22, view->p32);
     glProgramUniform2f(program, LOC_VIEWPORT, (float)view->width, (float)view->height);
@@ -230,16 +239,17 @@ static void splat(fc_compute_splat *s, const fc_particle_buffer *particles, cons
     glBindTextureUnit(UNIT_RADIUS_RATIOS, 0);
 }
 
-static void resolve(const fc_compute_splat *s, const fc_view *view, float longest_chord, bool with_thickness,
-                    double units, GLuint depth, GLuint thickness)
+static void resolve(const fc_compute_splat *s, fc_splat_output output, const fc_view *view, float longest_chord,
+                    bool with_thickness, double units, GLuint depth, GLuint thickness)
 {
     glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
+    GLuint program = s->resolve_program[output];
     float chord_per_unit = with_thickness ? (float)((double)longest_chord / units) : 0.0f;
-    glProgramUniform1f(s->resolve_program, LOC_CHORD_PER_UNIT, chord_per_unit);
-    glProgramUniform2i(s->resolve_program, LOC_SOURCE_SIZE, (GLint)view->width, (GLint)view->height);
+    glProgramUniform1f(program, LOC_CHORD_PER_UNIT, chord_per_unit);
+    glProgramUniform2i(program, LOC_SOURCE_SIZE, (GLint)view->width, (GLint)view->height);
     glBindImageTexture(IMAGE_DEPTH_OUT, depth, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_R32F);
     glBindImageTexture(IMAGE_THICKNESS_OUT, thickness, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_R32F);
-    glUseProgram(s->resolve_program);
+    glUseProgram(program);
     glDispatchCompute((view->width + RESOLVE_TILE - 1) / RESOLVE_TILE,
                       (view->height + RESOLVE_TILE - 1) / RESOLVE_TILE, 1);
     /* Later passes sample the two images as textures, the readback reads them through a framebuffer. */
@@ -250,18 +260,23 @@ fc_code fc_compute_splat_run(fc_compute_splat *s, const fc_particle_buffer *part
                              float radius, float largest_px, const float *floor_plane, GLuint depth,
                              GLuint thickness, fc_error *err)
 {
+    if (!depth && !floor_plane)
+        return fc_error_set(err, FC_ERR_USAGE, "compute splat: neither depth nor thickness wanted");
     fc_code code = reserve(s, view->width, view->height, err);
     if (code != FC_OK)
         return code;
+    fc_splat_output output = depth ? FC_SPLAT_DEPTH_AND_THICKNESS : FC_SPLAT_THICKNESS_ONLY;
     const GLuint no_depth = 0x7f800000u, no_thickness = 0;   /* +inf bits, 0 */
-    glClearTexImage(s->nearest_depth, 0, GL_RED_INTEGER, GL_UNSIGNED_INT, &no_depth);
+    if (depth)
+        glClearTexImage(s->nearest_depth, 0, GL_RED_INTEGER, GL_UNSIGNED_INT, &no_depth);
     if (floor_plane)
         glClearTexImage(s->thickness_sum, 0, GL_RED_INTEGER, GL_UNSIGNED_INT, &no_thickness);
     double units = units_per_chord(particles->count);
     if (particles->count > 0)
-        splat(s, particles, view, radius, largest_px, floor_plane, units);
-    fc_pinhole_fill_apply(s->resolve_program, view, radius);
-    resolve(s, view, max_chord(particles, radius), floor_plane != NULL, units, depth, thickness);
+        splat(s, output, particles, view, radius, largest_px, floor_plane, units);
+    if (depth)
+        fc_pinhole_fill_apply(s->resolve_program[output], view, radius);
+    resolve(s, output, view, max_chord(particles, radius), floor_plane != NULL, units, depth, thickness);
     return fc_gl_check("compute surface splat", err);
 }
 

@@ -17,10 +17,18 @@
  * four candidates without a loop. */
 typedef enum { FC_SPLAT_WALK_ROWS, FC_SPLAT_WALK_TINY, FC_SPLAT_WALKS } fc_splat_walk;
 
+/* What a run writes: the depth and the thickness, or the thickness alone
+ * (the sun's view where no mesh compares its depth, shadow_pass.c), built
+ * with FC_THICKNESS_ONLY: the depth's load and atomic per pixel, its
+ * pinhole fill and its stores left out, which llvmpipe would run behind a
+ * uniform switch all the same. */
+typedef enum { FC_SPLAT_DEPTH_AND_THICKNESS, FC_SPLAT_THICKNESS_ONLY, FC_SPLAT_OUTPUTS } fc_splat_output;
+
 typedef struct fc_compute_splat {
-    GLuint splat_program[FC_SPLAT_WALKS];       /* spheres, by walk */
-    GLuint ellipsoid_program[FC_SPLAT_WALKS];   /* the particles' ellipsoids (anisotropy.h), where the buffer names them */
-    GLuint resolve_program;
+    /* By output and walk: spheres, and the particles' ellipsoids (anisotropy.h) where the buffer names them. */
+    GLuint splat_program[FC_SPLAT_OUTPUTS][FC_SPLAT_WALKS];
+    GLuint ellipsoid_program[FC_SPLAT_OUTPUTS][FC_SPLAT_WALKS];
+    GLuint resolve_program[FC_SPLAT_OUTPUTS];
     GLuint positions;                  /* buffer texture (RGB32F) over the particle buffer, during a run */
     GLuint ratios;                     /* buffer texture (R32F) over the radius ratios, during a sized run */
     uint64_t particles_per_dispatch;   /* the most particles the buffer texture may show at once */
@@ -37,7 +45,8 @@ void fc_compute_splat_destroy(fc_compute_splat *s);
 /* Writes the particles' linear depth (0 = no fluid) into `depth` and, when
  * `floor_plane` is not NULL, their thickness above it into `thickness`: both
  * R32F textures of the view's size, as the fragment splat and its resolve
- * leave them. Ellipsoids where particles->shapes names them. `largest_px`
+ * leave them. `depth` 0 (with a floor plane): the thickness alone
+ * (FC_SPLAT_THICKNESS_ONLY), the same bits of it. Ellipsoids where particles->shapes names them. `largest_px`
  * bounds every particle's projected extent in pixels along either axis (its
  * bounding sphere's, depth_pass.c): below 1.5 no box can hold more than two
  * pixel centres per axis, and the loop-free walk draws the same pixels. */

@@ -66,15 +66,15 @@ void fc_depth_pass_destroy(fc_depth_pass *pass)
     pass->resolve_program = pass->empty_vertex_array = pass->splat_framebuffer = 0;
 }
 
-/* Sizes the three images to the view; the splat framebuffer follows the
- * textures when they are reallocated. */
-static fc_code resize(fc_depth_pass *pass, const fc_view *view, fc_error *err)
+/* Sizes the splat's two images and (with_depth) the linear depth to the
+ * view; the splat framebuffer follows the textures when they are reallocated. */
+static fc_code resize(fc_depth_pass *pass, const fc_view *view, bool with_depth, fc_error *err)
 {
     GLuint raw = pass->raw.color, thickness = pass->thickness.color;
     fc_code code = fc_render_target_resize(&pass->raw, view->width, view->height, err);
     if (code == FC_OK)
         code = fc_render_target_resize(&pass->thickness, view->width, view->height, err);
-    if (code == FC_OK)
+    if (code == FC_OK && with_depth)
         code = fc_render_target_resize(&pass->target, view->width, view->height, err);
     if (code != FC_OK || (raw == pass->raw.color && thickness == pass->thickness.color))
         return code;
@@ -87,17 +87,19 @@ static fc_code resize(fc_depth_pass *pass, const fc_view *view, fc_error *err)
     return fc_gl_check("attaching the surface splat images", err);
 }
 
-/* Nearest depth by GL_MIN on attachment 0, thickness (with a floor plane) by
- * addition on 1. */
+/* Nearest depth (with_depth) by GL_MIN on attachment 0, thickness (with a
+ * floor plane) by addition on 1. */
 static void splat(fc_depth_pass *pass, const fc_particle_buffer *particles, const fc_view *view, float radius,
-                  const float *floor_plane)
+                  const float *floor_plane, bool with_depth)
 {
-    const GLenum attachments[2] = {GL_COLOR_ATTACHMENT0, floor_plane ? GL_COLOR_ATTACHMENT1 : GL_NONE};
+    const GLenum attachments[2] = {with_depth ? GL_COLOR_ATTACHMENT0 : GL_NONE,
+                                   floor_plane ? GL_COLOR_ATTACHMENT1 : GL_NONE};
     glNamedFramebufferDrawBuffers(pass->splat_framebuffer, 2, attachments);
     glBindFramebuffer(GL_FRAMEBUFFER, pass->splat_framebuffer);
     glViewport(0, 0, (GLsizei)view->width, (GLsizei)view->height);
     const GLfloat nothing_yet = INFINITY, no_thickness = 0.0f;
-    glClearNamedFramebufferfv(pass->splat_framebuffer, GL_COLOR, 0, &nothing_yet);
+    if (with_depth)
+        glClearNamedFramebufferfv(pass->splat_framebuffer, GL_COLOR, 0, &nothing_yet);
     if (floor_plane)
         glClearNamedFramebufferfv(pass->splat_framebuffer, GL_COLOR, 1, &no_thickness);
     glDisable(GL_DEPTH_TEST);
@@ -146,9 +148,11 @@ fc_splat_method fc_depth_pass_choose(const fc_view *view, const float lo[3], con
 }
 
 static fc_code fragment_splat(fc_depth_pass *pass, const fc_particle_buffer *particles, const fc_view *view,
-                              float radius, const float *floor_plane, fc_error *err)
+                              float radius, const float *floor_plane, bool with_depth, fc_error *err)
 {
-    splat(pass, particles, view, radius, floor_plane);
+    splat(pass, particles, view, radius, floor_plane, with_depth);
+    if (!with_depth)
+        return fc_gl_check("thickness splat", err);
     fc_render_target_bind(&pass->target);
     fc_pinhole_fill_apply(pass->resolve_program, view, radius);
     glProgramUniform2i(pass->resolve_program, LOC_SOURCE_SIZE, (GLint)view->width, (GLint)view->height);
@@ -158,10 +162,10 @@ static fc_code fragment_splat(fc_depth_pass *pass, const fc_particle_buffer *par
     return fc_gl_check("depth pass", err);
 }
 
-fc_code fc_depth_pass_run(fc_depth_pass *pass, const fc_particle_buffer *particles, const fc_view *view,
-                          float radius, const float *floor_plane, fc_error *err)
+static fc_code run(fc_depth_pass *pass, const fc_particle_buffer *particles, const fc_view *view, float radius,
+                   const float *floor_plane, bool with_depth, fc_error *err)
 {
-    fc_code code = resize(pass, view, err);
+    fc_code code = resize(pass, view, with_depth, err);
     if (code != FC_OK)
         return code;
     /* Ellipsoids: chosen for by the radius, as their exact boxes are mostly
@@ -177,8 +181,22 @@ fc_code fc_depth_pass_run(fc_depth_pass *pass, const fc_particle_buffer *particl
     pass->last_used = choice;
     if (pass->last_used == FC_SPLAT_COMPUTE)
         return fc_compute_splat_run(&pass->compute, particles, view, radius, largest_sprite_px(view, reach),
-                                    floor_plane, pass->target.color, pass->thickness.color, err);
-    return fragment_splat(pass, particles, view, radius, floor_plane, err);
+                                    floor_plane, with_depth ? pass->target.color : 0, pass->thickness.color, err);
+    return fragment_splat(pass, particles, view, radius, floor_plane, with_depth, err);
+}
+
+fc_code fc_depth_pass_run(fc_depth_pass *pass, const fc_particle_buffer *particles, const fc_view *view,
+                          float radius, const float *floor_plane, fc_error *err)
+{
+    return run(pass, particles, view, radius, floor_plane, true, err);
+}
+
+fc_code fc_depth_pass_run_thickness(fc_depth_pass *pass, const fc_particle_buffer *particles, const fc_view *view,
+                                    float radius, const float *floor_plane, fc_error *err)
+{
+    if (!floor_plane)
+        return fc_error_set(err, FC_ERR_USAGE, "thickness splat without a floor plane");
+    return run(pass, particles, view, radius, floor_plane, false, err);
 }
 
 void fc_depth_pass_tally(const fc_depth_pass *pass, fc_gpu_memory *m)

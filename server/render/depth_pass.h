@@ -45,6 +45,12 @@ fc_splat_method fc_depth_pass_choose(const fc_view *view, const float lo[3], con
 fc_code fc_depth_pass_run(fc_depth_pass *pass, const fc_particle_buffer *particles, const fc_view *view,
                           float radius, const float *floor_plane, fc_error *err);
 
+/* fc_depth_pass_run for the thickness above `floor_plane` (not NULL) alone,
+ * the same bits of it: pass->target is neither sized nor written (the sun's
+ * view where no mesh compares the fluid's depth, shadow_pass.c). */
+fc_code fc_depth_pass_run_thickness(fc_depth_pass *pass, const fc_particle_buffer *particles, const fc_view *view,
+                                    float radius, const float *floor_plane, fc_error *err);
+
 /* Adds the pass's targets and compute-splat images to m. */
 void fc_depth_pass_tally(const fc_depth_pass *pass, fc_gpu_memory *m);
 

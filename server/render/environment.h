@@ -32,7 +32,8 @@ typedef struct fc_environment {
     float shadow_box_lo[3];       /* a world box holding all that casts the shadow, blur included: */
     float shadow_box_hi[3];       /* sun rays that miss it leave the map's thickness 0 */
     float shadow_extinction[3];   /* per world unit of that thickness */
-    GLuint fluid_sun_depth;       /* R32F the fluid's linear depth from the sun (shadow_pass.h), 0 = no fluid */
+    GLuint fluid_sun_depth;       /* R32F the fluid's linear depth from the sun (shadow_pass.h), 0 = no fluid;
+                                     the texture 0 where no mesh is drawn, the only reader */
     float fluid_sun_depth_uv_scale[2];
     /* The opaque meshes' shadows (mesh_pass.h), only with the fluid's. */
     bool has_mesh_shadow;

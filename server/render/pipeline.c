@@ -254,7 +254,8 @@ static fc_code composite_stage(fc_pipeline *p, const render_job *job, const fc_r
     fc_code code = shading_noise(p, job, surface, &inputs.noise, err);
     fc_pass_profile *profile = &p->profile;
     if (code == FC_OK && job->settings->shadow && env.has_floor)
-        code = fc_shadow_pass_run(&p->shadow, &job->surface, job->lo, job->hi, job->settings, profile, &env, err);
+        code = fc_shadow_pass_run(&p->shadow, &job->surface, job->lo, job->hi, job->settings, job->mesh_count > 0,
+                                  profile, &env, err);
     if (code == FC_OK && env.has_shadow && job->mesh_count > 0) {
         fc_pass_profile_begin(profile, "mesh shadows");
         code = fc_mesh_pass_cast_shadows(&p->mesh, job->meshes, job->mesh_count, &p->shadow.sun_view, &env, err);
@@ -664,6 +665,11 @@ fc_splat_method fc_pipeline_last_splat(const fc_pipeline *p)
 fc_splat_walk fc_pipeline_last_splat_walk(const fc_pipeline *p)
 {
     return p->depth.compute.last_walk;
+}
+
+fc_shadow_pass *fc_pipeline_shadow_pass(fc_pipeline *p)
+{
+    return &p->shadow;
 }
 
 fc_particle_attributes *fc_pipeline_particle_attributes(fc_pipeline *p)

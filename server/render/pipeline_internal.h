@@ -7,6 +7,7 @@
 #include "depth_pass.h"
 #include "particle_attributes.h"
 #include "pipeline.h"
+#include "shadow_pass.h"
 
 /* The per-particle records of the uploaded frame. */
 fc_particle_attributes *fc_pipeline_particle_attributes(fc_pipeline *p);
@@ -24,5 +25,9 @@ fc_splat_method fc_pipeline_last_splat(const fc_pipeline *p);
 
 /* How the compute splat walked each particle's pixels when it last ran. */
 fc_splat_walk fc_pipeline_last_splat_walk(const fc_pipeline *p);
+
+/* The sun's shadow pass: its map, the fluid's depth from the sun, its splat
+ * (whose method a test may force); tests. */
+fc_shadow_pass *fc_pipeline_shadow_pass(fc_pipeline *p);
 
 #endif

@@ -124,8 +124,18 @@ static void map_transform(const fc_view *v, float m[16])
     }
 }
 
+/* The fluid's nearest depth from the sun, for meshes (environment.frag.glsl's
+ * in_front_of_fluid, which only mesh_shade.frag.glsl reaches); none without. */
+static void set_fluid_sun_depth(const fc_shadow_pass *pass, bool with_depth, fc_environment *env)
+{
+    const fc_render_target *t = &pass->splat.target;
+    env->fluid_sun_depth = with_depth ? t->color : 0;
+    env->fluid_sun_depth_uv_scale[0] = with_depth ? (float)t->width / (float)t->texture_width : 0.0f;
+    env->fluid_sun_depth_uv_scale[1] = with_depth ? (float)t->height / (float)t->texture_height : 0.0f;
+}
+
 fc_code fc_shadow_pass_run(fc_shadow_pass *pass, const fc_particle_buffer *particles, const float lo[3],
-                           const float hi[3], const fc_settings *settings, fc_pass_profile *profile,
+                           const float hi[3], const fc_settings *settings, bool with_depth, fc_pass_profile *profile,
                            fc_environment *env, fc_error *err)
 {
     /* Ellipsoids may reach past the radius: the sun's view must hold them whole. */
@@ -136,7 +146,9 @@ fc_code fc_shadow_pass_run(fc_shadow_pass *pass, const fc_particle_buffer *parti
     fc_view_from_camera(&cam, lo, hi, reach, &view);
     static const float no_floor[4] = {0.0f, 0.0f, 0.0f, 1.0f};   /* nothing is cut off */
     fc_pass_profile_begin(profile, "shadow splat");
-    fc_code code = fc_depth_pass_run(&pass->splat, particles, &view, settings->radius, no_floor, err);
+    fc_code code = with_depth ? fc_depth_pass_run(&pass->splat, particles, &view, settings->radius, no_floor, err)
+                              : fc_depth_pass_run_thickness(&pass->splat, particles, &view, settings->radius,
+                                                            no_floor, err);
     fc_pass_profile_end(profile);
     fc_thickness_params params = {.radius = settings->radius, .scale = 1.0f, .blur = MAP_BLUR,
                                   .floor_plane = no_floor, .profile = profile, .full_splat = &pass->splat.thickness};
@@ -160,9 +172,7 @@ fc_code fc_shadow_pass_run(fc_shadow_pass *pass, const fc_particle_buffer *parti
     env->shadow_uv_last[1] = ((float)map->height - 0.5f) / (float)map->texture_height;
     env->shadow_map = map->color;
     env->has_shadow = true;
-    env->fluid_sun_depth = pass->splat.target.color;
-    env->fluid_sun_depth_uv_scale[0] = (float)pass->splat.target.width / (float)pass->splat.target.texture_width;
-    env->fluid_sun_depth_uv_scale[1] = (float)pass->splat.target.height / (float)pass->splat.target.texture_height;
+    set_fluid_sun_depth(pass, with_depth, env);
     pass->sun_view = view;
     for (int c = 0; c < 3; c++)
         env->shadow_extinction[c] = (settings->absorption[c] + REFRACTED_OUT_PER_RADIUS) / settings->radius;

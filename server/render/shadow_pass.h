@@ -32,10 +32,12 @@ void fc_shadow_pass_destroy(fc_shadow_pass *pass);
 /* Splats the particles (inside the box [lo, hi], of the settings' radius;
  * the box may hold meshes too, which the sun's view then frames as well)
  * as seen from env->sun and sets env's shadow: the map, the world-to-map
- * transform, the extinction per world unit of thickness and the fluid's
- * nearest depth from the sun (which meshes in front of the fluid compare). */
+ * transform, the extinction per world unit of thickness and, `with_depth`,
+ * the fluid's nearest depth from the sun (which meshes in front of the fluid
+ * compare; nothing else reads it, and without it the splat leaves out the
+ * depth, its pinhole fill and its resolve: env->fluid_sun_depth is 0). */
 fc_code fc_shadow_pass_run(fc_shadow_pass *pass, const fc_particle_buffer *particles, const float lo[3],
-                           const float hi[3], const fc_settings *settings, fc_pass_profile *profile,
+                           const float hi[3], const fc_settings *settings, bool with_depth, fc_pass_profile *profile,
                            fc_environment *env, fc_error *err);
 
 void fc_shadow_pass_tally(const fc_shadow_pass *pass, fc_gpu_memory *m);
