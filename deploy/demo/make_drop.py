@@ -7,8 +7,9 @@ Laid out the way a solver's initial state is, so the demo shows the renderer
 and not the generator's artefacts: the pool is a full cubic lattice (a flat
 top, no missing points), the sphere concentric shells of evenly spread points
 (Fibonacci spirals), so its surface is a sphere and not a lattice's staircase.
-The spacing is the largest that holds 65,536 points; the surplus is taken from
-the innermost shells, where no one sees it.
+The spacing is the one whose scene comes nearest 65,536 points; the shells'
+sizes are then scaled by the small remaining factor, so the sphere stays solid
+and its points as evenly spread.
 
     python3 deploy/demo/make_drop.py [OUTPUT]
 """
@@ -23,8 +24,8 @@ GOLDEN_ANGLE = math.pi * (3.0 - math.sqrt(5.0))
 
 
 def pool(h):
-    n_xy = int(2.0 * POOL_HALF / h)
-    n_z = max(int(POOL_DEPTH / h), 1)
+    n_xy = int(round(2.0 * POOL_HALF / h))
+    n_z = max(int(round(POOL_DEPTH / h)), 1)
     step_xy = 2.0 * POOL_HALF / n_xy
     step_z = POOL_DEPTH / n_z
     return [(-POOL_HALF + (i + 0.5) * step_xy, -POOL_HALF + (j + 0.5) * step_xy, (k + 0.5) * step_z)
@@ -55,29 +56,33 @@ def total(h):
 
 
 def spacing():
-    """The largest spacing (to 0.1 %) whose scene holds at least COUNT points."""
-    h = (((2 * POOL_HALF) ** 2 * POOL_DEPTH + 4.0 / 3.0 * math.pi * DROP_RADIUS ** 3) / COUNT) ** (1.0 / 3.0)
-    while total(h) < COUNT:
-        h *= 0.999
-    return h
+    """The spacing, within 10 % of the volume's, whose scene comes nearest COUNT
+    points (the pool's lattice makes the count jump as the spacing changes)."""
+    h0 = (((2 * POOL_HALF) ** 2 * POOL_DEPTH + 4.0 / 3.0 * math.pi * DROP_RADIUS ** 3) / COUNT) ** (1.0 / 3.0)
+    candidates = [h0 * (0.9 + 0.2 * i / 2000) for i in range(2001)]
+    return min(candidates, key=lambda h: abs(total(h) - COUNT))
+
+
+def fit_shells(sizes, count):
+    """The shells' sizes scaled to add up to `count`, the rounding's remainder
+    on the outermost shell."""
+    scale = count / sum(sizes)
+    fitted = [max(int(round(n * scale)), 1) for n in sizes]
+    fitted[0] += count - sum(fitted)
+    return fitted
 
 
 def main():
     out = sys.argv[1] if len(sys.argv) > 1 else "deploy/demo/drop_64k.f32"
     h = spacing()
     points = pool(h)
-    sizes = shell_sizes(h)
-    surplus = len(points) + sum(sizes) - COUNT
-    for k in range(len(sizes) - 1, -1, -1):   # innermost first
-        cut = min(surplus, sizes[k])
-        sizes[k] -= cut
-        surplus -= cut
+    sizes = fit_shells(shell_sizes(h), COUNT - len(points))
     for k, n in enumerate(sizes):
         points += shell(DROP_RADIUS - (k + 0.5) * h, n)
     assert len(points) == COUNT
     with open(out, "wb") as f:
         f.write(b"".join(struct.pack("<3f", *p) for p in points))
-    print(f"{out}: {COUNT} particles, spacing {h:.5f}")
+    print(f"{out}: {COUNT} particles, spacing {h:.5f}, {len(sizes)} shells of {sizes[0]} to {sizes[-1]} points")
 
 
 if __name__ == "__main__":
