@@ -672,6 +672,11 @@ fc_shadow_pass *fc_pipeline_shadow_pass(fc_pipeline *p)
     return &p->shadow;
 }
 
+bool fc_pipeline_background_writes_mask(const fc_pipeline *p)
+{
+    return fc_background_pass_writes_mask(&p->background);
+}
+
 fc_particle_attributes *fc_pipeline_particle_attributes(fc_pipeline *p)
 {
     return &p->attributes;

@@ -30,4 +30,8 @@ fc_splat_walk fc_pipeline_last_splat_walk(const fc_pipeline *p);
  * (whose method a test may force); tests. */
 fc_shadow_pass *fc_pipeline_shadow_pass(fc_pipeline *p);
 
+/* Whether the background pass lays down the composite's mask (the driver has
+ * ARB_shader_stencil_export) rather than the composite's own mask pass; tests. */
+bool fc_pipeline_background_writes_mask(const fc_pipeline *p);
+
 #endif
