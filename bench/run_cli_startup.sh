@@ -18,19 +18,10 @@ BUILD_DIR=${BUILD_DIR:-$ROOT/build-bench}
 PARTICLES=${PARTICLES:-64k}
 SIZE=${SIZE:-1024x768}
 REPS=${REPS:-20}
-# shellcheck disable=SC2054  # the commas are inside values
-CAMERA=(--eye 2,-2.9,1.9 --target 0,0,0.25 --up z --fov 40)
-SMOOTHING=(--smoothing narrow --iterations 3 --filter-radius 5)
-
 WORK=$(mktemp -d)
-DAEMON_PID=""
-cleanup() {
-    [ -n "$DAEMON_PID" ] && kill "$DAEMON_PID" 2>/dev/null && wait "$DAEMON_PID" 2>/dev/null
-    rm -rf "$WORK"
-}
-trap cleanup EXIT
 log() { echo "run_cli_startup: $*" >&2; }
 . "$ROOT/bench/bench_lib.sh"
+. "$ROOT/bench/snapshot_lib.sh"
 
 [ $# -gt 0 ] || set -- "fluidcast=$BUILD_DIR/bin/fluidcast"
 if [ "${NO_BUILD:-0}" = 1 ]; then
@@ -42,10 +33,7 @@ for spec in "$@"; do
     [ -x "${spec#*=}" ] || { log "not an executable: ${spec#*=}"; exit 1; }
 done
 
-"$BUILD_DIR/bin/fluidcastd" --gpu software --listen 127.0.0.1:0 --port-file "$WORK/port" >"$WORK/daemon.log" 2>&1 &
-DAEMON_PID=$!
-for _ in $(seq 100); do [ -s "$WORK/port" ] && break; sleep 0.1; done
-[ -s "$WORK/port" ] || { log "fluidcastd did not start: $(cat "$WORK/daemon.log")"; exit 1; }
+start_daemon software
 RADIUS=$("$BUILD_DIR/bin/fluidcast-bench" --particles "$PARTICLES" --write-scene "$WORK/scene.f32" | awk '{ print $6 }')
 
 LOAD_START=$(load_average)

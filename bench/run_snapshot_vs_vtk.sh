@@ -28,21 +28,11 @@ FRAMES=${FRAMES:-2}
 STEP_TIMEOUT=${STEP_TIMEOUT:-600}
 PEER_DIR=$ROOT/bench/peer
 VTK_PYTHON=/usr/bin/python3
-# The drop scene's camera (bench/scene.c, as vtk_fluid_bench.py)
-# shellcheck disable=SC2054  # the commas are inside values
-CAMERA=(--eye 2,-2.9,1.9 --target 0,0,0.25 --up z --fov 40)
-SMOOTHING=(--smoothing narrow --iterations 3 --filter-radius 5)
-
 WORK=$(mktemp -d)
-DAEMON_PID=""
-cleanup() {
-    [ -n "$DAEMON_PID" ] && kill "$DAEMON_PID" 2>/dev/null && wait "$DAEMON_PID" 2>/dev/null
-    rm -rf "$WORK"
-}
-trap cleanup EXIT
 
 log() { echo "run_snapshot_vs_vtk: $*" >&2; }
 . "$ROOT/bench/bench_lib.sh"
+. "$ROOT/bench/snapshot_lib.sh"
 
 if [ -n "${DISPLAY:-}" ]; then
     GPU=auto
@@ -51,13 +41,6 @@ else
     GPU=software
     run_vtk() { timeout "$STEP_TIMEOUT" xvfb-run -a env LIBGL_ALWAYS_SOFTWARE=1 "$VTK_PYTHON" "$PEER_DIR/vtk_fluid_bench.py" "$@"; }
 fi
-
-start_daemon() {
-    "$BUILD_DIR/bin/fluidcastd" --gpu "$GPU" --listen 127.0.0.1:0 --port-file "$WORK/port" >"$WORK/daemon.log" 2>&1 &
-    DAEMON_PID=$!
-    for _ in $(seq 100); do [ -s "$WORK/port" ] && return 0; sleep 0.1; done
-    log "fluidcastd did not start: $(cat "$WORK/daemon.log")"; exit 1
-}
 
 # The scene of one particle count, once; prints its radius.
 export_scene() {
@@ -104,7 +87,7 @@ main() {
     else
         build_targets fluidcast-bench fluidcastd fluidcast-cli
     fi
-    start_daemon
+    start_daemon "$GPU"
     local load_start date particles size radius rep
     load_start=$(load_average)
     date=$(date -u '+%Y-%m-%d %H:%M UTC')
