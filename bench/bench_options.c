@@ -33,7 +33,7 @@ void bench_options_print_usage(void)
            "         [--size 1280x720,...] [--smoothing curvature,none,...] [--iterations 15,40,default,...]\n"
            "         [--scale 1,0.5,0.25] [--frames N] [--encode png|jpeg|exr|none] [--image PATH.png]\n"
            "         [--profile] [--shader-dir DIR] [--splat auto|fragment|compute] [--filter-radius PX]\n"
-           "         [--kernel sphere|anisotropic] [--shadow on|off]\n"
+           "         [--kernel sphere|anisotropic] [--shadow on|off] [--thickness-scale 1|0.5|0.25]\n"
            "       fluidcast-bench --particles N --write-scene PATH.f32\n"
            "Prints a markdown table: median GPU ms per stage (timer queries; upload: the GL thread's\n"
            "wall time copying the frame), encode ms, wall ms, and\n"
@@ -60,6 +60,7 @@ void bench_options_print_usage(void)
            "particle count a line gives the anisotropy passes' own time (median over --frames\n"
            "fresh computations, the GL queue drained around each).\n"
            "--shadow off leaves out the fluid's shadow on the floor (default on, as rendered).\n"
+           "--thickness-scale sets the thickness splat's resolution (default: fluidcast's).\n"
            "--write-scene writes the drop scene as raw little-endian float32 xyz and prints\n"
            "'particles N spacing S radius R' (R: the sphere radius the benchmark renders with).\n");
 }
@@ -234,6 +235,17 @@ static fc_code parse_shadow(const char *value, bench_options *o, fc_error *err)
     return fc_error_set(err, FC_ERR_USAGE, "--shadow %s: expected on or off", value);
 }
 
+/* The resolutions fc_settings_validate accepts for the thickness. */
+static fc_code parse_thickness_scale(const char *value, bench_options *o, fc_error *err)
+{
+    char *end = NULL;
+    float v = strtof(value, &end);
+    if (end == value || *end != '\0' || (v != 1.0f && v != 0.5f && v != 0.25f))
+        return fc_error_set(err, FC_ERR_USAGE, "--thickness-scale %s: expected 1, 0.5 or 0.25", value);
+    o->thickness_scale = v;
+    return FC_OK;
+}
+
 static fc_code parse_valued(const char *option, const char *value, bench_options *o, fc_error *err)
 {
     if (!strcmp(option, "--gpu"))
@@ -264,6 +276,8 @@ static fc_code parse_valued(const char *option, const char *value, bench_options
         return parse_kernel(value, o, err);
     if (!strcmp(option, "--shadow"))
         return parse_shadow(value, o, err);
+    if (!strcmp(option, "--thickness-scale"))
+        return parse_thickness_scale(value, o, err);
     if (!strcmp(option, "--image")) {
         o->image_path = value;
         return FC_OK;

@@ -39,6 +39,7 @@ typedef struct bench_options {
     uint32_t filter_radius;  /* --filter-radius: fc_settings.filter_radius; 0: from the projected particle size */
     fc_kernel kernel;        /* --kernel: fc_settings.kernel */
     bool shadow;             /* --shadow: fc_settings.shadow */
+    float thickness_scale;   /* --thickness-scale: fc_settings.thickness_scale; 0: fluidcast's default */
 } bench_options;
 
 /* Defaults: 64k particles, 1280x720, curvature flow 40 iterations at full

@@ -155,6 +155,8 @@ static void config_settings(fc_smoothing method, uint32_t iterations, float smoo
     settings->smooth_scale = smooth_scale;
     settings->kernel = o->kernel;
     settings->shadow = o->shadow;
+    if (o->thickness_scale > 0.0f)
+        settings->thickness_scale = o->thickness_scale;
 }
 
 /* The rows of one image size: every smoothing method x iteration count x

@@ -48,7 +48,7 @@ void fc_settings_default(fc_settings *s)
         .refraction = 0.25f,
         .specular = 0.6f,
         .shininess = 60.0f,
-        .thickness_scale = 1.0f,
+        .thickness_scale = 0.5f,
         .thickness_blur = 2,
         .noise = 0.0f,
         .foam = 0.0f,

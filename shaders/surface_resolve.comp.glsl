@@ -34,6 +34,8 @@ void main()
         z = filled_depth(p);
     imageStore(depth_out, p, vec4(isinf(z) ? 0.0 : z));
 #endif
+#ifndef FC_DEPTH_ONLY   // no thickness was splatted
     if (chord_per_unit > 0.0)
         imageStore(thickness_out, p, vec4(float(imageLoad(thickness_sum, p).r) * chord_per_unit));
+#endif
 }

@@ -192,7 +192,7 @@ SETTING_NAMES = tuple(name for name, _ in FcSettings._fields_)
 # fc_settings_default() of proto/fc_settings.c, used only when the library does not export it.
 _FALLBACK_DEFAULTS = dict(radius=0.0, smoothing=Smoothing.NARROW, iterations=4, filter_radius=0, smooth_scale=1.0,
                           fluid_color=(0.02, 0.15, 0.28), absorption=(0.2, 0.07, 0.035), ior=1.33, refraction=0.25,
-                          specular=0.6, shininess=60.0, thickness_scale=1.0, thickness_blur=2, noise=0.0, foam=0.0,
+                          specular=0.6, shininess=60.0, thickness_scale=0.5, thickness_blur=2, noise=0.0, foam=0.0,
                           foam_tau=0.5, foam_decay=0.85, density_threshold=0.0, kernel=Kernel.SPHERE, shadow=1,
                           exposure=0.0, color_by=ColorBy.NONE, colormap=Colormap.VIRIDIS, color_range=(0.0, 1.0),
                           jpeg_subsampling=JpegSubsampling.YUV444)

@@ -21,16 +21,35 @@ enum {
     LOC_MAX_CHORD = 8,
     LOC_FIRST_PARTICLE = 9,
     LOC_FLOOR_PLANE = 10,
+    LOC_CULL_PHASE = 11,
+    LOC_SLACK_PER_DEPTH = 12,
     LOC_SIZED_PARTICLES = 512
 };
+/* The culling's phases, as surface_splat.comp.glsl's CULL_*. */
+enum { CULL_NONE = 0, CULL_FRONT_TILES = 1, CULL_NEAR = 2, CULL_REST = 3 };
 /* ... and in surface_resolve.comp.glsl. */
 enum { LOC_CHORD_PER_UNIT = 0, LOC_SOURCE_SIZE = 40 };
-enum { IMAGE_NEAREST_DEPTH = 0, IMAGE_THICKNESS_SUM = 1, IMAGE_DEPTH_OUT = 2, IMAGE_THICKNESS_OUT = 3 };
+enum {
+    IMAGE_NEAREST_DEPTH = 0,
+    IMAGE_THICKNESS_SUM = 1,
+    IMAGE_DEPTH_OUT = 2,
+    IMAGE_THICKNESS_OUT = 3,
+    IMAGE_FRONT_TILES = 4,
+    IMAGE_FAR_TILES = 5
+};
 enum { UNIT_POSITIONS = 0, UNIT_RADIUS_RATIOS = 1 };
 /* Storage buffer binding of the ellipsoids in ellipsoid_shape.comp.glsl. */
 enum { BIND_ELLIPSOIDS = 5 };
-/* local_size of the two shaders. */
+/* local_size of the shaders: the splat's, the resolve's and splat_tiles.comp.glsl's. */
 enum { SPLAT_GROUP = 64, RESOLVE_TILE = 8 };
+/* The culling's tiles, pixels on a side (TILE_PX in the shaders). */
+#define CULL_TILE_PX 4u
+/* A particle counts as the fluid's front (walked before the culling) when its
+ * centre lies within two bounding radii and this many tiles' extent (at its
+ * depth) behind the nearest centre of its tile: a surface seen at a slant
+ * recedes across a tile. More walks more particles first; fewer leaves holes
+ * in the front, behind which nothing is culled. */
+#define CULL_SLACK_TILES 2.0f
 /* Bytes per particle position: xyz as float32; per radius ratio: float32. */
 enum { POSITION_BYTES = 3 * sizeof(float), RATIO_BYTES = sizeof(float) };
 /* Workgroups along x per row of the dispatch: below the 65535 GL guarantees. */
@@ -79,7 +98,8 @@ static uint64_t dispatch_limit(GLint max_texels, GLint alignment)
 static const char *const WALKS[FC_SPLAT_WALKS] = {"splat_walk_rows.glsl", "splat_walk_tiny.glsl"};
 
 /* The preprocessor lines of each output (FC_THICKNESS_ONLY in surface_splat.comp.glsl, surface_resolve.comp.glsl). */
-static const char *const OUTPUT_DEFINES[FC_SPLAT_OUTPUTS] = {NULL, "#define FC_THICKNESS_ONLY 1\n"};
+static const char *const OUTPUT_DEFINES[FC_SPLAT_OUTPUTS] = {NULL, "#define FC_THICKNESS_ONLY 1\n",
+                                                              "#define FC_DEPTH_ONLY 1\n"};
 
 /* The splat of spheres or of ellipsoids (sphere_shape.comp.glsl,
  * ellipsoid_shape.comp.glsl) with each walk, for one output. */
@@ -113,8 +133,12 @@ fc_code fc_compute_splat_create(const char *shader_dir, fc_compute_splat *s, fc_
         if (code == FC_OK)
             code = fc_program_build_defines(shader_dir, OUTPUT_DEFINES[o], resolve, 2, &s->resolve_program[o], err);
     }
+    const char *tiles[] = {"splat_tiles.comp.glsl"};
+    if (code == FC_OK)
+        code = fc_program_build(shader_dir, tiles, 1, &s->tiles_program, err);
     if (code != FC_OK)
         return code;
+    s->cull = true;
     glCreateTextures(GL_TEXTURE_BUFFER, 1, &s->positions);
     glCreateTextures(GL_TEXTURE_BUFFER, 1, &s->ratios);
     GLint max_texels = 0, alignment = 1;
@@ -128,7 +152,9 @@ static void release_images(fc_compute_splat *s)
 {
     glDeleteTextures(1, &s->nearest_depth);
     glDeleteTextures(1, &s->thickness_sum);
-    s->nearest_depth = s->thickness_sum = 0;
+    glDeleteTextures(1, &s->front_tiles);
+    glDeleteTextures(1, &s->far_tiles);
+    s->nearest_depth = s->thickness_sum = s->front_tiles = s->far_tiles = 0;
     s->width = s->height = 0;
 }
 
@@ -141,10 +167,16 @@ void fc_compute_splat_destroy(fc_compute_splat *s)
         }
         glDeleteProgram(s->resolve_program[o]);
     }
+    glDeleteProgram(s->tiles_program);
     glDeleteTextures(1, &s->positions);
     glDeleteTextures(1, &s->ratios);
     release_images(s);
     *s = (fc_compute_splat){0};
+}
+
+static uint32_t tiles_across(uint32_t pixels)
+{
+    return (pixels + CULL_TILE_PX - 1) / CULL_TILE_PX;
 }
 
 /* Grows the images (per axis, never shrinking) until width x height fits, as render targets do. */
@@ -159,6 +191,11 @@ static fc_code reserve(fc_compute_splat *s, uint32_t width, uint32_t height, fc_
     fc_code code = fc_gl_texture_create(GL_R32UI, width, height, false, &s->nearest_depth, err);
     if (code == FC_OK)
         code = fc_gl_texture_create(GL_R32UI, width, height, false, &s->thickness_sum, err);
+    uint32_t tiles_x = tiles_across(width), tiles_y = tiles_across(height);
+    if (code == FC_OK)
+        code = fc_gl_texture_create(GL_R32UI, tiles_x, tiles_y, false, &s->front_tiles, err);
+    if (code == FC_OK)
+        code = fc_gl_texture_create(GL_R32UI, tiles_x, tiles_y, false, &s->far_tiles, err);
     if (code != FC_OK) {
         release_images(s);
         return code;
@@ -204,6 +241,46 @@ static float max_chord(const fc_particle_buffer *particles, float radius)
  * r^2 / d^2), which for spheres this small on screen stays far below this. */
 #define SILHOUETTE_SLACK 1.02f
 
+/* Every particle through `program`, in dispatches the buffer texture can show. */
+static void dispatch_all(const fc_compute_splat *s, GLuint program, const fc_particle_buffer *particles)
+{
+    for (uint64_t first = 0; first < particles->count; first += s->particles_per_dispatch) {
+        uint64_t left = particles->count - first;
+        dispatch(s, program, particles, first, left < s->particles_per_dispatch ? left : s->particles_per_dispatch);
+    }
+}
+
+/* The depth alone in the culling's three dispatches (surface_splat.comp.glsl):
+ * the tiles' front, the particles near it, the farthest depth per tile, the rest. */
+static void dispatch_culled(const fc_compute_splat *s, GLuint program, const fc_particle_buffer *particles,
+                            const fc_view *view)
+{
+    const GLuint nowhere = 0x7f800000u;   /* +inf bits */
+    glClearTexImage(s->front_tiles, 0, GL_RED_INTEGER, GL_UNSIGNED_INT, &nowhere);
+    /* A tile's extent at depth d is d x CULL_TILE_PX x 2 / (fy x height) world units. */
+    float tile_per_depth = (float)CULL_TILE_PX * 2.0f / (view->fy * (float)view->height);
+    glProgramUniform1f(program, LOC_SLACK_PER_DEPTH, CULL_SLACK_TILES * tile_per_depth);
+    glBindImageTexture(IMAGE_FRONT_TILES, s->front_tiles, 0, GL_FALSE, 0, GL_READ_WRITE, GL_R32UI);
+    glBindImageTexture(IMAGE_FAR_TILES, s->far_tiles, 0, GL_FALSE, 0, GL_READ_ONLY, GL_R32UI);
+    glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_UPDATE_BARRIER_BIT);
+    const GLint phases[] = {CULL_FRONT_TILES, CULL_NEAR};
+    for (size_t k = 0; k < sizeof phases / sizeof phases[0]; k++) {
+        glProgramUniform1i(program, LOC_CULL_PHASE, phases[k]);
+        dispatch_all(s, program, particles);
+        glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
+    }
+    glUseProgram(s->tiles_program);
+    glProgramUniform2i(s->tiles_program, LOC_SOURCE_SIZE, (GLint)view->width, (GLint)view->height);
+    glBindImageTexture(IMAGE_FAR_TILES, s->far_tiles, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_R32UI);
+    GLuint tiles_x = tiles_across(view->width), tiles_y = tiles_across(view->height);
+    glDispatchCompute((tiles_x + RESOLVE_TILE - 1) / RESOLVE_TILE, (tiles_y + RESOLVE_TILE - 1) / RESOLVE_TILE, 1);
+    glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
+    glBindImageTexture(IMAGE_FAR_TILES, s->far_tiles, 0, GL_FALSE, 0, GL_READ_ONLY, GL_R32UI);
+    glUseProgram(program);
+    glProgramUniform1i(program, LOC_CULL_PHASE, CULL_REST);
+    dispatch_all(s, program, particles);
+}
+
 static void splat(fc_compute_splat *s, fc_splat_output output, const fc_particle_buffer *particles,
                   const fc_view *view, float radius, float largest_px, const float *floor_plane, double units)
 {
@@ -227,9 +304,12 @@ static void splat(fc_compute_splat *s, fc_splat_output output, const fc_particle
     glUseProgram(program);
     glBindTextureUnit(UNIT_POSITIONS, s->positions);
     glBindTextureUnit(UNIT_RADIUS_RATIOS, s->ratios);
-    for (uint64_t first = 0; first < particles->count; first += s->particles_per_dispatch) {
-        uint64_t left = particles->count - first;
-        dispatch(s, program, particles, first, left < s->particles_per_dispatch ? left : s->particles_per_dispatch);
+    if (output == FC_SPLAT_DEPTH_ONLY && s->cull) {
+        dispatch_culled(s, program, particles, view);
+    } else {
+        if (output == FC_SPLAT_DEPTH_ONLY)
+            glProgramUniform1i(program, LOC_CULL_PHASE, CULL_NONE);
+        dispatch_all(s, program, particles);
     }
     /* Detached, the texture does not keep a particle buffer alive once that
      * is reallocated. */
@@ -265,7 +345,9 @@ fc_code fc_compute_splat_run(fc_compute_splat *s, const fc_particle_buffer *part
     fc_code code = reserve(s, view->width, view->height, err);
     if (code != FC_OK)
         return code;
-    fc_splat_output output = depth ? FC_SPLAT_DEPTH_AND_THICKNESS : FC_SPLAT_THICKNESS_ONLY;
+    fc_splat_output output = !depth        ? FC_SPLAT_THICKNESS_ONLY
+                             : floor_plane ? FC_SPLAT_DEPTH_AND_THICKNESS
+                                           : FC_SPLAT_DEPTH_ONLY;
     const GLuint no_depth = 0x7f800000u, no_thickness = 0;   /* +inf bits, 0 */
     if (depth)
         glClearTexImage(s->nearest_depth, 0, GL_RED_INTEGER, GL_UNSIGNED_INT, &no_depth);
@@ -282,7 +364,8 @@ fc_code fc_compute_splat_run(fc_compute_splat *s, const fc_particle_buffer *part
 
 void fc_compute_splat_tally(const fc_compute_splat *s, fc_gpu_memory *m)
 {
-    m->render_target_bytes += 2ull * fc_gl_texel_bytes(GL_R32UI) * s->width * s->height;
+    uint64_t tiles = (uint64_t)tiles_across(s->width) * tiles_across(s->height);
+    m->render_target_bytes += fc_gl_texel_bytes(GL_R32UI) * (2ull * s->width * s->height + 2ull * tiles);
     m->allocations += s->allocations;
 }
 

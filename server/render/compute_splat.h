@@ -7,6 +7,7 @@
 #define FC_COMPUTE_SPLAT_H
 
 #include <epoxy/gl.h>
+#include <stdbool.h>
 
 #include "gpu_memory.h"
 #include "particle_buffer.h"
@@ -17,26 +18,37 @@
  * four candidates without a loop. */
 typedef enum { FC_SPLAT_WALK_ROWS, FC_SPLAT_WALK_TINY, FC_SPLAT_WALKS } fc_splat_walk;
 
-/* What a run writes: the depth and the thickness, or the thickness alone
+/* What a run writes: the depth and the thickness; the thickness alone
  * (the sun's view where no mesh compares its depth, shadow_pass.c), built
  * with FC_THICKNESS_ONLY: the depth's load and atomic per pixel, its
  * pinhole fill and its stores left out, which llvmpipe would run behind a
- * uniform switch all the same. */
-typedef enum { FC_SPLAT_DEPTH_AND_THICKNESS, FC_SPLAT_THICKNESS_ONLY, FC_SPLAT_OUTPUTS } fc_splat_output;
+ * uniform switch all the same; or the depth alone (FC_DEPTH_ONLY: the
+ * thickness splatted apart, at a reduced scale), which culls hidden
+ * particles (surface_splat.comp.glsl). */
+typedef enum {
+    FC_SPLAT_DEPTH_AND_THICKNESS,
+    FC_SPLAT_THICKNESS_ONLY,
+    FC_SPLAT_DEPTH_ONLY,
+    FC_SPLAT_OUTPUTS
+} fc_splat_output;
 
 typedef struct fc_compute_splat {
     /* By output and walk: spheres, and the particles' ellipsoids (anisotropy.h) where the buffer names them. */
     GLuint splat_program[FC_SPLAT_OUTPUTS][FC_SPLAT_WALKS];
     GLuint ellipsoid_program[FC_SPLAT_OUTPUTS][FC_SPLAT_WALKS];
     GLuint resolve_program[FC_SPLAT_OUTPUTS];
+    GLuint tiles_program;              /* splat_tiles.comp.glsl: the culling's farthest depth per tile */
     GLuint positions;                  /* buffer texture (RGB32F) over the particle buffer, during a run */
     GLuint ratios;                     /* buffer texture (R32F) over the radius ratios, during a sized run */
     uint64_t particles_per_dispatch;   /* the most particles the buffer texture may show at once */
     GLuint nearest_depth;     /* R32UI: bits of the nearest depth, +inf where no sphere is */
     GLuint thickness_sum;     /* R32UI: thickness in fixed point */
-    uint32_t width, height;   /* of the two images, the largest image splatted so far; 0 before the first run */
+    GLuint front_tiles;       /* R32UI per CULL_TILE_PX tile: bits of the nearest particle centre's depth */
+    GLuint far_tiles;         /* R32UI per tile: bits of the farthest depth splatted at its pixels */
+    uint32_t width, height;   /* of the images, the largest image splatted so far; 0 before the first run */
     uint32_t allocations;     /* times the images were (re)allocated */
     fc_splat_walk last_walk;  /* of the last run with particles */
+    bool cull;                /* depth alone culls hidden particles (true after create; tests compare without) */
 } fc_compute_splat;
 
 fc_code fc_compute_splat_create(const char *shader_dir, fc_compute_splat *s, fc_error *err);
@@ -46,7 +58,8 @@ void fc_compute_splat_destroy(fc_compute_splat *s);
  * `floor_plane` is not NULL, their thickness above it into `thickness`: both
  * R32F textures of the view's size, as the fragment splat and its resolve
  * leave them. `depth` 0 (with a floor plane): the thickness alone
- * (FC_SPLAT_THICKNESS_ONLY), the same bits of it. Ellipsoids where particles->shapes names them. `largest_px`
+ * (FC_SPLAT_THICKNESS_ONLY), the same bits of it. No floor plane: the depth
+ * alone (FC_SPLAT_DEPTH_ONLY), the same bits of it, culled where s->cull. Ellipsoids where particles->shapes names them. `largest_px`
  * bounds every particle's projected extent in pixels along either axis (its
  * bounding sphere's, depth_pass.c): below 1.5 no box can hold more than two
  * pixel centres per axis, and the loop-free walk draws the same pixels. */

@@ -176,7 +176,7 @@ static fc_code thickness_stage(fc_pipeline *p, const render_job *job, fc_aov aov
         .blur = s->thickness_blur,
         .floor_plane = job->env.floor_plane,
         .profile = &p->profile,
-        .full_splat = &p->depth.thickness,
+        .depth = &p->depth,
         .at_view_size = aov == FC_AOV_THICKNESS,
     };
     float colormap[FC_COLORMAP_ENTRIES][3];
@@ -665,6 +665,11 @@ fc_splat_method fc_pipeline_last_splat(const fc_pipeline *p)
 fc_splat_walk fc_pipeline_last_splat_walk(const fc_pipeline *p)
 {
     return p->depth.compute.last_walk;
+}
+
+fc_compute_splat *fc_pipeline_compute_splat(fc_pipeline *p)
+{
+    return &p->depth.compute;
 }
 
 fc_shadow_pass *fc_pipeline_shadow_pass(fc_pipeline *p)

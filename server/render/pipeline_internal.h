@@ -26,6 +26,9 @@ fc_splat_method fc_pipeline_last_splat(const fc_pipeline *p);
 /* How the compute splat walked each particle's pixels when it last ran. */
 fc_splat_walk fc_pipeline_last_splat_walk(const fc_pipeline *p);
 
+/* The camera's compute splat: its culling switch and tiles (tests). */
+fc_compute_splat *fc_pipeline_compute_splat(fc_pipeline *p);
+
 /* The sun's shadow pass: its map, the fluid's depth from the sun, its splat
  * (whose method a test may force); tests. */
 fc_shadow_pass *fc_pipeline_shadow_pass(fc_pipeline *p);

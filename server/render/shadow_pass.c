@@ -151,7 +151,7 @@ fc_code fc_shadow_pass_run(fc_shadow_pass *pass, const fc_particle_buffer *parti
                                                             no_floor, err);
     fc_pass_profile_end(profile);
     fc_thickness_params params = {.radius = settings->radius, .scale = 1.0f, .blur = MAP_BLUR,
-                                  .floor_plane = no_floor, .profile = profile, .full_splat = &pass->splat.thickness};
+                                  .floor_plane = no_floor, .profile = profile, .depth = &pass->splat};
     const fc_render_target *blurred = NULL;
     if (code == FC_OK)
         code = fc_thickness_pass_run(&pass->blur, particles, &view, &params, &blurred, err);

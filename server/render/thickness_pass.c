@@ -14,12 +14,8 @@ enum { LOC_FLOOR_PLANE = 10, LOC_COLOR_RANGE = 11, LOC_COLORMAP = 16 };
 
 fc_code fc_thickness_pass_create(const char *shader_dir, fc_thickness_pass *pass, fc_error *err)
 {
-    pass->splat = fc_render_target_init(GL_R32F, false, true);
     pass->color_splat = fc_render_target_init(GL_RGBA32F, false, true);
-    fc_code code = fc_sphere_sprites_create_shaped(shader_dir, "thickness_chord.glsl", "thickness.frag.glsl",
-                                                   &pass->sprites, err);
-    if (code == FC_OK)
-        code = fc_thickness_filter_create(shader_dir, &pass->filter, err);
+    fc_code code = fc_thickness_filter_create(shader_dir, &pass->filter, err);
     if (code == FC_OK)
         code = fc_sphere_sprites_create_shaped(shader_dir, "thickness_chord.glsl", "thickness_color.frag.glsl",
                                                &pass->color_sprites, err);
@@ -34,8 +30,6 @@ void fc_thickness_pass_destroy(fc_thickness_pass *pass)
     fc_sphere_sprites_destroy(&pass->color_sprites);
     fc_render_target_release(&pass->color_splat);
     fc_thickness_filter_destroy(&pass->filter);
-    fc_sphere_sprites_destroy(&pass->sprites);
-    fc_render_target_release(&pass->splat);
 }
 
 static uint32_t scaled(uint32_t size, float scale)
@@ -54,14 +48,15 @@ static void apply_color(const fc_sphere_sprites *sprites, const fc_particle_buff
     fc_color_values_bind(color->values);
 }
 
-/* Every particle adds its chord (times its colour, when coloured) into `target`. */
-static fc_code splat(fc_thickness_pass *pass, const fc_particle_buffer *particles, const fc_view *view,
-                     const fc_thickness_params *params, fc_render_target *target, fc_error *err)
+/* Every particle adds its chord times its colour into pass->color_splat. */
+static fc_code splat_color(fc_thickness_pass *pass, const fc_particle_buffer *particles, const fc_view *view,
+                           const fc_thickness_params *params, fc_error *err)
 {
+    fc_render_target *target = &pass->color_splat;
     fc_code code = fc_render_target_resize(target, view->width, view->height, err);
     if (code != FC_OK)
         return code;
-    const fc_sphere_sprites *sprites = params->color ? &pass->color_sprites : &pass->sprites;
+    const fc_sphere_sprites *sprites = &pass->color_sprites;
     fc_render_target_bind(target);
     const GLfloat empty[4] = {0.0f, 0.0f, 0.0f, 0.0f};
     glClearNamedFramebufferfv(target->framebuffer, GL_COLOR, 0, empty);
@@ -71,8 +66,7 @@ static fc_code splat(fc_thickness_pass *pass, const fc_particle_buffer *particle
     glBlendEquation(GL_FUNC_ADD);
     glBlendFunc(GL_ONE, GL_ONE);
     glProgramUniform4fv(fc_sphere_sprites_program(sprites, particles), LOC_FLOOR_PLANE, 1, params->floor_plane);
-    if (params->color)
-        apply_color(sprites, particles, params->color);
+    apply_color(sprites, particles, params->color);
     fc_sphere_sprites_draw(sprites, particles, view, params->radius);
     glDisable(GL_BLEND);
     return fc_gl_check("thickness pass", err);
@@ -128,15 +122,15 @@ fc_code fc_thickness_pass_run(fc_thickness_pass *pass, const fc_particle_buffer 
     reduced.width = scaled(view->width, scale);
     reduced.height = scaled(view->height, scale);
     fc_pass_profile *profile = params->profile;
-    /* The depth pass splats the thickness alone, never its colour. */
-    const fc_render_target *splatted = params->color ? NULL : params->full_splat;
+    /* The depth pass splats the thickness alone (at scale 1 it has, with the depth), never its colour. */
+    const fc_render_target *splatted = params->color ? &pass->color_splat : &params->depth->thickness;
     fc_code code = FC_OK;
-    if (scale != 1.0f || !splatted) {
-        fc_render_target *target = params->color ? &pass->color_splat : &pass->splat;
+    if (params->color || scale != 1.0f) {
         fc_pass_profile_begin(profile, params->color ? "thickness + colour splat" : "thickness splat");
-        code = splat(pass, particles, &reduced, params, target, err);
+        code = params->color ? splat_color(pass, particles, &reduced, params, err)
+                             : fc_depth_pass_run_thickness(params->depth, particles, &reduced, params->radius,
+                                                           params->floor_plane, err);
         fc_pass_profile_end(profile);
-        splatted = target;
     }
     *result = splatted;
     if (code != FC_OK)
@@ -163,7 +157,6 @@ static void trim_filter(fc_thickness_filter *filter)
 
 void fc_thickness_pass_tally(const fc_thickness_pass *pass, fc_gpu_memory *m)
 {
-    fc_render_target_tally(&pass->splat, m);
     tally_filter(&pass->filter, m);
     fc_render_target_tally(&pass->color_splat, m);
     tally_filter(&pass->color_filter, m);
@@ -171,7 +164,6 @@ void fc_thickness_pass_tally(const fc_thickness_pass *pass, fc_gpu_memory *m)
 
 void fc_thickness_pass_trim(fc_thickness_pass *pass)
 {
-    fc_render_target_release(&pass->splat);
     trim_filter(&pass->filter);
     fc_render_target_release(&pass->color_splat);
     trim_filter(&pass->color_filter);

@@ -12,15 +12,14 @@
 #include <stdint.h>
 
 #include "color_values.h"
+#include "depth_pass.h"
 #include "pass_profile.h"
 #include "render_target.h"
 #include "sphere_sprites.h"
 #include "thickness_filter.h"
 
 typedef struct fc_thickness_pass {
-    fc_sphere_sprites sprites;
-    fc_render_target splat;   /* R32F thickness at the pass's resolution */
-    fc_thickness_filter filter;
+    fc_thickness_filter filter;   /* blurs the depth pass's thickness (R32F) */
     /* Colouring by an attribute: the thickness and its colour (RGBA32F:
      * thickness, colour x thickness; thickness_color.frag.glsl), splatted and
      * blurred alike. Its targets are allocated by the first render that colours. */
@@ -43,8 +42,9 @@ typedef struct fc_thickness_params {
                                      included); 0 = none, and the splat is the result */
     const float *floor_plane;     /* view space, see fc_environment.floor_plane */
     fc_pass_profile *profile;     /* records the splat and the filter; NULL: none */
-    const fc_render_target *full_splat;   /* the thickness already splatted at the view's size (the depth
-                                             pass does), used at scale 1; NULL: the pass splats */
+    fc_depth_pass *depth;         /* splats the thickness without a colour into its thickness target: at
+                                     scale 1 it has already, with the depth; at lower scales the pass has it
+                                     splat the reduced view */
     bool at_view_size;            /* the result resampled to the view's size (the thickness AOV) */
     const fc_thickness_color *color;   /* non-NULL: the result holds the thickness in r and the colour times
                                           the thickness in gba, always splatted by the pass (full_splat unused) */

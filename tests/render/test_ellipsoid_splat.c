@@ -257,7 +257,7 @@ static double image_sum(const fc_image *img)
 
 /* The needles' thickness: at full resolution (the depth pass's splat) every
  * pixel holds the sum of the C chords through the ellipsoids; splatted at half
- * resolution by the thickness pass (thickness.frag.glsl) and resampled, the
+ * resolution (the depth pass's thickness splat of the reduced view) and resampled, the
  * image holds the same total and differs from the full one by 0.4% of it
  * (the resampling), where spheres would differ by half. */
 static void test_needles_thickness(render_fixture *f)

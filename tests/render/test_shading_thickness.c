@@ -285,14 +285,18 @@ static void test_floor_cuts_chords(fc_splat_method splat)
     const double world_normal[3] = {0.0, 1.0, 0.3}, offset = 0.2;
     const float plane[4] = {0.0f, 1.0f, 0.3f, (float)(offset + 0.3 * DISTANCE)};
     const double view_plane[4] = {world_normal[0], world_normal[1], world_normal[2], offset + 0.3 * DISTANCE};
-    fc_thickness_params params = {.radius = (float)RADIUS, .scale = 1.0f, .floor_plane = plane};
-    const fc_render_target *result = NULL;
-    CHECK_CODE(fc_thickness_pass_run(&pass, &particles, &view, &params, &result, &err), FC_OK);
-    check_clipped_chords(result, &cam, view_plane);
     depth.method = splat;
     CHECK_CODE(fc_depth_pass_run(&depth, &particles, &view, (float)RADIUS, plane, &err), FC_OK);
     CHECK(splat == FC_SPLAT_AUTO || depth.last_used == splat);
     check_clipped_chords(&depth.thickness, &cam, view_plane);
+    /* The thickness alone, as the thickness pass has it splatted at reduced scales. */
+    CHECK_CODE(fc_depth_pass_run_thickness(&depth, &particles, &view, (float)RADIUS, plane, &err), FC_OK);
+    check_clipped_chords(&depth.thickness, &cam, view_plane);
+    /* At full resolution and without a blur the thickness pass hands on the depth pass's splat. */
+    fc_thickness_params params = {.radius = (float)RADIUS, .scale = 1.0f, .floor_plane = plane, .depth = &depth};
+    const fc_render_target *result = NULL;
+    CHECK_CODE(fc_thickness_pass_run(&pass, &particles, &view, &params, &result, &err), FC_OK);
+    CHECK(result == &depth.thickness);
     fc_depth_pass_destroy(&depth);
     fc_thickness_pass_destroy(&pass);
     fc_particle_buffer_destroy(&particles);
