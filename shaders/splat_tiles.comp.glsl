@@ -1,6 +1,6 @@
 #version 450 core
 // The compute splat's culling (surface_splat.comp.glsl, CULL_REST): the
-// farthest depth splatted at any pixel of each TILE_PX x TILE_PX tile, +inf
+// farthest depth splatted at any pixel of each tile (cull_tiles.glsl), +inf
 // where a pixel holds none. A particle whose nearest possible depth lies
 // behind this at every tile its box touches can win no pixel there.
 
@@ -10,7 +10,7 @@ layout(location = 40) uniform ivec2 source_size;   // the image in use: the imag
 
 layout(local_size_x = 8, local_size_y = 8) in;
 
-const int TILE_PX = 4;   // as surface_splat.comp.glsl's
+const int TILE_PX = 4;   // cull_tiles.glsl's
 
 void main()
 {

@@ -77,39 +77,32 @@ void splat_pixel(ivec2 p, vec3 centre)
 void walk_pixels(ivec2 lo, ivec2 hi, vec3 centre, float reach);
 
 #ifdef FC_DEPTH_ONLY
-// Culling hidden particles (compute_splat.c runs the depth in three
-// dispatches). The splat's cost is its pixels, and most particles of a
-// dense fluid lie under others: splatted after the fluid's front, a particle
-// whose nearest possible depth lies behind everything splatted over its
-// whole box cannot win a pixel, and is not walked. The result is the same
-// minimum, bit for bit; only the work changes.
-//  1. CULL_FRONT_TILES: no walk; each particle's centre depth goes into its
-//     tile's minimum (front_tiles).
-//  2. CULL_NEAR: the particles near their tile's front (within a slack for
-//     their size and the tile's extent) are walked: the fluid's front.
+// Culling hidden particles (compute_splat.c runs the depth in steps). The
+// splat's cost is its pixels, and most particles of a dense fluid lie under
+// others: splatted after the fluid's front, a particle whose nearest
+// possible depth lies behind everything splatted over its whole box cannot
+// win a pixel, and is not walked. The result is the same minimum, bit for
+// bit; only the work changes.
+//  1. splat_front.comp.glsl: each particle's centre depth into its tile's
+//     minimum (front_tiles; tiles: cull_tiles.glsl).
+//  2. CULL_NEAR: the particles near their tile's front (within two bounding
+//     radii and a slack for the tile's extent) are walked: the fluid's front.
 //  3. CULL_REST: the others, after far_tiles took the farthest depth of
 //     each tile's pixels (splat_tiles.comp.glsl): walked unless every tile
 //     their box touches lies wholly in front of them.
 // On llvmpipe a loop ends once no lane needs it, so a SIMD group whose
 // particles are all skipped costs no walk; an `if` would run both sides.
 const int CULL_NONE = 0;
-const int CULL_FRONT_TILES = 1;
 const int CULL_NEAR = 2;
 const int CULL_REST = 3;
-const int TILE_PX = 4;   // the tiles' size in pixels, as compute_splat.c's CULL_TILE_PX
+
+ivec2 tile_of(ivec2 pixel);
+ivec2 centre_tile(vec3 centre, float depth);
 
 layout(location = 11) uniform int cull_phase;
 layout(location = 12) uniform float slack_per_depth;   // world units per unit of depth: a tile's extent, times a margin
-layout(binding = 4, r32ui) uniform uimage2D front_tiles;            // bits of the nearest particle centre's depth
+layout(binding = 4, r32ui) uniform readonly uimage2D front_tiles;   // bits of the nearest particle centre's depth
 layout(binding = 5, r32ui) uniform readonly uimage2D far_tiles;     // bits of the farthest depth of the tile's pixels
-
-// The tile the particle's projected centre falls in, clamped to the image.
-ivec2 centre_tile(vec3 centre, float depth)
-{
-    vec2 ndc = projection.xy * centre.xy / depth;
-    ivec2 pixel = ivec2(floor((ndc + 1.0) * 0.5 * viewport));
-    return clamp(pixel, ivec2(0), ivec2(viewport) - 1) / TILE_PX;
-}
 
 // Near the front: within two bounding radii and the slack of the nearest centre of its tile.
 bool near_front(vec3 centre, float depth, float reach)
@@ -121,7 +114,7 @@ bool near_front(vec3 centre, float depth, float reach)
 // Whether every tile the box [lo, hi] touches holds splatted depths nearer than `nearest` at all its pixels.
 bool behind_tiles(ivec2 lo, ivec2 hi, float nearest)
 {
-    ivec2 first = lo / TILE_PX, last = hi / TILE_PX;
+    ivec2 first = tile_of(lo), last = tile_of(hi);
     for (int ty = first.y; ty <= last.y; ty++)
         for (int tx = first.x; tx <= last.x; tx++)
             if (uintBitsToFloat(imageLoad(far_tiles, ivec2(tx, ty)).r) >= nearest)
@@ -131,10 +124,6 @@ bool behind_tiles(ivec2 lo, ivec2 hi, float nearest)
 
 bool walked_in_this_phase(vec3 centre, float depth, float reach, ivec2 lo, ivec2 hi)
 {
-    if (cull_phase == CULL_FRONT_TILES) {
-        imageAtomicMin(front_tiles, centre_tile(centre, depth), floatBitsToUint(depth));
-        return false;
-    }
     if (cull_phase == CULL_NONE)
         return true;
     bool near = near_front(centre, depth, reach);

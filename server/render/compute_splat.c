@@ -25,8 +25,8 @@ enum {
     LOC_SLACK_PER_DEPTH = 12,
     LOC_SIZED_PARTICLES = 512
 };
-/* The culling's phases, as surface_splat.comp.glsl's CULL_*. */
-enum { CULL_NONE = 0, CULL_FRONT_TILES = 1, CULL_NEAR = 2, CULL_REST = 3 };
+/* The culling's steps in the splat, as surface_splat.comp.glsl's CULL_*. */
+enum { CULL_NONE = 0, CULL_NEAR = 2, CULL_REST = 3 };
 /* ... and in surface_resolve.comp.glsl. */
 enum { LOC_CHORD_PER_UNIT = 0, LOC_SOURCE_SIZE = 40 };
 enum {
@@ -42,7 +42,7 @@ enum { UNIT_POSITIONS = 0, UNIT_RADIUS_RATIOS = 1 };
 enum { BIND_ELLIPSOIDS = 5 };
 /* local_size of the shaders: the splat's, the resolve's and splat_tiles.comp.glsl's. */
 enum { SPLAT_GROUP = 64, RESOLVE_TILE = 8 };
-/* The culling's tiles, pixels on a side (TILE_PX in the shaders). */
+/* The culling's tiles, pixels on a side (TILE_PX in cull_tiles.glsl). */
 #define CULL_TILE_PX 4u
 /* A particle counts as the fluid's front (walked before the culling) when its
  * centre lies within two bounding radii and this many tiles' extent (at its
@@ -101,20 +101,32 @@ static const char *const WALKS[FC_SPLAT_WALKS] = {"splat_walk_rows.glsl", "splat
 static const char *const OUTPUT_DEFINES[FC_SPLAT_OUTPUTS] = {NULL, "#define FC_THICKNESS_ONLY 1\n",
                                                               "#define FC_DEPTH_ONLY 1\n"};
 
-/* The splat of spheres or of ellipsoids (sphere_shape.comp.glsl,
- * ellipsoid_shape.comp.glsl) with each walk, for one output. */
+/* A program of the particles' shape, spheres or ellipsoids (sphere_shape.comp.glsl,
+ * ellipsoid_shape.comp.glsl), with its libraries and then the files `tail`. */
+static fc_code build_shaped(const char *shader_dir, const char *defines, bool ellipsoids, const char *const *tail,
+                            size_t tail_count, GLuint *program, fc_error *err)
+{
+    const char *spheres[] = {"sphere_bounds.glsl", "sphere_ray.glsl", "thickness_chord.glsl", "cull_tiles.glsl",
+                             "sphere_shape.comp.glsl"};
+    const char *shaped[] = {"sphere_bounds.glsl", "ellipsoid_bounds.glsl", "sphere_ray.glsl", "ellipsoid_ray.glsl",
+                            "thickness_chord.glsl", "cull_tiles.glsl", "ellipsoid_shape.comp.glsl"};
+    const char *files[sizeof shaped / sizeof shaped[0] + 2];
+    const char *const *head = ellipsoids ? shaped : spheres;
+    size_t count = ellipsoids ? sizeof shaped / sizeof shaped[0] : sizeof spheres / sizeof spheres[0];
+    for (size_t k = 0; k < count; k++)
+        files[k] = head[k];
+    for (size_t k = 0; k < tail_count && count < sizeof files / sizeof files[0]; k++)
+        files[count++] = tail[k];
+    return fc_program_build_defines(shader_dir, defines, files, count, program, err);
+}
+
+/* The splat of spheres or of ellipsoids with each walk, for one output. */
 static fc_code build_splats(const char *shader_dir, fc_splat_output output, bool ellipsoids,
                             GLuint programs[FC_SPLAT_WALKS], fc_error *err)
 {
     for (int w = 0; w < FC_SPLAT_WALKS; w++) {
-        const char *spheres[] = {"sphere_bounds.glsl", "sphere_ray.glsl", "thickness_chord.glsl",
-                                 "sphere_shape.comp.glsl", WALKS[w], "surface_splat.comp.glsl"};
-        const char *shaped[] = {"sphere_bounds.glsl", "ellipsoid_bounds.glsl", "sphere_ray.glsl",
-                                "ellipsoid_ray.glsl", "thickness_chord.glsl", "ellipsoid_shape.comp.glsl",
-                                WALKS[w], "surface_splat.comp.glsl"};
-        const char *const *files = ellipsoids ? shaped : spheres;
-        size_t count = ellipsoids ? sizeof shaped / sizeof shaped[0] : sizeof spheres / sizeof spheres[0];
-        fc_code code = fc_program_build_defines(shader_dir, OUTPUT_DEFINES[output], files, count, &programs[w], err);
+        const char *tail[] = {WALKS[w], "surface_splat.comp.glsl"};
+        fc_code code = build_shaped(shader_dir, OUTPUT_DEFINES[output], ellipsoids, tail, 2, &programs[w], err);
         if (code != FC_OK)
             return code;
     }
@@ -133,9 +145,13 @@ fc_code fc_compute_splat_create(const char *shader_dir, fc_compute_splat *s, fc_
         if (code == FC_OK)
             code = fc_program_build_defines(shader_dir, OUTPUT_DEFINES[o], resolve, 2, &s->resolve_program[o], err);
     }
-    const char *tiles[] = {"splat_tiles.comp.glsl"};
+    const char *tiles[] = {"splat_tiles.comp.glsl"}, *front[] = {"splat_front.comp.glsl"};
     if (code == FC_OK)
         code = fc_program_build(shader_dir, tiles, 1, &s->tiles_program, err);
+    if (code == FC_OK)
+        code = build_shaped(shader_dir, NULL, false, front, 1, &s->front_program, err);
+    if (code == FC_OK)
+        code = build_shaped(shader_dir, NULL, true, front, 1, &s->ellipsoid_front_program, err);
     if (code != FC_OK)
         return code;
     s->cull = true;
@@ -168,6 +184,8 @@ void fc_compute_splat_destroy(fc_compute_splat *s)
         glDeleteProgram(s->resolve_program[o]);
     }
     glDeleteProgram(s->tiles_program);
+    glDeleteProgram(s->front_program);
+    glDeleteProgram(s->ellipsoid_front_program);
     glDeleteTextures(1, &s->positions);
     glDeleteTextures(1, &s->ratios);
     release_images(s);
@@ -250,34 +268,52 @@ static void dispatch_all(const fc_compute_splat *s, GLuint program, const fc_par
     }
 }
 
-/* The depth alone in the culling's three dispatches (surface_splat.comp.glsl):
- * the tiles' front, the particles near it, the farthest depth per tile, the rest. */
+/* The uniforms a program of the particles' shape reads (sphere_shape.comp.glsl,
+ * ellipsoid_shape.comp.glsl, cull_tiles.glsl). */
+static void set_shape_uniforms(GLuint program, const fc_particle_buffer *particles, const fc_view *view,
+                               float radius)
+{
+    glProgramUniformMatrix4fv(program, LOC_VIEW_MATRIX, 1, GL_FALSE, view->view);
+    glProgramUniform4f(program, LOC_PROJECTION, view->fx, view->fy, view->p22, view->p32);
+    glProgramUniform2f(program, LOC_VIEWPORT, (float)view->width, (float)view->height);
+    glProgramUniform1f(program, LOC_RADIUS, radius);
+    glProgramUniform1i(program, LOC_SIZED_PARTICLES, particles->sized ? GL_TRUE : GL_FALSE);
+}
+
+/* The depth alone in the culling's steps (surface_splat.comp.glsl): the
+ * tiles' front, the particles near it, the farthest depth per tile, the rest. */
 static void dispatch_culled(const fc_compute_splat *s, GLuint program, const fc_particle_buffer *particles,
-                            const fc_view *view)
+                            const fc_view *view, float radius)
 {
     const GLuint nowhere = 0x7f800000u;   /* +inf bits */
     glClearTexImage(s->front_tiles, 0, GL_RED_INTEGER, GL_UNSIGNED_INT, &nowhere);
+    glBindImageTexture(IMAGE_FRONT_TILES, s->front_tiles, 0, GL_FALSE, 0, GL_READ_WRITE, GL_R32UI);
+    glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_UPDATE_BARRIER_BIT);
+    GLuint front = particles->shapes ? s->ellipsoid_front_program : s->front_program;
+    set_shape_uniforms(front, particles, view, radius);
+    glUseProgram(front);
+    dispatch_all(s, front, particles);
+    glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
+
     /* A tile's extent at depth d is d x CULL_TILE_PX x 2 / (fy x height) world units. */
     float tile_per_depth = (float)CULL_TILE_PX * 2.0f / (view->fy * (float)view->height);
     glProgramUniform1f(program, LOC_SLACK_PER_DEPTH, CULL_SLACK_TILES * tile_per_depth);
-    glBindImageTexture(IMAGE_FRONT_TILES, s->front_tiles, 0, GL_FALSE, 0, GL_READ_WRITE, GL_R32UI);
-    glBindImageTexture(IMAGE_FAR_TILES, s->far_tiles, 0, GL_FALSE, 0, GL_READ_ONLY, GL_R32UI);
-    glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_UPDATE_BARRIER_BIT);
-    const GLint phases[] = {CULL_FRONT_TILES, CULL_NEAR};
-    for (size_t k = 0; k < sizeof phases / sizeof phases[0]; k++) {
-        glProgramUniform1i(program, LOC_CULL_PHASE, phases[k]);
-        dispatch_all(s, program, particles);
-        glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
-    }
+    glProgramUniform1i(program, LOC_CULL_PHASE, CULL_NEAR);
+    glBindImageTexture(IMAGE_FRONT_TILES, s->front_tiles, 0, GL_FALSE, 0, GL_READ_ONLY, GL_R32UI);
+    glUseProgram(program);
+    dispatch_all(s, program, particles);
+    glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
+
     glUseProgram(s->tiles_program);
     glProgramUniform2i(s->tiles_program, LOC_SOURCE_SIZE, (GLint)view->width, (GLint)view->height);
     glBindImageTexture(IMAGE_FAR_TILES, s->far_tiles, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_R32UI);
     GLuint tiles_x = tiles_across(view->width), tiles_y = tiles_across(view->height);
     glDispatchCompute((tiles_x + RESOLVE_TILE - 1) / RESOLVE_TILE, (tiles_y + RESOLVE_TILE - 1) / RESOLVE_TILE, 1);
     glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
+
     glBindImageTexture(IMAGE_FAR_TILES, s->far_tiles, 0, GL_FALSE, 0, GL_READ_ONLY, GL_R32UI);
-    glUseProgram(program);
     glProgramUniform1i(program, LOC_CULL_PHASE, CULL_REST);
+    glUseProgram(program);
     dispatch_all(s, program, particles);
 }
 
@@ -287,11 +323,7 @@ static void splat(fc_compute_splat *s, fc_splat_output output, const fc_particle
     fc_splat_walk walk = largest_px * SILHOUETTE_SLACK < TINY_WALK_MAX_PX ? FC_SPLAT_WALK_TINY : FC_SPLAT_WALK_ROWS;
     s->last_walk = walk;
     GLuint program = particles->shapes ? s->ellipsoid_program[output][walk] : s->splat_program[output][walk];
-    glProgramUniformMatrix4fv(program, LOC_VIEW_MATRIX, 1, GL_FALSE, view->view);
-    glProgramUniform4f(program, LOC_PROJECTION, view->fx, view->fy, view->p22, view->p32);
-    glProgramUniform2f(program, LOC_VIEWPORT, (float)view->width, (float)view->height);
-    glProgramUniform1f(program, LOC_RADIUS, radius);
-    glProgramUniform1i(program, LOC_SIZED_PARTICLES, particles->sized ? GL_TRUE : GL_FALSE);
+    set_shape_uniforms(program, particles, view, radius);
     glProgramUniform1f(program, LOC_UNITS_PER_CHORD, floor_plane ? (float)units : 0.0f);
     glProgramUniform1f(program, LOC_MAX_CHORD, max_chord(particles, radius));
     if (particles->shapes)
@@ -305,7 +337,7 @@ static void splat(fc_compute_splat *s, fc_splat_output output, const fc_particle
     glBindTextureUnit(UNIT_POSITIONS, s->positions);
     glBindTextureUnit(UNIT_RADIUS_RATIOS, s->ratios);
     if (output == FC_SPLAT_DEPTH_ONLY && s->cull) {
-        dispatch_culled(s, program, particles, view);
+        dispatch_culled(s, program, particles, view, radius);
     } else {
         if (output == FC_SPLAT_DEPTH_ONLY)
             glProgramUniform1i(program, LOC_CULL_PHASE, CULL_NONE);

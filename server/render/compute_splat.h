@@ -37,6 +37,8 @@ typedef struct fc_compute_splat {
     GLuint splat_program[FC_SPLAT_OUTPUTS][FC_SPLAT_WALKS];
     GLuint ellipsoid_program[FC_SPLAT_OUTPUTS][FC_SPLAT_WALKS];
     GLuint resolve_program[FC_SPLAT_OUTPUTS];
+    GLuint front_program;              /* splat_front.comp.glsl: the culling's front per tile, of spheres */
+    GLuint ellipsoid_front_program;    /* ... and of ellipsoids */
     GLuint tiles_program;              /* splat_tiles.comp.glsl: the culling's farthest depth per tile */
     GLuint positions;                  /* buffer texture (RGB32F) over the particle buffer, during a run */
     GLuint ratios;                     /* buffer texture (R32F) over the radius ratios, during a sized run */
