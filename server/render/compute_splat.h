@@ -14,9 +14,10 @@
 #include "view.h"
 
 /* How an invocation walks its particle's pixels: row by row over the
- * silhouette's spans, or (where no box holds more than 2x2 pixel centres) the
- * four candidates without a loop. */
-typedef enum { FC_SPLAT_WALK_ROWS, FC_SPLAT_WALK_TINY, FC_SPLAT_WALKS } fc_splat_walk;
+ * silhouette's spans; (where no box holds more than 2x2 pixel centres) the
+ * four candidates without a loop; or (where a typical box holds at most 3x3)
+ * nine candidates without a loop and loops for what larger boxes hold more. */
+typedef enum { FC_SPLAT_WALK_ROWS, FC_SPLAT_WALK_TINY, FC_SPLAT_WALK_SMALL, FC_SPLAT_WALKS } fc_splat_walk;
 
 /* What a run writes: the depth and the thickness; the thickness alone
  * (the sun's view where no mesh compares its depth, shadow_pass.c), built
@@ -61,12 +62,18 @@ void fc_compute_splat_destroy(fc_compute_splat *s);
  * R32F textures of the view's size, as the fragment splat and its resolve
  * leave them. `depth` 0 (with a floor plane): the thickness alone
  * (FC_SPLAT_THICKNESS_ONLY), the same bits of it. No floor plane: the depth
- * alone (FC_SPLAT_DEPTH_ONLY), the same bits of it, culled where s->cull. Ellipsoids where particles->shapes names them. `largest_px`
- * bounds every particle's projected extent in pixels along either axis (its
- * bounding sphere's, depth_pass.c): below 1.5 no box can hold more than two
- * pixel centres per axis, and the loop-free walk draws the same pixels. */
+ * alone (FC_SPLAT_DEPTH_ONLY), the same bits of it, culled where s->cull.
+ * Ellipsoids where particles->shapes names them. `sprite` sizes the
+ * particles on screen, which chooses the walk (fc_splat_walk): every walk
+ * draws the same pixels. */
+typedef struct fc_splat_sprite {
+    float largest_px;   /* bounds every particle's projected extent in pixels along either axis (its bounding
+                           sphere's, depth_pass.c): below 1.5 no box holds more than two pixel centres per axis */
+    float typical_px;   /* a typical particle's extent (at the particles' middle depth); 0: unknown */
+} fc_splat_sprite;
+
 fc_code fc_compute_splat_run(fc_compute_splat *s, const fc_particle_buffer *particles, const fc_view *view,
-                             float radius, float largest_px, const float *floor_plane, GLuint depth,
+                             float radius, fc_splat_sprite sprite, const float *floor_plane, GLuint depth,
                              GLuint thickness, fc_error *err);
 
 /* Adds the two images' bytes and allocations to m's render targets. */

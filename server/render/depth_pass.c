@@ -133,6 +133,15 @@ static float largest_sprite_px(const fc_view *view, float radius)
     return stretch * sprite_px(view, radius, view->near_plane + radius);
 }
 
+/* Pixels across of a sphere at the depth of the bounds' centre; 0 where that lies behind the eye. */
+static float typical_sprite_px(const fc_view *view, const float lo[3], const float hi[3], float radius)
+{
+    const float *m = view->view;   /* column-major: view z of a point is row 2 */
+    float centre_depth = -(m[2] * 0.5f * (lo[0] + hi[0]) + m[6] * 0.5f * (lo[1] + hi[1]) +
+                           m[10] * 0.5f * (lo[2] + hi[2]) + m[14]);
+    return centre_depth > 0.0f ? sprite_px(view, radius, centre_depth) : 0.0f;
+}
+
 fc_splat_method fc_depth_pass_choose(const fc_view *view, const float lo[3], const float hi[3], float radius,
                                      fc_splat_method wanted)
 {
@@ -140,11 +149,8 @@ fc_splat_method fc_depth_pass_choose(const fc_view *view, const float lo[3], con
         return FC_SPLAT_FRAGMENT;
     if (wanted == FC_SPLAT_COMPUTE)
         return FC_SPLAT_COMPUTE;
-    const float *m = view->view;   /* column-major: view z of a point is row 2 */
-    float centre_depth = -(m[2] * 0.5f * (lo[0] + hi[0]) + m[6] * 0.5f * (lo[1] + hi[1]) +
-                           m[10] * 0.5f * (lo[2] + hi[2]) + m[14]);
-    bool small = centre_depth > 0.0f && sprite_px(view, radius, centre_depth) <= COMPUTE_SPLAT_MAX_TYPICAL_PX;
-    return small ? FC_SPLAT_COMPUTE : FC_SPLAT_FRAGMENT;
+    float typical = typical_sprite_px(view, lo, hi, radius);
+    return typical > 0.0f && typical <= COMPUTE_SPLAT_MAX_TYPICAL_PX ? FC_SPLAT_COMPUTE : FC_SPLAT_FRAGMENT;
 }
 
 static fc_code fragment_splat(fc_depth_pass *pass, const fc_particle_buffer *particles, const fc_view *view,
@@ -180,7 +186,9 @@ static fc_code run(fc_depth_pass *pass, const fc_particle_buffer *particles, con
         choice = FC_SPLAT_FRAGMENT;
     pass->last_used = choice;
     if (pass->last_used == FC_SPLAT_COMPUTE)
-        return fc_compute_splat_run(&pass->compute, particles, view, radius, largest_sprite_px(view, reach),
+        return fc_compute_splat_run(&pass->compute, particles, view, radius,
+                                    (fc_splat_sprite){largest_sprite_px(view, reach),
+                                                      typical_sprite_px(view, particles->lo, particles->hi, reach)},
                                     floor_plane, with_depth ? pass->target.color : 0, pass->thickness.color, err);
     return fragment_splat(pass, particles, view, radius, floor_plane, with_depth, err);
 }

@@ -7,7 +7,8 @@
  * about 6 pixels across, twice with spheres under a pixel across, where
  * whether a sphere covers a pixel centre at all is decided at the edge of
  * the compute splat's bounding box, and which the compute splat walks
- * without loops (splat_walk_tiny.glsl). The analytic checks
+ * without loops (splat_walk_tiny.glsl), and once with spheres about two
+ * pixels across (splat_walk_small.glsl). The analytic checks
  * of each splat are in test_sphere_depth.c and test_thickness.c. */
 #include <math.h>
 #include <stdio.h>
@@ -25,6 +26,10 @@
 /* About 0.75 pixel across at the centre, 0.9 at the nearest: boxes of up to
  * 2x2 pixel centres, the most the compute splat's loop-free walk takes. */
 #define RADIUS_TWO_BY_TWO 0.0028f
+/* About 2.2 pixels across at the centre, 2.8 at the nearest: the typical
+ * box holds up to 3x3 pixel centres, walked by splat_walk_small.glsl's nine
+ * candidates, the nearest spheres' boxes of 4 by its loops. */
+#define RADIUS_THREE_BY_THREE 0.0085f
 
 /* A deterministic cloud in the unit cube (a 32-bit LCG: the same on every platform). */
 static void random_cloud(float *positions, int count)
@@ -53,8 +58,11 @@ static void test_same_depth(render_fixture *f, const float *positions, float rad
 {
     fc_image a = {0}, b = {0};
     render_both(f, positions, radius, FC_AOV_DEPTH, &a, &b);
-    /* Spheres under a pixel across are walked without loops (at most 2x2 pixels each). */
-    fc_splat_walk walk = radius < RADIUS_LARGE ? FC_SPLAT_WALK_TINY : FC_SPLAT_WALK_ROWS;
+    /* Spheres under a pixel across are walked without loops (at most 2x2 pixels each), those about two
+     * pixels across by nine candidates and loops beyond them. */
+    fc_splat_walk walk = radius == RADIUS_LARGE ? FC_SPLAT_WALK_ROWS
+                         : radius == RADIUS_THREE_BY_THREE ? FC_SPLAT_WALK_SMALL
+                                                           : FC_SPLAT_WALK_TINY;
     CHECK_MSG(fc_pipeline_last_splat_walk(f->pipeline) == walk, "radius %g: walk %d, not %d", radius,
               (int)fc_pipeline_last_splat_walk(f->pipeline), (int)walk);
     int covered = 0, differ = 0;
@@ -101,6 +109,8 @@ int main(void)
     test_same_thickness(&f, positions, RADIUS_SMALL, 2);
     test_same_depth(&f, positions, RADIUS_TWO_BY_TWO, WIDTH * HEIGHT / 20);
     test_same_thickness(&f, positions, RADIUS_TWO_BY_TWO, 2);
+    test_same_depth(&f, positions, RADIUS_THREE_BY_THREE, WIDTH * HEIGHT / 10);
+    test_same_thickness(&f, positions, RADIUS_THREE_BY_THREE, 4);
     fixture_close(&f);
     return test_result();
 }
