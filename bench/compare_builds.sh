@@ -2,8 +2,8 @@
 # compare_builds.sh — renders the same images through two builds' fluidcastd and compares them
 # pixel by pixel: the check for a change meant to leave the picture alone (shader variants,
 # regions, passes merged). Every shading feature and a few cameras (horizon in view, tilted,
-# below the floor), 8-bit PNG, JPEG and float EXR; with SPLASH=1 also the 24 frames of the
-# splash data set at the default size.
+# below the floor), 8-bit PNG, JPEG and float EXR, the smoothed depth AOV; with SPLASH=1 also
+# the 24 frames of the splash data set at the default size.
 #
 #   bench/compare_builds.sh OLD_BIN_DIR NEW_BIN_DIR
 #
@@ -79,6 +79,11 @@ render_all() {
     one horizon_mesh.png "${LOW[@]}" --mesh "$TANK:hide-near"
     one horizon_foam.exr "${LOW[@]}" --noise 1 --foam 1 --shadow off
     one below_floor.png --eye 0.5,0.5,-0.5 --target 0.5,0.5,0.1
+    # The smoothed depth itself, as floats: the default narrow-range filter (kernel from the particle size,
+    # 4 passes) and the benchmarks' (3 passes, a fixed 5-pixel kernel), and the latter's colour.
+    one smoothed_depth.exr --aov smoothed-depth
+    one smoothed_depth_fixed.exr --aov smoothed-depth --iterations 3 --filter-radius 5
+    one narrow_fixed.png --iterations 3 --filter-radius 5
     if [ "${SPLASH:-0}" = 1 ]; then
         for frame in "$DATA"/frame_*.ply; do
             "$bin/fluidcast" snapshot "$frame" --server "$server" --radius "$RADIUS" \

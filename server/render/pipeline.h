@@ -140,8 +140,9 @@ fc_code fc_pipeline_render_with(fc_pipeline *p, const fc_camera *camera, const f
  * upsampled copy (R32F), the shadow pass's own thickness splat and
  * blur of the sun's view (R32F x 3, a 256x256 map and its half-resolution
  * blur), the smoothing methods' ping-pong
- * pairs (curvature flow R32F, bilateral R32F, narrow range RG32F, binomial
- * RGBA32F), the reduced-resolution depth pair (R32F) and the silhouette blend
+ * pairs (curvature flow R32F, bilateral R32F, narrow range R32F, binomial
+ * RGBA32F) and the narrow range's list of the 8x8 blocks that hold fluid (a
+ * uint per block), the reduced-resolution depth pair (R32F) and the silhouette blend
  * (SRGB8_ALPHA8, RGBA32F), noise (R32F), normals (RGBA32F), background
  * (RGBA16F) and the composite (SRGB8_ALPHA8 and RGBA32F, each with a
  * DEPTH32F_STENCIL8 buffer) — each as wide as the widest and as high as the

@@ -18,7 +18,7 @@ fc_code fc_smoother_create(const char *shader_dir, fc_smoother *s, fc_error *err
         code = fc_separable_filter_create(shader_dir, "bilateral_filter.frag.glsl", GL_R32F,
                                           BILATERAL_RADII_PER_KERNEL, &s->bilateral, err);
     if (code == FC_OK)
-        code = fc_separable_filter_create(shader_dir, "narrow_range_filter.comp.glsl", GL_RG32F,
+        code = fc_separable_filter_create(shader_dir, "narrow_range_filter.comp.glsl", GL_R32F,
                                           NARROW_RANGE_RADII_PER_KERNEL, &s->narrow_range, err);
     if (code == FC_OK)
         code = fc_binomial_filter_create(shader_dir, &s->binomial, err);
@@ -130,6 +130,7 @@ void fc_smoother_tally(const fc_smoother *s, fc_gpu_memory *m)
         fc_render_target_tally(&ping_pongs[i][0], m);
         fc_render_target_tally(&ping_pongs[i][1], m);
     }
+    fc_fluid_blocks_tally(&s->narrow_range.blocks, m);
     fc_render_target_tally(&s->resolution.low, m);
     fc_render_target_tally(&s->resolution.full, m);
     fc_render_target_tally(&s->silhouette_blend.srgb_target, m);
@@ -144,6 +145,7 @@ void fc_smoother_trim(fc_smoother *s)
         fc_render_target_release(&ping_pongs[i][0]);
         fc_render_target_release(&ping_pongs[i][1]);
     }
+    fc_fluid_blocks_release(&s->narrow_range.blocks);
     fc_render_target_release(&s->resolution.low);
     fc_render_target_release(&s->resolution.full);
     fc_render_target_release(&s->silhouette_blend.srgb_target);

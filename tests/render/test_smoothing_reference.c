@@ -76,7 +76,10 @@ static void narrow_pixel(const float *z_in, const float *unfiltered_in, int x, i
     *unfiltered_out = unfiltered;
     if (z <= 0.0f)
         return;
-    int radius = auto_kernel_radius(z, ax ? p->pixel_scale[0] : p->pixel_scale[1], p->particle_radius);
+    int radius = p->filter_radius > 0 ? (p->filter_radius < MAX_KERNEL_RADIUS ? (int)p->filter_radius
+                                                                               : MAX_KERNEL_RADIUS)
+                                      : auto_kernel_radius(z, ax ? p->pixel_scale[0] : p->pixel_scale[1],
+                                                           p->particle_radius);
     float sigma = (float)radius / 3.0f, inv_two_sigma2 = 0.5f / (sigma * sigma);
     float clamped = unfiltered + CLAMP_RADII * p->particle_radius, jump = p->depth_jump;
     float fn = z - jump, ff = z + jump, bn = fn, bf = ff;
@@ -202,7 +205,10 @@ static float bilateral_pixel(const float *z_in, int x, int y, int ax, int ay, co
     float z = z_in[y * SF_W + x], jump = p->depth_jump;
     if (z <= 0.0f)
         return z;
-    int radius = auto_kernel_radius(z, ax ? p->pixel_scale[0] : p->pixel_scale[1], p->particle_radius);
+    int radius = p->filter_radius > 0 ? (p->filter_radius < MAX_KERNEL_RADIUS ? (int)p->filter_radius
+                                                                               : MAX_KERNEL_RADIUS)
+                                      : auto_kernel_radius(z, ax ? p->pixel_scale[0] : p->pixel_scale[1],
+                                                           p->particle_radius);
     float sigma_space = (float)radius / 3.0f, inv_two_space = 0.5f / (sigma_space * sigma_space);
     float inv_two_range = 0.5f / (p->particle_radius * p->particle_radius);
     float fd, fo, bd, bo;
@@ -340,13 +346,14 @@ static void binomial_reference(float *z, const fc_smoothing_params *p)
         z[i] = t[i].depth;
 }
 
-static void check_against_reference(smoothing_fixture *sf, fc_smoothing method, uint32_t iterations)
+/* `filter_radius` 0: the kernel from each pixel's depth (the binomial filter's one kernel from the scene's). */
+static void check_against_reference(smoothing_fixture *sf, fc_smoothing method, uint32_t iterations,
+                                    uint32_t filter_radius)
 {
     static float scene[SF_PIXELS], gpu[SF_PIXELS], cpu[SF_PIXELS];
     scene_reference(scene);
     fc_smoothing_params params = smoothing_params(method, iterations, 1.0f);
-    if (method == FC_SMOOTHING_BINOMIAL)
-        params.filter_radius = BINOMIAL_RADIUS;
+    params.filter_radius = filter_radius;
     CHECK_CODE(smoothing_apply(sf, scene, &params, gpu), FC_OK);
     for (int i = 0; i < SF_PIXELS; i++)
         cpu[i] = scene[i];
@@ -369,8 +376,9 @@ static void check_against_reference(smoothing_fixture *sf, fc_smoothing method, 
     }
     CHECK_MSG(moved > 10.0f * TOLERANCE, "method %d: the reference barely moved the surface (%g)", (int)method,
               moved);
-    CHECK_MSG(worst <= TOLERANCE, "method %d, %u iterations: pixel (%d, %d) is %g, the reference says %g",
-              (int)method, iterations, worst_at % SF_W, worst_at / SF_W, gpu[worst_at], cpu[worst_at]);
+    CHECK_MSG(worst <= TOLERANCE,
+              "method %d, %u iterations, filter radius %u: pixel (%d, %d) is %g, the reference says %g", (int)method,
+              iterations, filter_radius, worst_at % SF_W, worst_at / SF_W, gpu[worst_at], cpu[worst_at]);
 }
 
 int main(void)
@@ -378,14 +386,18 @@ int main(void)
     smoothing_fixture sf;
     if (!smoothing_open(&sf))
         return 1;
-    check_against_reference(&sf, FC_SMOOTHING_NARROW, 1);
-    check_against_reference(&sf, FC_SMOOTHING_NARROW, 3);
-    check_against_reference(&sf, FC_SMOOTHING_BILATERAL, 1);
-    check_against_reference(&sf, FC_SMOOTHING_BILATERAL, 2);
-    check_against_reference(&sf, FC_SMOOTHING_BINOMIAL, 1);
-    check_against_reference(&sf, FC_SMOOTHING_BINOMIAL, 3);
-    check_against_reference(&sf, FC_SMOOTHING_CURVATURE, 1);
-    check_against_reference(&sf, FC_SMOOTHING_CURVATURE, 10);
+    check_against_reference(&sf, FC_SMOOTHING_NARROW, 1, 0);
+    check_against_reference(&sf, FC_SMOOTHING_NARROW, 3, 0);
+    /* A fixed kernel: the filter's FC_FIXED_KERNEL program (one weight per tap for a whole run). */
+    check_against_reference(&sf, FC_SMOOTHING_NARROW, 3, 5);
+    check_against_reference(&sf, FC_SMOOTHING_NARROW, 2, 1);
+    check_against_reference(&sf, FC_SMOOTHING_NARROW, 1, 12);
+    check_against_reference(&sf, FC_SMOOTHING_BILATERAL, 1, 0);
+    check_against_reference(&sf, FC_SMOOTHING_BILATERAL, 2, 0);
+    check_against_reference(&sf, FC_SMOOTHING_BINOMIAL, 1, BINOMIAL_RADIUS);
+    check_against_reference(&sf, FC_SMOOTHING_BINOMIAL, 3, BINOMIAL_RADIUS);
+    check_against_reference(&sf, FC_SMOOTHING_CURVATURE, 1, 0);
+    check_against_reference(&sf, FC_SMOOTHING_CURVATURE, 10, 0);
     smoothing_close(&sf);
     return test_result();
 }
