@@ -1,5 +1,5 @@
 #version 450 core
-// The compute splat's walk where a typical particle's box holds at most 3x3
+// The compute splat's walk where a typical particle's box holds about 3x3
 // pixel centres (compute_splat.c chooses it by the typical sprite's size):
 // those nine candidates spelled out without loops, then loops over whatever
 // a larger box holds beyond them, which run no iteration unless some lane of

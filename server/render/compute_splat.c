@@ -259,10 +259,11 @@ static float max_chord(const fc_particle_buffer *particles, float radius)
 /* largest_px is r f / d; a sphere's exact silhouette is wider by 1 / sqrt(1 -
  * r^2 / d^2), which for spheres this small on screen stays far below this. */
 #define SILHOUETTE_SLACK 1.02f
-/* The nine-candidate walk while a typical box holds at most three pixel
+/* The nine-candidate walk while a typical box holds about three pixel
  * centres per axis. Measured on llvmpipe (bench/RESULTS.md): 17% less CPU
- * than the rows walk for sprites about 2 px across, 30% more at about 4. */
-#define SMALL_WALK_MAX_TYPICAL_PX 2.49f
+ * than the rows walk for sprites about 2 px across, 7% less at 2.85, 30%
+ * more at about 4. */
+#define SMALL_WALK_MAX_TYPICAL_PX 3.0f
 
 static fc_splat_walk choose_walk(fc_splat_sprite sprite)
 {

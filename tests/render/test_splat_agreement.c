@@ -3,12 +3,12 @@
  * coverage and bit for bit the same nearest depth (both take the minimum of
  * the same ray casts), and thickness sums equal up to summation order and
  * the compute splat's fixed point. A pixel either splat loses at a
- * silhouette shows as a depth or coverage difference. Once with spheres
- * about 6 pixels across, twice with spheres under a pixel across, where
- * whether a sphere covers a pixel centre at all is decided at the edge of
- * the compute splat's bounding box, and which the compute splat walks
- * without loops (splat_walk_tiny.glsl), and once with spheres about two
- * pixels across (splat_walk_small.glsl). The analytic checks
+ * silhouette shows as a depth or coverage difference. With spheres about 6
+ * pixels across (splat_walk_rows.glsl), twice with spheres of two or three
+ * (splat_walk_small.glsl), and twice with spheres under a pixel across,
+ * where whether a sphere covers a pixel centre at all is decided at the
+ * edge of the compute splat's bounding box, and which the compute splat
+ * walks without loops (splat_walk_tiny.glsl). The analytic checks
  * of each splat are in test_sphere_depth.c and test_thickness.c. */
 #include <math.h>
 #include <stdio.h>
@@ -20,7 +20,9 @@
 #define PARTICLES 40000
 #define WIDTH 400
 #define HEIGHT 240
-/* Spheres about 6 pixels across at the cloud's centre, and about 0.9. */
+/* Spheres about 6 pixels across at the cloud's centre (walked by rows),
+ * about 2.6 (nine candidates and loops), and about 0.9. */
+#define RADIUS_ROWS 0.023f
 #define RADIUS_LARGE 0.01f
 #define RADIUS_SMALL 0.0015f
 /* About 0.75 pixel across at the centre, 0.9 at the nearest: boxes of up to
@@ -28,7 +30,8 @@
 #define RADIUS_TWO_BY_TWO 0.0028f
 /* About 2.2 pixels across at the centre, 2.8 at the nearest: the typical
  * box holds up to 3x3 pixel centres, walked by splat_walk_small.glsl's nine
- * candidates, the nearest spheres' boxes of 4 by its loops. */
+ * candidates, the nearest spheres' boxes of 4 by its loops (those of
+ * RADIUS_LARGE hold up to 4x4). */
 #define RADIUS_THREE_BY_THREE 0.0085f
 
 /* A deterministic cloud in the unit cube (a 32-bit LCG: the same on every platform). */
@@ -60,9 +63,9 @@ static void test_same_depth(render_fixture *f, const float *positions, float rad
     render_both(f, positions, radius, FC_AOV_DEPTH, &a, &b);
     /* Spheres under a pixel across are walked without loops (at most 2x2 pixels each), those about two
      * pixels across by nine candidates and loops beyond them. */
-    fc_splat_walk walk = radius == RADIUS_LARGE ? FC_SPLAT_WALK_ROWS
-                         : radius == RADIUS_THREE_BY_THREE ? FC_SPLAT_WALK_SMALL
-                                                           : FC_SPLAT_WALK_TINY;
+    fc_splat_walk walk = radius == RADIUS_ROWS                                      ? FC_SPLAT_WALK_ROWS
+                         : radius == RADIUS_LARGE || radius == RADIUS_THREE_BY_THREE ? FC_SPLAT_WALK_SMALL
+                                                                                     : FC_SPLAT_WALK_TINY;
     CHECK_MSG(fc_pipeline_last_splat_walk(f->pipeline) == walk, "radius %g: walk %d, not %d", radius,
               (int)fc_pipeline_last_splat_walk(f->pipeline), (int)walk);
     int covered = 0, differ = 0;
@@ -103,6 +106,9 @@ int main(void)
         return 1;
     static float positions[3 * PARTICLES];
     random_cloud(positions, PARTICLES);
+    /* Depth only: sums hundreds of spheres deep carry more of the compute splat's fixed point than the
+     * thickness check allows, and the thickness's arithmetic is the same at every walk. */
+    test_same_depth(&f, positions, RADIUS_ROWS, WIDTH * HEIGHT / 4);
     test_same_depth(&f, positions, RADIUS_LARGE, WIDTH * HEIGHT / 10);
     test_same_thickness(&f, positions, RADIUS_LARGE, 10);
     test_same_depth(&f, positions, RADIUS_SMALL, WIDTH * HEIGHT / 40);
