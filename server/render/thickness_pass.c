@@ -126,7 +126,8 @@ fc_code fc_thickness_pass_run(fc_thickness_pass *pass, const fc_particle_buffer 
     const fc_render_target *splatted = params->color ? &pass->color_splat : &params->depth->thickness;
     fc_code code = FC_OK;
     if (params->color || scale != 1.0f) {
-        fc_pass_profile_begin(profile, params->color ? "thickness + colour splat" : "thickness splat");
+        const char *name = params->splat_name ? params->splat_name : "thickness splat";
+        fc_pass_profile_begin(profile, params->color ? "thickness + colour splat" : name);
         code = params->color ? splat_color(pass, particles, &reduced, params, err)
                              : fc_depth_pass_run_thickness(params->depth, particles, &reduced, params->radius,
                                                            params->floor_plane, err);

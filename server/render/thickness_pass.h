@@ -42,6 +42,7 @@ typedef struct fc_thickness_params {
                                      included); 0 = none, and the splat is the result */
     const float *floor_plane;     /* view space, see fc_environment.floor_plane */
     fc_pass_profile *profile;     /* records the splat and the filter; NULL: none */
+    const char *splat_name;       /* the splat's name in the profile; NULL: "thickness splat" */
     fc_depth_pass *depth;         /* splats the thickness without a colour into its thickness target: at
                                      scale 1 it has already, with the depth; at lower scales the pass has it
                                      splat the reduced view */
