@@ -93,8 +93,8 @@ void walk_pixels(ivec2 lo, ivec2 hi, vec3 centre, float reach);
 // On llvmpipe a loop ends once no lane needs it, so a SIMD group whose
 // particles are all skipped costs no walk; an `if` would run both sides.
 const int CULL_NONE = 0;
-const int CULL_NEAR = 2;
-const int CULL_REST = 3;
+const int CULL_NEAR = 1;
+const int CULL_REST = 2;
 
 ivec2 tile_of(ivec2 pixel);
 ivec2 centre_tile(vec3 centre, float depth);

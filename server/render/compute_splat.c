@@ -26,7 +26,7 @@ enum {
     LOC_SIZED_PARTICLES = 512
 };
 /* The culling's steps in the splat, as surface_splat.comp.glsl's CULL_*. */
-enum { CULL_NONE = 0, CULL_NEAR = 2, CULL_REST = 3 };
+enum { CULL_NONE = 0, CULL_NEAR = 1, CULL_REST = 2 };
 /* ... and in surface_resolve.comp.glsl. */
 enum { LOC_CHORD_PER_UNIT = 0, LOC_SOURCE_SIZE = 40 };
 enum {
