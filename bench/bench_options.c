@@ -34,6 +34,7 @@ void bench_options_print_usage(void)
            "         [--scale 1,0.5,0.25] [--frames N] [--encode png|jpeg|exr|none] [--image PATH.png]\n"
            "         [--profile] [--shader-dir DIR] [--splat auto|fragment|compute] [--filter-radius PX]\n"
            "         [--kernel sphere|anisotropic] [--shadow on|off] [--thickness-scale 1|0.5|0.25]\n"
+           "         [--constants auto|uniforms|flat]\n"
            "       fluidcast-bench --particles N --write-scene PATH.f32\n"
            "Prints a markdown table: median GPU ms per stage (timer queries; upload: the GL thread's\n"
            "wall time copying the frame), encode ms, wall ms, and\n"
@@ -61,6 +62,8 @@ void bench_options_print_usage(void)
            "fresh computations, the GL queue drained around each).\n"
            "--shadow off leaves out the fluid's shadow on the floor (default on, as rendered).\n"
            "--thickness-scale sets the thickness splat's resolution (default: fluidcast's).\n"
+           "--constants: how the full-screen passes' fragment shaders get their per-draw values\n"
+           "(default auto: flat inputs on llvmpipe, uniforms on a GPU; the images are the same).\n"
            "--write-scene writes the drop scene as raw little-endian float32 xyz and prints\n"
            "'particles N spacing S radius R' (R: the sphere radius the benchmark renders with).\n");
 }
@@ -246,6 +249,19 @@ static fc_code parse_thickness_scale(const char *value, bench_options *o, fc_err
     return FC_OK;
 }
 
+static fc_code parse_constants(const char *value, bench_options *o, fc_error *err)
+{
+    if (!strcmp(value, "auto"))
+        o->constants = FC_CONSTANTS_AUTO;
+    else if (!strcmp(value, "uniforms"))
+        o->constants = FC_CONSTANTS_UNIFORMS;
+    else if (!strcmp(value, "flat"))
+        o->constants = FC_CONSTANTS_FLAT;
+    else
+        return fc_error_set(err, FC_ERR_USAGE, "--constants %s: expected auto, uniforms or flat", value);
+    return FC_OK;
+}
+
 static fc_code parse_valued(const char *option, const char *value, bench_options *o, fc_error *err)
 {
     if (!strcmp(option, "--gpu"))
@@ -278,6 +294,8 @@ static fc_code parse_valued(const char *option, const char *value, bench_options
         return parse_shadow(value, o, err);
     if (!strcmp(option, "--thickness-scale"))
         return parse_thickness_scale(value, o, err);
+    if (!strcmp(option, "--constants"))
+        return parse_constants(value, o, err);
     if (!strcmp(option, "--image")) {
         o->image_path = value;
         return FC_OK;

@@ -5,6 +5,7 @@
 #include "depth_pass.h"
 #include "egl_context.h"
 #include "fluidcast_types.h"
+#include "pipeline.h"
 
 #define BENCH_MAX_LIST 16
 /* In the iterations list: the method's own default (fc_smoothing_default_iterations). */
@@ -40,6 +41,7 @@ typedef struct bench_options {
     fc_kernel kernel;        /* --kernel: fc_settings.kernel */
     bool shadow;             /* --shadow: fc_settings.shadow */
     float thickness_scale;   /* --thickness-scale: fc_settings.thickness_scale; 0: fluidcast's default */
+    fc_constants_path constants;   /* --constants: fc_pipeline_config.constants */
 } bench_options;
 
 /* Defaults: 64k particles, 1280x720, curvature flow 40 iterations at full

@@ -220,7 +220,8 @@ static fc_code run_benchmark(const bench_options *o, fc_error *err)
     if (rc == FC_OK) {
         printf("GL_RENDERER: %s; GL_VERSION: %s; EGL vendor: %s\n\n", fc_gl_context_renderer(ctx),
                fc_gl_context_version(ctx), fc_gl_context_egl_vendor(ctx));
-        rc = fc_pipeline_create(&(fc_pipeline_config){.shader_dir = o->shader_dir}, &pipe, err);
+        rc = fc_pipeline_create(&(fc_pipeline_config){.shader_dir = o->shader_dir, .constants = o->constants},
+                                &pipe, err);
     }
     bench_memory memory = {0};
     if (rc == FC_OK) {

@@ -10,6 +10,12 @@ out gl_PerVertex {
     float gl_ClipDistance[2];
 };
 
+#ifdef FC_FLAT_CONSTANTS
+// Generated (flat_constants.h): hands the fragment stage's uniforms on as flat
+// outputs, which llvmpipe reads far more cheaply than uniforms.
+void fc_forward_constants();
+#endif
+
 void main()
 {
     vec2 corner = vec2((gl_VertexID << 1) & 2, gl_VertexID & 2);   // (0,0) (2,0) (0,2)
@@ -17,4 +23,7 @@ void main()
     gl_Position = vec4(ndc, 0.0, 1.0);
     for (int i = 0; i < 2; i++)
         gl_ClipDistance[i] = dot(clip_planes[i].xy, ndc) + clip_planes[i].z;
+#ifdef FC_FLAT_CONSTANTS
+    fc_forward_constants();
+#endif
 }

@@ -20,7 +20,8 @@ static const unsigned default_features[] = {
     0u, FC_FEATURE_FLOOR | FC_FEATURE_SHADOW, FC_FEATURE_FLOOR | FC_FEATURE_SHADOW | FC_FEATURE_FLOOR_ONLY,
     FC_FEATURE_FLOOR | FC_FEATURE_FLOOR_ONLY};
 
-fc_code fc_background_pass_create(const char *shader_dir, fc_background_pass *pass, fc_error *err)
+fc_code fc_background_pass_create(const char *shader_dir, bool flat_constants, fc_background_pass *pass,
+                                  fc_error *err)
 {
     *pass = (fc_background_pass){.target = fc_render_target_init(GL_RGBA16F, false, true)};
     glCreateVertexArrays(1, &pass->empty_vertex_array);
@@ -30,7 +31,8 @@ fc_code fc_background_pass_create(const char *shader_dir, fc_background_pass *pa
     pass->writes_mask = epoxy_has_gl_extension("GL_ARB_shader_stencil_export");
     /* The default look's variants now; others on first use. */
     unsigned mask = pass->writes_mask ? FC_FEATURE_FLUID_MASK : 0u;
-    fc_code code = fc_program_variants_create(&pass->programs, shader_dir, program_files,
+    const fc_program_options options = {.shader_dir = shader_dir, .flat_constants = flat_constants};
+    fc_code code = fc_program_variants_create(&pass->programs, &options, program_files,
                                               sizeof program_files / sizeof program_files[0],
                                               default_features[0] | mask, err);
     for (size_t i = 1; i < sizeof default_features / sizeof default_features[0] && code == FC_OK; i++) {

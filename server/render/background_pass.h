@@ -22,7 +22,9 @@ typedef struct fc_background_pass {
     bool writes_mask;          /* the driver has ARB_shader_stencil_export: the pass can lay down the mask */
 } fc_background_pass;
 
-fc_code fc_background_pass_create(const char *shader_dir, fc_background_pass *pass, fc_error *err);
+/* flat_constants: the programs take their uniforms as flat inputs (flat_constants.h). */
+fc_code fc_background_pass_create(const char *shader_dir, bool flat_constants, fc_background_pass *pass,
+                                  fc_error *err);
 void fc_background_pass_destroy(fc_background_pass *pass);
 
 /* `scene` may be NULL (built-in scene); a background image is scaled to cover

@@ -40,7 +40,8 @@ enum { UNIT_SURFACE_DEPTH = 0, UNIT_THICKNESS = 1, UNIT_BACKGROUND = 2, UNIT_ENV
 static const char *const shade_files[] = {"fullscreen.vert.glsl", "camera.frag.glsl", "environment.frag.glsl",
                                           "surface_normal.frag.glsl", "fluid_pixel.frag.glsl", "composite.frag.glsl"};
 
-fc_code fc_composite_pass_create(const char *shader_dir, fc_composite_pass *pass, fc_error *err)
+fc_code fc_composite_pass_create(const char *shader_dir, bool flat_constants, fc_composite_pass *pass,
+                                 fc_error *err)
 {
     *pass = (fc_composite_pass){
         .srgb_target = fc_render_target_init(GL_SRGB8_ALPHA8, true, false),
@@ -52,7 +53,10 @@ fc_code fc_composite_pass_create(const char *shader_dir, fc_composite_pass *pass
     fc_code code = fc_program_build(shader_dir, mask, sizeof mask / sizeof mask[0], &pass->mask_program, err);
     /* The default look's variant now; others on first use. */
     if (code == FC_OK)
-        code = fc_program_variants_create(&pass->programs, shader_dir, shade_files,
+        code = fc_program_variants_create(&pass->programs,
+                                          &(fc_program_options){.shader_dir = shader_dir,
+                                                                .flat_constants = flat_constants},
+                                          shade_files,
                                           sizeof shade_files / sizeof shade_files[0],
                                           FC_FEATURE_FLOOR | FC_FEATURE_SHADOW, err);
     return code;

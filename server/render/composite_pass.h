@@ -35,7 +35,9 @@ typedef struct fc_composite_inputs {
                                                 and the fluid's depth (fc_background_pass_run), not depth_tested */
 } fc_composite_inputs;
 
-fc_code fc_composite_pass_create(const char *shader_dir, fc_composite_pass *pass, fc_error *err);
+/* flat_constants: the shading programs take their uniforms as flat inputs (flat_constants.h). */
+fc_code fc_composite_pass_create(const char *shader_dir, bool flat_constants, fc_composite_pass *pass,
+                                 fc_error *err);
 void fc_composite_pass_destroy(fc_composite_pass *pass);
 
 /* The target the next run with want_u8 draws into, the sRGB target or the

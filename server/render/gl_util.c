@@ -1,6 +1,8 @@
 /* gl_util.c — GL error checks, waits, texture creation, draws and dispatches shared by the passes. */
 #include "gl_util.h"
 
+#include <string.h>
+
 #include "fc_error.h"
 
 static const char *gl_error_name(GLenum code)
@@ -82,6 +84,12 @@ uint32_t fc_gl_texel_bytes(GLenum internal_format)
     default:
         return 0;
     }
+}
+
+bool fc_gl_software_rasterizer(void)
+{
+    const char *renderer = (const char *)glGetString(GL_RENDERER);
+    return renderer && (strncmp(renderer, "llvmpipe", 8) == 0 || strncmp(renderer, "softpipe", 8) == 0);
 }
 
 void fc_gl_draw_fullscreen(GLuint empty_vertex_array)

@@ -31,6 +31,10 @@ fc_code fc_gl_texture_create(GLenum internal_format, uint32_t width, uint32_t he
  * (colour, compute images, depth/stencil); 0 for any other format. */
 uint32_t fc_gl_texel_bytes(GLenum internal_format);
 
+/* Whether the current context renders on the CPU (Mesa's llvmpipe or
+ * softpipe, by GL_RENDERER), where shading costs what its instructions do. */
+bool fc_gl_software_rasterizer(void);
+
 /* Draws the triangle of fullscreen.vert.glsl with the current program; core
  * profile needs a vertex array bound even when no attribute is read. */
 void fc_gl_draw_fullscreen(GLuint empty_vertex_array);

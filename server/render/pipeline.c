@@ -92,7 +92,15 @@ static GLint query_max_image_size(void)
     return size < viewport[1] ? size : viewport[1];
 }
 
-static fc_code create_passes(fc_pipeline *p, const char *dir, fc_error *err)
+/* Whether the full-screen passes take their uniforms as flat inputs: where
+ * uniforms are costly to read (llvmpipe, flat_constants.h), or as told. */
+static bool uses_flat_constants(const fc_pipeline_config *config)
+{
+    fc_constants_path path = config ? config->constants : FC_CONSTANTS_AUTO;
+    return path == FC_CONSTANTS_FLAT || (path == FC_CONSTANTS_AUTO && fc_gl_software_rasterizer());
+}
+
+static fc_code create_passes(fc_pipeline *p, const char *dir, bool flat, fc_error *err)
 {
     p->readback = fc_readback_init();
     fc_code code = fc_particle_buffer_create(&p->particles, err);
@@ -113,11 +121,11 @@ static fc_code create_passes(fc_pipeline *p, const char *dir, fc_error *err)
     if (code == FC_OK)
         code = fc_normal_pass_create(dir, &p->normal, err);
     if (code == FC_OK)
-        code = fc_background_pass_create(dir, &p->background, err);
+        code = fc_background_pass_create(dir, flat, &p->background, err);
     if (code == FC_OK)
         code = fc_mesh_pass_create(dir, &p->mesh, err);
     if (code == FC_OK)
-        code = fc_composite_pass_create(dir, &p->composite, err);
+        code = fc_composite_pass_create(dir, flat, &p->composite, err);
     if (code == FC_OK)
         code = fc_spray_pass_create(dir, &p->spray, err);
     if (code == FC_OK)
@@ -492,7 +500,7 @@ fc_code fc_pipeline_create(const fc_pipeline_config *config, fc_pipeline **out, 
     fc_pipeline *p = calloc(1, sizeof *p);
     if (!p)
         return fc_error_set(err, FC_ERR_NOMEM, "out of memory for the pipeline");
-    fc_code code = create_passes(p, config ? config->shader_dir : NULL, err);
+    fc_code code = create_passes(p, config ? config->shader_dir : NULL, uses_flat_constants(config), err);
     if (code == FC_OK)
         code = warm_up(p, err);
     if (code != FC_OK) {
@@ -680,6 +688,11 @@ fc_shadow_pass *fc_pipeline_shadow_pass(fc_pipeline *p)
 bool fc_pipeline_background_writes_mask(const fc_pipeline *p)
 {
     return fc_background_pass_writes_mask(&p->background);
+}
+
+bool fc_pipeline_flat_constants(const fc_pipeline *p)
+{
+    return p->background.programs.flat_constants && p->composite.programs.flat_constants;
 }
 
 fc_particle_attributes *fc_pipeline_particle_attributes(fc_pipeline *p)

@@ -14,8 +14,17 @@
 
 typedef struct fc_pipeline fc_pipeline;
 
+/* How the full-screen passes' fragment shaders receive their per-draw values
+ * (flat_constants.h). Both give the same images, bit for bit. */
+typedef enum fc_constants_path {
+    FC_CONSTANTS_AUTO = 0,   /* flat inputs on a software rasterizer (llvmpipe), uniforms on a GPU */
+    FC_CONSTANTS_UNIFORMS,
+    FC_CONSTANTS_FLAT
+} fc_constants_path;
+
 typedef struct fc_pipeline_config {
     const char *shader_dir;   /* NULL: shaders built into the binary; else load *.glsl from here (development) */
+    fc_constants_path constants;
 } fc_pipeline_config;
 
 /* Compiles every shader; FC_ERR_GL with the info log of the first that fails. */

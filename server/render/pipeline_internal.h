@@ -37,4 +37,8 @@ fc_shadow_pass *fc_pipeline_shadow_pass(fc_pipeline *p);
  * ARB_shader_stencil_export) rather than the composite's own mask pass; tests. */
 bool fc_pipeline_background_writes_mask(const fc_pipeline *p);
 
+/* Whether the background and composite programs take their uniforms as flat
+ * inputs (flat_constants.h, fc_pipeline_config.constants); tests. */
+bool fc_pipeline_flat_constants(const fc_pipeline *p);
+
 #endif

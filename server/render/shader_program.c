@@ -7,6 +7,7 @@
 
 #include "fc_error.h"
 #include "fc_shaders.h"
+#include "flat_constants.h"
 #include "gl_util.h"
 
 /* Shaders sharing a stage are linked as separate compilation units; no
@@ -91,14 +92,9 @@ static GLsizei split_source(const char *source, const char *defines, const char 
     return 4;
 }
 
-static fc_code compile(const char *dir, const char *defines, const char *file, GLenum stage, GLuint *shader,
+static fc_code compile(const char *source, const char *defines, const char *file, GLenum stage, GLuint *shader,
                        fc_error *err)
 {
-    const char *source;
-    char *owned;
-    fc_code code = load_source(dir, file, &source, &owned, err);
-    if (code != FC_OK)
-        return code;
     const char *strings[4];
     GLint lengths[4] = {-1, -1, -1, -1};
     GLsizei n = split_source(source, defines, strings);
@@ -107,7 +103,6 @@ static fc_code compile(const char *dir, const char *defines, const char *file, G
     GLuint s = glCreateShader(stage);
     glShaderSource(s, n, strings, lengths);
     glCompileShader(s);
-    free(owned);
     GLint ok = GL_FALSE;
     glGetShaderiv(s, GL_COMPILE_STATUS, &ok);
     if (!ok) {
@@ -155,6 +150,102 @@ fc_code fc_program_build(const char *shader_dir, const char *const *files, size_
 fc_code fc_program_build_defines(const char *shader_dir, const char *defines, const char *const *files, size_t count,
                                  GLuint *program, fc_error *err)
 {
+    const fc_program_options options = {.shader_dir = shader_dir, .defines = defines};
+    return fc_program_build_with(&options, files, count, program, err);
+}
+
+/* A program's sources as loaded, and what building it adds: the flat
+ * constants' rewritten fragment sources, their vertex-stage unit and the
+ * defines with FC_FLAT_CONSTANTS. */
+typedef struct program_sources {
+    const char *text[MAX_PROGRAM_FILES];
+    char *owned[MAX_PROGRAM_FILES];
+    GLenum stage[MAX_PROGRAM_FILES];
+    char *forward;    /* the vertex-stage unit of flat_constants.h, NULL without */
+    char *defines;    /* owned; NULL: none */
+} program_sources;
+
+static void free_sources(program_sources *s, size_t count)
+{
+    for (size_t i = 0; i < count; i++)
+        free(s->owned[i]);
+    free(s->forward);
+    free(s->defines);
+}
+
+static fc_code copy_defines(const char *defines, bool flat, char **out, fc_error *err)
+{
+    static const char flat_define[] = "#define FC_FLAT_CONSTANTS 1\n";
+    *out = NULL;
+    if (!defines && !flat)
+        return FC_OK;
+    size_t n = (defines ? strlen(defines) : 0) + (flat ? sizeof flat_define : 1);
+    if (!(*out = malloc(n)))
+        return fc_error_set(err, FC_ERR_NOMEM, "out of memory for a shader's defines");
+    snprintf(*out, n, "%s%s", defines ? defines : "", flat ? flat_define : "");
+    return FC_OK;
+}
+
+/* The locations a vertex stage can hand the fragment stage. */
+static int varying_locations(void)
+{
+    GLint fragment = 0, vertex = 0;
+    glGetIntegerv(GL_MAX_FRAGMENT_INPUT_COMPONENTS, &fragment);
+    glGetIntegerv(GL_MAX_VERTEX_OUTPUT_COMPONENTS, &vertex);
+    return (fragment < vertex ? fragment : vertex) / 4;
+}
+
+/* Rewrites the fragment-stage sources in place (flat_constants.h) and
+ * generates the vertex-stage unit that feeds them. */
+static fc_code flatten(program_sources *s, const char *const *files, size_t count, fc_error *err)
+{
+    bool has_vertex = false;
+    for (size_t i = 0; i < count; i++)
+        has_vertex = has_vertex || s->stage[i] == GL_VERTEX_SHADER;
+    if (!has_vertex)
+        return fc_error_set(err, FC_ERR_GL, "flat constants need a vertex shader to forward them");
+    fc_flat_constants *constants = calloc(1, sizeof *constants);
+    if (!constants)
+        return fc_error_set(err, FC_ERR_NOMEM, "out of memory for a shader's flat constants");
+    fc_code code = FC_OK;
+    for (size_t i = 0; i < count && code == FC_OK; i++)
+        if (s->stage[i] == GL_FRAGMENT_SHADER)
+            code = fc_flat_constants_collect(constants, s->text[i], files[i], err);
+    if (code == FC_OK)
+        fc_flat_constants_assign(constants, varying_locations());
+    for (size_t i = 0; i < count && code == FC_OK; i++) {
+        if (s->stage[i] != GL_FRAGMENT_SHADER)
+            continue;
+        char *rewritten = NULL;
+        code = fc_flat_constants_rewrite(constants, s->text[i], &rewritten, err);
+        if (code == FC_OK) {
+            free(s->owned[i]);
+            s->text[i] = s->owned[i] = rewritten;
+        }
+    }
+    if (code == FC_OK)
+        code = fc_flat_constants_vertex_source(constants, &s->forward, err);
+    free(constants);
+    return code;
+}
+
+static fc_code load_sources(const fc_program_options *o, const char *const *files, size_t count, program_sources *s,
+                            fc_error *err)
+{
+    *s = (program_sources){0};
+    fc_code code = copy_defines(o->defines, o->flat_constants, &s->defines, err);
+    for (size_t i = 0; i < count && code == FC_OK; i++) {
+        s->stage[i] = library_stage(files, count, i);
+        code = load_source(o->shader_dir, files[i], &s->text[i], &s->owned[i], err);
+    }
+    if (code == FC_OK && o->flat_constants)
+        code = flatten(s, files, count, err);
+    return code;
+}
+
+fc_code fc_program_build_with(const fc_program_options *options, const char *const *files, size_t count,
+                              GLuint *program, fc_error *err)
+{
     if (count == 0 || count > MAX_PROGRAM_FILES)
         return fc_error_set(err, FC_ERR_USAGE, "a program needs 1 to %d shader files, got %zu",
                             MAX_PROGRAM_FILES, count);
@@ -162,18 +253,25 @@ fc_code fc_program_build_defines(const char *shader_dir, const char *defines, co
     if (!last_stage)
         return fc_error_set(err, FC_ERR_GL, "shader %s: no stage suffix (.vert.glsl, .frag.glsl, .comp.glsl)",
                             files[count - 1]);
-    GLuint shaders[MAX_PROGRAM_FILES] = {0};
+    program_sources sources;
+    fc_code code = load_sources(options, files, count, &sources, err);
+    GLuint shaders[MAX_PROGRAM_FILES + 1] = {0};
     GLuint p = glCreateProgram();
-    fc_code code = FC_OK;
     for (size_t i = 0; i < count && code == FC_OK; i++) {
-        code = compile(shader_dir, defines, files[i], library_stage(files, count, i), &shaders[i], err);
+        code = compile(sources.text[i], sources.defines, files[i], sources.stage[i], &shaders[i], err);
         if (code == FC_OK)
             glAttachShader(p, shaders[i]);
     }
+    if (code == FC_OK && sources.forward) {
+        code = compile(sources.forward, sources.defines, "(flat constants)", GL_VERTEX_SHADER, &shaders[count], err);
+        if (code == FC_OK)
+            glAttachShader(p, shaders[count]);
+    }
+    free_sources(&sources, count);
     if (code == FC_OK)
         code = link(p, files, count, err);
     /* The linked program keeps what it needs; the shader objects can go. */
-    for (size_t i = 0; i < count; i++)
+    for (size_t i = 0; i <= count; i++)
         glDeleteShader(shaders[i]);
     if (code == FC_OK)
         code = fc_gl_check("building a shader program", err);

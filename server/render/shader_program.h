@@ -31,6 +31,21 @@ fc_code fc_program_build(const char *shader_dir, const char *const *files, size_
 fc_code fc_program_build_defines(const char *shader_dir, const char *defines, const char *const *files, size_t count,
                                  GLuint *program, fc_error *err);
 
+/* How a program is built: where its files come from, preprocessor lines
+ * placed after the #version line of every file (e.g. "#define FC_X 1\n";
+ * NULL: none; line numbers in the driver's messages stay those of the
+ * files), and whether the fragment stage's uniforms reach it as flat inputs
+ * (flat_constants.h: then FC_FLAT_CONSTANTS is defined too, and one of the
+ * files must be a vertex shader that calls fc_forward_constants() under it). */
+typedef struct fc_program_options {
+    const char *shader_dir;   /* NULL: the built-in copies */
+    const char *defines;
+    bool flat_constants;
+} fc_program_options;
+
+fc_code fc_program_build_with(const fc_program_options *options, const char *const *files, size_t count,
+                              GLuint *program, fc_error *err);
+
 /* The active uniforms of a linked program among the explicit locations 0..63,
  * as bits (bit L: location L). The compiler drops the uniforms a program does
  * not use (all of a feature a shader variant leaves out), and setting one of

@@ -27,7 +27,9 @@ static fc_code build(const fc_program_variants *v, unsigned features, fc_program
     char defines[FC_SHADER_DEFINES_MAX];
     fc_shader_defines(features, defines, sizeof defines);
     GLuint program = 0;
-    fc_code code = fc_program_build_defines(v->shader_dir, defines, v->files, v->file_count, &program, err);
+    const fc_program_options options = {.shader_dir = v->shader_dir, .defines = defines,
+                                        .flat_constants = v->flat_constants};
+    fc_code code = fc_program_build_with(&options, v->files, v->file_count, &program, err);
     if (code != FC_OK)
         return code;
     *slot = (fc_program_variant){.features = features, .program = program,
@@ -35,11 +37,11 @@ static fc_code build(const fc_program_variants *v, unsigned features, fc_program
     return FC_OK;
 }
 
-fc_code fc_program_variants_create(fc_program_variants *v, const char *shader_dir, const char *const *files,
-                                   size_t file_count, unsigned features, fc_error *err)
+fc_code fc_program_variants_create(fc_program_variants *v, const fc_program_options *options,
+                                   const char *const *files, size_t file_count, unsigned features, fc_error *err)
 {
-    *v = (fc_program_variants){.files = files, .file_count = file_count};
-    if (shader_dir && !(v->shader_dir = strdup(shader_dir)))
+    *v = (fc_program_variants){.files = files, .file_count = file_count, .flat_constants = options->flat_constants};
+    if (options->shader_dir && !(v->shader_dir = strdup(options->shader_dir)))
         return fc_error_set(err, FC_ERR_NOMEM, "out of memory for the shader directory's name");
     const fc_program_variant *first = NULL;
     return fc_program_variants_get(v, features, &first, err);

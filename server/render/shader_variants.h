@@ -11,10 +11,12 @@
 #define FC_SHADER_VARIANTS_H
 
 #include <epoxy/gl.h>
+#include <stdbool.h>
 #include <stddef.h>
 #include <stdint.h>
 
 #include "fluidcast_types.h"
+#include "shader_program.h"
 
 /* The features and the defines the shaders see (1 or 0). */
 typedef enum fc_shader_feature {
@@ -44,17 +46,20 @@ typedef struct fc_program_variant {
 /* The variants of one program (one list of shader files), built on first use. */
 typedef struct fc_program_variants {
     char *shader_dir;                 /* owned copy; NULL: the built-in shaders */
+    bool flat_constants;              /* uniforms as flat inputs (flat_constants.h) */
     const char *const *files;         /* static storage, not copied */
     size_t file_count;
     fc_program_variant slots[FC_PROGRAM_VARIANTS_MAX];
     size_t next_evicted;              /* when all slots are taken, round robin */
 } fc_program_variants;
 
-/* Remembers the files (which must outlive the cache) and the shader directory,
- * and builds the variant of `features` at once, so that a shader that does not
- * compile fails here rather than at the first render. */
-fc_code fc_program_variants_create(fc_program_variants *v, const char *shader_dir, const char *const *files,
-                                   size_t file_count, unsigned features, fc_error *err);
+/* Remembers the files (which must outlive the cache), the shader directory
+ * and whether the fragment stage's uniforms travel as flat inputs (`options`;
+ * its defines are the features'), and builds the variant of `features` at
+ * once, so that a shader that does not compile fails here rather than at the
+ * first render. */
+fc_code fc_program_variants_create(fc_program_variants *v, const fc_program_options *options,
+                                   const char *const *files, size_t file_count, unsigned features, fc_error *err);
 void fc_program_variants_destroy(fc_program_variants *v);
 
 /* The program of `features`, built now if the cache lacks it. */

@@ -258,7 +258,7 @@ int main(int argc, char **argv)
     float upload_ms = -1.0f, stage_ms[FC_STAGE_COUNT];
     fc_code code = fc_gl_context_create(&gpu, &gl, &err);
     if (code == FC_OK)
-        code = fc_pipeline_create(&(fc_pipeline_config){getenv("FC_SHADER_DIR")}, &pipeline, &err);
+        code = fc_pipeline_create(&(fc_pipeline_config){.shader_dir = getenv("FC_SHADER_DIR")}, &pipeline, &err);
     if (code == FC_OK)
         code = fc_foam_state_create(&foam, &err);
     if (code == FC_OK)

@@ -128,7 +128,7 @@ static void test_shader_dir(render_fixture *f)
 {
     fc_pipeline *from_disk = NULL;
     fc_error err = {0};
-    fc_pipeline_config config = {FC_SHADER_SOURCE_DIR};
+    fc_pipeline_config config = {.shader_dir = FC_SHADER_SOURCE_DIR};
     CHECK_CODE(fc_pipeline_create(&config, &from_disk, &err), FC_OK);
     if (from_disk) {
         fc_camera cam = axis_camera(4.0, 32, 32);

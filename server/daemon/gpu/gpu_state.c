@@ -29,7 +29,7 @@ static void release_all(fc_gpu_state *g)
 
 static fc_code create_pipeline(fc_gpu_state *g, fc_error *err)
 {
-    fc_pipeline_config config = {g->shader_dir};
+    fc_pipeline_config config = {.shader_dir = g->shader_dir};
     return fc_pipeline_create(&config, &g->pipeline, err);
 }
 
