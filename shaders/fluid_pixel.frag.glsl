@@ -11,6 +11,7 @@ layout(binding = 0) uniform sampler2D surface_depth;   // smoothed linear depth,
 
 layout(location = 16) uniform vec4 floor_plane;        // view space, dot(xyz, x) + w > 0 above; (0,0,0,1) = none
 layout(location = 17) uniform vec2 depth_projection;   // P[2][2], P[3][2]
+layout(location = 54) uniform vec2 depth_texel_uv;     // 1 / surface_depth's texture size
 
 // Stands for "no floor on this ray": beyond any far plane, still finite.
 const float beyond_everything = 3.0e38;
@@ -33,7 +34,10 @@ float window_depth(float z)
 // fluid's depth and z_floor the floor's either way.
 bool fluid_here(out float z, out float z_floor)
 {
-    z = texelFetch(surface_depth, ivec2(gl_FragCoord.xy), 0).r;
+    // The passes sample the depth through a nearest sampler (gl_util.h), so
+    // the lookup at the pixel's centre returns its texel unchanged, in fewer
+    // instructions than texelFetch on llvmpipe (bench/RESULTS.md).
+    z = textureLod(surface_depth, gl_FragCoord.xy * depth_texel_uv, 0.0).r;
     z_floor = floor_depth(view_ray(gl_FragCoord.xy));
     return z > 0.0 && z < z_floor;
 }

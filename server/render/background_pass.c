@@ -10,7 +10,7 @@
 
 /* Locations and units fixed by layout() in background.frag.glsl, fluid_pixel.frag.glsl and fullscreen_clip.vert.glsl. */
 enum { LOC_FLOOR_PLANE = 16, LOC_DEPTH_PROJECTION = 17, LOC_USE_CLIENT_IMAGE = 30, LOC_IMAGE_SCALE = 31,
-       LOC_CLIP_PLANES = 56 };
+       LOC_DEPTH_TEXEL_UV = 54, LOC_CLIP_PLANES = 56 };
 enum { UNIT_SURFACE_DEPTH = 0, UNIT_CLIENT_IMAGE = 8 };
 
 static const char *const program_files[] = {"fullscreen_clip.vert.glsl", "camera.frag.glsl",
@@ -26,6 +26,7 @@ fc_code fc_background_pass_create(const char *shader_dir, bool flat_constants, f
     *pass = (fc_background_pass){.target = fc_render_target_init(GL_RGBA16F, false, true)};
     glCreateVertexArrays(1, &pass->empty_vertex_array);
     glCreateFramebuffers(1, &pass->framebuffer);
+    pass->depth_sampler = fc_gl_nearest_sampler();
     const GLenum outputs[] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1};
     glNamedFramebufferDrawBuffers(pass->framebuffer, 2, outputs);
     pass->writes_mask = epoxy_has_gl_extension("GL_ARB_shader_stencil_export");
@@ -47,6 +48,8 @@ void fc_background_pass_destroy(fc_background_pass *pass)
     fc_program_variants_destroy(&pass->programs);
     glDeleteVertexArrays(1, &pass->empty_vertex_array);
     glDeleteFramebuffers(1, &pass->framebuffer);
+    glDeleteSamplers(1, &pass->depth_sampler);
+    pass->depth_sampler = 0;
     fc_render_target_release(&pass->target);
     pass->empty_vertex_array = pass->framebuffer = 0;
 }
@@ -89,7 +92,8 @@ static fc_code bind_outputs(const fc_background_pass *pass, const fc_render_targ
 
 /* One region of the image with its variant. */
 static fc_code draw_region(fc_background_pass *pass, const fc_background_draw *draw, const fc_view *view,
-                           const fc_environment *env, const fc_scene_textures *scene, fc_error *err)
+                           const fc_environment *env, const fc_scene_textures *scene, const float depth_texel_uv[2],
+                           fc_error *err)
 {
     const fc_program_variant *program = NULL;
     fc_code code = fc_program_variants_get(&pass->programs, draw->features, &program, err);
@@ -103,6 +107,8 @@ static fc_code draw_region(fc_background_pass *pass, const fc_background_draw *d
         glUniform4fv(LOC_FLOOR_PLANE, 1, env->floor_plane);
     if (fc_uniform_active(uniforms, LOC_DEPTH_PROJECTION))
         glUniform2f(LOC_DEPTH_PROJECTION, view->p22, view->p32);
+    if (fc_uniform_active(uniforms, LOC_DEPTH_TEXEL_UV))
+        glUniform2fv(LOC_DEPTH_TEXEL_UV, 1, depth_texel_uv);
     if (fc_uniform_active(uniforms, LOC_CLIP_PLANES))
         glUniform3fv(LOC_CLIP_PLANES, 2, &draw->clip_planes[0][0]);
     if (draw->scissored) {
@@ -122,9 +128,10 @@ bool fc_background_pass_writes_mask(const fc_background_pass *pass)
 /* The composite's mask (composite_pass.c) laid down with the background:
  * every pixel passes the depth test and takes the stencil its fragment
  * exports, 1 on the fluid. */
-static void begin_mask(const fc_render_target *fluid_depth)
+static void begin_mask(const fc_background_pass *pass, const fc_render_target *fluid_depth)
 {
     glBindTextureUnit(UNIT_SURFACE_DEPTH, fluid_depth->color);
+    glBindSampler(UNIT_SURFACE_DEPTH, pass->depth_sampler);
     glEnable(GL_STENCIL_TEST);
     glStencilMask(0xff);
     glStencilFunc(GL_ALWAYS, 0, 0xff);
@@ -151,20 +158,25 @@ fc_code fc_background_pass_run(fc_background_pass *pass, const fc_view *view, co
     glDepthFunc(GL_ALWAYS);
     glDepthMask(GL_TRUE);
     glDisable(GL_STENCIL_TEST);
-    if (fluid_depth)
-        begin_mask(fluid_depth);
+    float depth_texel_uv[2] = {0.0f, 0.0f};
+    if (fluid_depth) {
+        begin_mask(pass, fluid_depth);
+        depth_texel_uv[0] = 1.0f / (float)fluid_depth->texture_width;
+        depth_texel_uv[1] = 1.0f / (float)fluid_depth->texture_height;
+    }
     glDisable(GL_BLEND);
     glEnable(GL_CLIP_DISTANCE0);
     glEnable(GL_CLIP_DISTANCE1);
     /* Only an sRGB composite target encodes: the background texture is linear RGBA16F. */
     glEnable(GL_FRAMEBUFFER_SRGB);
     for (int i = 0; i < count && code == FC_OK; i++)
-        code = draw_region(pass, &draws[i], view, env, scene, err);
+        code = draw_region(pass, &draws[i], view, env, scene, depth_texel_uv, err);
     glDisable(GL_CLIP_DISTANCE0);
     glDisable(GL_CLIP_DISTANCE1);
     glDisable(GL_FRAMEBUFFER_SRGB);
     glDisable(GL_DEPTH_TEST);
     glDisable(GL_STENCIL_TEST);
+    glBindSampler(UNIT_SURFACE_DEPTH, 0);
     if (code != FC_OK)
         return code;
     return fc_gl_check("background pass", err);

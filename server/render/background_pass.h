@@ -17,6 +17,7 @@
 typedef struct fc_background_pass {
     fc_program_variants programs;   /* by the features a render uses (shader_variants.h) */
     GLuint empty_vertex_array;
+    GLuint depth_sampler;      /* nearest, for the fluid's depth (fluid_pixel.frag.glsl) */
     fc_render_target target;   /* RGBA16F linear radiance, bilinear so refraction samples smoothly */
     GLuint framebuffer;        /* target's colour and the composite target's colour and depth */
     bool writes_mask;          /* the driver has ARB_shader_stencil_export: the pass can lay down the mask */

@@ -22,6 +22,7 @@ enum {
     LOC_FLOOR_PLANE = 16,
     LOC_DEPTH_PROJECTION = 17,
     LOC_FOAM_NOISE_RANGE = 18,
+    LOC_DEPTH_TEXEL_UV = 54,
     LOC_THICKNESS_TEXEL_UV = 43,
     LOC_BACKGROUND_TEXTURE_SIZE = 44,
     LOC_THICKNESS_PER_PIXEL = 45,
@@ -48,6 +49,7 @@ fc_code fc_composite_pass_create(const char *shader_dir, bool flat_constants, fc
         .float_target = fc_render_target_init(GL_RGBA32F, true, false),
     };
     glCreateVertexArrays(1, &pass->empty_vertex_array);
+    pass->depth_sampler = fc_gl_nearest_sampler();
     const char *mask[] = {"fullscreen.vert.glsl", "camera.frag.glsl", "fluid_pixel.frag.glsl",
                           "fluid_mask.frag.glsl"};
     fc_code code = fc_program_build(shader_dir, mask, sizeof mask / sizeof mask[0], &pass->mask_program, err);
@@ -67,6 +69,8 @@ void fc_composite_pass_destroy(fc_composite_pass *pass)
     glDeleteProgram(pass->mask_program);
     fc_program_variants_destroy(&pass->programs);
     glDeleteVertexArrays(1, &pass->empty_vertex_array);
+    glDeleteSamplers(1, &pass->depth_sampler);
+    pass->depth_sampler = 0;
     fc_render_target_release(&pass->srgb_target);
     fc_render_target_release(&pass->float_target);
     pass->mask_program = pass->empty_vertex_array = 0;
@@ -155,8 +159,11 @@ static void bind_inputs(const fc_composite_inputs *in, const fc_view *view, floa
 }
 
 /* The uniforms of fluid_pixel.frag.glsl (and the camera's it uses) on `program`. */
-static void apply_fluid_pixel(GLuint program, const fc_view *view, const fc_environment *env)
+static void apply_fluid_pixel(GLuint program, const fc_view *view, const fc_environment *env,
+                              const fc_render_target *surface_depth)
 {
+    glProgramUniform2f(program, LOC_DEPTH_TEXEL_UV, 1.0f / (float)surface_depth->texture_width,
+                       1.0f / (float)surface_depth->texture_height);
     glProgramUniform2f(program, LOC_FOCAL, view->fx, view->fy);
     glProgramUniform2f(program, LOC_VIEWPORT, (float)view->width, (float)view->height);
     glProgramUniform4fv(program, LOC_FLOOR_PLANE, 1, env->floor_plane);
@@ -230,8 +237,10 @@ fc_code fc_composite_pass_run(fc_composite_pass *pass, const fc_composite_inputs
         glEnable(GL_FRAMEBUFFER_SRGB);
     else
         glDisable(GL_FRAMEBUFFER_SRGB);
+    /* The mask's and the shading's lookups of the fluid's depth (fluid_pixel.frag.glsl). */
+    glBindSampler(UNIT_SURFACE_DEPTH, pass->depth_sampler);
     if (!in->masked) {
-        apply_fluid_pixel(pass->mask_program, view, env);
+        apply_fluid_pixel(pass->mask_program, view, env, in->surface_depth);
         glProgramUniform2f(pass->mask_program, LOC_DEPTH_PROJECTION, view->p22, view->p32);   /* it writes the fluid's depth */
         draw_mask(pass, in, target);
     }
@@ -245,7 +254,11 @@ fc_code fc_composite_pass_run(fc_composite_pass *pass, const fc_composite_inputs
         glUniform4fv(LOC_FLOOR_PLANE, 1, env->floor_plane);
     apply_material(settings, in->colored, uniforms);
     bind_inputs(in, view, settings->radius, uniforms);
+    if (ACTIVE(LOC_DEPTH_TEXEL_UV))
+        glUniform2f(LOC_DEPTH_TEXEL_UV, 1.0f / (float)in->surface_depth->texture_width,
+                    1.0f / (float)in->surface_depth->texture_height);
     fc_gl_draw_fullscreen(pass->empty_vertex_array);   /* the stencil keeps it to the fluid */
+    glBindSampler(UNIT_SURFACE_DEPTH, 0);
     glDisable(GL_STENCIL_TEST);
     glDisable(GL_FRAMEBUFFER_SRGB);
     glDepthMask(GL_TRUE);

@@ -17,6 +17,7 @@ typedef struct fc_composite_pass {
     fc_program_variants programs;   /* the fluid's shading, on the stencil (composite.frag.glsl), by the
                                        features a render uses (shader_variants.h) */
     GLuint empty_vertex_array;
+    GLuint depth_sampler;   /* nearest, for the fluid's depth (fluid_pixel.frag.glsl) */
     fc_render_target srgb_target;    /* GL_SRGB8_ALPHA8: display-ready 8-bit output, with depth */
     fc_render_target float_target;   /* GL_RGBA32F: linear output, with depth */
 } fc_composite_pass;

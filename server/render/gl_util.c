@@ -86,6 +86,17 @@ uint32_t fc_gl_texel_bytes(GLenum internal_format)
     }
 }
 
+GLuint fc_gl_nearest_sampler(void)
+{
+    GLuint sampler = 0;
+    glCreateSamplers(1, &sampler);
+    glSamplerParameteri(sampler, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+    glSamplerParameteri(sampler, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+    glSamplerParameteri(sampler, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+    glSamplerParameteri(sampler, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+    return sampler;
+}
+
 bool fc_gl_software_rasterizer(void)
 {
     const char *renderer = (const char *)glGetString(GL_RENDERER);

@@ -31,6 +31,11 @@ fc_code fc_gl_texture_create(GLenum internal_format, uint32_t width, uint32_t he
  * (colour, compute images, depth/stencil); 0 for any other format. */
 uint32_t fc_gl_texel_bytes(GLenum internal_format);
 
+/* A sampler object that samples nearest and clamps to the edge, whatever
+ * the texture's own state: bound to a unit, a lookup at a texel's centre
+ * returns that texel exactly. */
+GLuint fc_gl_nearest_sampler(void);
+
 /* Whether the current context renders on the CPU (Mesa's llvmpipe or
  * softpipe, by GL_RENDERER), where shading costs what its instructions do. */
 bool fc_gl_software_rasterizer(void);
