@@ -121,6 +121,33 @@ float pixel_f32(const fc_image *img, uint32_t x, uint32_t row)
     return ((const float *)img->pixels)[(size_t)row * img->width + x];
 }
 
+double image_sum(const fc_image *img)
+{
+    double sum = 0.0;
+    for (uint32_t row = 0; row < img->height; row++)
+        for (uint32_t x = 0; x < img->width; x++)
+            sum += pixel_f32(img, x, row);
+    return sum;
+}
+
+float *lattice_ball(int steps, float spacing, float lift, uint64_t *count)
+{
+    size_t side = 2 * (size_t)steps + 1;
+    float *p = malloc(3 * sizeof(float) * side * side * side);
+    uint64_t n = 0;
+    for (int i = -steps; i <= steps && p; i++)
+        for (int j = -steps; j <= steps; j++)
+            for (int k = -steps; k <= steps; k++)
+                if (i * i + j * j + k * k <= steps * steps) {
+                    p[3 * n] = (float)i * spacing;
+                    p[3 * n + 1] = (float)j * spacing;
+                    p[3 * n + 2] = (float)k * spacing + lift;
+                    n++;
+                }
+    *count = n;
+    return p;
+}
+
 /* Focal lengths of the camera's projection, from its definition. */
 static void focal_lengths(const fc_camera *cam, double *fx, double *fy)
 {

@@ -54,6 +54,14 @@ fc_code render_positions(render_fixture *f, const float *positions, uint64_t cou
 /* Value of a one-channel float image at column x, row (0 = top). */
 float pixel_f32(const fc_image *img, uint32_t x, uint32_t row);
 
+/* The sum of a one-channel float image's values. */
+double image_sum(const fc_image *img);
+
+/* The points of a cubic lattice of `spacing` within `steps` spacings of
+ * (0, 0, lift): a solid ball of particles (xyz interleaved, malloc'd; NULL
+ * when out of memory), their number in *count. */
+float *lattice_ball(int steps, float spacing, float lift, uint64_t *count);
+
 /* Reads a render target of a pass run on its own as `channels` floats into
  * img (rows top to bottom), through a readback made for the call. */
 fc_code read_target(const fc_render_target *target, uint32_t channels, fc_image *img, fc_error *err);

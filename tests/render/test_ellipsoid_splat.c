@@ -246,15 +246,6 @@ static void test_needles_are_their_ellipsoids(render_fixture *f)
     free(x);
 }
 
-static double image_sum(const fc_image *img)
-{
-    double sum = 0.0;
-    for (uint32_t row = 0; row < img->height; row++)
-        for (uint32_t x = 0; x < img->width; x++)
-            sum += pixel_f32(img, x, row);
-    return sum;
-}
-
 /* The needles' thickness: at full resolution (the depth pass's splat) every
  * pixel holds the sum of the C chords through the ellipsoids; splatted at half
  * resolution (the depth pass's thickness splat of the reduced view) and resampled, the

@@ -32,23 +32,6 @@ extern char **environ;
 #define RADIUS 0.05f
 #define RENDERS 10   /* 5 looks x 2 cameras; each an 8-bit and a float image */
 
-static float *ball_positions(uint64_t *count)
-{
-    float *p = malloc(3 * sizeof(float) * (2 * STEPS + 1) * (2 * STEPS + 1) * (2 * STEPS + 1));
-    uint64_t n = 0;
-    for (int i = -STEPS; i <= STEPS && p; i++)
-        for (int j = -STEPS; j <= STEPS; j++)
-            for (int k = -STEPS; k <= STEPS; k++)
-                if (i * i + j * j + k * k <= STEPS * STEPS) {
-                    p[3 * n] = (float)i * LATTICE;
-                    p[3 * n + 1] = (float)j * LATTICE;
-                    p[3 * n + 2] = (float)k * LATTICE + 0.5f;   /* above the floor z = 0 */
-                    n++;
-                }
-    *count = n;
-    return p;
-}
-
 /* A glass pane (two triangles) in front of the ball. */
 static fc_mesh_buffers *glass_pane(render_fixture *f)
 {
@@ -97,7 +80,7 @@ static bool render(render_fixture *f, const fc_scene_mesh *glass, int k, int wan
 static bool render_all(render_fixture *f, bool (*put)(void *ctx, int k, const fc_image *img), void *ctx)
 {
     uint64_t count = 0;
-    float *positions = ball_positions(&count);
+    float *positions = lattice_ball(STEPS, LATTICE, 0.5f, &count);   /* above the floor z = 0 */
     fc_mesh_buffers *buffers = positions ? glass_pane(f) : NULL;
     fc_frame frame = {.count = count, .positions = positions};
     fc_error err = {0};

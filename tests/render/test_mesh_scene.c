@@ -36,23 +36,6 @@
 #define RADIUS 0.05f
 #define BALL_FRONT (EYE - STEPS * LATTICE - RADIUS)   /* 3.45 at the centre pixel */
 
-static float *ball_positions(uint64_t *count)
-{
-    float *p = malloc(3 * sizeof(float) * (2 * STEPS + 1) * (2 * STEPS + 1) * (2 * STEPS + 1));
-    uint64_t n = 0;
-    for (int i = -STEPS; i <= STEPS; i++)
-        for (int j = -STEPS; j <= STEPS; j++)
-            for (int k = -STEPS; k <= STEPS; k++)
-                if (i * i + j * j + k * k <= STEPS * STEPS) {
-                    p[3 * n] = i * LATTICE;
-                    p[3 * n + 1] = j * LATTICE;
-                    p[3 * n + 2] = k * LATTICE;
-                    n++;
-                }
-    *count = n;
-    return p;
-}
-
 /* A box [lo, hi] of 8 corners and 12 triangles wound counter-clockwise seen from outside. */
 typedef struct box {
     float vertices[24];
@@ -353,7 +336,7 @@ int main(void)
     if (!fixture_open(&f))
         return 1;
     uint64_t count;
-    float *positions = ball_positions(&count);
+    float *positions = lattice_ball(STEPS, LATTICE, 0.0f, &count);
     fc_frame frame = {.count = count, .positions = positions};
     fc_error err;
     CHECK_CODE(fc_pipeline_upload(f.pipeline, &frame, NULL, &err), FC_OK);

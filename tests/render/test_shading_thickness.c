@@ -31,15 +31,6 @@ static fc_code render_stack(render_fixture *f, int count, float scale, uint32_t 
     return render_positions(f, positions, (uint64_t)count, &cam, &settings, FC_AOV_THICKNESS, 0, out);
 }
 
-static double image_sum(const fc_image *img)
-{
-    double sum = 0.0;
-    for (uint32_t row = 0; row < img->height; row++)
-        for (uint32_t x = 0; x < img->width; x++)
-            sum += pixel_f32(img, x, row);
-    return sum;
-}
-
 /* What the image centre should hold at `scale`: the pass renders a
  * lround(SIZE·scale)-pixel image and samples it bilinearly, so the centre is
  * the mean of the analytic thickness (each sphere's chord) at the one or four

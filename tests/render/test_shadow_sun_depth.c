@@ -30,23 +30,6 @@
 #define RADIUS 0.05f
 #define HIDDEN_HALF 0.1f   /* the box inside the ball: half its side */
 
-static float *ball_positions(uint64_t *count)
-{
-    float *p = malloc(3 * sizeof(float) * (2 * STEPS + 1) * (2 * STEPS + 1) * (2 * STEPS + 1));
-    uint64_t n = 0;
-    for (int i = -STEPS; i <= STEPS && p; i++)
-        for (int j = -STEPS; j <= STEPS; j++)
-            for (int k = -STEPS; k <= STEPS; k++)
-                if (i * i + j * j + k * k <= STEPS * STEPS) {
-                    p[3 * n] = (float)i * LATTICE;
-                    p[3 * n + 1] = (float)j * LATTICE;
-                    p[3 * n + 2] = (float)k * LATTICE;
-                    n++;
-                }
-    *count = n;
-    return p;
-}
-
 /* A cube of half side `half` around the origin: 8 corners, 12 triangles. */
 static fc_mesh_buffers *hidden_box(render_fixture *f, float half, float vertices[24], uint32_t indices[36])
 {
@@ -111,15 +94,6 @@ static bool same_image(const fc_image *a, const fc_image *b)
            a->pixels && b->pixels && memcmp(a->pixels, b->pixels, fc_image_size(a)) == 0;
 }
 
-static double image_sum(const fc_image *img)
-{
-    double sum = 0.0;
-    for (uint32_t row = 0; row < img->height; row++)
-        for (uint32_t x = 0; x < img->width; x++)
-            sum += pixel_f32(img, x, row);
-    return sum;
-}
-
 static void check_method(render_fixture *f, fc_splat_method method, const fc_scene_mesh *box)
 {
     const char *name = method == FC_SPLAT_COMPUTE ? "compute" : "fragment";
@@ -160,7 +134,7 @@ int main(void)
     if (!fixture_open(&f))
         return 1;
     uint64_t count = 0;
-    float *positions = ball_positions(&count);
+    float *positions = lattice_ball(STEPS, LATTICE, 0.0f, &count);
     float vertices[24];
     uint32_t indices[36];
     fc_mesh_buffers *buffers = positions ? hidden_box(&f, HIDDEN_HALF, vertices, indices) : NULL;
