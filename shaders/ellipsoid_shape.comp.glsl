@@ -35,7 +35,11 @@ vec4 load_particle(uint i)
     mat3 rotation = mat3(view_matrix);
     particle_inverse = rotation * mat3(a.x, a.y, a.z, a.y, a.w, b.x, a.z, b.x, b.y) * transpose(rotation);
     particle_stretch = e.centre_stretch.w;
-    loaded_radius = sized_particles ? radius * texelFetch(radius_ratios, int(i)).r : radius;
+    // An `if`, not a selection: llvmpipe skips a branch no lane takes, but
+    // evaluates both operands of ?: (the fetch is 2% of a 1M-particle frame).
+    loaded_radius = radius;
+    if (sized_particles)
+        loaded_radius *= texelFetch(radius_ratios, int(i)).r;
     return vec4((view_matrix * vec4(e.centre_stretch.xyz, 1.0)).xyz, loaded_radius * particle_stretch);
 }
 

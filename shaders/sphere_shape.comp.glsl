@@ -20,7 +20,11 @@ float loaded_radius;
 // The view-space centre and bounding radius of the dispatch's particle i.
 vec4 load_particle(uint i)
 {
-    loaded_radius = sized_particles ? radius * texelFetch(radius_ratios, int(i)).r : radius;
+    // An `if`, not a selection: llvmpipe skips a branch no lane takes, but
+    // evaluates both operands of ?: (the fetch is 2% of a 1M-particle frame).
+    loaded_radius = radius;
+    if (sized_particles)
+        loaded_radius *= texelFetch(radius_ratios, int(i)).r;
     return vec4((view_matrix * vec4(texelFetch(particle_positions, int(i)).xyz, 1.0)).xyz, loaded_radius);
 }
 

@@ -41,6 +41,31 @@ layout(local_size_x = 64) in;
 // As sphere.vert.glsl's quads: rounding loses no pixel centre on the bounds.
 const float MARGIN_PIXELS = 0.25;
 
+#ifdef FC_THICKNESS_FOOTPRINT
+// The thickness of spheres that cover a few pixels (compute_splat.c builds
+// this for the sphere's thickness-only splat with the small walks: the
+// thickness at a reduced scale, the shadow map): a sphere far away next to
+// its size projects to an ellipse over which its chord falls off as
+// 2r sqrt(1 - |offset|^2), offset measured in the ellipse's half extents.
+// That replaces the ray cast and the floor's clipping per pixel, which took
+// half of the 1M-particle thickness splat's instructions
+// (bench/RESULTS.md), by a few multiplications; the floor takes its share
+// per particle, the fraction of the sphere's volume above it. Set per
+// particle by main().
+vec2 footprint_centre;   // the silhouette's centre, in pixel indices
+vec2 footprint_scale;    // 1 / its half extents (pixels)
+float footprint_units;   // thickness units at its centre
+
+float volume_above_floor(vec3 centre, float radius);
+
+void splat_pixel(ivec2 p, vec3 centre)
+{
+    vec2 offset = (vec2(p) - footprint_centre) * footprint_scale;
+    float falloff = 1.0 - dot(offset, offset);
+    if (falloff > 0.0)
+        imageAtomicAdd(thickness_sum, p, uint(sqrt(falloff) * footprint_units + 0.5));
+}
+#else
 void splat_pixel(ivec2 p, vec3 centre)
 {
     vec2 pixel = vec2(p) + 0.5;
@@ -69,6 +94,7 @@ void splat_pixel(ivec2 p, vec3 centre)
     }
 #endif
 }
+#endif
 
 // The pixels of the box [lo, hi] whose rays may meet the particle, each
 // passed to splat_pixel: splat_walk_rows.glsl (any size) or
@@ -163,6 +189,13 @@ void main()
 #ifdef FC_DEPTH_ONLY
     if (!walked_in_this_phase(centre, depth, reach, lo, hi))
         return;
+#endif
+#ifdef FC_THICKNESS_FOOTPRINT
+    // The bounds are the silhouette's, the margins cancel in the centre.
+    footprint_centre = 0.5 * (first + last);
+    footprint_scale = 1.0 / max(0.5 * (last - first) - MARGIN_PIXELS, 1e-3);
+    float share = min(2.0 * reach * volume_above_floor(centre, reach) / max_chord, 1.0);
+    footprint_units = share * units_per_chord;
 #endif
     walk_pixels(lo, hi, centre, reach);
 }

@@ -121,13 +121,26 @@ static fc_code build_shaped(const char *shader_dir, const char *defines, bool el
     return fc_program_build_defines(shader_dir, defines, files, count, program, err);
 }
 
+/* The spheres' thickness alone with the walks for sprites of a few pixels:
+ * FC_THICKNESS_FOOTPRINT in surface_splat.comp.glsl (the chord from the
+ * projected ellipse instead of a ray cast per pixel). */
+static const char FOOTPRINT_DEFINES[] = "#define FC_THICKNESS_ONLY 1\n#define FC_THICKNESS_FOOTPRINT 1\n";
+
+static const char *splat_defines(fc_splat_output output, bool ellipsoids, fc_splat_walk walk)
+{
+    if (output == FC_SPLAT_THICKNESS_ONLY && !ellipsoids && walk != FC_SPLAT_WALK_ROWS)
+        return FOOTPRINT_DEFINES;
+    return OUTPUT_DEFINES[output];
+}
+
 /* The splat of spheres or of ellipsoids with each walk, for one output. */
 static fc_code build_splats(const char *shader_dir, fc_splat_output output, bool ellipsoids,
                             GLuint programs[FC_SPLAT_WALKS], fc_error *err)
 {
     for (int w = 0; w < FC_SPLAT_WALKS; w++) {
         const char *tail[] = {WALKS[w], "surface_splat.comp.glsl"};
-        fc_code code = build_shaped(shader_dir, OUTPUT_DEFINES[output], ellipsoids, tail, 2, &programs[w], err);
+        const char *defines = splat_defines(output, ellipsoids, (fc_splat_walk)w);
+        fc_code code = build_shaped(shader_dir, defines, ellipsoids, tail, 2, &programs[w], err);
         if (code != FC_OK)
             return code;
     }
