@@ -35,8 +35,9 @@ vec4 load_particle(uint i)
     mat3 rotation = mat3(view_matrix);
     particle_inverse = rotation * mat3(a.x, a.y, a.z, a.y, a.w, b.x, a.z, b.x, b.y) * transpose(rotation);
     particle_stretch = e.centre_stretch.w;
-    // An `if`, not a selection: llvmpipe skips a branch no lane takes, but
-    // evaluates both operands of ?: (the fetch is 2% of a 1M-particle frame).
+    // An `if` on the uniform, not a selection, which llvmpipe evaluated in
+    // full: the fetch ran for spheres of one size too (2% of the instructions
+    // of a 1M-particle frame, bench/RESULTS.md).
     loaded_radius = radius;
     if (sized_particles)
         loaded_radius *= texelFetch(radius_ratios, int(i)).r;

@@ -20,8 +20,9 @@ float loaded_radius;
 // The view-space centre and bounding radius of the dispatch's particle i.
 vec4 load_particle(uint i)
 {
-    // An `if`, not a selection: llvmpipe skips a branch no lane takes, but
-    // evaluates both operands of ?: (the fetch is 2% of a 1M-particle frame).
+    // An `if` on the uniform, not a selection, which llvmpipe evaluated in
+    // full: the fetch ran for spheres of one size too (2% of the instructions
+    // of a 1M-particle frame, bench/RESULTS.md).
     loaded_radius = radius;
     if (sized_particles)
         loaded_radius *= texelFetch(radius_ratios, int(i)).r;

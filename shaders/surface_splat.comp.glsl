@@ -41,29 +41,46 @@ layout(local_size_x = 64) in;
 // As sphere.vert.glsl's quads: rounding loses no pixel centre on the bounds.
 const float MARGIN_PIXELS = 0.25;
 
-#ifdef FC_THICKNESS_FOOTPRINT
+#if defined(FC_THICKNESS_FOOTPRINT) || defined(FC_FUSED_THICKNESS)
 // The thickness of spheres that cover a few pixels (compute_splat.c builds
-// this for the sphere's thickness-only splat with the small walks: the
-// thickness at a reduced scale, the shadow map): a sphere far away next to
-// its size projects to an ellipse over which its chord falls off as
+// this for the spheres' thickness-only splat with the small walks: the
+// thickness at a reduced scale, the shadow map; and with FC_FUSED_THICKNESS
+// into the camera's culled depth, below): a sphere far away next to its
+// size projects to an ellipse over which its chord falls off as
 // 2r sqrt(1 - |offset|^2), offset measured in the ellipse's half extents.
 // That replaces the ray cast and the floor's clipping per pixel, which took
 // half of the 1M-particle thickness splat's instructions
 // (bench/RESULTS.md), by a few multiplications; the floor takes its share
 // per particle, the fraction of the sphere's volume above it. Set per
-// particle by main().
+// particle by begin_footprint().
 vec2 footprint_centre;   // the silhouette's centre, in pixel indices
 vec2 footprint_scale;    // 1 / its half extents (pixels)
 float footprint_units;   // thickness units at its centre
 
 float volume_above_floor(vec3 centre, float radius);
 
-void splat_pixel(ivec2 p, vec3 centre)
+// [first, last]: the silhouette's bounds in pixel indices, grown by MARGIN_PIXELS on each side.
+void begin_footprint(vec2 first, vec2 last, vec3 centre, float reach)
+{
+    footprint_centre = 0.5 * (first + last);
+    footprint_scale = 1.0 / max(0.5 * (last - first) - MARGIN_PIXELS, 1e-3);
+    float share = min(2.0 * reach * volume_above_floor(centre, reach) / max_chord, 1.0);
+    footprint_units = share * units_per_chord;
+}
+
+void footprint_pixel(ivec2 p)
 {
     vec2 offset = (vec2(p) - footprint_centre) * footprint_scale;
     float falloff = 1.0 - dot(offset, offset);
     if (falloff > 0.0)
         imageAtomicAdd(thickness_sum, p, uint(sqrt(falloff) * footprint_units + 0.5));
+}
+#endif
+
+#ifdef FC_THICKNESS_FOOTPRINT
+void splat_pixel(ivec2 p, vec3 centre)
+{
+    footprint_pixel(p);
 }
 #else
 void splat_pixel(ivec2 p, vec3 centre)
@@ -160,6 +177,39 @@ bool walked_in_this_phase(vec3 centre, float depth, float reach, ivec2 lo, ivec2
 }
 #endif
 
+#ifdef FC_FUSED_THICKNESS
+// The camera's thickness at a reduced scale in the depth's own walk over the
+// particles (compute_splat.c: spheres whose thickness takes the footprint):
+// on llvmpipe a particle's invocation, load and transform cost more than its
+// footprint (a dispatch that only loads a million particles is about a third
+// of the thickness splat, bench/RESULTS.md), so the thickness rides along in
+// the phase that sees every particle once, at its own resolution: the same
+// pixels and sums as the thickness-only splat of that view.
+layout(location = 13) uniform vec2 thickness_viewport;   // pixels of the thickness image
+
+void splat_footprint(vec2 x_range, vec2 y_range, vec3 centre, float reach)
+{
+    vec2 first = (vec2(x_range.x, y_range.x) + 1.0) * 0.5 * thickness_viewport - 0.5 - MARGIN_PIXELS;
+    vec2 last = (vec2(x_range.y, y_range.y) + 1.0) * 0.5 * thickness_viewport - 0.5 + MARGIN_PIXELS;
+    ivec2 lo = max(ivec2(ceil(first)), ivec2(0));
+    ivec2 hi = min(ivec2(floor(last)), ivec2(thickness_viewport) - 1);
+    begin_footprint(first, last, centre, reach);
+    // As splat_walk_small.glsl: the 3x3 candidates with loops the compiler
+    // unrolls (on llvmpipe a loop the SIMD group runs costs more than the
+    // candidates it skips), then loops over what a larger box holds beyond.
+    for (int dy = 0; dy < 3; dy++)
+        for (int dx = 0; dx < 3; dx++)
+            if (all(lessThanEqual(lo + ivec2(dx, dy), hi)))
+                footprint_pixel(lo + ivec2(dx, dy));
+    for (int x = lo.x + 3; x <= hi.x; x++)
+        for (int y = lo.y; y <= min(hi.y, lo.y + 2); y++)
+            footprint_pixel(ivec2(x, y));
+    for (int y = lo.y + 3; y <= hi.y; y++)
+        for (int x = lo.x; x <= hi.x; x++)
+            footprint_pixel(ivec2(x, y));
+}
+#endif
+
 void main()
 {
     uint i = gl_GlobalInvocationID.y * gl_NumWorkGroups.x * gl_WorkGroupSize.x + gl_GlobalInvocationID.x;
@@ -186,16 +236,15 @@ void main()
     vec2 last = (vec2(x_range.y, y_range.y) + 1.0) * 0.5 * viewport - 0.5 + MARGIN_PIXELS;
     ivec2 lo = max(ivec2(ceil(first)), ivec2(0));
     ivec2 hi = min(ivec2(floor(last)), ivec2(viewport) - 1);
-#ifdef FC_DEPTH_ONLY
-    if (!walked_in_this_phase(centre, depth, reach, lo, hi))
-        return;
-#endif
 #ifdef FC_THICKNESS_FOOTPRINT
-    // The bounds are the silhouette's, the margins cancel in the centre.
-    footprint_centre = 0.5 * (first + last);
-    footprint_scale = 1.0 / max(0.5 * (last - first) - MARGIN_PIXELS, 1e-3);
-    float share = min(2.0 * reach * volume_above_floor(centre, reach) / max_chord, 1.0);
-    footprint_units = share * units_per_chord;
+    begin_footprint(first, last, centre, reach);
 #endif
-    walk_pixels(lo, hi, centre, reach);
+#ifdef FC_DEPTH_ONLY
+    if (walked_in_this_phase(centre, depth, reach, lo, hi))
+#endif
+        walk_pixels(lo, hi, centre, reach);
+#ifdef FC_FUSED_THICKNESS
+    if (cull_phase != CULL_NEAR)
+        splat_footprint(x_range, y_range, centre, reach);
+#endif
 }

@@ -23,6 +23,7 @@ enum {
     LOC_FLOOR_PLANE = 10,
     LOC_CULL_PHASE = 11,
     LOC_SLACK_PER_DEPTH = 12,
+    LOC_THICKNESS_VIEWPORT = 13,
     LOC_SIZED_PARTICLES = 512
 };
 /* The culling's steps in the splat, as surface_splat.comp.glsl's CULL_*. */
@@ -99,8 +100,9 @@ static const char *const WALKS[FC_SPLAT_WALKS] = {"splat_walk_rows.glsl", "splat
                                                    "splat_walk_small.glsl"};
 
 /* The preprocessor lines of each output (FC_THICKNESS_ONLY in surface_splat.comp.glsl, surface_resolve.comp.glsl). */
-static const char *const OUTPUT_DEFINES[FC_SPLAT_OUTPUTS] = {NULL, "#define FC_THICKNESS_ONLY 1\n",
-                                                              "#define FC_DEPTH_ONLY 1\n"};
+static const char *const OUTPUT_DEFINES[FC_SPLAT_OUTPUTS] = {
+    NULL, "#define FC_THICKNESS_ONLY 1\n", "#define FC_DEPTH_ONLY 1\n",
+    "#define FC_DEPTH_ONLY 1\n#define FC_FUSED_THICKNESS 1\n"};
 
 /* A program of the particles' shape, spheres or ellipsoids (sphere_shape.comp.glsl,
  * ellipsoid_shape.comp.glsl), with its libraries and then the files `tail`. */
@@ -154,6 +156,8 @@ fc_code fc_compute_splat_create(const char *shader_dir, fc_compute_splat *s, fc_
     fc_code code = FC_OK;
     for (int o = 0; o < FC_SPLAT_OUTPUTS && code == FC_OK; o++) {
         code = build_splats(shader_dir, (fc_splat_output)o, false, s->splat_program[o], err);
+        if (o == FC_SPLAT_DEPTH_AND_REDUCED_THICKNESS)   /* spheres only, resolved by the two outputs' resolves */
+            continue;
         if (code == FC_OK)
             code = build_splats(shader_dir, (fc_splat_output)o, true, s->ellipsoid_program[o], err);
         if (code == FC_OK)
@@ -168,7 +172,7 @@ fc_code fc_compute_splat_create(const char *shader_dir, fc_compute_splat *s, fc_
         code = build_shaped(shader_dir, NULL, true, front, 1, &s->ellipsoid_front_program, err);
     if (code != FC_OK)
         return code;
-    s->cull = true;
+    s->cull = s->fuse = true;
     glCreateTextures(GL_TEXTURE_BUFFER, 1, &s->positions);
     glCreateTextures(GL_TEXTURE_BUFFER, 1, &s->ratios);
     GLint max_texels = 0, alignment = 1;
@@ -310,8 +314,8 @@ static void set_shape_uniforms(GLuint program, const fc_particle_buffer *particl
 
 /* The depth alone in the culling's steps (surface_splat.comp.glsl): the
  * tiles' front, the particles near it, the farthest depth per tile, the rest. */
-static void dispatch_culled(const fc_compute_splat *s, GLuint program, const fc_particle_buffer *particles,
-                            const fc_view *view, float radius)
+static void dispatch_culled(const fc_compute_splat *s, GLuint near_program, GLuint program,
+                            const fc_particle_buffer *particles, const fc_view *view, float radius)
 {
     const GLuint nowhere = 0x7f800000u;   /* +inf bits */
     glClearTexImage(s->front_tiles, 0, GL_RED_INTEGER, GL_UNSIGNED_INT, &nowhere);
@@ -325,11 +329,12 @@ static void dispatch_culled(const fc_compute_splat *s, GLuint program, const fc_
 
     /* A tile's extent at depth d is d x CULL_TILE_PX x 2 / (fy x height) world units. */
     float tile_per_depth = (float)CULL_TILE_PX * 2.0f / (view->fy * (float)view->height);
+    glProgramUniform1f(near_program, LOC_SLACK_PER_DEPTH, CULL_SLACK_TILES * tile_per_depth);
     glProgramUniform1f(program, LOC_SLACK_PER_DEPTH, CULL_SLACK_TILES * tile_per_depth);
-    glProgramUniform1i(program, LOC_CULL_PHASE, CULL_NEAR);
+    glProgramUniform1i(near_program, LOC_CULL_PHASE, CULL_NEAR);
     glBindImageTexture(IMAGE_FRONT_TILES, s->front_tiles, 0, GL_FALSE, 0, GL_READ_ONLY, GL_R32UI);
-    glUseProgram(program);
-    dispatch_all(s, program, particles);
+    glUseProgram(near_program);
+    dispatch_all(s, near_program, particles);
     glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
 
     glUseProgram(s->tiles_program);
@@ -345,8 +350,10 @@ static void dispatch_culled(const fc_compute_splat *s, GLuint program, const fc_
     dispatch_all(s, program, particles);
 }
 
+/* `thickness_view`: the reduced view of FC_SPLAT_DEPTH_AND_REDUCED_THICKNESS's thickness, else NULL. */
 static void splat(fc_compute_splat *s, fc_splat_output output, const fc_particle_buffer *particles,
-                  const fc_view *view, float radius, fc_splat_sprite sprite, const float *floor_plane, double units)
+                  const fc_view *view, const fc_view *thickness_view, float radius, fc_splat_sprite sprite,
+                  const float *floor_plane, double units)
 {
     fc_splat_walk walk = choose_walk(sprite);
     s->last_walk = walk;
@@ -358,16 +365,27 @@ static void splat(fc_compute_splat *s, fc_splat_output output, const fc_particle
         glBindBufferBase(GL_SHADER_STORAGE_BUFFER, BIND_ELLIPSOIDS, particles->shapes);
     if (floor_plane)
         glProgramUniform4fv(program, LOC_FLOOR_PLANE, 1, floor_plane);
+    if (thickness_view)
+        glProgramUniform2f(program, LOC_THICKNESS_VIEWPORT, (float)thickness_view->width,
+                           (float)thickness_view->height);
     glBindImageTexture(IMAGE_NEAREST_DEPTH, s->nearest_depth, 0, GL_FALSE, 0, GL_READ_WRITE, GL_R32UI);
     glBindImageTexture(IMAGE_THICKNESS_SUM, s->thickness_sum, 0, GL_FALSE, 0, GL_READ_WRITE, GL_R32UI);
     glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_UPDATE_BARRIER_BIT);
     glUseProgram(program);
     glBindTextureUnit(UNIT_POSITIONS, s->positions);
     glBindTextureUnit(UNIT_RADIUS_RATIOS, s->ratios);
-    if (output == FC_SPLAT_DEPTH_ONLY && s->cull) {
-        dispatch_culled(s, program, particles, view, radius);
+    bool depth_alone = output == FC_SPLAT_DEPTH_ONLY || output == FC_SPLAT_DEPTH_AND_REDUCED_THICKNESS;
+    if (depth_alone && s->cull) {
+        /* The near phase has no thickness to splat: the depth's own program, without the fused code,
+         * which llvmpipe would run masked. */
+        GLuint near_program = program;
+        if (output == FC_SPLAT_DEPTH_AND_REDUCED_THICKNESS) {
+            near_program = s->splat_program[FC_SPLAT_DEPTH_ONLY][walk];
+            set_shape_uniforms(near_program, particles, view, radius);
+        }
+        dispatch_culled(s, near_program, program, particles, view, radius);
     } else {
-        if (output == FC_SPLAT_DEPTH_ONLY)
+        if (depth_alone)
             glProgramUniform1i(program, LOC_CULL_PHASE, CULL_NONE);
         dispatch_all(s, program, particles);
     }
@@ -414,8 +432,9 @@ fc_code fc_compute_splat_run(fc_compute_splat *s, const fc_particle_buffer *part
     if (floor_plane)
         glClearTexImage(s->thickness_sum, 0, GL_RED_INTEGER, GL_UNSIGNED_INT, &no_thickness);
     double units = units_per_chord(particles->count);
+    s->last_fused = false;
     if (particles->count > 0)
-        splat(s, output, particles, view, radius, sprite, floor_plane, units);
+        splat(s, output, particles, view, NULL, radius, sprite, floor_plane, units);
     if (depth)
         fc_pinhole_fill_apply(s->resolve_program[output], view, radius);
     resolve(s, output, view, max_chord(particles, radius), floor_plane != NULL, units, depth, thickness);
@@ -432,4 +451,34 @@ void fc_compute_splat_tally(const fc_compute_splat *s, fc_gpu_memory *m)
 void fc_compute_splat_trim(fc_compute_splat *s)
 {
     release_images(s);
+}
+
+bool fc_compute_splat_fuses(const fc_compute_splat *s, const fc_particle_buffer *particles,
+                            fc_splat_sprite thickness_sprite)
+{
+    return s->fuse && !particles->shapes && choose_walk(thickness_sprite) != FC_SPLAT_WALK_ROWS;
+}
+
+fc_code fc_compute_splat_run_fused(fc_compute_splat *s, const fc_particle_buffer *particles, const fc_view *view,
+                                   const fc_view *thickness_view, float radius, fc_splat_sprite sprite,
+                                   const float *floor_plane, GLuint depth, GLuint thickness, fc_error *err)
+{
+    if (!depth || !floor_plane || thickness_view->width > view->width || thickness_view->height > view->height)
+        return fc_error_set(err, FC_ERR_USAGE, "fused splat: needs a depth, a floor plane and a smaller thickness");
+    fc_code code = reserve(s, view->width, view->height, err);
+    if (code != FC_OK)
+        return code;
+    const GLuint no_depth = 0x7f800000u, no_thickness = 0;   /* +inf bits, 0 */
+    glClearTexImage(s->nearest_depth, 0, GL_RED_INTEGER, GL_UNSIGNED_INT, &no_depth);
+    glClearTexImage(s->thickness_sum, 0, GL_RED_INTEGER, GL_UNSIGNED_INT, &no_thickness);
+    double units = units_per_chord(particles->count);
+    s->last_fused = true;
+    if (particles->count > 0)
+        splat(s, FC_SPLAT_DEPTH_AND_REDUCED_THICKNESS, particles, view, thickness_view, radius, sprite, floor_plane,
+              units);
+    fc_pinhole_fill_apply(s->resolve_program[FC_SPLAT_DEPTH_ONLY], view, radius);
+    float chord = max_chord(particles, radius);
+    resolve(s, FC_SPLAT_DEPTH_ONLY, view, chord, false, units, depth, 0);
+    resolve(s, FC_SPLAT_THICKNESS_ONLY, thickness_view, chord, true, units, 0, thickness);
+    return fc_gl_check("compute surface splat with the thickness", err);
 }

@@ -23,18 +23,22 @@ typedef enum { FC_SPLAT_WALK_ROWS, FC_SPLAT_WALK_TINY, FC_SPLAT_WALK_SMALL, FC_S
  * (the sun's view where no mesh compares its depth, shadow_pass.c), built
  * with FC_THICKNESS_ONLY: the depth's load and atomic per pixel, its
  * pinhole fill and its stores left out, which llvmpipe would run behind a
- * uniform switch all the same; or the depth alone (FC_DEPTH_ONLY: the
+ * uniform switch all the same; the depth alone (FC_DEPTH_ONLY: the
  * thickness splatted apart, at a reduced scale), which culls hidden
- * particles (surface_splat.comp.glsl). */
+ * particles (surface_splat.comp.glsl); or that culled depth with the
+ * thickness at a reduced scale splatted in the same walk of the particles
+ * (FC_FUSED_THICKNESS: spheres only, fc_compute_splat_run_fused). */
 typedef enum {
     FC_SPLAT_DEPTH_AND_THICKNESS,
     FC_SPLAT_THICKNESS_ONLY,
     FC_SPLAT_DEPTH_ONLY,
+    FC_SPLAT_DEPTH_AND_REDUCED_THICKNESS,
     FC_SPLAT_OUTPUTS
 } fc_splat_output;
 
 typedef struct fc_compute_splat {
-    /* By output and walk: spheres, and the particles' ellipsoids (anisotropy.h) where the buffer names them. */
+    /* By output and walk: spheres, and the particles' ellipsoids (anisotropy.h) where the buffer names them
+     * (none for FC_SPLAT_DEPTH_AND_REDUCED_THICKNESS, which resolves with the two outputs' resolves). */
     GLuint splat_program[FC_SPLAT_OUTPUTS][FC_SPLAT_WALKS];
     GLuint ellipsoid_program[FC_SPLAT_OUTPUTS][FC_SPLAT_WALKS];
     GLuint resolve_program[FC_SPLAT_OUTPUTS];
@@ -52,6 +56,8 @@ typedef struct fc_compute_splat {
     uint32_t allocations;     /* times the images were (re)allocated */
     fc_splat_walk last_walk;  /* of the last run with particles */
     bool cull;                /* depth alone culls hidden particles (true after create; tests compare without) */
+    bool fuse;                /* fc_compute_splat_fuses may say yes (true after create; tests compare without) */
+    bool last_fused;          /* the last run splatted the thickness with the depth (fc_compute_splat_run_fused) */
 } fc_compute_splat;
 
 fc_code fc_compute_splat_create(const char *shader_dir, fc_compute_splat *s, fc_error *err);
@@ -75,6 +81,21 @@ typedef struct fc_splat_sprite {
 fc_code fc_compute_splat_run(fc_compute_splat *s, const fc_particle_buffer *particles, const fc_view *view,
                              float radius, fc_splat_sprite sprite, const float *floor_plane, GLuint depth,
                              GLuint thickness, fc_error *err);
+
+/* Whether fc_compute_splat_run_fused can splat these particles' thickness
+ * (sized on the thickness's view by `thickness_sprite`) with their depth:
+ * spheres whose thickness takes the footprint (the small walks' sizes). */
+bool fc_compute_splat_fuses(const fc_compute_splat *s, const fc_particle_buffer *particles,
+                            fc_splat_sprite thickness_sprite);
+
+/* fc_compute_splat_run for the depth alone (culled where s->cull) into
+ * `depth`, which also splats the thickness above `floor_plane` at
+ * `thickness_view`'s size (the same camera at a lower resolution) into
+ * `thickness` in the same walk of the particles: the same bits of both as
+ * the two runs apart. Only where fc_compute_splat_fuses. */
+fc_code fc_compute_splat_run_fused(fc_compute_splat *s, const fc_particle_buffer *particles, const fc_view *view,
+                                   const fc_view *thickness_view, float radius, fc_splat_sprite sprite,
+                                   const float *floor_plane, GLuint depth, GLuint thickness, fc_error *err);
 
 /* Adds the two images' bytes and allocations to m's render targets. */
 void fc_compute_splat_tally(const fc_compute_splat *s, fc_gpu_memory *m);

@@ -168,27 +168,40 @@ static fc_code fragment_splat(fc_depth_pass *pass, const fc_particle_buffer *par
     return fc_gl_check("depth pass", err);
 }
 
+/* The splat for these particles in this view: fc_depth_pass_choose for
+ * the radius and, for ellipsoids, their longest reach. Ellipsoids are
+ * chosen for by the radius, as their exact boxes are mostly about as large
+ * as the sphere's (the compute splat measured 120-130 ms against the
+ * fragment splat's 150-290 at 64k particles 10 px across, bench/RESULTS.md),
+ * but the largest sprite must hold for the longest reach. */
+static fc_splat_method choose(const fc_depth_pass *pass, const fc_particle_buffer *particles, const fc_view *view,
+                              float radius)
+{
+    fc_splat_method choice = fc_depth_pass_choose(view, particles->lo, particles->hi, radius, pass->method);
+    float reach = fc_anisotropy_reach(particles, radius);
+    if (choice == FC_SPLAT_COMPUTE &&
+        fc_depth_pass_choose(view, particles->lo, particles->hi, reach, FC_SPLAT_COMPUTE) == FC_SPLAT_FRAGMENT)
+        choice = FC_SPLAT_FRAGMENT;
+    return choice;
+}
+
+/* How large the particles appear in the view, for the compute splat's walk. */
+static fc_splat_sprite sprite_in(const fc_view *view, const fc_particle_buffer *particles, float radius)
+{
+    float reach = fc_anisotropy_reach(particles, radius);
+    return (fc_splat_sprite){largest_sprite_px(view, reach),
+                             typical_sprite_px(view, particles->lo, particles->hi, reach)};
+}
+
 static fc_code run(fc_depth_pass *pass, const fc_particle_buffer *particles, const fc_view *view, float radius,
                    const float *floor_plane, bool with_depth, fc_error *err)
 {
     fc_code code = resize(pass, view, with_depth, err);
     if (code != FC_OK)
         return code;
-    /* Ellipsoids: chosen for by the radius, as their exact boxes are mostly
-     * about as large as the sphere's (the compute splat measured 120-130 ms
-     * against the fragment splat's 150-290 at 64k particles 10 px across,
-     * bench/RESULTS.md), but the largest sprite must hold for the longest
-     * reach. */
-    fc_splat_method choice = fc_depth_pass_choose(view, particles->lo, particles->hi, radius, pass->method);
-    float reach = fc_anisotropy_reach(particles, radius);
-    if (choice == FC_SPLAT_COMPUTE &&
-        fc_depth_pass_choose(view, particles->lo, particles->hi, reach, FC_SPLAT_COMPUTE) == FC_SPLAT_FRAGMENT)
-        choice = FC_SPLAT_FRAGMENT;
-    pass->last_used = choice;
+    pass->last_used = choose(pass, particles, view, radius);
     if (pass->last_used == FC_SPLAT_COMPUTE)
-        return fc_compute_splat_run(&pass->compute, particles, view, radius,
-                                    (fc_splat_sprite){largest_sprite_px(view, reach),
-                                                      typical_sprite_px(view, particles->lo, particles->hi, reach)},
+        return fc_compute_splat_run(&pass->compute, particles, view, radius, sprite_in(view, particles, radius),
                                     floor_plane, with_depth ? pass->target.color : 0, pass->thickness.color, err);
     return fragment_splat(pass, particles, view, radius, floor_plane, with_depth, err);
 }
@@ -205,6 +218,29 @@ fc_code fc_depth_pass_run_thickness(fc_depth_pass *pass, const fc_particle_buffe
     if (!floor_plane)
         return fc_error_set(err, FC_ERR_USAGE, "thickness splat without a floor plane");
     return run(pass, particles, view, radius, floor_plane, false, err);
+}
+
+bool fc_depth_pass_fuses(const fc_depth_pass *pass, const fc_particle_buffer *particles, const fc_view *view,
+                         const fc_view *thickness_view, float radius)
+{
+    return choose(pass, particles, view, radius) == FC_SPLAT_COMPUTE &&
+           fc_compute_splat_fuses(&pass->compute, particles, sprite_in(thickness_view, particles, radius));
+}
+
+fc_code fc_depth_pass_run_fused(fc_depth_pass *pass, const fc_particle_buffer *particles, const fc_view *view,
+                                const fc_view *thickness_view, float radius, const float *floor_plane, fc_error *err)
+{
+    if (!floor_plane || !fc_depth_pass_fuses(pass, particles, view, thickness_view, radius))
+        return fc_error_set(err, FC_ERR_USAGE, "fused depth splat: no floor plane, or the particles do not fuse");
+    fc_code code = resize(pass, view, true, err);
+    if (code == FC_OK)
+        code = fc_render_target_resize(&pass->thickness, thickness_view->width, thickness_view->height, err);
+    if (code != FC_OK)
+        return code;
+    pass->last_used = FC_SPLAT_COMPUTE;
+    return fc_compute_splat_run_fused(&pass->compute, particles, view, thickness_view, radius,
+                                      sprite_in(view, particles, radius), floor_plane, pass->target.color,
+                                      pass->thickness.color, err);
 }
 
 void fc_depth_pass_tally(const fc_depth_pass *pass, fc_gpu_memory *m)

@@ -32,9 +32,6 @@ typedef struct fc_depth_pass {
 fc_code fc_depth_pass_create(const char *shader_dir, fc_depth_pass *pass, fc_error *err);
 void fc_depth_pass_destroy(fc_depth_pass *pass);
 
-/* Renders the particles' depth into pass->target and, when `floor_plane`
- * is not NULL, their thickness above that view-space plane (see
- * fc_environment.floor_plane) into pass->thickness, both sized to the view. */
 /* The splat a render of spheres of `radius` with the particles inside
  * [lo, hi] gets when `wanted`: FRAGMENT when wanted; COMPUTE when wanted or,
  * for AUTO, when the sprites are small; but FRAGMENT whenever a sprite may
@@ -42,8 +39,26 @@ void fc_depth_pass_destroy(fc_depth_pass *pass);
 fc_splat_method fc_depth_pass_choose(const fc_view *view, const float lo[3], const float hi[3], float radius,
                                      fc_splat_method wanted);
 
+/* Renders the particles' depth into pass->target and, when `floor_plane`
+ * is not NULL, their thickness above that view-space plane (see
+ * fc_environment.floor_plane) into pass->thickness, both sized to the view. */
 fc_code fc_depth_pass_run(fc_depth_pass *pass, const fc_particle_buffer *particles, const fc_view *view,
                           float radius, const float *floor_plane, fc_error *err);
+
+/* Whether fc_depth_pass_run_fused can splat these particles' thickness at
+ * `thickness_view`'s size (the same camera at a lower resolution) with
+ * their depth in `view`: where the compute splat is chosen and can
+ * (fc_compute_splat_fuses: spheres a few pixels across at that size). */
+bool fc_depth_pass_fuses(const fc_depth_pass *pass, const fc_particle_buffer *particles, const fc_view *view,
+                         const fc_view *thickness_view, float radius);
+
+/* fc_depth_pass_run for the depth alone which also splats the thickness
+ * above `floor_plane` at `thickness_view`'s size into pass->thickness in the
+ * same walk of the particles, the same bits of it as
+ * fc_depth_pass_run_thickness on that view. Only where fc_depth_pass_fuses. */
+fc_code fc_depth_pass_run_fused(fc_depth_pass *pass, const fc_particle_buffer *particles, const fc_view *view,
+                                const fc_view *thickness_view, float radius, const float *floor_plane,
+                                fc_error *err);
 
 /* fc_depth_pass_run for the thickness above `floor_plane` (not NULL) alone,
  * the same bits of it: pass->target is neither sized nor written (the sun's

@@ -144,13 +144,36 @@ static bool splats_thickness(const render_job *job, fc_aov aov)
            (aov == FC_AOV_COLOR || aov == FC_AOV_THICKNESS);
 }
 
-/* Depth, and the thickness splat where splats_thickness: both are timed as the depth stage. */
-static fc_code depth_stage(fc_pipeline *p, const render_job *job, fc_aov aov, fc_error *err)
+/* Whether the depth stage splats the thickness at its reduced scale too, in
+ * the same walk of the particles (fc_depth_pass_fuses): for a colour image
+ * without an attribute's colour. */
+static bool fuses_thickness(const fc_pipeline *p, const render_job *job, fc_aov aov)
 {
-    const float *floor_plane = splats_thickness(job, aov) ? job->env.floor_plane : NULL;
+    if (job->settings->thickness_scale == 1.0f || job->colored || aov != FC_AOV_COLOR)
+        return false;
+    fc_view reduced = fc_thickness_view(job->view, job->settings->thickness_scale);
+    return fc_depth_pass_fuses(&p->depth, &job->surface, job->view, &reduced, job->settings->radius);
+}
+
+/* Depth, and the thickness splat where splats_thickness or fuses_thickness
+ * (*thickness_splatted says so): both are timed as the depth stage. */
+static fc_code depth_stage(fc_pipeline *p, const render_job *job, fc_aov aov, bool *thickness_splatted,
+                           fc_error *err)
+{
+    bool together = splats_thickness(job, aov), fused = !together && fuses_thickness(p, job, aov);
+    *thickness_splatted = together || fused;
     fc_stage_timer_begin(&p->timer, FC_STAGE_DEPTH);
-    fc_pass_profile_begin(&p->profile, floor_plane ? "depth + thickness splat" : "depth splat");
-    fc_code code = fc_depth_pass_run(&p->depth, &job->surface, job->view, job->settings->radius, floor_plane, err);
+    fc_pass_profile_begin(&p->profile, *thickness_splatted ? "depth + thickness splat" : "depth splat");
+    float radius = job->settings->radius;
+    fc_code code;
+    if (fused) {
+        fc_view reduced = fc_thickness_view(job->view, job->settings->thickness_scale);
+        code = fc_depth_pass_run_fused(&p->depth, &job->surface, job->view, &reduced, radius, job->env.floor_plane,
+                                       err);
+    } else {
+        code = fc_depth_pass_run(&p->depth, &job->surface, job->view, radius,
+                                 together ? job->env.floor_plane : NULL, err);
+    }
     fc_pass_profile_end(&p->profile);
     /* Fluid behind an opaque mesh is not there for any later stage. */
     if (code == FC_OK && job->mesh_count > 0) {
@@ -171,11 +194,11 @@ static void linear_colormap(fc_colormap map, float out[FC_COLORMAP_ENTRIES][3])
             out[i][c] = fc_srgb_to_linear(table[i][c]);
 }
 
-/* The thickness: splatted here at reduced resolution, else by the depth
- * stage, which must have run first; blurred and resampled here, to the
- * view's size for the thickness AOV. */
-static fc_code thickness_stage(fc_pipeline *p, const render_job *job, fc_aov aov, const fc_render_target **result,
-                               fc_error *err)
+/* The thickness: splatted here at reduced resolution, else (`splatted`) by
+ * the depth stage, which must have run first; blurred and resampled here, to
+ * the view's size for the thickness AOV. */
+static fc_code thickness_stage(fc_pipeline *p, const render_job *job, fc_aov aov, bool splatted,
+                               const fc_render_target **result, fc_error *err)
 {
     const fc_settings *s = job->settings;
     fc_thickness_params params = {
@@ -186,6 +209,7 @@ static fc_code thickness_stage(fc_pipeline *p, const render_job *job, fc_aov aov
         .profile = &p->profile,
         .depth = &p->depth,
         .at_view_size = aov == FC_AOV_THICKNESS,
+        .splatted = splatted,
     };
     float colormap[FC_COLORMAP_ENTRIES][3];
     fc_thickness_color color = {&p->color_values, {s->color_range[0], s->color_range[1]}, colormap};
@@ -333,11 +357,12 @@ static fc_code shading_aov_stage(fc_pipeline *p, const render_job *job, const fc
 static fc_code render_stages(fc_pipeline *p, const render_job *job, fc_aov aov, const fc_render_target **result,
                              fc_error *err)
 {
+    bool splatted = false;
     if (aov == FC_AOV_THICKNESS) {
-        fc_code code = splats_thickness(job, aov) ? depth_stage(p, job, aov, err) : FC_OK;
-        return code == FC_OK ? thickness_stage(p, job, aov, result, err) : code;
+        fc_code code = splats_thickness(job, aov) ? depth_stage(p, job, aov, &splatted, err) : FC_OK;
+        return code == FC_OK ? thickness_stage(p, job, aov, splatted, result, err) : code;
     }
-    fc_code code = depth_stage(p, job, aov, err);
+    fc_code code = depth_stage(p, job, aov, &splatted, err);
     *result = &p->depth.target;
     if (code != FC_OK || aov == FC_AOV_DEPTH)
         return code;
@@ -349,7 +374,7 @@ static fc_code render_stages(fc_pipeline *p, const render_job *job, fc_aov aov, 
     if (aov == FC_AOV_NOISE || aov == FC_AOV_NORMAL)
         return shading_aov_stage(p, job, surface, aov, result, err);
     const fc_render_target *thickness = NULL;
-    code = thickness_stage(p, job, aov, &thickness, err);
+    code = thickness_stage(p, job, aov, splatted, &thickness, err);
     if (code != FC_OK)
         return code;
     return composite_stage(p, job, surface, thickness, result, err);

@@ -38,6 +38,14 @@ static uint32_t scaled(uint32_t size, float scale)
     return n > 0 ? n : 1;
 }
 
+fc_view fc_thickness_view(const fc_view *view, float scale)
+{
+    fc_view reduced = *view;
+    reduced.width = scaled(view->width, scale);
+    reduced.height = scaled(view->height, scale);
+    return reduced;
+}
+
 /* The colour's uniforms on the program that draws `particles`, and its values bound. */
 static void apply_color(const fc_sphere_sprites *sprites, const fc_particle_buffer *particles,
                         const fc_thickness_color *color)
@@ -116,16 +124,12 @@ fc_code fc_thickness_pass_run(fc_thickness_pass *pass, const fc_particle_buffer 
                               const fc_thickness_params *params, const fc_render_target **result, fc_error *err)
 {
     float scale = params->scale;
-    /* The sprites take their size from the viewport, so a smaller copy of the
-     * view renders the same image at the lower resolution. */
-    fc_view reduced = *view;
-    reduced.width = scaled(view->width, scale);
-    reduced.height = scaled(view->height, scale);
+    fc_view reduced = fc_thickness_view(view, scale);
     fc_pass_profile *profile = params->profile;
     /* The depth pass splats the thickness alone (at scale 1 it has, with the depth), never its colour. */
     const fc_render_target *splatted = params->color ? &pass->color_splat : &params->depth->thickness;
     fc_code code = FC_OK;
-    if (params->color || scale != 1.0f) {
+    if (params->color || (scale != 1.0f && !params->splatted)) {
         const char *name = params->splat_name ? params->splat_name : "thickness splat";
         fc_pass_profile_begin(profile, params->color ? "thickness + colour splat" : name);
         code = params->color ? splat_color(pass, particles, &reduced, params, err)

@@ -45,11 +45,18 @@ typedef struct fc_thickness_params {
     const char *splat_name;       /* the splat's name in the profile; NULL: "thickness splat" */
     fc_depth_pass *depth;         /* splats the thickness without a colour into its thickness target: at
                                      scale 1 it has already, with the depth; at lower scales the pass has it
-                                     splat the reduced view */
+                                     splat the reduced view (fc_thickness_view) unless `splatted` */
+    bool splatted;                /* at a lower scale: the depth pass splatted the reduced view already, with
+                                     the depth (fc_depth_pass_run_fused) */
     bool at_view_size;            /* the result resampled to the view's size (the thickness AOV) */
     const fc_thickness_color *color;   /* non-NULL: the result holds the thickness in r and the colour times
                                           the thickness in gba, always splatted by the pass (full_splat unused) */
 } fc_thickness_params;
+
+/* The view the thickness is splatted in at `scale`: the same camera at the
+ * scaled size (at least a pixel per axis); sprites take their size from the
+ * viewport, so it renders the same image at the lower resolution. */
+fc_view fc_thickness_view(const fc_view *view, float scale);
 
 fc_code fc_thickness_pass_create(const char *shader_dir, fc_thickness_pass *pass, fc_error *err);
 void fc_thickness_pass_destroy(fc_thickness_pass *pass);

@@ -6,7 +6,10 @@
  * as the benchmark's, with spheres about 4 and about 9 pixels across, and as
  * ellipsoids) and on a dense random cloud. And the tiles it culls against
  * hold what it relies on: the pool's front covers the tiles over the pool, in
- * front of the layers below, so that most of those are skipped. */
+ * front of the layers below, so that most of those are skipped. The
+ * thickness at the default half resolution splatted in the same walk of the
+ * particles as the culled depth (fc_compute_splat_run_fused) leaves the image
+ * the same bit for bit as splatted apart. */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -87,6 +90,32 @@ static void check_same_depth(render_fixture *f, const char *name, const float *x
     fc_image_free(&whole);
 }
 
+/* The colour image (floats) with the thickness at half resolution splatted
+ * with the depth and apart: the same bits. */
+static void check_same_fused(render_fixture *f, const char *name, const float *x, uint64_t count,
+                             const fc_camera *cam, float radius)
+{
+    fc_compute_splat *splat = fc_pipeline_compute_splat(f->pipeline);
+    fc_settings settings = test_settings(radius, FC_SMOOTHING_NONE, 0);
+    settings.thickness_scale = 0.5f;
+    fc_image fused = {0}, apart = {0};
+    CHECK_CODE(render_positions(f, x, count, cam, &settings, FC_AOV_COLOR, 0, &fused), FC_OK);
+    CHECK_MSG(splat->last_fused, "%s: the thickness was not splatted with the depth", name);
+    splat->fuse = false;
+    CHECK_CODE(render_positions(f, x, count, cam, &settings, FC_AOV_COLOR, 0, &apart), FC_OK);
+    CHECK_MSG(!splat->last_fused, "%s: the thickness was splatted with the depth", name);
+    splat->fuse = true;
+    CHECK(fused.channels == apart.channels && fused.type == FC_PIXEL_F32);
+    size_t values = (size_t)cam->width * cam->height * fused.channels;
+    int differ = 0;
+    for (size_t i = 0; i < values; i++)
+        differ += ((const float *)fused.pixels)[i] != ((const float *)apart.pixels)[i];
+    CHECK_MSG(differ == 0, "%s: %d values differ with the thickness splatted with the depth", name, differ);
+    printf("%s: the same colour image with the thickness splatted with the depth and apart\n", name);
+    fc_image_free(&fused);
+    fc_image_free(&apart);
+}
+
 /* The far tiles of the last culled run (rows bottom-up, as GL stores them). */
 static uint32_t *read_far_tiles(render_fixture *f, uint32_t tiles_x, uint32_t tiles_y)
 {
@@ -161,6 +190,8 @@ int main(int argc, char **argv)
     fc_settings cloud_settings = test_settings(0.01f, FC_SMOOTHING_NONE, 0);
     check_same_depth(&f, "cloud", cloud, CLOUD_PARTICLES, &axis, &cloud_settings, 20000);
     check_tiles_hide_lower_layers(&f, pool, &large);
+    check_same_fused(&f, "pool, spheres about 4 px", pool, POOL_PARTICLES, &small, RADIUS);
+    check_same_fused(&f, "cloud", cloud, CLOUD_PARTICLES, &axis, 0.01f);
     free(pool);
     free(cloud);
     fixture_close(&f);
