@@ -24,6 +24,7 @@
 vec4 load_particle(uint i);
 bool cast_particle_ray(vec2 pixel, vec3 centre, out float depth, out float chord);
 float thickness_above_floor(vec2 pixel, float depth, float chord);
+float volume_above_floor(vec3 centre, float radius);
 vec2 projected_interval(float lateral, float depth, float focal, float radius);
 bool particle_ndc_bounds(vec3 view_centre, vec2 focal, out vec4 box);
 
@@ -57,8 +58,6 @@ vec2 footprint_centre;   // the silhouette's centre, in pixel indices
 vec2 footprint_scale;    // 1 / its half extents (pixels)
 float footprint_units;   // thickness units at its centre
 
-float volume_above_floor(vec3 centre, float radius);
-
 // [first, last]: the silhouette's bounds in pixel indices, grown by MARGIN_PIXELS on each side.
 void begin_footprint(vec2 first, vec2 last, vec3 centre, float reach)
 {
@@ -83,6 +82,16 @@ void splat_pixel(ivec2 p, vec3 centre)
     footprint_pixel(p);
 }
 #else
+#ifdef FC_THICKNESS_ONLY
+// The thickness alone (the reduced scale, the shadow map) takes the floor's
+// share per particle too, the fraction of its volume above it, instead of
+// clipping each ray: the floor lies under every particle's sphere
+// (environment.c), so that is 1 but for particles larger than the frame's
+// radius, and the per-ray clipping was a fifth of the splat's instructions
+// (bench/RESULTS.md). Set per particle by main().
+float particle_above_floor;
+#endif
+
 void splat_pixel(ivec2 p, vec3 centre)
 {
     vec2 pixel = vec2(p) + 0.5;
@@ -106,7 +115,11 @@ void splat_pixel(ivec2 p, vec3 centre)
 #endif
 #ifndef FC_DEPTH_ONLY
     if (units_per_chord > 0.0) {
+#ifdef FC_THICKNESS_ONLY
+        float share = min(chord * particle_above_floor / max_chord, 1.0);
+#else
         float share = min(thickness_above_floor(pixel, depth, chord) / max_chord, 1.0);
+#endif
         imageAtomicAdd(thickness_sum, p, uint(share * units_per_chord + 0.5));
     }
 #endif
@@ -238,6 +251,8 @@ void main()
     ivec2 hi = min(ivec2(floor(last)), ivec2(viewport) - 1);
 #ifdef FC_THICKNESS_FOOTPRINT
     begin_footprint(first, last, centre, reach);
+#elif defined(FC_THICKNESS_ONLY)
+    particle_above_floor = volume_above_floor(centre, reach);
 #endif
 #ifdef FC_DEPTH_ONLY
     if (walked_in_this_phase(centre, depth, reach, lo, hi))

@@ -36,9 +36,9 @@ float thickness_above_floor(vec2 pixel, float depth, float chord)
 // volume, so this is the clipped chords' share in total.
 float volume_above_floor(vec3 centre, float radius)
 {
-    float height = dot(floor_plane.xyz, centre) + floor_plane.w;
     if (floor_plane.xyz == vec3(0.0))   // no floor: all above, or (w <= 0) all below as thickness_above_floor
         return floor_plane.w > 0.0 ? 1.0 : 0.0;
+    float height = (dot(floor_plane.xyz, centre) + floor_plane.w) / length(floor_plane.xyz);
     float t = clamp(height / radius, -1.0, 1.0);
     return (1.0 + t) * (1.0 + t) * (2.0 - t) * 0.25;
 }

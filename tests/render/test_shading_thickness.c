@@ -2,8 +2,9 @@
  * stacked spheres add up to k diameters at full and half resolution, and to
  * the analytic value at the sampled texels at ¼; the Gaussian blur conserves the total and
  * lowers the peak; the floor cuts the chords off exactly where the analytic
- * ray leaves the half-space above it, in the thickness pass and in both
- * surface splats. Run with "fragment" and "compute" (depth_pass.h). */
+ * ray leaves the half-space above it in both surface splats, and in the
+ * compute splat of the thickness alone takes the share of the sphere's
+ * volume above it. Run with "fragment" and "compute" (depth_pass.h). */
 #include <math.h>
 #include <stdlib.h>
 
@@ -254,6 +255,32 @@ static void check_clipped_chords(const fc_render_target *result, const fc_camera
     fc_image_free(&img);
 }
 
+/* The thickness of `result` (one sphere of RADIUS at the origin) summed
+ * over the image against the full analytic chords times the share of the
+ * sphere's volume above `view_plane` (a cap of height r + h for a centre
+ * at height h): the compute splat of the thickness alone takes the floor
+ * per particle (surface_splat.comp.glsl). */
+static void check_floor_share(const fc_render_target *result, const fc_camera *cam, const double view_plane[4])
+{
+    fc_image img = {0};
+    fc_error err = {0};
+    CHECK_CODE(read_target(result, 1, &img, &err), FC_OK);
+    const double centre[3] = {0.0, 0.0, -DISTANCE};   /* in view space */
+    double normal = sqrt(view_plane[0] * view_plane[0] + view_plane[1] * view_plane[1] + view_plane[2] * view_plane[2]);
+    double height = (view_plane[0] * centre[0] + view_plane[1] * centre[1] + view_plane[2] * centre[2] +
+                     view_plane[3]) / normal;
+    double t = height / RADIUS, share = (1.0 + t) * (1.0 + t) * (2.0 - t) / 4.0;
+    double full = 0.0;
+    for (uint32_t row = 0; row < SIZE; row++)
+        for (uint32_t x = 0; x < SIZE; x++)
+            full += analytic_clipped_chord(cam, (const double[3]){0, 0, 0}, RADIUS, (const double[4]){0, 0, 0, 1}, x,
+                                           row);
+    CHECK_MSG(share > 0.6 && share < 0.9, "the floor leaves %g of the sphere", share);
+    CHECK_MSG(fabs(image_sum(&img) / (share * full) - 1.0) < 1e-3, "thickness %g, the floor's share of %g: %g",
+              image_sum(&img), full, share * full);
+    fc_image_free(&img);
+}
+
 /* The passes themselves, with a floor through the lower part of the sphere
  * (the built-in floor always lies below the particles): the thickness pass,
  * and the surface splat of the depth pass with `splat`. */
@@ -282,7 +309,10 @@ static void test_floor_cuts_chords(fc_splat_method splat)
     check_clipped_chords(&depth.thickness, &cam, view_plane);
     /* The thickness alone, as the thickness pass has it splatted at reduced scales. */
     CHECK_CODE(fc_depth_pass_run_thickness(&depth, &particles, &view, (float)RADIUS, plane, &err), FC_OK);
-    check_clipped_chords(&depth.thickness, &cam, view_plane);
+    if (depth.last_used == FC_SPLAT_COMPUTE)
+        check_floor_share(&depth.thickness, &cam, view_plane);
+    else
+        check_clipped_chords(&depth.thickness, &cam, view_plane);
     /* At full resolution and without a blur the thickness pass hands on the depth pass's splat. */
     fc_thickness_params params = {.radius = (float)RADIUS, .scale = 1.0f, .floor_plane = plane, .depth = &depth};
     const fc_render_target *result = NULL;
