@@ -28,22 +28,25 @@ enum {
 };
 /* The culling's steps in the splat, as surface_splat.comp.glsl's CULL_*. */
 enum { CULL_NONE = 0, CULL_NEAR = 1, CULL_REST = 2 };
-/* ... and in surface_resolve.comp.glsl. */
-enum { LOC_CHORD_PER_UNIT = 0, LOC_SOURCE_SIZE = 40 };
+/* ... and in surface_resolve.comp.glsl and fill_candidates.comp.glsl. */
+enum { LOC_CHORD_PER_UNIT = 0, LOC_SOURCE_SIZE = 40, LOC_REACH_TILES = 41 };
 enum {
     IMAGE_NEAREST_DEPTH = 0,
     IMAGE_THICKNESS_SUM = 1,
     IMAGE_DEPTH_OUT = 2,
     IMAGE_THICKNESS_OUT = 3,
     IMAGE_FRONT_TILES = 4,
-    IMAGE_FAR_TILES = 5
+    IMAGE_FAR_TILES = 5,
+    IMAGE_OCCUPIED_TILES = 6,
+    IMAGE_FILL_TILES = 7
 };
 enum { UNIT_POSITIONS = 0, UNIT_RADIUS_RATIOS = 1 };
 /* Storage buffer binding of the ellipsoids in ellipsoid_shape.comp.glsl. */
 enum { BIND_ELLIPSOIDS = 5 };
-/* local_size of the shaders: the splat's, the resolve's and splat_tiles.comp.glsl's. */
+/* local_size of the shaders: the splat's, the resolve's and the tiles' (splat_tiles.comp.glsl, fill_*.comp.glsl). */
 enum { SPLAT_GROUP = 64, RESOLVE_TILE = 8 };
-/* The culling's tiles, pixels on a side (TILE_PX in cull_tiles.glsl). */
+/* The culling's and the pinhole fill's tiles, pixels on a side (TILE_PX in
+ * cull_tiles.glsl and fill_*.comp.glsl, 4 in surface_resolve.comp.glsl). */
 #define CULL_TILE_PX 4u
 /* A particle counts as the fluid's front (walked before the culling) when its
  * centre lies within two bounding radii and this many tiles' extent (at its
@@ -103,6 +106,10 @@ static const char *const WALKS[FC_SPLAT_WALKS] = {"splat_walk_rows.glsl", "splat
 static const char *const OUTPUT_DEFINES[FC_SPLAT_OUTPUTS] = {
     NULL, "#define FC_THICKNESS_ONLY 1\n", "#define FC_DEPTH_ONLY 1\n",
     "#define FC_DEPTH_ONLY 1\n#define FC_FUSED_THICKNESS 1\n"};
+/* ... and of the resolves that run the pinhole fill's walks only in marked
+ * tiles (FC_FILL_TILES in surface_resolve.comp.glsl), for the outputs with depth. */
+static const char *const MARKED_DEFINES[FC_SPLAT_OUTPUTS] = {
+    "#define FC_FILL_TILES 1\n", NULL, "#define FC_DEPTH_ONLY 1\n#define FC_FILL_TILES 1\n", NULL};
 
 /* A program of the particles' shape, spheres or ellipsoids (sphere_shape.comp.glsl,
  * ellipsoid_shape.comp.glsl), with its libraries and then the files `tail`. */
@@ -162,17 +169,25 @@ fc_code fc_compute_splat_create(const char *shader_dir, fc_compute_splat *s, fc_
             code = build_splats(shader_dir, (fc_splat_output)o, true, s->ellipsoid_program[o], err);
         if (code == FC_OK)
             code = fc_program_build_defines(shader_dir, OUTPUT_DEFINES[o], resolve, 2, &s->resolve_program[o], err);
+        if (code == FC_OK && MARKED_DEFINES[o])
+            code = fc_program_build_defines(shader_dir, MARKED_DEFINES[o], resolve, 2, &s->marked_resolve_program[o],
+                                            err);
     }
     const char *tiles[] = {"splat_tiles.comp.glsl"}, *front[] = {"splat_front.comp.glsl"};
+    const char *occupancy[] = {"fill_occupancy.comp.glsl"}, *candidates[] = {"fill_candidates.comp.glsl"};
     if (code == FC_OK)
         code = fc_program_build(shader_dir, tiles, 1, &s->tiles_program, err);
+    if (code == FC_OK)
+        code = fc_program_build(shader_dir, occupancy, 1, &s->occupancy_program, err);
+    if (code == FC_OK)
+        code = fc_program_build(shader_dir, candidates, 1, &s->candidates_program, err);
     if (code == FC_OK)
         code = build_shaped(shader_dir, NULL, false, front, 1, &s->front_program, err);
     if (code == FC_OK)
         code = build_shaped(shader_dir, NULL, true, front, 1, &s->ellipsoid_front_program, err);
     if (code != FC_OK)
         return code;
-    s->cull = s->fuse = true;
+    s->cull = s->fuse = s->fill_candidates = true;
     glCreateTextures(GL_TEXTURE_BUFFER, 1, &s->positions);
     glCreateTextures(GL_TEXTURE_BUFFER, 1, &s->ratios);
     GLint max_texels = 0, alignment = 1;
@@ -188,7 +203,9 @@ static void release_images(fc_compute_splat *s)
     glDeleteTextures(1, &s->thickness_sum);
     glDeleteTextures(1, &s->front_tiles);
     glDeleteTextures(1, &s->far_tiles);
-    s->nearest_depth = s->thickness_sum = s->front_tiles = s->far_tiles = 0;
+    glDeleteTextures(1, &s->occupied_tiles);
+    glDeleteTextures(1, &s->fill_tiles);
+    s->nearest_depth = s->thickness_sum = s->front_tiles = s->far_tiles = s->occupied_tiles = s->fill_tiles = 0;
     s->width = s->height = 0;
 }
 
@@ -200,8 +217,11 @@ void fc_compute_splat_destroy(fc_compute_splat *s)
             glDeleteProgram(s->ellipsoid_program[o][w]);
         }
         glDeleteProgram(s->resolve_program[o]);
+        glDeleteProgram(s->marked_resolve_program[o]);
     }
     glDeleteProgram(s->tiles_program);
+    glDeleteProgram(s->occupancy_program);
+    glDeleteProgram(s->candidates_program);
     glDeleteProgram(s->front_program);
     glDeleteProgram(s->ellipsoid_front_program);
     glDeleteTextures(1, &s->positions);
@@ -232,6 +252,10 @@ static fc_code reserve(fc_compute_splat *s, uint32_t width, uint32_t height, fc_
         code = fc_gl_texture_create(GL_R32UI, tiles_x, tiles_y, false, &s->front_tiles, err);
     if (code == FC_OK)
         code = fc_gl_texture_create(GL_R32UI, tiles_x, tiles_y, false, &s->far_tiles, err);
+    if (code == FC_OK)
+        code = fc_gl_texture_create(GL_R8UI, tiles_x, tiles_y, false, &s->occupied_tiles, err);
+    if (code == FC_OK)
+        code = fc_gl_texture_create(GL_R8UI, tiles_x, tiles_y, false, &s->fill_tiles, err);
     if (code != FC_OK) {
         release_images(s);
         return code;
@@ -397,16 +421,60 @@ static void splat(fc_compute_splat *s, fc_splat_output output, const fc_particle
     glBindTextureUnit(UNIT_RADIUS_RATIOS, 0);
 }
 
-static void resolve(const fc_compute_splat *s, fc_splat_output output, const fc_view *view, float longest_chord,
+/* Walks shorter than this cost less than finding where none is needed (the
+ * two passes of find_fill_tiles, about a texel load per pixel): the depth
+ * pass of the benchmark's 64k particles at 1920x1080 (walks of 6 texels)
+ * takes 15% fewer instructions marked, 1M at 1920x1080 (3 texels) 1.5%
+ * fewer, 1M at 1024x768 (2 texels) 0.4% more (bench/RESULTS.md). */
+#define MIN_MARKED_STEPS 3
+
+/* Marks the tiles where the marked resolve runs the pinhole fill's walks of
+ * `steps` texels: fill_occupancy.comp.glsl, then fill_candidates.comp.glsl. */
+static void find_fill_tiles(const fc_compute_splat *s, const fc_view *view, int steps)
+{
+    GLuint tiles_x = tiles_across(view->width), tiles_y = tiles_across(view->height);
+    GLuint groups_x = (tiles_x + RESOLVE_TILE - 1) / RESOLVE_TILE, groups_y = (tiles_y + RESOLVE_TILE - 1) / RESOLVE_TILE;
+    glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
+    glProgramUniform2i(s->occupancy_program, LOC_SOURCE_SIZE, (GLint)view->width, (GLint)view->height);
+    glBindImageTexture(IMAGE_NEAREST_DEPTH, s->nearest_depth, 0, GL_FALSE, 0, GL_READ_ONLY, GL_R32UI);
+    glBindImageTexture(IMAGE_OCCUPIED_TILES, s->occupied_tiles, 0, GL_FALSE, 0, GL_READ_WRITE, GL_R8UI);
+    glUseProgram(s->occupancy_program);
+    glDispatchCompute(groups_x, groups_y, 1);
+    glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
+    glProgramUniform2i(s->candidates_program, LOC_SOURCE_SIZE, (GLint)view->width, (GLint)view->height);
+    glProgramUniform1i(s->candidates_program, LOC_REACH_TILES, (steps + (int)CULL_TILE_PX - 1) / (int)CULL_TILE_PX);
+    glBindImageTexture(IMAGE_FILL_TILES, s->fill_tiles, 0, GL_FALSE, 0, GL_READ_WRITE, GL_R8UI);
+    glUseProgram(s->candidates_program);
+    glDispatchCompute(groups_x, groups_y, 1);
+}
+
+/* The resolve of `output` (with depth) with the pinhole fill's uniforms set:
+ * the marked one, after marking its tiles, where that pays (and tests do
+ * not compare without), else the one with the walks everywhere. */
+static GLuint prepare_fill(const fc_compute_splat *s, fc_splat_output output, const fc_view *view, float radius)
+{
+    fc_pinhole_fill_apply(s->marked_resolve_program[output], view, radius);
+    int steps = fc_pinhole_fill_apply(s->resolve_program[output], view, radius);
+    if (!s->fill_candidates || steps < MIN_MARKED_STEPS)
+        return s->resolve_program[output];
+    find_fill_tiles(s, view, steps);
+    return s->marked_resolve_program[output];
+}
+
+/* Through `program`, a resolve_program or marked_resolve_program. */
+static void resolve(const fc_compute_splat *s, GLuint program, const fc_view *view, float longest_chord,
                     bool with_thickness, double units, GLuint depth, GLuint thickness)
 {
     glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
-    GLuint program = s->resolve_program[output];
     float chord_per_unit = with_thickness ? (float)((double)longest_chord / units) : 0.0f;
     glProgramUniform1f(program, LOC_CHORD_PER_UNIT, chord_per_unit);
     glProgramUniform2i(program, LOC_SOURCE_SIZE, (GLint)view->width, (GLint)view->height);
     glBindImageTexture(IMAGE_DEPTH_OUT, depth, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_R32F);
     glBindImageTexture(IMAGE_THICKNESS_OUT, thickness, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_R32F);
+    /* Its inputs too: find_fill_tiles bound the depth read-only, and without particles no splat bound them. */
+    glBindImageTexture(IMAGE_NEAREST_DEPTH, s->nearest_depth, 0, GL_FALSE, 0, GL_READ_WRITE, GL_R32UI);
+    glBindImageTexture(IMAGE_THICKNESS_SUM, s->thickness_sum, 0, GL_FALSE, 0, GL_READ_WRITE, GL_R32UI);
+    glBindImageTexture(IMAGE_FILL_TILES, s->fill_tiles, 0, GL_FALSE, 0, GL_READ_ONLY, GL_R8UI);
     glUseProgram(program);
     glDispatchCompute((view->width + RESOLVE_TILE - 1) / RESOLVE_TILE,
                       (view->height + RESOLVE_TILE - 1) / RESOLVE_TILE, 1);
@@ -435,16 +503,16 @@ fc_code fc_compute_splat_run(fc_compute_splat *s, const fc_particle_buffer *part
     s->last_fused = false;
     if (particles->count > 0)
         splat(s, output, particles, view, NULL, radius, sprite, floor_plane, units);
-    if (depth)
-        fc_pinhole_fill_apply(s->resolve_program[output], view, radius);
-    resolve(s, output, view, max_chord(particles, radius), floor_plane != NULL, units, depth, thickness);
+    GLuint program = depth ? prepare_fill(s, output, view, radius) : s->resolve_program[output];
+    resolve(s, program, view, max_chord(particles, radius), floor_plane != NULL, units, depth, thickness);
     return fc_gl_check("compute surface splat", err);
 }
 
 void fc_compute_splat_tally(const fc_compute_splat *s, fc_gpu_memory *m)
 {
     uint64_t tiles = (uint64_t)tiles_across(s->width) * tiles_across(s->height);
-    m->render_target_bytes += fc_gl_texel_bytes(GL_R32UI) * (2ull * s->width * s->height + 2ull * tiles);
+    m->render_target_bytes += fc_gl_texel_bytes(GL_R32UI) * (2ull * s->width * s->height + 2ull * tiles) +
+                              fc_gl_texel_bytes(GL_R8UI) * 2ull * tiles;
     m->allocations += s->allocations;
 }
 
@@ -476,9 +544,9 @@ fc_code fc_compute_splat_run_fused(fc_compute_splat *s, const fc_particle_buffer
     if (particles->count > 0)
         splat(s, FC_SPLAT_DEPTH_AND_REDUCED_THICKNESS, particles, view, thickness_view, radius, sprite, floor_plane,
               units);
-    fc_pinhole_fill_apply(s->resolve_program[FC_SPLAT_DEPTH_ONLY], view, radius);
+    GLuint depth_resolve = prepare_fill(s, FC_SPLAT_DEPTH_ONLY, view, radius);
     float chord = max_chord(particles, radius);
-    resolve(s, FC_SPLAT_DEPTH_ONLY, view, chord, false, units, depth, 0);
-    resolve(s, FC_SPLAT_THICKNESS_ONLY, thickness_view, chord, true, units, 0, thickness);
+    resolve(s, depth_resolve, view, chord, false, units, depth, 0);
+    resolve(s, s->resolve_program[FC_SPLAT_THICKNESS_ONLY], thickness_view, chord, true, units, 0, thickness);
     return fc_gl_check("compute surface splat with the thickness", err);
 }

@@ -42,9 +42,12 @@ typedef struct fc_compute_splat {
     GLuint splat_program[FC_SPLAT_OUTPUTS][FC_SPLAT_WALKS];
     GLuint ellipsoid_program[FC_SPLAT_OUTPUTS][FC_SPLAT_WALKS];
     GLuint resolve_program[FC_SPLAT_OUTPUTS];
+    GLuint marked_resolve_program[FC_SPLAT_OUTPUTS];   /* outputs with depth: the fill's walks in marked tiles only */
     GLuint front_program;              /* splat_front.comp.glsl: the culling's front per tile, of spheres */
     GLuint ellipsoid_front_program;    /* ... and of ellipsoids */
     GLuint tiles_program;              /* splat_tiles.comp.glsl: the culling's farthest depth per tile */
+    GLuint occupancy_program;          /* fill_occupancy.comp.glsl: the tiles holding a splatted depth */
+    GLuint candidates_program;         /* fill_candidates.comp.glsl: the tiles where the pinhole fill may fill */
     GLuint positions;                  /* buffer texture (RGB32F) over the particle buffer, during a run */
     GLuint ratios;                     /* buffer texture (R32F) over the radius ratios, during a sized run */
     uint64_t particles_per_dispatch;   /* the most particles the buffer texture may show at once */
@@ -52,12 +55,16 @@ typedef struct fc_compute_splat {
     GLuint thickness_sum;     /* R32UI: thickness in fixed point */
     GLuint front_tiles;       /* R32UI per CULL_TILE_PX tile: bits of the nearest particle centre's depth */
     GLuint far_tiles;         /* R32UI per tile: bits of the farthest depth splatted at its pixels */
+    GLuint occupied_tiles;    /* R8UI per tile: 1 where a pixel holds a splatted depth */
+    GLuint fill_tiles;        /* R8UI per tile: 1 where the resolve runs the pinhole fill's walks */
     uint32_t width, height;   /* of the images, the largest image splatted so far; 0 before the first run */
     uint32_t allocations;     /* times the images were (re)allocated */
     fc_splat_walk last_walk;  /* of the last run with particles */
     bool cull;                /* depth alone culls hidden particles (true after create; tests compare without) */
     bool fuse;                /* fc_compute_splat_fuses may say yes (true after create; tests compare without) */
     bool last_fused;          /* the last run splatted the thickness with the depth (fc_compute_splat_run_fused) */
+    bool fill_candidates;     /* the pinhole fill's walks only in the tiles marked as needing them, where
+                                 that pays (true after create; tests compare with the walks everywhere) */
 } fc_compute_splat;
 
 fc_code fc_compute_splat_create(const char *shader_dir, fc_compute_splat *s, fc_error *err);
@@ -97,10 +104,10 @@ fc_code fc_compute_splat_run_fused(fc_compute_splat *s, const fc_particle_buffer
                                    const fc_view *thickness_view, float radius, fc_splat_sprite sprite,
                                    const float *floor_plane, GLuint depth, GLuint thickness, fc_error *err);
 
-/* Adds the two images' bytes and allocations to m's render targets. */
+/* Adds its images' bytes and allocations to m's render targets. */
 void fc_compute_splat_tally(const fc_compute_splat *s, fc_gpu_memory *m);
 
-/* Frees the two images; the next run allocates them at its size. */
+/* Frees its images; the next run allocates them at its size. */
 void fc_compute_splat_trim(fc_compute_splat *s);
 
 #endif

@@ -71,6 +71,8 @@ fc_code fc_gl_texture_create(GLenum internal_format, uint32_t width, uint32_t he
 uint32_t fc_gl_texel_bytes(GLenum internal_format)
 {
     switch (internal_format) {
+    case GL_R8UI:
+        return 1;
     case GL_R32F:
     case GL_R32UI:
     case GL_SRGB8_ALPHA8:

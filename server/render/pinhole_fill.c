@@ -30,11 +30,13 @@ static int walk_steps(const fc_view *view, float reach_depth)
     return bound >= MAX_STEPS ? MAX_STEPS : (int)floor(bound + 1e-3);
 }
 
-void fc_pinhole_fill_apply(GLuint program, const fc_view *view, float radius)
+int fc_pinhole_fill_apply(GLuint program, const fc_view *view, float radius)
 {
     /* A radius r at depth z spans r fy h / (2 z) pixels. */
     float reach_depth = REACH_RADII * radius * view->fy * 0.5f * (float)view->height;
     glProgramUniform1f(program, LOC_FILL_REACH_DEPTH, reach_depth);
     glProgramUniform1f(program, LOC_FILL_MAX_STEP, STEP_RADII * radius);
-    glProgramUniform1i(program, LOC_FILL_STEPS, walk_steps(view, reach_depth));
+    int steps = walk_steps(view, reach_depth);
+    glProgramUniform1i(program, LOC_FILL_STEPS, steps);
+    return steps;
 }
