@@ -139,8 +139,9 @@ void walk_pixels(ivec2 lo, ivec2 hi, vec3 centre, float reach);
 // possible depth lies behind everything splatted over its whole box cannot
 // win a pixel, and is not walked. The result is the same minimum, bit for
 // bit; only the work changes.
-//  1. splat_front.comp.glsl: each particle's centre depth into its tile's
-//     minimum (front_tiles; tiles: cull_tiles.glsl).
+//  1. splat_front.comp.glsl: a sample's centre depths (every third
+//     particle's) into their tile's minimum (front_tiles; tiles:
+//     cull_tiles.glsl).
 //  2. CULL_NEAR: the particles near their tile's front (within two bounding
 //     radii and a slack for the tile's extent) are walked: the fluid's front.
 //  3. CULL_REST: the others, after far_tiles took the farthest depth of
