@@ -7,9 +7,9 @@
 // them), not background: it gets the depth interpolated across it.
 // Requiring all four directions keeps the gaps between separate bodies,
 // which are open along their length, and every silhouette untouched.
-// Linked into depth_resolve.frag.glsl and surface_resolve.comp.glsl, which
-// define splat_depth_at. The compute resolve calls filled_depth only in the
-// tiles fill_candidates.comp.glsl marks, which relies on this: no pixel is
+// Linked into depth_resolve.frag.glsl and pinhole_fill.comp.glsl, which
+// define splat_depth_at. The compute splat calls filled_depth only in the
+// tiles fill_candidates.comp.glsl lists, which relies on this: no pixel is
 // filled unless the walks along +x, -x, +y and -y all find fluid within
 // fill_steps texels; a change here must keep that, or change the marking.
 

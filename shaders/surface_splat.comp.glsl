@@ -13,7 +13,7 @@
 // imageAtomicAdd in fixed point (llvmpipe's GL has no float image atomics).
 // Atomics on storage buffers instead of images measured no faster on
 // llvmpipe (bench/RESULTS.md, fifth round).
-// surface_resolve.comp.glsl turns both into the fragment splat's images.
+// depth_resolve.frag.glsl and thickness_resolve.frag.glsl turn both into the fragment splat's images.
 // Faster on llvmpipe than point sprites up to at least 64 px, where their
 // set-up is serial (bench/RESULTS.md, "The splat and the smoothing on
 // llvmpipe"); depth_pass.c chooses.

@@ -29,8 +29,9 @@ enum {
 };
 /* The culling's steps in the splat, as surface_splat.comp.glsl's CULL_*. */
 enum { CULL_NONE = 0, CULL_NEAR = 1, CULL_REST = 2 };
-/* ... and in surface_resolve.comp.glsl and fill_candidates.comp.glsl. */
-enum { LOC_CHORD_PER_UNIT = 0, LOC_SOURCE_SIZE = 40, LOC_REACH_TILES = 41 };
+/* ... in the resolves (thickness_resolve.frag.glsl, depth_resolve.frag.glsl) and the
+ * pinhole fill's compute shaders (fill_*.comp.glsl, pinhole_fill.comp.glsl). */
+enum { LOC_CHORD_PER_UNIT = 0, LOC_SOURCE_SIZE = 40, LOC_REACH_TILES = 41, LOC_RESOLVE_SOURCE_SIZE = 52 };
 enum {
     IMAGE_NEAREST_DEPTH = 0,
     IMAGE_THICKNESS_SUM = 1,
@@ -38,16 +39,18 @@ enum {
     IMAGE_THICKNESS_OUT = 3,
     IMAGE_FRONT_TILES = 4,
     IMAGE_FAR_TILES = 5,
-    IMAGE_OCCUPIED_TILES = 6,
-    IMAGE_FILL_TILES = 7
+    IMAGE_OCCUPIED_TILES = 6
 };
-enum { UNIT_POSITIONS = 0, UNIT_RADIUS_RATIOS = 1 };
-/* Storage buffer binding of the ellipsoids in ellipsoid_shape.comp.glsl. */
-enum { BIND_ELLIPSOIDS = 5 };
-/* local_size of the shaders: the splat's, the resolve's and the tiles' (splat_tiles.comp.glsl, fill_*.comp.glsl). */
+enum { UNIT_POSITIONS = 0, UNIT_RADIUS_RATIOS = 1, UNIT_RESOLVED = 0 };
+/* Storage buffer bindings: the ellipsoids in ellipsoid_shape.comp.glsl, the
+ * fill's tiles in fill_candidates.comp.glsl and pinhole_fill.comp.glsl. */
+enum { BIND_ELLIPSOIDS = 5, BIND_FILL_LIST = 0 };
+/* The fill list's header: glDispatchComputeIndirect's three workgroup counts. */
+enum { FILL_LIST_HEADER = 3 };
+/* local_size of the shaders: the splat's, and the tiles' (splat_tiles.comp.glsl, fill_*.comp.glsl). */
 enum { SPLAT_GROUP = 64, RESOLVE_TILE = 8 };
 /* The culling's and the pinhole fill's tiles, pixels on a side (TILE_PX in
- * cull_tiles.glsl and fill_*.comp.glsl, 4 in surface_resolve.comp.glsl). */
+ * cull_tiles.glsl and fill_*.comp.glsl, local_size in pinhole_fill.comp.glsl). */
 #define CULL_TILE_PX 4u
 /* A particle counts as the fluid's front (walked before the culling) when its
  * centre lies within two bounding radii and this many tiles' extent (at its
@@ -110,14 +113,10 @@ static uint64_t dispatch_limit(GLint max_texels, GLint alignment)
 static const char *const WALKS[FC_SPLAT_WALKS] = {"splat_walk_rows.glsl", "splat_walk_tiny.glsl",
                                                    "splat_walk_small.glsl"};
 
-/* The preprocessor lines of each output (FC_THICKNESS_ONLY in surface_splat.comp.glsl, surface_resolve.comp.glsl). */
+/* The preprocessor lines of each output (FC_THICKNESS_ONLY in surface_splat.comp.glsl). */
 static const char *const OUTPUT_DEFINES[FC_SPLAT_OUTPUTS] = {
     NULL, "#define FC_THICKNESS_ONLY 1\n", "#define FC_DEPTH_ONLY 1\n",
     "#define FC_DEPTH_ONLY 1\n#define FC_FUSED_THICKNESS 1\n"};
-/* ... and of the resolves that run the pinhole fill's walks only in marked
- * tiles (FC_FILL_TILES in surface_resolve.comp.glsl), for the outputs with depth. */
-static const char *const MARKED_DEFINES[FC_SPLAT_OUTPUTS] = {
-    "#define FC_FILL_TILES 1\n", NULL, "#define FC_DEPTH_ONLY 1\n#define FC_FILL_TILES 1\n", NULL};
 
 /* A program of the particles' shape, spheres or ellipsoids (sphere_shape.comp.glsl,
  * ellipsoid_shape.comp.glsl), with its libraries and then the files `tail`. */
@@ -164,27 +163,44 @@ static fc_code build_splats(const char *shader_dir, fc_splat_output output, bool
     return FC_OK;
 }
 
+/* The resolves: full-screen draws into the caller's R32F textures (depth_resolve.frag.glsl's comment says why). */
+static fc_code build_resolves(const char *shader_dir, fc_compute_splat *s, fc_error *err)
+{
+    const char *depth[] = {"fullscreen.vert.glsl", "depth_resolve.frag.glsl"};
+    const char *filling[] = {"fullscreen.vert.glsl", "pinhole_fill.glsl", "depth_resolve.frag.glsl"};
+    const char *thickness[] = {"fullscreen.vert.glsl", "thickness_resolve.frag.glsl"};
+    fc_code code = fc_program_build_defines(shader_dir, "#define FC_SPLAT_BITS 1\n#define FC_FILL_LISTED 1\n", depth,
+                                            2, &s->depth_resolve_program, err);
+    if (code == FC_OK)
+        code = fc_program_build_defines(shader_dir, "#define FC_SPLAT_BITS 1\n", filling, 3,
+                                        &s->filling_resolve_program, err);
+    if (code == FC_OK)
+        code = fc_program_build(shader_dir, thickness, 2, &s->thickness_resolve_program, err);
+    if (code != FC_OK)
+        return code;
+    glCreateFramebuffers(1, &s->framebuffer);
+    glCreateVertexArrays(1, &s->empty_vertex_array);
+    return FC_OK;
+}
+
 fc_code fc_compute_splat_create(const char *shader_dir, fc_compute_splat *s, fc_error *err)
 {
     *s = (fc_compute_splat){0};
-    const char *resolve[] = {"pinhole_fill.glsl", "surface_resolve.comp.glsl"};
     fc_code code = FC_OK;
     for (int o = 0; o < FC_SPLAT_OUTPUTS && code == FC_OK; o++) {
         code = build_splats(shader_dir, (fc_splat_output)o, false, s->splat_program[o], err);
-        if (o == FC_SPLAT_DEPTH_AND_REDUCED_THICKNESS)   /* spheres only, resolved by the two outputs' resolves */
-            continue;
-        if (code == FC_OK)
+        if (code == FC_OK && o != FC_SPLAT_DEPTH_AND_REDUCED_THICKNESS)   /* spheres only */
             code = build_splats(shader_dir, (fc_splat_output)o, true, s->ellipsoid_program[o], err);
-        if (code == FC_OK)
-            code = fc_program_build_defines(shader_dir, OUTPUT_DEFINES[o], resolve, 2, &s->resolve_program[o], err);
-        if (code == FC_OK && MARKED_DEFINES[o])
-            code = fc_program_build_defines(shader_dir, MARKED_DEFINES[o], resolve, 2, &s->marked_resolve_program[o],
-                                            err);
     }
+    if (code == FC_OK)
+        code = build_resolves(shader_dir, s, err);
     const char *tiles[] = {"splat_tiles.comp.glsl"}, *front[] = {"splat_front.comp.glsl"};
     const char *occupancy[] = {"fill_occupancy.comp.glsl"}, *candidates[] = {"fill_candidates.comp.glsl"};
+    const char *fill[] = {"pinhole_fill.glsl", "pinhole_fill.comp.glsl"};
     if (code == FC_OK)
         code = fc_program_build(shader_dir, tiles, 1, &s->tiles_program, err);
+    if (code == FC_OK)
+        code = fc_program_build(shader_dir, fill, 2, &s->fill_program, err);
     if (code == FC_OK)
         code = fc_program_build(shader_dir, occupancy, 1, &s->occupancy_program, err);
     if (code == FC_OK)
@@ -212,8 +228,8 @@ static void release_images(fc_compute_splat *s)
     glDeleteTextures(1, &s->front_tiles);
     glDeleteTextures(1, &s->far_tiles);
     glDeleteTextures(1, &s->occupied_tiles);
-    glDeleteTextures(1, &s->fill_tiles);
-    s->nearest_depth = s->thickness_sum = s->front_tiles = s->far_tiles = s->occupied_tiles = s->fill_tiles = 0;
+    glDeleteBuffers(1, &s->fill_list);
+    s->nearest_depth = s->thickness_sum = s->front_tiles = s->far_tiles = s->occupied_tiles = s->fill_list = 0;
     s->width = s->height = 0;
 }
 
@@ -224,9 +240,13 @@ void fc_compute_splat_destroy(fc_compute_splat *s)
             glDeleteProgram(s->splat_program[o][w]);
             glDeleteProgram(s->ellipsoid_program[o][w]);
         }
-        glDeleteProgram(s->resolve_program[o]);
-        glDeleteProgram(s->marked_resolve_program[o]);
     }
+    glDeleteProgram(s->depth_resolve_program);
+    glDeleteProgram(s->filling_resolve_program);
+    glDeleteProgram(s->thickness_resolve_program);
+    glDeleteProgram(s->fill_program);
+    glDeleteFramebuffers(1, &s->framebuffer);
+    glDeleteVertexArrays(1, &s->empty_vertex_array);
     glDeleteProgram(s->tiles_program);
     glDeleteProgram(s->occupancy_program);
     glDeleteProgram(s->candidates_program);
@@ -241,6 +261,12 @@ void fc_compute_splat_destroy(fc_compute_splat *s)
 static uint32_t tiles_across(uint32_t pixels)
 {
     return (pixels + CULL_TILE_PX - 1) / CULL_TILE_PX;
+}
+
+/* The fill list's bytes for images of width x height. */
+static GLsizeiptr fill_list_bytes(uint32_t width, uint32_t height)
+{
+    return (GLsizeiptr)(sizeof(GLuint) * (FILL_LIST_HEADER + (uint64_t)tiles_across(width) * tiles_across(height)));
 }
 
 /* Grows the images (per axis, never shrinking) until width x height fits, as render targets do. */
@@ -262,8 +288,11 @@ static fc_code reserve(fc_compute_splat *s, uint32_t width, uint32_t height, fc_
         code = fc_gl_texture_create(GL_R32UI, tiles_x, tiles_y, false, &s->far_tiles, err);
     if (code == FC_OK)
         code = fc_gl_texture_create(GL_R8UI, tiles_x, tiles_y, false, &s->occupied_tiles, err);
-    if (code == FC_OK)
-        code = fc_gl_texture_create(GL_R8UI, tiles_x, tiles_y, false, &s->fill_tiles, err);
+    if (code == FC_OK) {
+        glCreateBuffers(1, &s->fill_list);
+        glNamedBufferStorage(s->fill_list, fill_list_bytes(width, height), NULL, GL_DYNAMIC_STORAGE_BIT);
+        code = fc_gl_check("creating the pinhole fill's tile list", err);
+    }
     if (code != FC_OK) {
         release_images(s);
         return code;
@@ -441,19 +470,16 @@ static void splat(fc_compute_splat *s, fc_splat_output output, const fc_particle
     glBindTextureUnit(UNIT_RADIUS_RATIOS, 0);
 }
 
-/* Walks shorter than this cost less than finding where none is needed (the
- * two passes of find_fill_tiles, about a texel load per pixel): the depth
- * pass of the benchmark's 64k particles at 1920x1080 (walks of 6 texels)
- * takes 15% fewer instructions marked, 1M at 1920x1080 (3 texels) 1.5%
- * fewer, 1M at 1024x768 (2 texels) 0.4% more (bench/RESULTS.md). */
-#define MIN_MARKED_STEPS 3
-
-/* Marks the tiles where the marked resolve runs the pinhole fill's walks of
- * `steps` texels: fill_occupancy.comp.glsl, then fill_candidates.comp.glsl. */
-static void find_fill_tiles(const fc_compute_splat *s, const fc_view *view, int steps)
+/* Lists the tiles where the pinhole fill's walks of `steps` texels may fill
+ * a pixel: fill_occupancy.comp.glsl marks the tiles holding a splatted
+ * depth, fill_candidates.comp.glsl lists those with one on all four sides
+ * within reach. */
+static void list_fill_tiles(const fc_compute_splat *s, const fc_view *view, int steps)
 {
     GLuint tiles_x = tiles_across(view->width), tiles_y = tiles_across(view->height);
     GLuint groups_x = (tiles_x + RESOLVE_TILE - 1) / RESOLVE_TILE, groups_y = (tiles_y + RESOLVE_TILE - 1) / RESOLVE_TILE;
+    const GLuint none_yet[FILL_LIST_HEADER] = {0, 1, 1};
+    glNamedBufferSubData(s->fill_list, 0, sizeof none_yet, none_yet);
     glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
     glProgramUniform2i(s->occupancy_program, LOC_SOURCE_SIZE, (GLint)view->width, (GLint)view->height);
     glBindImageTexture(IMAGE_NEAREST_DEPTH, s->nearest_depth, 0, GL_FALSE, 0, GL_READ_ONLY, GL_R32UI);
@@ -463,42 +489,60 @@ static void find_fill_tiles(const fc_compute_splat *s, const fc_view *view, int 
     glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
     glProgramUniform2i(s->candidates_program, LOC_SOURCE_SIZE, (GLint)view->width, (GLint)view->height);
     glProgramUniform1i(s->candidates_program, LOC_REACH_TILES, (steps + (int)CULL_TILE_PX - 1) / (int)CULL_TILE_PX);
-    glBindImageTexture(IMAGE_FILL_TILES, s->fill_tiles, 0, GL_FALSE, 0, GL_READ_WRITE, GL_R8UI);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, BIND_FILL_LIST, s->fill_list);
     glUseProgram(s->candidates_program);
     glDispatchCompute(groups_x, groups_y, 1);
+    glMemoryBarrier(GL_COMMAND_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT);
 }
 
-/* The resolve of `output` (with depth) with the pinhole fill's uniforms set:
- * the marked one, after marking its tiles, where that pays (and tests do
- * not compare without), else the one with the walks everywhere. */
-static GLuint prepare_fill(const fc_compute_splat *s, fc_splat_output output, const fc_view *view, float radius)
+/* A full-screen draw of `program` into `target` (R32F) over the view, reading `source` (R32UI). */
+static void resolve_draw(const fc_compute_splat *s, GLuint program, const fc_view *view, GLuint source, GLuint target)
 {
-    fc_pinhole_fill_apply(s->marked_resolve_program[output], view, radius);
-    int steps = fc_pinhole_fill_apply(s->resolve_program[output], view, radius);
-    if (!s->fill_candidates || steps < MIN_MARKED_STEPS)
-        return s->resolve_program[output];
-    find_fill_tiles(s, view, steps);
-    return s->marked_resolve_program[output];
-}
-
-/* Through `program`, a resolve_program or marked_resolve_program. */
-static void resolve(const fc_compute_splat *s, GLuint program, const fc_view *view, float longest_chord,
-                    bool with_thickness, double units, GLuint depth, GLuint thickness)
-{
-    glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
-    float chord_per_unit = with_thickness ? (float)((double)longest_chord / units) : 0.0f;
-    glProgramUniform1f(program, LOC_CHORD_PER_UNIT, chord_per_unit);
-    glProgramUniform2i(program, LOC_SOURCE_SIZE, (GLint)view->width, (GLint)view->height);
-    glBindImageTexture(IMAGE_DEPTH_OUT, depth, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_R32F);
-    glBindImageTexture(IMAGE_THICKNESS_OUT, thickness, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_R32F);
-    /* Its inputs too: find_fill_tiles bound the depth read-only, and without particles no splat bound them. */
-    glBindImageTexture(IMAGE_NEAREST_DEPTH, s->nearest_depth, 0, GL_FALSE, 0, GL_READ_WRITE, GL_R32UI);
-    glBindImageTexture(IMAGE_THICKNESS_SUM, s->thickness_sum, 0, GL_FALSE, 0, GL_READ_WRITE, GL_R32UI);
-    glBindImageTexture(IMAGE_FILL_TILES, s->fill_tiles, 0, GL_FALSE, 0, GL_READ_ONLY, GL_R8UI);
+    glNamedFramebufferTexture(s->framebuffer, GL_COLOR_ATTACHMENT0, target, 0);
+    glBindFramebuffer(GL_FRAMEBUFFER, s->framebuffer);
+    glViewport(0, 0, (GLsizei)view->width, (GLsizei)view->height);
     glUseProgram(program);
-    glDispatchCompute((view->width + RESOLVE_TILE - 1) / RESOLVE_TILE,
-                      (view->height + RESOLVE_TILE - 1) / RESOLVE_TILE, 1);
-    /* Later passes sample the two images as textures, the readback reads them through a framebuffer. */
+    glBindTextureUnit(UNIT_RESOLVED, source);
+    fc_gl_draw_fullscreen(s->empty_vertex_array);
+    glBindTextureUnit(UNIT_RESOLVED, 0);
+}
+
+/* The splatted depth into `depth`, pinholes filled (pinhole_fill.glsl):
+ * the walks on the listed tiles only (s->fill_candidates), else at every
+ * empty pixel. */
+static void resolve_depth(const fc_compute_splat *s, const fc_view *view, float radius, GLuint depth)
+{
+    glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
+    int steps = fc_pinhole_fill_apply(s->fill_program, view, radius);
+    fc_pinhole_fill_apply(s->filling_resolve_program, view, radius);
+    GLuint program = s->fill_candidates ? s->depth_resolve_program : s->filling_resolve_program;
+    glProgramUniform2i(program, LOC_RESOLVE_SOURCE_SIZE, (GLint)view->width, (GLint)view->height);
+    if (s->fill_candidates && steps > 0)
+        list_fill_tiles(s, view, steps);
+    resolve_draw(s, program, view, s->nearest_depth, depth);
+    if (s->fill_candidates && steps > 0) {
+        /* The draw's pixels before the fill's stores over some of them. */
+        glMemoryBarrier(GL_FRAMEBUFFER_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
+        glProgramUniform2i(s->fill_program, LOC_SOURCE_SIZE, (GLint)view->width, (GLint)view->height);
+        glBindImageTexture(IMAGE_NEAREST_DEPTH, s->nearest_depth, 0, GL_FALSE, 0, GL_READ_ONLY, GL_R32UI);
+        glBindImageTexture(IMAGE_DEPTH_OUT, depth, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_R32F);
+        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, BIND_FILL_LIST, s->fill_list);
+        glUseProgram(s->fill_program);
+        glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, s->fill_list);
+        glDispatchComputeIndirect(0);
+        glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, 0);
+    }
+    /* Later passes sample it as a texture, the readback reads it through a framebuffer. */
+    glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_FRAMEBUFFER_BARRIER_BIT);
+}
+
+/* The splatted thickness, `units` per chord of `longest_chord`, into `thickness` in world units. */
+static void resolve_thickness(const fc_compute_splat *s, const fc_view *view, float longest_chord, double units,
+                              GLuint thickness)
+{
+    glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
+    glProgramUniform1f(s->thickness_resolve_program, LOC_CHORD_PER_UNIT, (float)((double)longest_chord / units));
+    resolve_draw(s, s->thickness_resolve_program, view, s->thickness_sum, thickness);
     glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_FRAMEBUFFER_BARRIER_BIT);
 }
 
@@ -523,8 +567,10 @@ fc_code fc_compute_splat_run(fc_compute_splat *s, const fc_particle_buffer *part
     s->last_fused = false;
     if (particles->count > 0)
         splat(s, output, particles, view, NULL, radius, sprite, floor_plane, units);
-    GLuint program = depth ? prepare_fill(s, output, view, radius) : s->resolve_program[output];
-    resolve(s, program, view, max_chord(particles, radius), floor_plane != NULL, units, depth, thickness);
+    if (depth)
+        resolve_depth(s, view, radius, depth);
+    if (floor_plane)
+        resolve_thickness(s, view, max_chord(particles, radius), units, thickness);
     return fc_gl_check("compute surface splat", err);
 }
 
@@ -532,7 +578,8 @@ void fc_compute_splat_tally(const fc_compute_splat *s, fc_gpu_memory *m)
 {
     uint64_t tiles = (uint64_t)tiles_across(s->width) * tiles_across(s->height);
     m->render_target_bytes += fc_gl_texel_bytes(GL_R32UI) * (2ull * s->width * s->height + 2ull * tiles) +
-                              fc_gl_texel_bytes(GL_R8UI) * 2ull * tiles;
+                              fc_gl_texel_bytes(GL_R8UI) * tiles +
+                              (s->fill_list ? (uint64_t)fill_list_bytes(s->width, s->height) : 0);
     m->allocations += s->allocations;
 }
 
@@ -564,9 +611,7 @@ fc_code fc_compute_splat_run_fused(fc_compute_splat *s, const fc_particle_buffer
     if (particles->count > 0)
         splat(s, FC_SPLAT_DEPTH_AND_REDUCED_THICKNESS, particles, view, thickness_view, radius, sprite, floor_plane,
               units);
-    GLuint depth_resolve = prepare_fill(s, FC_SPLAT_DEPTH_ONLY, view, radius);
-    float chord = max_chord(particles, radius);
-    resolve(s, depth_resolve, view, chord, false, units, depth, 0);
-    resolve(s, s->resolve_program[FC_SPLAT_THICKNESS_ONLY], thickness_view, chord, true, units, 0, thickness);
+    resolve_depth(s, view, radius, depth);
+    resolve_thickness(s, thickness_view, max_chord(particles, radius), units, thickness);
     return fc_gl_check("compute surface splat with the thickness", err);
 }

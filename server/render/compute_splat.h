@@ -41,13 +41,17 @@ typedef struct fc_compute_splat {
      * (none for FC_SPLAT_DEPTH_AND_REDUCED_THICKNESS, which resolves with the two outputs' resolves). */
     GLuint splat_program[FC_SPLAT_OUTPUTS][FC_SPLAT_WALKS];
     GLuint ellipsoid_program[FC_SPLAT_OUTPUTS][FC_SPLAT_WALKS];
-    GLuint resolve_program[FC_SPLAT_OUTPUTS];
-    GLuint marked_resolve_program[FC_SPLAT_OUTPUTS];   /* outputs with depth: the fill's walks in marked tiles only */
+    GLuint depth_resolve_program;       /* depth_resolve.frag.glsl on the splat's bits, the fill left to fill_program */
+    GLuint filling_resolve_program;     /* ... with the fill's walks at every empty pixel */
+    GLuint thickness_resolve_program;   /* thickness_resolve.frag.glsl */
+    GLuint fill_program;                /* pinhole_fill.comp.glsl: the fill on the listed tiles */
+    GLuint framebuffer;                 /* the resolves' target: the caller's depth or thickness texture */
+    GLuint empty_vertex_array;          /* the resolves' full-screen triangle */
     GLuint front_program;              /* splat_front.comp.glsl: the culling's front per tile, of spheres */
     GLuint ellipsoid_front_program;    /* ... and of ellipsoids */
     GLuint tiles_program;              /* splat_tiles.comp.glsl: the culling's farthest depth per tile */
     GLuint occupancy_program;          /* fill_occupancy.comp.glsl: the tiles holding a splatted depth */
-    GLuint candidates_program;         /* fill_candidates.comp.glsl: the tiles where the pinhole fill may fill */
+    GLuint candidates_program;         /* fill_candidates.comp.glsl: lists the tiles where the pinhole fill may fill */
     GLuint positions;                  /* buffer texture (RGB32F) over the particle buffer, during a run */
     GLuint ratios;                     /* buffer texture (R32F) over the radius ratios, during a sized run */
     uint64_t particles_per_dispatch;   /* the most particles the buffer texture may show at once */
@@ -56,15 +60,15 @@ typedef struct fc_compute_splat {
     GLuint front_tiles;       /* R32UI per CULL_TILE_PX tile: bits of the nearest particle centre's depth */
     GLuint far_tiles;         /* R32UI per tile: bits of the farthest depth splatted at its pixels */
     GLuint occupied_tiles;    /* R8UI per tile: 1 where a pixel holds a splatted depth */
-    GLuint fill_tiles;        /* R8UI per tile: 1 where the resolve runs the pinhole fill's walks */
+    GLuint fill_list;         /* buffer: 3 workgroup counts, then the tiles where the fill's walks run */
     uint32_t width, height;   /* of the images, the largest image splatted so far; 0 before the first run */
     uint32_t allocations;     /* times the images were (re)allocated */
     fc_splat_walk last_walk;  /* of the last run with particles */
     bool cull;                /* depth alone culls hidden particles (true after create; tests compare without) */
     bool fuse;                /* fc_compute_splat_fuses may say yes (true after create; tests compare without) */
     bool last_fused;          /* the last run splatted the thickness with the depth (fc_compute_splat_run_fused) */
-    bool fill_candidates;     /* the pinhole fill's walks only in the tiles marked as needing them, where
-                                 that pays (true after create; tests compare with the walks everywhere) */
+    bool fill_candidates;     /* the pinhole fill's walks only in the tiles listed as needing them (true
+                                 after create; tests compare with the walks at every empty pixel) */
 } fc_compute_splat;
 
 fc_code fc_compute_splat_create(const char *shader_dir, fc_compute_splat *s, fc_error *err);

@@ -1,12 +1,13 @@
 /* test_fill_candidates.c — the compute splat runs the pinhole fill's walks
- * only in the tiles fill_candidates.comp.glsl marks (fc_compute_splat's
- * fill_candidates). The marking may only change the work, never the image:
- * with it and with the walks everywhere the depth (the depth alone) and the
+ * only in the tiles fill_candidates.comp.glsl lists (fc_compute_splat's
+ * fill_candidates: pinhole_fill.comp.glsl after the resolve's draw). The
+ * list may only change the work, never the image: with it and with the
+ * walks at every empty pixel (the resolve's draw with the fill) the depth (the depth alone) and the
  * colour (the thickness splatted with the depth, or at a reduced scale in
  * the culled depth's walk) are the same bit for bit, on a jittered sheet of
  * spheres whose holes the fill closes, seen from two distances (walks of 6
  * and 4 texels) at several sub-tile offsets. The sheet is checked to test
- * what the marking relies on: filled pixels in tiles without any splatted
+ * what the list relies on: filled pixels in tiles without any splatted
  * depth (a test of the tile alone would miss them) and filled pixels whose
  * nearest fluid along an axis lies reach_tiles tiles away, at the edge of
  * the walk. */
@@ -69,7 +70,7 @@ static bool splatted(const uint32_t *raw, int x, int row)
     return x >= 0 && row >= 0 && x < WIDTH && row < HEIGHT && raw[(size_t)row * WIDTH + x] != 0x7f800000u;
 }
 
-/* How the filled pixels (depth, none splatted) exercise the marking: those
+/* How the filled pixels (depth, none splatted) exercise the list: those
  * in tiles without a splatted depth, and those whose nearest fluid along one
  * axis direction lies reach_tiles tiles from their own. */
 typedef struct fill_reach {
@@ -122,7 +123,7 @@ static fill_reach check_depth(render_fixture *f, const float *x, const fc_camera
     splat->fill_candidates = true;
     CHECK_CODE(render_positions(f, x, COUNT, cam, &settings, FC_AOV_DEPTH, 0, &marked), FC_OK);
     CHECK(fc_pipeline_last_splat(f->pipeline) == FC_SPLAT_COMPUTE);
-    glGetUniformiv(splat->resolve_program[FC_SPLAT_DEPTH_ONLY], 53, steps);   /* fill_steps, pinhole_fill.glsl */
+    glGetUniformiv(splat->fill_program, 53, steps);   /* fill_steps, pinhole_fill.glsl */
     uint32_t *raw = read_splatted(f);
     int differ = 0;
     for (uint32_t row = 0; row < HEIGHT; row++)
@@ -181,8 +182,7 @@ static fill_reach check_view(render_fixture *f, const float *x, double distance,
         int steps = 0;
         fill_reach r = check_depth(f, x, &cam, &steps);
         check_colour(f, x, &cam, thickness_scale);
-        /* Shorter walks are not marked (MIN_MARKED_STEPS in compute_splat.c): nothing to test. */
-        CHECK_MSG(steps >= 3, "fill_steps %d at distance %g", steps, distance);
+        CHECK_MSG(steps >= 3, "fill_steps %d at distance %g: too short to reach other tiles", steps, distance);
         *reach_tiles = (steps + TILE_PX - 1) / TILE_PX;
         printf("distance %g, shift %d: fill_steps %d, %d pixels filled, %d of them in tiles without fluid, %d with "
                "fluid %d tiles away\n",
