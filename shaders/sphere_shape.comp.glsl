@@ -14,8 +14,9 @@ layout(location = 512) uniform bool sized_particles;   // each particle's radius
 layout(binding = 0) uniform samplerBuffer particle_positions;   // RGB32F: xyz per particle, world space
 layout(binding = 1) uniform samplerBuffer radius_ratios;        // R32F: the dispatch's particles' ratios
 
-// The loaded particle's radius.
+// The loaded particle's radius and world-space centre.
 float loaded_radius;
+vec3 loaded_world;
 
 // The view-space centre and bounding radius of the dispatch's particle i.
 vec4 load_particle(uint i)
@@ -26,7 +27,14 @@ vec4 load_particle(uint i)
     loaded_radius = radius;
     if (sized_particles)
         loaded_radius *= texelFetch(radius_ratios, int(i)).r;
-    return vec4((view_matrix * vec4(texelFetch(particle_positions, int(i)).xyz, 1.0)).xyz, loaded_radius);
+    loaded_world = texelFetch(particle_positions, int(i)).xyz;
+    return vec4((view_matrix * vec4(loaded_world, 1.0)).xyz, loaded_radius);
+}
+
+// The loaded particle's centre in world space (for a second view of it, FC_FUSED_SUN).
+vec3 loaded_world_centre()
+{
+    return loaded_world;
 }
 
 bool cast_particle_ray(vec2 pixel, vec3 centre, out float depth, out float chord)

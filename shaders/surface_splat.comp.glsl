@@ -22,6 +22,7 @@
 // ellipsoid_shape.comp.glsl): its view-space centre and bounding radius, and
 // the ray cast.
 vec4 load_particle(uint i);
+vec3 loaded_world_centre();
 bool cast_particle_ray(vec2 pixel, vec3 centre, out float depth, out float chord);
 float thickness_above_floor(vec2 pixel, float depth, float chord);
 float volume_above_floor(vec3 centre, float radius);
@@ -58,21 +59,47 @@ vec2 footprint_centre;   // the silhouette's centre, in pixel indices
 vec2 footprint_scale;    // 1 / its half extents (pixels)
 float footprint_units;   // thickness units at its centre
 
-// [first, last]: the silhouette's bounds in pixel indices, grown by MARGIN_PIXELS on each side.
-void begin_footprint(vec2 first, vec2 last, vec3 centre, float reach)
+// [first, last]: the silhouette's bounds in pixel indices, grown by
+// MARGIN_PIXELS on each side; `above`: the share of the sphere's volume above
+// the floor.
+void begin_footprint_above(vec2 first, vec2 last, float reach, float above)
 {
     footprint_centre = 0.5 * (first + last);
     footprint_scale = 1.0 / max(0.5 * (last - first) - MARGIN_PIXELS, 1e-3);
-    float share = min(2.0 * reach * volume_above_floor(centre, reach) / max_chord, 1.0);
+    float share = min(2.0 * reach * above / max_chord, 1.0);
     footprint_units = share * units_per_chord;
+}
+
+void begin_footprint(vec2 first, vec2 last, vec3 centre, float reach)
+{
+    begin_footprint_above(first, last, reach, volume_above_floor(centre, reach));
+}
+
+#ifdef FC_FUSED_SUN
+// The sun's thickness (FC_FUSED_SUN, below), summed as thickness_sum.
+layout(binding = 3, r32ui) uniform uimage2D sun_sum;
+#endif
+
+// `sun` (a constant where it is called, so the compiler keeps one atomic):
+// into the sun's thickness, else the camera's.
+void footprint_pixel_of(ivec2 p, bool sun)
+{
+    vec2 offset = (vec2(p) - footprint_centre) * footprint_scale;
+    float falloff = 1.0 - dot(offset, offset);
+    if (falloff > 0.0) {
+        uint units = uint(sqrt(falloff) * footprint_units + 0.5);
+#ifdef FC_FUSED_SUN
+        if (sun)
+            imageAtomicAdd(sun_sum, p, units);
+        else
+#endif
+            imageAtomicAdd(thickness_sum, p, units);
+    }
 }
 
 void footprint_pixel(ivec2 p)
 {
-    vec2 offset = (vec2(p) - footprint_centre) * footprint_scale;
-    float falloff = 1.0 - dot(offset, offset);
-    if (falloff > 0.0)
-        imageAtomicAdd(thickness_sum, p, uint(sqrt(falloff) * footprint_units + 0.5));
+    footprint_pixel_of(p, false);
 }
 #endif
 
@@ -224,6 +251,45 @@ void splat_footprint(vec2 x_range, vec2 y_range, vec3 centre, float reach)
 }
 #endif
 
+#ifdef FC_FUSED_SUN
+// The shadow map's thickness in the same walk as well (compute_splat.c:
+// fc_compute_splat_run_fused with a sun): the particle seen from the sun's
+// camera (shadow_pass.c), without a floor, at its map's thickness
+// resolution. The same pixels and sums as that view's thickness-only splat
+// with the footprint, for the same reason as the camera's thickness above.
+// Only for sprites of at most 2x2 pixels there (splat_walk_tiny.glsl's
+// candidates, without a loop): with the camera thickness's 3x3 candidates
+// and loops the fused walk cost more than the sun's own splat.
+layout(location = 15) uniform mat4 sun_matrix;      // world -> the sun's view (locations 15-18)
+layout(location = 19) uniform vec2 sun_focal;       // its P[0][0], P[1][1]
+layout(location = 20) uniform vec2 sun_viewport;    // pixels of the sun's thickness image
+
+void splat_sun_footprint(float reach)
+{
+    vec3 centre = (sun_matrix * vec4(loaded_world_centre(), 1.0)).xyz;
+    float depth = -centre.z;
+    if (depth <= 0.0)   // as the sun's own splat: its camera holds every particle in front
+        return;
+    vec2 x_range = projected_interval(centre.x, depth, sun_focal.x, reach);
+    vec2 y_range = projected_interval(centre.y, depth, sun_focal.y, reach);
+    vec2 first = (vec2(x_range.x, y_range.x) + 1.0) * 0.5 * sun_viewport - 0.5 - MARGIN_PIXELS;
+    vec2 last = (vec2(x_range.y, y_range.y) + 1.0) * 0.5 * sun_viewport - 0.5 + MARGIN_PIXELS;
+    ivec2 lo = max(ivec2(ceil(first)), ivec2(0));
+    ivec2 hi = min(ivec2(floor(last)), ivec2(sun_viewport) - 1);
+    begin_footprint_above(first, last, reach, 1.0);
+    bvec2 second = lessThanEqual(lo + 1, hi);
+    if (all(lessThanEqual(lo, hi))) {
+        footprint_pixel_of(lo, true);
+        if (second.x)
+            footprint_pixel_of(lo + ivec2(1, 0), true);
+        if (second.y)
+            footprint_pixel_of(lo + ivec2(0, 1), true);
+        if (all(second))
+            footprint_pixel_of(lo + ivec2(1, 1), true);
+    }
+}
+#endif
+
 void main()
 {
     uint i = gl_GlobalInvocationID.y * gl_NumWorkGroups.x * gl_WorkGroupSize.x + gl_GlobalInvocationID.x;
@@ -233,6 +299,11 @@ void main()
     vec3 centre = particle.xyz;
     float reach = particle.w;   // the bounding sphere's radius
     float depth = -centre.z;
+#ifdef FC_FUSED_SUN
+    // Before the camera's tests: the sun sees particles behind the camera too.
+    if (cull_phase != CULL_NEAR)
+        splat_sun_footprint(reach);
+#endif
     // A centre behind the eye: the fragment splat culls its sprite too.
     if (depth <= 0.0)
         return;

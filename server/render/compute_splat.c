@@ -25,6 +25,9 @@ enum {
     LOC_SLACK_PER_DEPTH = 12,
     LOC_THICKNESS_VIEWPORT = 13,
     LOC_FRONT_STRIDE = 14,
+    LOC_SUN_MATRIX = 15,
+    LOC_SUN_FOCAL = 19,
+    LOC_SUN_VIEWPORT = 20,
     LOC_SIZED_PARTICLES = 512
 };
 /* The culling's steps in the splat, as surface_splat.comp.glsl's CULL_*. */
@@ -36,7 +39,7 @@ enum {
     IMAGE_NEAREST_DEPTH = 0,
     IMAGE_THICKNESS_SUM = 1,
     IMAGE_DEPTH_OUT = 2,
-    IMAGE_THICKNESS_OUT = 3,
+    IMAGE_SUN_SUM = 3,
     IMAGE_FRONT_TILES = 4,
     IMAGE_FAR_TILES = 5,
     IMAGE_OCCUPIED_TILES = 6
@@ -116,7 +119,14 @@ static const char *const WALKS[FC_SPLAT_WALKS] = {"splat_walk_rows.glsl", "splat
 /* The preprocessor lines of each output (FC_THICKNESS_ONLY in surface_splat.comp.glsl). */
 static const char *const OUTPUT_DEFINES[FC_SPLAT_OUTPUTS] = {
     NULL, "#define FC_THICKNESS_ONLY 1\n", "#define FC_DEPTH_ONLY 1\n",
-    "#define FC_DEPTH_ONLY 1\n#define FC_FUSED_THICKNESS 1\n"};
+    "#define FC_DEPTH_ONLY 1\n#define FC_FUSED_THICKNESS 1\n",
+    "#define FC_DEPTH_ONLY 1\n#define FC_FUSED_THICKNESS 1\n#define FC_FUSED_SUN 1\n"};
+
+/* The outputs that splat a reduced thickness in the culled depth's walk (spheres only). */
+static bool fused_output(fc_splat_output output)
+{
+    return output == FC_SPLAT_DEPTH_AND_REDUCED_THICKNESS || output == FC_SPLAT_DEPTH_REDUCED_THICKNESS_AND_SUN;
+}
 
 /* A program of the particles' shape, spheres or ellipsoids (sphere_shape.comp.glsl,
  * ellipsoid_shape.comp.glsl), with its libraries and then the files `tail`. */
@@ -189,7 +199,7 @@ fc_code fc_compute_splat_create(const char *shader_dir, fc_compute_splat *s, fc_
     fc_code code = FC_OK;
     for (int o = 0; o < FC_SPLAT_OUTPUTS && code == FC_OK; o++) {
         code = build_splats(shader_dir, (fc_splat_output)o, false, s->splat_program[o], err);
-        if (code == FC_OK && o != FC_SPLAT_DEPTH_AND_REDUCED_THICKNESS)   /* spheres only */
+        if (code == FC_OK && !fused_output((fc_splat_output)o))
             code = build_splats(shader_dir, (fc_splat_output)o, true, s->ellipsoid_program[o], err);
     }
     if (code == FC_OK)
@@ -229,8 +239,10 @@ static void release_images(fc_compute_splat *s)
     glDeleteTextures(1, &s->far_tiles);
     glDeleteTextures(1, &s->occupied_tiles);
     glDeleteBuffers(1, &s->fill_list);
+    glDeleteTextures(1, &s->sun_sum);
     s->nearest_depth = s->thickness_sum = s->front_tiles = s->far_tiles = s->occupied_tiles = s->fill_list = 0;
-    s->width = s->height = 0;
+    s->sun_sum = 0;
+    s->width = s->height = s->sun_width = s->sun_height = 0;
 }
 
 void fc_compute_splat_destroy(fc_compute_splat *s)
@@ -299,6 +311,25 @@ static fc_code reserve(fc_compute_splat *s, uint32_t width, uint32_t height, fc_
     }
     s->width = width;
     s->height = height;
+    return FC_OK;
+}
+
+/* Grows sun_sum (per axis, never shrinking) until the sun's view fits. */
+static fc_code reserve_sun(fc_compute_splat *s, const fc_view *sun, fc_error *err)
+{
+    if (s->sun_sum && sun->width <= s->sun_width && sun->height <= s->sun_height)
+        return FC_OK;
+    uint32_t width = sun->width > s->sun_width ? sun->width : s->sun_width;
+    uint32_t height = sun->height > s->sun_height ? sun->height : s->sun_height;
+    glDeleteTextures(1, &s->sun_sum);
+    s->sun_sum = 0;
+    s->sun_width = s->sun_height = 0;
+    s->allocations++;
+    fc_code code = fc_gl_texture_create(GL_R32UI, width, height, false, &s->sun_sum, err);
+    if (code != FC_OK)
+        return code;
+    s->sun_width = width;
+    s->sun_height = height;
     return FC_OK;
 }
 
@@ -424,9 +455,18 @@ static void dispatch_culled(const fc_compute_splat *s, GLuint near_program, GLui
 }
 
 /* `thickness_view`: the reduced view of FC_SPLAT_DEPTH_AND_REDUCED_THICKNESS's thickness, else NULL. */
+/* The sun's view's uniforms (FC_FUSED_SUN in surface_splat.comp.glsl) and its sum's image. */
+static void set_sun(const fc_compute_splat *s, GLuint program, const fc_view *sun)
+{
+    glProgramUniformMatrix4fv(program, LOC_SUN_MATRIX, 1, GL_FALSE, sun->view);
+    glProgramUniform2f(program, LOC_SUN_FOCAL, sun->fx, sun->fy);
+    glProgramUniform2f(program, LOC_SUN_VIEWPORT, (float)sun->width, (float)sun->height);
+    glBindImageTexture(IMAGE_SUN_SUM, s->sun_sum, 0, GL_FALSE, 0, GL_READ_WRITE, GL_R32UI);
+}
+
 static void splat(fc_compute_splat *s, fc_splat_output output, const fc_particle_buffer *particles,
-                  const fc_view *view, const fc_view *thickness_view, float radius, fc_splat_sprite sprite,
-                  const float *floor_plane, double units)
+                  const fc_view *view, const fc_view *thickness_view, const fc_view *sun, float radius,
+                  fc_splat_sprite sprite, const float *floor_plane, double units)
 {
     fc_splat_walk walk = choose_walk(sprite);
     s->last_walk = walk;
@@ -441,18 +481,20 @@ static void splat(fc_compute_splat *s, fc_splat_output output, const fc_particle
     if (thickness_view)
         glProgramUniform2f(program, LOC_THICKNESS_VIEWPORT, (float)thickness_view->width,
                            (float)thickness_view->height);
+    if (sun)
+        set_sun(s, program, sun);
     glBindImageTexture(IMAGE_NEAREST_DEPTH, s->nearest_depth, 0, GL_FALSE, 0, GL_READ_WRITE, GL_R32UI);
     glBindImageTexture(IMAGE_THICKNESS_SUM, s->thickness_sum, 0, GL_FALSE, 0, GL_READ_WRITE, GL_R32UI);
     glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_UPDATE_BARRIER_BIT);
     glUseProgram(program);
     glBindTextureUnit(UNIT_POSITIONS, s->positions);
     glBindTextureUnit(UNIT_RADIUS_RATIOS, s->ratios);
-    bool depth_alone = output == FC_SPLAT_DEPTH_ONLY || output == FC_SPLAT_DEPTH_AND_REDUCED_THICKNESS;
+    bool depth_alone = output == FC_SPLAT_DEPTH_ONLY || fused_output(output);
     if (depth_alone && s->cull) {
         /* The near phase has no thickness to splat: the depth's own program, without the fused code,
          * which llvmpipe would run masked. */
         GLuint near_program = program;
-        if (output == FC_SPLAT_DEPTH_AND_REDUCED_THICKNESS) {
+        if (fused_output(output)) {
             near_program = s->splat_program[FC_SPLAT_DEPTH_ONLY][walk];
             set_shape_uniforms(near_program, particles, view, radius);
         }
@@ -536,13 +578,13 @@ static void resolve_depth(const fc_compute_splat *s, const fc_view *view, float 
     glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_FRAMEBUFFER_BARRIER_BIT);
 }
 
-/* The splatted thickness, `units` per chord of `longest_chord`, into `thickness` in world units. */
+/* The thickness splatted into `sum`, `units` per chord of `longest_chord`, into `thickness` in world units. */
 static void resolve_thickness(const fc_compute_splat *s, const fc_view *view, float longest_chord, double units,
-                              GLuint thickness)
+                              GLuint sum, GLuint thickness)
 {
     glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
     glProgramUniform1f(s->thickness_resolve_program, LOC_CHORD_PER_UNIT, (float)((double)longest_chord / units));
-    resolve_draw(s, s->thickness_resolve_program, view, s->thickness_sum, thickness);
+    resolve_draw(s, s->thickness_resolve_program, view, sum, thickness);
     glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_FRAMEBUFFER_BARRIER_BIT);
 }
 
@@ -564,13 +606,13 @@ fc_code fc_compute_splat_run(fc_compute_splat *s, const fc_particle_buffer *part
     if (floor_plane)
         glClearTexImage(s->thickness_sum, 0, GL_RED_INTEGER, GL_UNSIGNED_INT, &no_thickness);
     double units = units_per_chord(particles->count);
-    s->last_fused = false;
+    s->last_fused = s->last_fused_sun = false;
     if (particles->count > 0)
-        splat(s, output, particles, view, NULL, radius, sprite, floor_plane, units);
+        splat(s, output, particles, view, NULL, NULL, radius, sprite, floor_plane, units);
     if (depth)
         resolve_depth(s, view, radius, depth);
     if (floor_plane)
-        resolve_thickness(s, view, max_chord(particles, radius), units, thickness);
+        resolve_thickness(s, view, max_chord(particles, radius), units, s->thickness_sum, thickness);
     return fc_gl_check("compute surface splat", err);
 }
 
@@ -579,7 +621,8 @@ void fc_compute_splat_tally(const fc_compute_splat *s, fc_gpu_memory *m)
     uint64_t tiles = (uint64_t)tiles_across(s->width) * tiles_across(s->height);
     m->render_target_bytes += fc_gl_texel_bytes(GL_R32UI) * (2ull * s->width * s->height + 2ull * tiles) +
                               fc_gl_texel_bytes(GL_R8UI) * tiles +
-                              (s->fill_list ? (uint64_t)fill_list_bytes(s->width, s->height) : 0);
+                              (s->fill_list ? (uint64_t)fill_list_bytes(s->width, s->height) : 0) +
+                              fc_gl_texel_bytes(GL_R32UI) * (uint64_t)s->sun_width * s->sun_height;
     m->allocations += s->allocations;
 }
 
@@ -594,24 +637,41 @@ bool fc_compute_splat_fuses(const fc_compute_splat *s, const fc_particle_buffer 
     return s->fuse && !particles->shapes && choose_walk(thickness_sprite) != FC_SPLAT_WALK_ROWS;
 }
 
+bool fc_compute_splat_fuses_sun(const fc_compute_splat *s, const fc_particle_buffer *particles,
+                                fc_splat_sprite sun_sprite)
+{
+    return s->fuse && !particles->shapes && choose_walk(sun_sprite) == FC_SPLAT_WALK_TINY;
+}
+
 fc_code fc_compute_splat_run_fused(fc_compute_splat *s, const fc_particle_buffer *particles, const fc_view *view,
                                    const fc_view *thickness_view, float radius, fc_splat_sprite sprite,
-                                   const float *floor_plane, GLuint depth, GLuint thickness, fc_error *err)
+                                   const float *floor_plane, GLuint depth, GLuint thickness, const fc_sun_splat *sun,
+                                   fc_error *err)
 {
     if (!depth || !floor_plane || thickness_view->width > view->width || thickness_view->height > view->height)
         return fc_error_set(err, FC_ERR_USAGE, "fused splat: needs a depth, a floor plane and a smaller thickness");
+    if (sun && (!sun->view || !sun->thickness))
+        return fc_error_set(err, FC_ERR_USAGE, "fused splat: the sun needs a view and a texture");
     fc_code code = reserve(s, view->width, view->height, err);
+    if (code == FC_OK && sun)
+        code = reserve_sun(s, sun->view, err);
     if (code != FC_OK)
         return code;
     const GLuint no_depth = 0x7f800000u, no_thickness = 0;   /* +inf bits, 0 */
     glClearTexImage(s->nearest_depth, 0, GL_RED_INTEGER, GL_UNSIGNED_INT, &no_depth);
     glClearTexImage(s->thickness_sum, 0, GL_RED_INTEGER, GL_UNSIGNED_INT, &no_thickness);
+    if (sun)
+        glClearTexImage(s->sun_sum, 0, GL_RED_INTEGER, GL_UNSIGNED_INT, &no_thickness);
     double units = units_per_chord(particles->count);
     s->last_fused = true;
+    s->last_fused_sun = sun != NULL;
+    fc_splat_output output = sun ? FC_SPLAT_DEPTH_REDUCED_THICKNESS_AND_SUN : FC_SPLAT_DEPTH_AND_REDUCED_THICKNESS;
     if (particles->count > 0)
-        splat(s, FC_SPLAT_DEPTH_AND_REDUCED_THICKNESS, particles, view, thickness_view, radius, sprite, floor_plane,
-              units);
+        splat(s, output, particles, view, thickness_view, sun ? sun->view : NULL, radius, sprite, floor_plane, units);
     resolve_depth(s, view, radius, depth);
-    resolve_thickness(s, thickness_view, max_chord(particles, radius), units, thickness);
+    float chord = max_chord(particles, radius);
+    resolve_thickness(s, thickness_view, chord, units, s->thickness_sum, thickness);
+    if (sun)
+        resolve_thickness(s, sun->view, chord, units, s->sun_sum, sun->thickness);
     return fc_gl_check("compute surface splat with the thickness", err);
 }

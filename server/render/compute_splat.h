@@ -27,18 +27,20 @@ typedef enum { FC_SPLAT_WALK_ROWS, FC_SPLAT_WALK_TINY, FC_SPLAT_WALK_SMALL, FC_S
  * thickness splatted apart, at a reduced scale), which culls hidden
  * particles (surface_splat.comp.glsl); or that culled depth with the
  * thickness at a reduced scale splatted in the same walk of the particles
- * (FC_FUSED_THICKNESS: spheres only, fc_compute_splat_run_fused). */
+ * (FC_FUSED_THICKNESS: spheres only, fc_compute_splat_run_fused), and with
+ * it the shadow map's thickness as well (FC_FUSED_SUN). */
 typedef enum {
     FC_SPLAT_DEPTH_AND_THICKNESS,
     FC_SPLAT_THICKNESS_ONLY,
     FC_SPLAT_DEPTH_ONLY,
     FC_SPLAT_DEPTH_AND_REDUCED_THICKNESS,
+    FC_SPLAT_DEPTH_REDUCED_THICKNESS_AND_SUN,
     FC_SPLAT_OUTPUTS
 } fc_splat_output;
 
 typedef struct fc_compute_splat {
     /* By output and walk: spheres, and the particles' ellipsoids (anisotropy.h) where the buffer names them
-     * (none for FC_SPLAT_DEPTH_AND_REDUCED_THICKNESS, which resolves with the two outputs' resolves). */
+     * (none for the fused outputs, FC_SPLAT_DEPTH_AND_REDUCED_THICKNESS and ..._AND_SUN). */
     GLuint splat_program[FC_SPLAT_OUTPUTS][FC_SPLAT_WALKS];
     GLuint ellipsoid_program[FC_SPLAT_OUTPUTS][FC_SPLAT_WALKS];
     GLuint depth_resolve_program;       /* depth_resolve.frag.glsl on the splat's bits, the fill left to fill_program */
@@ -57,6 +59,8 @@ typedef struct fc_compute_splat {
     uint64_t particles_per_dispatch;   /* the most particles the buffer texture may show at once */
     GLuint nearest_depth;     /* R32UI: bits of the nearest depth, +inf where no sphere is */
     GLuint thickness_sum;     /* R32UI: thickness in fixed point */
+    GLuint sun_sum;           /* R32UI: the sun's thickness in fixed point, of a fused run with a sun */
+    uint32_t sun_width, sun_height;   /* of sun_sum, the largest splatted so far; 0 before */
     GLuint front_tiles;       /* R32UI per CULL_TILE_PX tile: bits of the nearest particle centre's depth */
     GLuint far_tiles;         /* R32UI per tile: bits of the farthest depth splatted at its pixels */
     GLuint occupied_tiles;    /* R8UI per tile: 1 where a pixel holds a splatted depth */
@@ -67,6 +71,7 @@ typedef struct fc_compute_splat {
     bool cull;                /* depth alone culls hidden particles (true after create; tests compare without) */
     bool fuse;                /* fc_compute_splat_fuses may say yes (true after create; tests compare without) */
     bool last_fused;          /* the last run splatted the thickness with the depth (fc_compute_splat_run_fused) */
+    bool last_fused_sun;      /* ... and the sun's thickness too */
     bool fill_candidates;     /* the pinhole fill's walks only in the tiles listed as needing them (true
                                  after create; tests compare with the walks at every empty pixel) */
 } fc_compute_splat;
@@ -99,14 +104,31 @@ fc_code fc_compute_splat_run(fc_compute_splat *s, const fc_particle_buffer *part
 bool fc_compute_splat_fuses(const fc_compute_splat *s, const fc_particle_buffer *particles,
                             fc_splat_sprite thickness_sprite);
 
+/* Whether fc_compute_splat_run_fused can splat these particles' thickness
+ * in a sun's view (sized there by `sun_sprite`) too: spheres of at most 2x2
+ * pixels there (the tiny walk's). */
+bool fc_compute_splat_fuses_sun(const fc_compute_splat *s, const fc_particle_buffer *particles,
+                                fc_splat_sprite sun_sprite);
+
+/* The sun's thickness a fused run splats as well: the shadow map's view
+ * (shadow_pass.h) at its thickness's resolution, and the R32F texture of
+ * that size it goes to. */
+typedef struct fc_sun_splat {
+    const fc_view *view;
+    GLuint thickness;
+} fc_sun_splat;
+
 /* fc_compute_splat_run for the depth alone (culled where s->cull) into
  * `depth`, which also splats the thickness above `floor_plane` at
  * `thickness_view`'s size (the same camera at a lower resolution) into
- * `thickness` in the same walk of the particles: the same bits of both as
- * the two runs apart. Only where fc_compute_splat_fuses. */
+ * `thickness` in the same walk of the particles, and, where `sun` is not
+ * NULL, the particles' thickness in the sun's view without a floor into
+ * sun->thickness: the same bits of each as the runs apart. Only where
+ * fc_compute_splat_fuses (and fc_compute_splat_fuses_sun). */
 fc_code fc_compute_splat_run_fused(fc_compute_splat *s, const fc_particle_buffer *particles, const fc_view *view,
                                    const fc_view *thickness_view, float radius, fc_splat_sprite sprite,
-                                   const float *floor_plane, GLuint depth, GLuint thickness, fc_error *err);
+                                   const float *floor_plane, GLuint depth, GLuint thickness, const fc_sun_splat *sun,
+                                   fc_error *err);
 
 /* Adds its images' bytes and allocations to m's render targets. */
 void fc_compute_splat_tally(const fc_compute_splat *s, fc_gpu_memory *m);

@@ -227,20 +227,31 @@ bool fc_depth_pass_fuses(const fc_depth_pass *pass, const fc_particle_buffer *pa
            fc_compute_splat_fuses(&pass->compute, particles, sprite_in(thickness_view, particles, radius));
 }
 
-fc_code fc_depth_pass_run_fused(fc_depth_pass *pass, const fc_particle_buffer *particles, const fc_view *view,
-                                const fc_view *thickness_view, float radius, const float *floor_plane, fc_error *err)
+bool fc_depth_pass_fuses_sun(const fc_depth_pass *pass, const fc_particle_buffer *particles,
+                             const fc_view *sun_view, float radius)
 {
-    if (!floor_plane || !fc_depth_pass_fuses(pass, particles, view, thickness_view, radius))
+    return fc_compute_splat_fuses_sun(&pass->compute, particles, sprite_in(sun_view, particles, radius));
+}
+
+fc_code fc_depth_pass_run_fused(fc_depth_pass *pass, const fc_particle_buffer *particles, const fc_view *view,
+                                const fc_view *thickness_view, float radius, const float *floor_plane,
+                                const fc_depth_sun *sun, fc_error *err)
+{
+    if (!floor_plane || !fc_depth_pass_fuses(pass, particles, view, thickness_view, radius) ||
+        (sun && !fc_depth_pass_fuses_sun(pass, particles, sun->view, radius)))
         return fc_error_set(err, FC_ERR_USAGE, "fused depth splat: no floor plane, or the particles do not fuse");
     fc_code code = resize(pass, view, true, err);
     if (code == FC_OK)
         code = fc_render_target_resize(&pass->thickness, thickness_view->width, thickness_view->height, err);
+    if (code == FC_OK && sun)
+        code = fc_render_target_resize(sun->thickness, sun->view->width, sun->view->height, err);
     if (code != FC_OK)
         return code;
     pass->last_used = FC_SPLAT_COMPUTE;
+    fc_sun_splat sun_splat = {sun ? sun->view : NULL, sun ? sun->thickness->color : 0};
     return fc_compute_splat_run_fused(&pass->compute, particles, view, thickness_view, radius,
                                       sprite_in(view, particles, radius), floor_plane, pass->target.color,
-                                      pass->thickness.color, err);
+                                      pass->thickness.color, sun ? &sun_splat : NULL, err);
 }
 
 void fc_depth_pass_tally(const fc_depth_pass *pass, fc_gpu_memory *m)

@@ -52,13 +52,29 @@ fc_code fc_depth_pass_run(fc_depth_pass *pass, const fc_particle_buffer *particl
 bool fc_depth_pass_fuses(const fc_depth_pass *pass, const fc_particle_buffer *particles, const fc_view *view,
                          const fc_view *thickness_view, float radius);
 
+/* Whether fc_depth_pass_run_fused can splat these particles' thickness in
+ * `sun_view` (another camera: the shadow map's, at its thickness's
+ * resolution) as well: spheres of at most 2x2 pixels there. */
+bool fc_depth_pass_fuses_sun(const fc_depth_pass *pass, const fc_particle_buffer *particles,
+                             const fc_view *sun_view, float radius);
+
+/* The sun's thickness for fc_depth_pass_run_fused: its view, and the
+ * target (another pass's, sized here to the view) it is splatted into. */
+typedef struct fc_depth_sun {
+    const fc_view *view;
+    fc_render_target *thickness;
+} fc_depth_sun;
+
 /* fc_depth_pass_run for the depth alone which also splats the thickness
  * above `floor_plane` at `thickness_view`'s size into pass->thickness in the
  * same walk of the particles, the same bits of it as
- * fc_depth_pass_run_thickness on that view. Only where fc_depth_pass_fuses. */
+ * fc_depth_pass_run_thickness on that view; and, where `sun` is not NULL,
+ * the thickness without a floor in sun->view into sun->thickness, the same
+ * bits as fc_depth_pass_run_thickness there. Only where fc_depth_pass_fuses
+ * (and fc_depth_pass_fuses_sun). */
 fc_code fc_depth_pass_run_fused(fc_depth_pass *pass, const fc_particle_buffer *particles, const fc_view *view,
                                 const fc_view *thickness_view, float radius, const float *floor_plane,
-                                fc_error *err);
+                                const fc_depth_sun *sun, fc_error *err);
 
 /* fc_depth_pass_run for the thickness above `floor_plane` (not NULL) alone,
  * the same bits of it: pass->target is neither sized nor written (the sun's

@@ -155,21 +155,42 @@ static bool fuses_thickness(const fc_pipeline *p, const render_job *job, fc_aov 
     return fc_depth_pass_fuses(&p->depth, &job->surface, job->view, &reduced, job->settings->radius);
 }
 
-/* Depth, and the thickness splat where splats_thickness or fuses_thickness
- * (*thickness_splatted says so): both are timed as the depth stage. */
-static fc_code depth_stage(fc_pipeline *p, const render_job *job, fc_aov aov, bool *thickness_splatted,
-                           fc_error *err)
+/* Whether the composite runs the shadow pass, and that without meshes (the
+ * sun's view then needs no depth of the fluid). */
+static bool shadow_without_meshes(const render_job *job)
+{
+    return job->settings->shadow && job->env.has_floor && job->mesh_count == 0;
+}
+
+/* What the depth stage splatted besides the depth. */
+typedef struct depth_extras {
+    bool thickness;   /* the camera's thickness: the thickness stage only blurs it */
+    bool sun;         /* the shadow map's: the shadow pass only blurs it */
+} depth_extras;
+
+/* Depth, and the thickness splat where splats_thickness or fuses_thickness,
+ * with the shadow map's thickness where that fuses too (*extras says which):
+ * all are timed as the depth stage. */
+static fc_code depth_stage(fc_pipeline *p, const render_job *job, fc_aov aov, depth_extras *extras, fc_error *err)
 {
     bool together = splats_thickness(job, aov), fused = !together && fuses_thickness(p, job, aov);
-    *thickness_splatted = together || fused;
-    fc_stage_timer_begin(&p->timer, FC_STAGE_DEPTH);
-    fc_pass_profile_begin(&p->profile, *thickness_splatted ? "depth + thickness splat" : "depth splat");
     float radius = job->settings->radius;
+    fc_view sun_view = {0};
+    if (fused && shadow_without_meshes(job)) {
+        sun_view = fc_shadow_pass_thickness_view(&job->surface, job->lo, job->hi, job->settings, &job->env);
+        extras->sun = fc_depth_pass_fuses_sun(&p->depth, &job->surface, &sun_view, radius);
+    }
+    extras->thickness = together || fused;
+    fc_stage_timer_begin(&p->timer, FC_STAGE_DEPTH);
+    fc_pass_profile_begin(&p->profile, extras->sun         ? "depth + thickness + shadow splat"
+                                       : extras->thickness ? "depth + thickness splat"
+                                                           : "depth splat");
     fc_code code;
     if (fused) {
         fc_view reduced = fc_thickness_view(job->view, job->settings->thickness_scale);
+        fc_depth_sun sun = {&sun_view, fc_shadow_pass_thickness(&p->shadow)};
         code = fc_depth_pass_run_fused(&p->depth, &job->surface, job->view, &reduced, radius, job->env.floor_plane,
-                                       err);
+                                       extras->sun ? &sun : NULL, err);
     } else {
         code = fc_depth_pass_run(&p->depth, &job->surface, job->view, radius,
                                  together ? job->env.floor_plane : NULL, err);
@@ -271,7 +292,8 @@ static fc_code shading_noise(fc_pipeline *p, const render_job *job, const fc_ren
 /* Noise, background and spray are rendered for the composite alone, so they
  * are timed with it. */
 static fc_code composite_stage(fc_pipeline *p, const render_job *job, const fc_render_target *surface,
-                               const fc_render_target *thickness, const fc_render_target **result, fc_error *err)
+                               const fc_render_target *thickness, bool sun_splatted, const fc_render_target **result,
+                               fc_error *err)
 {
     fc_composite_inputs inputs = {surface, thickness, &p->background.target, NULL,
                                   job->scene ? job->scene->environment_map : 0, job->colored,
@@ -287,7 +309,7 @@ static fc_code composite_stage(fc_pipeline *p, const render_job *job, const fc_r
     fc_pass_profile *profile = &p->profile;
     if (code == FC_OK && job->settings->shadow && env.has_floor)
         code = fc_shadow_pass_run(&p->shadow, &job->surface, job->lo, job->hi, job->settings, job->mesh_count > 0,
-                                  profile, &env, err);
+                                  sun_splatted, profile, &env, err);
     if (code == FC_OK && env.has_shadow && job->mesh_count > 0) {
         fc_pass_profile_begin(profile, "mesh shadows");
         code = fc_mesh_pass_cast_shadows(&p->mesh, job->meshes, job->mesh_count, &p->shadow.sun_view, &env, err);
@@ -357,10 +379,10 @@ static fc_code shading_aov_stage(fc_pipeline *p, const render_job *job, const fc
 static fc_code render_stages(fc_pipeline *p, const render_job *job, fc_aov aov, const fc_render_target **result,
                              fc_error *err)
 {
-    bool splatted = false;
+    depth_extras splatted = {false, false};
     if (aov == FC_AOV_THICKNESS) {
         fc_code code = splats_thickness(job, aov) ? depth_stage(p, job, aov, &splatted, err) : FC_OK;
-        return code == FC_OK ? thickness_stage(p, job, aov, splatted, result, err) : code;
+        return code == FC_OK ? thickness_stage(p, job, aov, splatted.thickness, result, err) : code;
     }
     fc_code code = depth_stage(p, job, aov, &splatted, err);
     *result = &p->depth.target;
@@ -374,10 +396,10 @@ static fc_code render_stages(fc_pipeline *p, const render_job *job, fc_aov aov, 
     if (aov == FC_AOV_NOISE || aov == FC_AOV_NORMAL)
         return shading_aov_stage(p, job, surface, aov, result, err);
     const fc_render_target *thickness = NULL;
-    code = thickness_stage(p, job, aov, splatted, &thickness, err);
+    code = thickness_stage(p, job, aov, splatted.thickness, &thickness, err);
     if (code != FC_OK)
         return code;
-    return composite_stage(p, job, surface, thickness, result, err);
+    return composite_stage(p, job, surface, thickness, splatted.sun, result, err);
 }
 
 /* The particles' box, grown to hold the meshes. */

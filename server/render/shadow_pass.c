@@ -28,6 +28,11 @@
  * may still leave thickness (a sprite's conservative bounds, MAP_BLUR, the
  * box and two bilinear lookups take fewer than half of these). */
 #define SHADOW_REACH_TEXELS 16.0f
+/* The thickness is splatted at this share of the map's resolution, where it
+ * is blurred in any case: a quarter of the texels (64k particles: 8 of 43
+ * CPU ms; the shadow the same by eye, a mean of 0.0001 per channel), and the
+ * same with and without meshes. */
+#define THICKNESS_SCALE 0.5f
 
 /* Uniform locations fixed by layout(location) in shadow_box.frag.glsl. */
 enum { LOC_BOX_TEXEL = 0, LOC_BOX_LAST = 1 };
@@ -134,30 +139,49 @@ static void set_fluid_sun_depth(const fc_shadow_pass *pass, bool with_depth, fc_
     env->fluid_sun_depth_uv_scale[1] = with_depth ? (float)t->height / (float)t->texture_height : 0.0f;
 }
 
-fc_code fc_shadow_pass_run(fc_shadow_pass *pass, const fc_particle_buffer *particles, const float lo[3],
-                           const float hi[3], const fc_settings *settings, bool with_depth, fc_pass_profile *profile,
-                           fc_environment *env, fc_error *err)
+/* The sun's camera for these particles, at the map's resolution. */
+static void sun_view(const fc_particle_buffer *particles, const float lo[3], const float hi[3],
+                     const fc_settings *settings, const float sun[3], fc_view *view)
 {
     /* Ellipsoids may reach past the radius: the sun's view must hold them whole. */
     float reach = fc_anisotropy_reach(particles, settings->radius);
     fc_camera cam;
-    sun_camera(lo, hi, reach, env->sun, &cam);
+    sun_camera(lo, hi, reach, sun, &cam);
+    fc_view_from_camera(&cam, lo, hi, reach, view);
+}
+
+fc_view fc_shadow_pass_thickness_view(const fc_particle_buffer *particles, const float lo[3], const float hi[3],
+                                      const fc_settings *settings, const fc_environment *env)
+{
     fc_view view;
-    fc_view_from_camera(&cam, lo, hi, reach, &view);
+    sun_view(particles, lo, hi, settings, env->sun, &view);
+    return fc_thickness_view(&view, THICKNESS_SCALE);
+}
+
+fc_render_target *fc_shadow_pass_thickness(fc_shadow_pass *pass)
+{
+    return &pass->splat.thickness;
+}
+
+fc_code fc_shadow_pass_run(fc_shadow_pass *pass, const fc_particle_buffer *particles, const float lo[3],
+                           const float hi[3], const fc_settings *settings, bool with_depth, bool splatted,
+                           fc_pass_profile *profile, fc_environment *env, fc_error *err)
+{
+    fc_view view;
+    sun_view(particles, lo, hi, settings, env->sun, &view);
+    float reach = fc_anisotropy_reach(particles, settings->radius);
     static const float no_floor[4] = {0.0f, 0.0f, 0.0f, 1.0f};   /* nothing is cut off */
     /* The sun's depth (for meshes) at the map's resolution, alone; the
-     * thickness at half of it, where it is blurred in any case: a quarter of
-     * the texels (64k particles: 8 of 43 CPU ms; the shadow the same by eye,
-     * a mean of 0.0001 per channel), and the same with and without meshes. */
+     * thickness at THICKNESS_SCALE of it. */
     fc_code code = FC_OK;
     if (with_depth) {
         fc_pass_profile_begin(profile, "shadow depth splat");
         code = fc_depth_pass_run(&pass->splat, particles, &view, settings->radius, NULL, err);
         fc_pass_profile_end(profile);
     }
-    fc_thickness_params params = {.radius = settings->radius, .scale = 0.5f, .blur = MAP_BLUR,
+    fc_thickness_params params = {.radius = settings->radius, .scale = THICKNESS_SCALE, .blur = MAP_BLUR,
                                   .floor_plane = no_floor, .profile = profile, .splat_name = "shadow splat",
-                                  .depth = &pass->splat};
+                                  .depth = &pass->splat, .splatted = splatted};
     const fc_render_target *blurred = NULL;
     if (code == FC_OK)
         code = fc_thickness_pass_run(&pass->blur, particles, &view, &params, &blurred, err);

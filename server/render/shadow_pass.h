@@ -38,8 +38,17 @@ void fc_shadow_pass_destroy(fc_shadow_pass *pass);
  * compare; nothing else reads it, and without it the splat leaves out the
  * depth, its pinhole fill and its resolve: env->fluid_sun_depth is 0). */
 fc_code fc_shadow_pass_run(fc_shadow_pass *pass, const fc_particle_buffer *particles, const float lo[3],
-                           const float hi[3], const fc_settings *settings, bool with_depth, fc_pass_profile *profile,
-                           fc_environment *env, fc_error *err);
+                           const float hi[3], const fc_settings *settings, bool with_depth, bool splatted,
+                           fc_pass_profile *profile, fc_environment *env, fc_error *err);
+
+/* The view fc_shadow_pass_run splats the map's thickness in (the sun's
+ * camera at a reduced resolution) for these arguments, and the target it
+ * splats it into: with `splatted`, fc_shadow_pass_run takes the thickness
+ * as splatted there already at that view's size (the camera's depth pass
+ * does so in its own walk of the particles, fc_depth_pass_run_fused). */
+fc_view fc_shadow_pass_thickness_view(const fc_particle_buffer *particles, const float lo[3], const float hi[3],
+                                      const fc_settings *settings, const fc_environment *env);
+fc_render_target *fc_shadow_pass_thickness(fc_shadow_pass *pass);
 
 void fc_shadow_pass_tally(const fc_shadow_pass *pass, fc_gpu_memory *m);
 void fc_shadow_pass_trim(fc_shadow_pass *pass);

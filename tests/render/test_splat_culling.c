@@ -8,8 +8,9 @@
  * hold what it relies on: the pool's front covers the tiles over the pool, in
  * front of the layers below, so that most of those are skipped. The
  * thickness at the default half resolution splatted in the same walk of the
- * particles as the culled depth (fc_compute_splat_run_fused) leaves the image
- * the same bit for bit as splatted apart. */
+ * particles as the culled depth (fc_compute_splat_run_fused), and with it the
+ * shadow map's thickness where the sun sees spheres of at most 2x2 texels,
+ * leaves the image the same bit for bit as splatted apart. */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -92,18 +93,21 @@ static void check_same_depth(render_fixture *f, const char *name, const float *x
 
 /* The colour image (floats) with the thickness at half resolution splatted
  * with the depth and apart: the same bits. */
-static void check_same_fused(render_fixture *f, const char *name, const float *x, uint64_t count,
+/* Returns whether the shadow map's thickness was splatted in the same walk too. */
+static bool check_same_fused(render_fixture *f, const char *name, const float *x, uint64_t count,
                              const fc_camera *cam, float radius)
 {
     fc_compute_splat *splat = fc_pipeline_compute_splat(f->pipeline);
     fc_settings settings = test_settings(radius, FC_SMOOTHING_NONE, 0);
     settings.thickness_scale = 0.5f;
+    settings.shadow = 1;   /* the floor's shadow: its map's thickness may ride along */
     fc_image fused = {0}, apart = {0};
     CHECK_CODE(render_positions(f, x, count, cam, &settings, FC_AOV_COLOR, 0, &fused), FC_OK);
     CHECK_MSG(splat->last_fused, "%s: the thickness was not splatted with the depth", name);
+    bool sun = splat->last_fused_sun;
     splat->fuse = false;
     CHECK_CODE(render_positions(f, x, count, cam, &settings, FC_AOV_COLOR, 0, &apart), FC_OK);
-    CHECK_MSG(!splat->last_fused, "%s: the thickness was splatted with the depth", name);
+    CHECK_MSG(!splat->last_fused && !splat->last_fused_sun, "%s: the thickness was splatted with the depth", name);
     splat->fuse = true;
     CHECK(fused.channels == apart.channels && fused.type == FC_PIXEL_F32);
     size_t values = (size_t)cam->width * cam->height * fused.channels;
@@ -111,9 +115,11 @@ static void check_same_fused(render_fixture *f, const char *name, const float *x
     for (size_t i = 0; i < values; i++)
         differ += ((const float *)fused.pixels)[i] != ((const float *)apart.pixels)[i];
     CHECK_MSG(differ == 0, "%s: %d values differ with the thickness splatted with the depth", name, differ);
-    printf("%s: the same colour image with the thickness splatted with the depth and apart\n", name);
+    printf("%s: the same colour image with the thickness%s splatted with the depth and apart\n", name,
+           sun ? " and the shadow map's" : "");
     fc_image_free(&fused);
     fc_image_free(&apart);
+    return sun;
 }
 
 /* The far tiles of the last culled run (rows bottom-up, as GL stores them). */
@@ -191,6 +197,9 @@ int main(int argc, char **argv)
     check_same_depth(&f, "cloud", cloud, CLOUD_PARTICLES, &axis, &cloud_settings, 20000);
     check_tiles_hide_lower_layers(&f, pool, &large);
     check_same_fused(&f, "pool, spheres about 4 px", pool, POOL_PARTICLES, &small, RADIUS);
+    /* Spheres about a texel across in the shadow map's thickness: that splat rides along too. */
+    bool sun = check_same_fused(&f, "pool, spheres about 2 px", pool, POOL_PARTICLES, &small, 0.45f * RADIUS);
+    CHECK_MSG(sun, "the shadow map's thickness of spheres about a texel across was splatted apart");
     check_same_fused(&f, "cloud", cloud, CLOUD_PARTICLES, &axis, 0.01f);
     free(pool);
     free(cloud);
