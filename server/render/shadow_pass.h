@@ -13,11 +13,13 @@
 #include "thickness_pass.h"
 
 typedef struct fc_shadow_pass {
-    /* Their own targets: the camera's are splatted after these. The depth
-     * pass splats the thickness at half the map's resolution (through its
-     * compute splat where sprites are small, as they are in the map: several
-     * times cheaper per particle on a CPU rasterizer), and the depth, where
-     * meshes need it, at the map's; the thickness pass blurs the thickness. */
+    /* Their own targets. The depth pass splats the thickness at half the
+     * map's resolution (through its compute splat where sprites are small,
+     * as they are in the map: several times cheaper per particle on a CPU
+     * rasterizer), unless the camera's depth pass splatted it into
+     * splat.thickness already (fc_shadow_pass_thickness); and the depth,
+     * where meshes need it, at the map's; the thickness pass blurs the
+     * thickness. */
     fc_depth_pass splat;
     fc_thickness_pass blur;
     /* The blurred map boxed once more for the floor's one tap (shadow_box.frag.glsl). */
