@@ -543,6 +543,12 @@ static void resolve_draw(const fc_compute_splat *s, GLuint program, const fc_vie
     glNamedFramebufferTexture(s->framebuffer, GL_COLOR_ATTACHMENT0, target, 0);
     glBindFramebuffer(GL_FRAMEBUFFER, s->framebuffer);
     glViewport(0, 0, (GLsizei)view->width, (GLsizei)view->height);
+    /* Every texel written as the shader gives it, whatever an earlier pass left enabled. */
+    glDisable(GL_DEPTH_TEST);
+    glDisable(GL_STENCIL_TEST);
+    glDisable(GL_SCISSOR_TEST);
+    glDisable(GL_BLEND);
+    glDisable(GL_FRAMEBUFFER_SRGB);
     glUseProgram(program);
     glBindTextureUnit(UNIT_RESOLVED, source);
     fc_gl_draw_fullscreen(s->empty_vertex_array);
