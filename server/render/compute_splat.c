@@ -204,15 +204,16 @@ fc_code fc_compute_splat_create(const char *shader_dir, fc_compute_splat *s, fc_
     }
     if (code == FC_OK)
         code = build_resolves(shader_dir, s, err);
-    const char *tiles[] = {"splat_tiles.comp.glsl"}, *front[] = {"splat_front.comp.glsl"};
-    const char *occupancy[] = {"fill_occupancy.comp.glsl"}, *candidates[] = {"fill_candidates.comp.glsl"};
+    const char *tiles[] = {"tile_depths.glsl", "splat_tiles.comp.glsl"}, *front[] = {"splat_front.comp.glsl"};
+    const char *occupancy[] = {"tile_depths.glsl", "fill_occupancy.comp.glsl"};
+    const char *candidates[] = {"fill_candidates.comp.glsl"};
     const char *fill[] = {"pinhole_fill.glsl", "pinhole_fill.comp.glsl"};
     if (code == FC_OK)
-        code = fc_program_build(shader_dir, tiles, 1, &s->tiles_program, err);
+        code = fc_program_build(shader_dir, tiles, 2, &s->tiles_program, err);
     if (code == FC_OK)
         code = fc_program_build(shader_dir, fill, 2, &s->fill_program, err);
     if (code == FC_OK)
-        code = fc_program_build(shader_dir, occupancy, 1, &s->occupancy_program, err);
+        code = fc_program_build(shader_dir, occupancy, 2, &s->occupancy_program, err);
     if (code == FC_OK)
         code = fc_program_build(shader_dir, candidates, 1, &s->candidates_program, err);
     if (code == FC_OK)
