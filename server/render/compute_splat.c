@@ -276,6 +276,12 @@ static uint32_t tiles_across(uint32_t pixels)
     return (pixels + CULL_TILE_PX - 1) / CULL_TILE_PX;
 }
 
+/* The tile images' extent for images `pixels` across (fc_gl_non_pot: never a power of two). */
+static uint32_t tile_extent(uint32_t pixels)
+{
+    return (uint32_t)fc_gl_non_pot(tiles_across(pixels));
+}
+
 /* The fill list's bytes for images of width x height. */
 static GLsizeiptr fill_list_bytes(uint32_t width, uint32_t height)
 {
@@ -287,14 +293,14 @@ static fc_code reserve(fc_compute_splat *s, uint32_t width, uint32_t height, fc_
 {
     if (s->nearest_depth && width <= s->width && height <= s->height)
         return FC_OK;
-    width = width > s->width ? width : s->width;
-    height = height > s->height ? height : s->height;
+    width = (uint32_t)fc_gl_non_pot(width > s->width ? width : s->width);
+    height = (uint32_t)fc_gl_non_pot(height > s->height ? height : s->height);
     release_images(s);
     s->allocations++;
     fc_code code = fc_gl_texture_create(GL_R32UI, width, height, false, &s->nearest_depth, err);
     if (code == FC_OK)
         code = fc_gl_texture_create(GL_R32UI, width, height, false, &s->thickness_sum, err);
-    uint32_t tiles_x = tiles_across(width), tiles_y = tiles_across(height);
+    uint32_t tiles_x = tile_extent(width), tiles_y = tile_extent(height);
     if (code == FC_OK)
         code = fc_gl_texture_create(GL_R32UI, tiles_x, tiles_y, false, &s->front_tiles, err);
     if (code == FC_OK)
@@ -320,8 +326,8 @@ static fc_code reserve_sun(fc_compute_splat *s, const fc_view *sun, fc_error *er
 {
     if (s->sun_sum && sun->width <= s->sun_width && sun->height <= s->sun_height)
         return FC_OK;
-    uint32_t width = sun->width > s->sun_width ? sun->width : s->sun_width;
-    uint32_t height = sun->height > s->sun_height ? sun->height : s->sun_height;
+    uint32_t width = (uint32_t)fc_gl_non_pot(sun->width > s->sun_width ? sun->width : s->sun_width);
+    uint32_t height = (uint32_t)fc_gl_non_pot(sun->height > s->sun_height ? sun->height : s->sun_height);
     glDeleteTextures(1, &s->sun_sum);
     s->sun_sum = 0;
     s->sun_width = s->sun_height = 0;
@@ -625,7 +631,7 @@ fc_code fc_compute_splat_run(fc_compute_splat *s, const fc_particle_buffer *part
 
 void fc_compute_splat_tally(const fc_compute_splat *s, fc_gpu_memory *m)
 {
-    uint64_t tiles = (uint64_t)tiles_across(s->width) * tiles_across(s->height);
+    uint64_t tiles = (uint64_t)tile_extent(s->width) * tile_extent(s->height);
     m->render_target_bytes += fc_gl_texel_bytes(GL_R32UI) * (2ull * s->width * s->height + 2ull * tiles) +
                               fc_gl_texel_bytes(GL_R8UI) * tiles +
                               (s->fill_list ? (uint64_t)fill_list_bytes(s->width, s->height) : 0) +

@@ -48,6 +48,13 @@ fc_code fc_gl_wait_until_done(const char *what, fc_error *err)
     return status == GL_WAIT_FAILED ? fc_gl_failure(what, err) : FC_OK;
 }
 
+uint64_t fc_gl_non_pot(uint64_t n)
+{
+    while (n != 0 && (n & (n - 1)) == 0)   /* 1 -> 2 -> 3 */
+        n++;
+    return n;
+}
+
 fc_code fc_gl_texture_create(GLenum internal_format, uint32_t width, uint32_t height, bool linear,
                              GLuint *texture, fc_error *err)
 {

@@ -27,6 +27,16 @@ fc_code fc_gl_wait_until_done(const char *what, fc_error *err);
 fc_code fc_gl_texture_create(GLenum internal_format, uint32_t width, uint32_t height, bool linear,
                              GLuint *texture, fc_error *err);
 
+/* n, or the next extent above it that is not a power of two (0 stays 0).
+ * llvmpipe compiles a shader variant per combination of whether each bound
+ * texture's extents (a buffer's: its bytes) are powers of two, at the first
+ * draw that meets it: textures and texture buffers whose extents never are
+ * one meet the variants the pipeline's warm-up compiled, at any image size
+ * and particle count, where a 1024-pixel-wide image compiled new ones (tens
+ * of milliseconds per program, bench/RESULTS.md). One texel more costs a GPU
+ * nothing. */
+uint64_t fc_gl_non_pot(uint64_t n);
+
 /* Bytes per texel of the sized internal formats the pipeline allocates
  * (colour, compute images, depth/stencil); 0 for any other format. */
 uint32_t fc_gl_texel_bytes(GLenum internal_format);

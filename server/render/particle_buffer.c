@@ -83,7 +83,8 @@ static fc_code grow_radii(fc_particle_buffer *pb, uint64_t count, fc_error *err)
     release_radii(pb);
     pb->allocations++;
     GLbitfield flags = GL_MAP_WRITE_BIT | GL_MAP_PERSISTENT_BIT | GL_MAP_COHERENT_BIT;
-    GLsizeiptr bytes = (GLsizeiptr)(count * RADIUS_STRIDE);
+    /* The compute splat reads it through a texture buffer (fc_gl_non_pot). */
+    GLsizeiptr bytes = (GLsizeiptr)fc_gl_non_pot(count * RADIUS_STRIDE);
     glCreateBuffers(1, &pb->radii);
     glNamedBufferStorage(pb->radii, bytes, NULL, flags);
     fc_code code = fc_gl_check("allocating the particle radius buffer", err);

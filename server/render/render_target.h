@@ -1,7 +1,8 @@
 /* render_target.h — a framebuffer with one colour texture and an optional
  * depth and stencil buffer. The attachments only grow, per axis, to the
- * largest size asked for; a smaller image uses their lower-left corner, so
- * alternating image sizes allocate nothing. */
+ * largest size asked for (or one more, never a power of two: fc_gl_non_pot);
+ * a smaller image uses their lower-left corner, so alternating image sizes
+ * allocate nothing. */
 #ifndef FC_RENDER_TARGET_H
 #define FC_RENDER_TARGET_H
 

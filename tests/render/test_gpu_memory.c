@@ -11,7 +11,7 @@
 
 #define PARTICLES 1000
 #define WIDTH 96
-#define HEIGHT 64
+#define HEIGHT 72   /* no extent a power of two: those get a texel more (test_image_sizes) */
 
 /* fc_particle_buffer positions (3 floats) + fc_particle_record (id, speed) + the noise amplitude. */
 #define PARTICLE_BYTES (12 + 8 + 4)
@@ -37,9 +37,10 @@ static const uint64_t FULL_RESOLUTION_PIXEL_BYTES =
  * (fluid_blocks.h): three workgroup counts and a uint per block of the image. */
 #define FLUID_BLOCK_LIST_BYTES(w, h) ((3 + (uint64_t)(((w) + 7) / 8) * (((h) + 7) / 8)) * 4)
 
-/* The pipeline's warm-up renders 8x8 images: what it leaves in targets this
- * test does not resize is at most an 8x8 image's worth of every target. */
-#define WARM_UP_PIXELS (8 * 8)
+/* The pipeline's warm-up renders 8x8 images, in 9x9 textures (fc_gl_non_pot):
+ * what it leaves in targets this test does not resize is at most that much of
+ * every target. */
+#define WARM_UP_PIXELS (9 * 9)
 
 /* A cube of particles spaced two radii apart around the origin. */
 static float *particle_cube(uint64_t count)
@@ -198,6 +199,23 @@ static void test_image_sizes(render_fixture *f, const float *positions)
               "after trim and a small image: render targets %llu bytes",
               (unsigned long long)after_trim.render_target_bytes);
     CHECK(after_trim.allocations == trimmed.allocations + 3);
+
+    /* An extent that is a power of two gets a texel more (llvmpipe compiles a
+     * shader variant per texture for whether its extents are powers of two,
+     * gl_util.h): 64 x 32 allocates 65 x 33, 1 x 1 allocates 3 x 3. */
+    fc_pipeline_trim(f->pipeline);
+    fc_camera pot = axis_camera(3.0, 64, 32);
+    CHECK_CODE(render(f, &pot, &s, FC_AOV_DEPTH, 0, &img), FC_OK);
+    fc_gpu_memory padded;
+    fc_pipeline_gpu_memory(f->pipeline, &padded);
+    CHECK_MSG(padded.render_target_bytes == 3 * 4 * 65 * 33, "a 64x32 image: render targets %llu bytes",
+              (unsigned long long)padded.render_target_bytes);
+    fc_pipeline_trim(f->pipeline);
+    fc_camera one = axis_camera(3.0, 1, 1);
+    CHECK_CODE(render(f, &one, &s, FC_AOV_DEPTH, 0, &img), FC_OK);
+    fc_pipeline_gpu_memory(f->pipeline, &padded);
+    CHECK_MSG(padded.render_target_bytes == 3 * 4 * 3 * 3, "a 1x1 image: render targets %llu bytes",
+              (unsigned long long)padded.render_target_bytes);
     fc_image_free(&img);
 }
 

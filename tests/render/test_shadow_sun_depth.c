@@ -9,11 +9,15 @@
  *      the shadow map holds the ball's thickness;
  *  (b) with an opaque box hidden inside the ball (the scene's box, so the
  *      sun's camera, unchanged) the depth is splatted: fluid depth at the
- *      map's centre, 0 in its corner, and the shadow map is the same bit for
- *      bit as without the box: leaving the depth out changes no thickness;
+ *      map's centre, 0 in its corner, and the shadow map is the same as
+ *      without the box to a millionth: leaving the depth out changes no
+ *      thickness (not bit for bit: the two runs' passes meet texel centres
+ *      through texture coordinates that are not exact in binary, as no
+ *      texture's extent is a power of two, gl_util.h's fc_gl_non_pot);
  *  (c) without the box again, after a run that splatted both, the shadow map
- *      and the 8-bit image are those of (a) bit for bit (no state of the
- *      depth run leaks into the thickness-only one). */
+ *      is that of (a) to a millionth and the 8-bit image bit for bit (no
+ *      state of the depth run leaks into the thickness-only one). */
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -94,6 +98,22 @@ static bool same_image(const fc_image *a, const fc_image *b)
            a->pixels && b->pixels && memcmp(a->pixels, b->pixels, fc_image_size(a)) == 0;
 }
 
+/* Two one-channel float maps of one size whose texels agree to a millionth
+ * of the largest (a texel of thickness left out or added is far more). */
+static bool same_map(const fc_image *a, const fc_image *b)
+{
+    if (a->width != b->width || a->height != b->height || !a->pixels || !b->pixels)
+        return false;
+    float largest = 0.0f, worst = 0.0f;
+    for (uint32_t y = 0; y < a->height; y++)
+        for (uint32_t x = 0; x < a->width; x++) {
+            float va = pixel_f32(a, x, y), vb = pixel_f32(b, x, y);
+            largest = fabsf(va) > largest ? fabsf(va) : largest;
+            worst = fabsf(va - vb) > worst ? fabsf(va - vb) : worst;
+        }
+    return worst <= 1e-6f * largest;
+}
+
 static void check_method(render_fixture *f, fc_splat_method method, const fc_scene_mesh *box)
 {
     const char *name = method == FC_SPLAT_COMPUTE ? "compute" : "fragment";
@@ -117,11 +137,11 @@ static void check_method(render_fixture *f, fc_splat_method method, const fc_sce
         CHECK_MSG(centre > 0.0f && corner == 0.0f, "%s: sun depth %g at the map's centre, %g in its corner", name,
                   (double)centre, (double)corner);
     }
-    CHECK_MSG(ok && same_image(&alone.map, &with_box.map),
+    CHECK_MSG(ok && same_map(&alone.map, &with_box.map),
               "%s: the shadow map splatted without the depth differs from the one splatted with it", name);
     /* (c) */
     ok = ok && render(f, NULL, 0, &again);
-    CHECK_MSG(ok && same_image(&alone.map, &again.map), "%s: the shadow map changed after a depth run", name);
+    CHECK_MSG(ok && same_map(&alone.map, &again.map), "%s: the shadow map changed after a depth run", name);
     CHECK_MSG(ok && same_image(&alone.color, &again.color), "%s: the image changed after a depth run", name);
     free_render(&alone);
     free_render(&with_box);
