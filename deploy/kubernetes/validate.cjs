@@ -3,7 +3,7 @@
 // kubernetes-models, whose validators are generated from the Kubernetes OpenAPI
 // schemas), then what fluidcastd needs of them (the GPU limit, probes on the
 // metrics port's /healthz and /readyz, the token Secret mounted as a file and
-// passed with --token-file, a grace period longer than the daemon's drain, the
+// passed with --token-file, a volume for the compiled shaders, a grace period longer than the daemon's drain, the
 // headless Service's port named "fluidcast" for the SRV records of srv:
 // addresses, selectors that match the pods).
 //
@@ -70,6 +70,8 @@ function validateSchema({ where, object }) {
   return true;
 }
 
+// The image's MESA_SHADER_CACHE_DIR (deploy/container/Containerfile; test_kubernetes.sh checks they agree).
+const SHADER_CACHE_DIR = '/var/cache/fluidcast';
 const byKind = (docs, kind) => docs.filter((d) => d.object.kind === kind);
 const matches = (selector, labels) =>
   Object.entries(selector || {}).every(([k, v]) => labels && labels[k] === v) && Object.keys(selector || {}).length > 0;
@@ -110,6 +112,10 @@ function checkWorkload({ where, object }, docs, drainMs) {
   const grace = pod.terminationGracePeriodSeconds;
   if (!(grace * 1000 > drainMs))
     fail(where, `terminationGracePeriodSeconds ${grace} is not longer than the daemon's drain (${drainMs} ms)`);
+  // The GL driver's compiled shaders: a volume at the image's cache folder, so
+  // that a container restarted in the pod does not compile every shader again.
+  if (!(container.volumeMounts || []).some((m) => m.mountPath === SHADER_CACHE_DIR))
+    fail(where, `no volume at ${SHADER_CACHE_DIR}: a restarted container compiles every shader again`);
   // The token: a Secret volume, mounted, and the file under it given to --token-file.
   const tokenFile = argAfter(args, '--token-file');
   if (!tokenFile) return fail(where, 'no --token-file: anyone reaching the pod could render');

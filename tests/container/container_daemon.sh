@@ -5,7 +5,9 @@
 #   2. The host's fluidcast CLI renders the analytic ball through it: a PNG
 #      whose pixels show fluid where the ball projects, background elsewhere.
 #   3. The image's health check (fluidcast info inside the container) turns healthy.
-#   4. PID 1 is fluidcastd as user fluidcast; `docker stop` returns within 10 s
+#   4. PID 1 is fluidcastd as user fluidcast; Mesa keeps the shaders it
+#      compiled in /var/cache/fluidcast (the image's MESA_SHADER_CACHE_DIR,
+#      where a volume keeps them); `docker stop` returns within 10 s
 #      and the container exits 0 after the daemon logs SIGTERM.
 # The container shares the host's network (the engine has no bridge; engine.sh).
 #   usage: container_daemon.sh BUILD_DIR WORK_DIR FLUIDCAST_CLI BALL_TOOL
@@ -55,6 +57,11 @@ done
 step "PID 1 and its user"
 [ "$("$DOCKER" exec "$NAME" cat /proc/1/comm)" = fluidcastd ] || fail "PID 1 is not fluidcastd"
 [ "$("$DOCKER" exec "$NAME" sh -c 'stat -c %U /proc/1')" = fluidcast ] || fail "fluidcastd does not run as fluidcast"
+
+step "the compiled shaders: in /var/cache/fluidcast, where a volume keeps them (MESA_SHADER_CACHE_DIR)"
+entries=$("$DOCKER" exec "$NAME" find /var/cache/fluidcast -type f -user fluidcast | wc -l)
+echo "shader cache entries: $entries"
+[ "$entries" -gt 0 ] || fail "Mesa kept no compiled shader under /var/cache/fluidcast"
 
 step "docker stop: within 10 s, exit 0"
 start=$(date +%s%N)

@@ -6,7 +6,8 @@
 # (127.0.0.1:7450) and over the Unix socket (/run/fluidcastd.sock), which
 # starts fluidcastd.service by socket activation (Type=notify: active only
 # after READY=1); it runs as a dynamic user; `systemctl stop` ends it cleanly
-# (Result=success, ExecMainStatus=0, the SIGTERM in its journal).
+# (Result=success, ExecMainStatus=0, the SIGTERM in its journal); the
+# shaders it compiled stay in its CacheDirectory, where a restart finds them.
 # The container has a network namespace of its own (--network none): port
 # 7450 there is nobody else's.
 #   usage: container_systemd.sh SOURCE_DIR BUILD_DIR WORK_DIR BALL_TOOL
@@ -137,4 +138,23 @@ echo "$(show Result) $(show ExecMainCode) $(show ExecMainStatus) $(show ActiveSt
 [ "$(show ExecMainStatus)" = 0 ] || fail "ExecMainStatus=$(show ExecMainStatus)"
 [ "$(show ActiveState)" = inactive ] || fail "ActiveState=$(show ActiveState)"
 matches "SIGTERM received: stopping" "$OUT/journal.txt" || fail "the journal lacks the SIGTERM"
+
+# The GL driver (Mesa here) keeps the shaders it compiled in the unit's
+# CacheDirectory: the dynamic user's home is read-only, so without it every
+# start compiled every shader again. A restart that renders the same image
+# finds them there: it adds a few entries (4-5 of about 125 here, and the
+# same outside systemd), not the hundred or so a start without them writes.
+step "the shader cache: kept in /var/cache/fluidcastd, found there by a restart"
+cache_entries() { in_c find -L /var/cache/fluidcastd -type f | wc -l; }
+first=$(cache_entries)
+[ "$first" -gt 0 ] || fail "no compiled shaders under /var/cache/fluidcastd (MESA_SHADER_CACHE_DIR)"
+[ "$(in_c stat -L -c %u /var/cache/fluidcastd)" = "$uid" ] || fail "/var/cache/fluidcastd is not the dynamic user's"
+in_c systemctl start fluidcastd.socket
+render 127.0.0.1:7450 ball.f32 restarted.png || fail "no render after the restart"
+"$BALL" check "$OUT/restarted.png" "$OUT/empty.png" || fail "the render after the restart does not show the ball"
+in_c systemctl stop fluidcastd.service fluidcastd.socket
+again=$(cache_entries)
+echo "cache entries after the first start: $first, after the restart: $again"
+[ $((again - first)) -lt $((first / 4)) ] ||
+    fail "the restart compiled its shaders again: $first cache entries, then $again"
 echo "PASS"

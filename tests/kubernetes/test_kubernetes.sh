@@ -24,6 +24,9 @@ drain_ms=$(sed -n 's/^ *SHUTDOWN_DRAIN_MS = \([0-9]*\).*/\1/p' "$source/server/d
 
 failures=0
 fail() { echo "FAIL: $*"; failures=$((failures + 1)); }
+# validate.cjs wants a volume at the image's shader cache folder.
+grep -q '^ENV MESA_SHADER_CACHE_DIR=/var/cache/fluidcast ' "$source/deploy/container/Containerfile" ||
+    fail "deploy/container/Containerfile does not set MESA_SHADER_CACHE_DIR=/var/cache/fluidcast (validate.cjs)"
 work=$(mktemp -d /tmp/fc-k8s-XXXXXX)
 trap 'rm -rf "$work"' EXIT
 
@@ -79,6 +82,8 @@ broken no-token '/- --token-file/,+1d' statefulset.yaml "no --token-file"
 broken srv-port-name '/name: fluidcastd-headless/,$s/- name: fluidcast$/- name: render/' service.yaml \
     'no TCP port named "fluidcast"'
 broken not-headless 's/clusterIP: None/type: ClusterIP/' service.yaml "no headless Service"
+broken no-shader-cache 's#mountPath: /var/cache/fluidcast#mountPath: /var/cache/elsewhere#' statefulset.yaml \
+    "no volume at /var/cache/fluidcast"
 broken selector-mismatch '/^  selector:$/{n;s/fluidcastd$/other/}' service.yaml "selects no fluidcastd pod"
 
 if [[ $failures -eq 0 ]]; then
