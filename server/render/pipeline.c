@@ -489,12 +489,45 @@ static fc_code color_particles(fc_pipeline *p, const fc_settings *settings, fc_a
                                   settings->color_by, p->uploads, err);
 }
 
-/* Renders a particle and a spray droplet into tiny images through every
- * stage and shading option. Drivers compile shader variants lazily at the
- * first draw (and the background and composite passes build theirs for the
- * features a render uses, shader_variants.h), and some (llvmpipe) report a
- * bogus duration for the first timer query of a context; warming up keeps
- * both out of the first real request's timings. */
+/* One warm-up image of the uploaded frame, through every stage its settings use. */
+static fc_code warm_up_image(fc_pipeline *p, const fc_camera *camera, const fc_settings *settings, fc_aov aov,
+                             fc_error *err)
+{
+    fc_code code = shape_particles(p, settings, err);
+    if (code != FC_OK)
+        return code;
+    fc_view view;
+    fc_view_from_camera(camera, p->particles.lo, p->particles.hi, settings->radius, &view);
+    render_job job;
+    plan_job(p, &view, camera, settings, &(fc_render_scene){0}, aov, true, &job);
+    const fc_render_target *result = NULL;
+    return render_stages(p, &job, aov, &result, err);
+}
+
+/* The default look (fc_settings_default) twice, as a stream's first two
+ * frames (the second splat culls with what the first one left), the second
+ * with a fixed kernel (the narrow-range filter's other program). */
+static fc_code warm_up_default_look(fc_pipeline *p, const fc_camera *camera, float radius, fc_error *err)
+{
+    fc_settings settings;
+    fc_settings_default(&settings);
+    settings.radius = radius;
+    fc_code code = warm_up_image(p, camera, &settings, FC_AOV_COLOR, err);
+    settings.filter_radius = 5;
+    return code == FC_OK ? warm_up_image(p, camera, &settings, FC_AOV_COLOR, err) : code;
+}
+
+/* Renders tiny images through every stage and shading option. Drivers
+ * compile shader variants lazily at the first draw (and the background and
+ * composite passes build theirs for the features a render uses,
+ * shader_variants.h), and some (llvmpipe) report a bogus duration for the
+ * first timer query of a context; warming up keeps both out of the first
+ * real request. Its 8x8 images are 9x9 textures (fc_gl_non_pot), which
+ * llvmpipe compiles the same variants for as for any real size: a particle
+ * and a spray droplet with the default look, as a stream's first two frames
+ * (sprites a few pixels across: the compute splat's rows walk, as scenes of
+ * thousands of particles show them), then with noise and foam, the normal
+ * image, and ellipsoids. */
 static fc_code warm_up(fc_pipeline *p, fc_error *err)
 {
     float positions[6] = {0.0f, 0.0f, 0.0f, 1.5f, 0.0f, 0.0f};
@@ -509,22 +542,16 @@ static fc_code warm_up(fc_pipeline *p, fc_error *err)
     if (code == FC_OK)
         code = order_for(p, &settings, err);
     fc_particle_attributes_settle(&p->attributes);
-    fc_view view;
-    fc_view_from_camera(&camera, p->particles.lo, p->particles.hi, settings.radius, &view);
+    if (code == FC_OK)
+        code = warm_up_default_look(p, &camera, settings.radius, err);
     /* The last image with the anisotropic kernel, for its programs. */
     const fc_aov images[] = {FC_AOV_COLOR, FC_AOV_NORMAL, FC_AOV_COLOR};
     for (size_t i = 0; i < sizeof images / sizeof images[0] && code == FC_OK; i++) {
         settings.kernel = i == 2 ? FC_KERNEL_ANISOTROPIC : FC_KERNEL_SPHERE;
-        /* The first image has the default look (its shader variants,
-         * shader_variants.h), the others noise and foam. */
+        /* The first image has the default look's features (its shader
+         * variants, shader_variants.h), the others noise and foam. */
         settings.noise = settings.foam = i == 0 ? 0.0f : 1.0f;
-        code = shape_particles(p, &settings, err);
-        if (code != FC_OK)
-            break;
-        render_job job;
-        plan_job(p, &view, &camera, &settings, &(fc_render_scene){0}, images[i], true, &job);
-        const fc_render_target *result = NULL;
-        code = render_stages(p, &job, images[i], &result, err);
+        code = warm_up_image(p, &camera, &settings, images[i], err);
     }
     for (int s = 0; s < FC_STAGE_COUNT; s++)
         fc_stage_timer_ms(&p->timer, (fc_stage)s);   /* waits until the GPU is done */
