@@ -63,3 +63,24 @@ fc_code fc_cli_parse_args(const fc_cli_command *command, int argc, char **argv, 
     }
     return FC_OK;
 }
+
+fc_code fc_cli_take_global(int *argc, char **argv, const char *option,
+                           fc_code (*apply)(const char *value, fc_error *err), fc_error *err)
+{
+    size_t option_len = strlen(option);
+    int kept = 1;
+    fc_code code = FC_OK;
+    for (int i = 1; i < *argc; i++) {
+        const char *arg = argv[i];
+        if (code != FC_OK || strncmp(arg, option, option_len) != 0 ||
+            (arg[option_len] != '\0' && arg[option_len] != '=')) {
+            argv[kept++] = argv[i];
+            continue;
+        }
+        const char *value = arg[option_len] == '=' ? arg + option_len + 1 : i + 1 < *argc ? argv[++i] : NULL;
+        code = value ? apply(value, err) : fc_error_set(err, FC_ERR_USAGE, "%s needs a value", option);
+    }
+    *argc = kept;
+    argv[kept] = NULL;
+    return code;
+}

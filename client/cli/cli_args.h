@@ -30,4 +30,11 @@ typedef struct fc_cli_command {
 fc_code fc_cli_parse_args(const fc_cli_command *command, int argc, char **argv, void *options, bool *help,
                           fc_error *err);
 
+/* Removes every "OPTION VALUE" / "OPTION=VALUE" from argv[1..] (updating *argc),
+ * wherever it stands, and hands each value to `apply`: the options every
+ * subcommand takes (--token-file, --connect-timeout). FC_ERR_USAGE for a
+ * missing value; else the first error of `apply`. */
+fc_code fc_cli_take_global(int *argc, char **argv, const char *option,
+                           fc_code (*apply)(const char *value, fc_error *err), fc_error *err);
+
 #endif

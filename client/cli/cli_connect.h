@@ -5,6 +5,19 @@
 
 #include "fluidcast.h"
 
+/* Removes "--connect-timeout SECONDS" (or "=SECONDS") from argv, wherever it
+ * stands, and publishes it as FLUIDCAST_CONNECT_TIMEOUT: how long every
+ * command waits to reach the server and for its WELCOME (default 10 s; a
+ * socket-activated fluidcastd on llvmpipe with no shader cache takes about
+ * 6 s to answer). FC_ERR_USAGE for a value that is not a number of seconds
+ * in (0, 3600]. */
+fc_code fc_cli_connect_timeout_take(int *argc, char **argv, fc_error *err);
+
+/* The options every command connects with: its name, the token
+ * (cli_token.h) and the connect timeout (FLUIDCAST_CONNECT_TIMEOUT, which an
+ * invalid value leaves at the library's default). */
+fc_connect_options fc_cli_connect_options(const char *client_name);
+
 /* fc_client_connect_session(server, session, ...). For an "srv:NAME" server a
  * line on stderr names the daemon chosen ("fluidcast: srv:NAME -> HOST:PORT"
  * and the session), so an operator sees where a session lives. */

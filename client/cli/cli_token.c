@@ -7,6 +7,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "cli_args.h"
 #include "fc_error.h"
 #include "wire.h"
 
@@ -39,23 +40,7 @@ static fc_code publish_file_token(const char *path, fc_error *err)
 
 fc_code fc_cli_token_take(int *argc, char **argv, fc_error *err)
 {
-    size_t option_len = strlen(OPTION);
-    int kept = 1;
-    fc_code code = FC_OK;
-    for (int i = 1; i < *argc; i++) {
-        const char *arg = argv[i];
-        if (code != FC_OK || strncmp(arg, OPTION, option_len) != 0 ||
-            (arg[option_len] != '\0' && arg[option_len] != '=')) {
-            argv[kept++] = argv[i];
-            continue;
-        }
-        const char *path = arg[option_len] == '=' ? arg + option_len + 1 : i + 1 < *argc ? argv[++i] : NULL;
-        code = path ? publish_file_token(path, err)
-                    : fc_error_set(err, FC_ERR_USAGE, "%s needs a value", OPTION);
-    }
-    *argc = kept;
-    argv[kept] = NULL;
-    return code;
+    return fc_cli_take_global(argc, argv, OPTION, publish_file_token, err);
 }
 
 const char *fc_cli_token(void)

@@ -8,7 +8,6 @@
 #include "cli_connect.h"
 #include "cli_args.h"
 #include "cli_report.h"
-#include "cli_token.h"
 #include "fc_error.h"
 #include "fluidcast.h"
 
@@ -70,7 +69,7 @@ static void print_sessions(const fc_session_status *list, uint32_t count)
 
 static int info(const info_options *o)
 {
-    fc_connect_options connect_options = {.client_name = "fluidcast info", .token = fc_cli_token()};
+    fc_connect_options connect_options = fc_cli_connect_options("fluidcast info");
     fc_client *c;
     fc_error err;
     if (fc_cli_connect(o->server, NULL, &connect_options, &c, &err) != FC_OK)

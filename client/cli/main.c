@@ -2,6 +2,7 @@
 #include <stdio.h>
 #include <string.h>
 
+#include "cli_connect.h"
 #include "cli_report.h"
 #include "cli_token.h"
 #include "info.h"
@@ -38,6 +39,9 @@ static void print_help(FILE *to)
           "every command:\n"
           "  --token-file PATH       send the token in PATH (its first line) to a daemon\n"
           "                          that requires one; without it FLUIDCAST_TOKEN, if set\n"
+          "  --connect-timeout S     wait at most S seconds to reach the server and for\n"
+          "                          its answer to the handshake (default 10; without it\n"
+          "                          FLUIDCAST_CONNECT_TIMEOUT, if set)\n"
           "\n",
           to);
     fc_cli_print_exit_codes(to);
@@ -48,6 +52,8 @@ int main(int argc, char **argv)
     fc_error err;
     if (fc_cli_token_take(&argc, argv, &err) != FC_OK)
         return fc_cli_fail(err.code == FC_ERR_USAGE ? FC_EXIT_USAGE : FC_EXIT_INPUT, "%s", err.message);
+    if (fc_cli_connect_timeout_take(&argc, argv, &err) != FC_OK)
+        return fc_cli_fail(FC_EXIT_USAGE, "%s", err.message);
     if (argc < 2) {
         print_help(stderr);
         return FC_EXIT_USAGE;

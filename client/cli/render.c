@@ -15,7 +15,6 @@
 #include "cli_read_options.h"
 #include "cli_report.h"
 #include "cli_settings.h"
-#include "cli_token.h"
 #include "fc_error.h"
 #include "fc_frame.h"
 #include "fluidcast.h"
@@ -146,7 +145,7 @@ static int connect_and_set_up(render_job *job, fc_client **client)
     fc_error err;
     if (fc_snapshot_scene_resolve(&job->o->view, &scene, &err) != FC_OK)
         return fc_cli_fail(exit_for(err.code, FC_EXIT_INPUT), "%s", err.message);
-    fc_connect_options connect_options = {.client_name = "fluidcast render", .token = fc_cli_token()};
+    fc_connect_options connect_options = fc_cli_connect_options("fluidcast render");
     if (fc_cli_connect(job->o->view.server, NULL, &connect_options, client, &err) != FC_OK)
         return fc_cli_fail(fc_cli_exit_for_client_error(err.code), "%s", err.message);
     if (fc_cli_meshes_send(*client, job->o->view.meshes, job->o->view.mesh_count, NULL, &job->o->view.recentring,

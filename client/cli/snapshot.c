@@ -9,7 +9,6 @@
 #include "cli_read_options.h"
 #include "cli_report.h"
 #include "cli_settings.h"
-#include "cli_token.h"
 #include "fc_error.h"
 #include "fc_frame.h"
 #include "fluidcast.h"
@@ -39,7 +38,7 @@ static int client_failure(const char *server, const fc_error *err)
 static int render_remotely(const fc_snapshot_options *o, const fc_snapshot_scene *scene, const fc_frame *frame,
                            const fc_camera *cam, const fc_settings *settings, fc_image_result *image)
 {
-    fc_connect_options connect_options = { .client_name = "fluidcast snapshot", .token = fc_cli_token() };
+    fc_connect_options connect_options = fc_cli_connect_options("fluidcast snapshot");
     fc_client *client;
     fc_error err;
     /* The message of a failed connect names the host and port itself. */

@@ -11,7 +11,6 @@
 #include "cli_args.h"
 #include "cli_frames.h"
 #include "cli_report.h"
-#include "cli_token.h"
 #include "cli_values.h"
 #include "fc_error.h"
 #include "fluidcast.h"
@@ -227,7 +226,7 @@ static int watch(const watch_options *o)
     fc_error err;
     if (o->out_dir && fc_cli_ensure_dir(o->out_dir, &err) != FC_OK)
         return fc_cli_fail(FC_EXIT_OUTPUT, "%s", err.message);
-    fc_connect_options connect_options = {.client_name = "fluidcast watch", .token = fc_cli_token()};
+    fc_connect_options connect_options = fc_cli_connect_options("fluidcast watch");
     fc_client *c;
     if (fc_cli_connect(o->server, o->session, &connect_options, &c, &err) != FC_OK)
         return fc_cli_fail(fc_cli_exit_for_client_error(err.code), "%s", err.message);

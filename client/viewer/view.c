@@ -12,7 +12,6 @@
 #include "cli_read_options.h"
 #include "cli_report.h"
 #include "cli_settings.h"
-#include "cli_token.h"
 #include "fc_frame.h"
 #include "fluidcast.h"
 #include "up_axis.h"
@@ -266,7 +265,7 @@ static void loop(viewer *v)
 static int run(viewer *v, fc_frame *first, const fc_settings *settings, const fc_camera *home)
 {
     fc_error err;
-    fc_connect_options connect = {.client_name = "fluidcast view", .token = fc_cli_token()};
+    fc_connect_options connect = fc_cli_connect_options("fluidcast view");
     fc_client *client;
     if (fc_cli_connect(v->opt.server, v->opt.session, &connect, &client, &err) != FC_OK)
         return fc_cli_fail(fc_cli_exit_for_client_error(err.code), "%s", err.message);

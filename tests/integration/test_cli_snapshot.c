@@ -6,6 +6,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <time.h>
 #include <unistd.h>
 
 #include "cli_runner.h"
@@ -356,6 +357,56 @@ static void test_protocol_failure(test_env *env)
     CHECK_CODE(fake_server_finish(fake), 0);
 }
 
+/* A server that takes the HELLO and never answers, until the client hangs up. */
+static void script_silent_after_hello(fake_connection *conn)
+{
+    fc_test_message m = { 0 };
+    if (!fake_expect(conn, FC_MSG_HELLO, &m))
+        conn->failures++;
+    fc_test_message_free(&m);
+    char byte;
+    while (read(conn->fd, &byte, 1) > 0) {
+    }
+}
+
+static double elapsed_ms(const struct timespec *since)
+{
+    struct timespec now;
+    clock_gettime(CLOCK_MONOTONIC, &now);
+    return (now.tv_sec - since->tv_sec) * 1e3 + (now.tv_nsec - since->tv_nsec) / 1e6;
+}
+
+/* --connect-timeout bounds the wait for the WELCOME (the library's default is
+ * 10 s): against a server that never answers, the CLI gives up after about
+ * the second asked for, saying it timed out; a value that is no number of
+ * seconds in (0, 3600] is a usage error, before any connection. */
+static void test_connect_timeout(test_env *env)
+{
+    const char *ball = scratch(env, "ball.f32"), *png = scratch(env, "never.png");
+    expect_exit(env, 2, (const char *const[]){ "snapshot", ball, "-o", png, "--connect-timeout", "0", NULL });
+    expect_exit(env, 2, (const char *const[]){ "snapshot", ball, "-o", png, "--connect-timeout=-1", NULL });
+    expect_exit(env, 2, (const char *const[]){ "snapshot", ball, "-o", png, "--connect-timeout", "5000", NULL });
+    expect_exit(env, 2, (const char *const[]){ "info", "--connect-timeout", "soon", NULL });
+    expect_exit(env, 2, (const char *const[]){ "info", "--connect-timeout", NULL });
+
+    fake_server *fake = fake_server_start(script_silent_after_hello);
+    CHECK(fake != NULL);
+    if (!fake)
+        return;
+    char address[32];
+    snprintf(address, sizeof address, "127.0.0.1:%u", (unsigned)fake_server_port(fake));
+    struct timespec start;
+    clock_gettime(CLOCK_MONOTONIC, &start);
+    cli_result r;
+    run(env, &r, (const char *const[]){ "snapshot", ball, "-o", png, "--server", address, "--connect-timeout",
+                                        "0.5", NULL });
+    double ms = elapsed_ms(&start);
+    CHECK_MSG(r.status == 7 && strstr(r.err, "timed out") != NULL, "exit %d; stderr: %s", r.status, r.err);
+    CHECK_MSG(ms >= 400.0 && ms < 5000.0, "gave up after %.0f ms, asked 500 (the default is 10000)", ms);
+    CHECK(access(png, F_OK) != 0);
+    CHECK_CODE(fake_server_finish(fake), 0);
+}
+
 static void remove_scratch(test_env *env)
 {
     const char *names[] = { "ball.f32", "ball.ply", "corners.f32", "broken.ply", "ball.png", "empty.png",
@@ -379,6 +430,7 @@ int main(void)
     test_usage_errors(&env);
 
     test_protocol_failure(&env);
+    test_connect_timeout(&env);
 
     fc_test_daemon daemon;
     fc_error err;
