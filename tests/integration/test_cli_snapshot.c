@@ -334,24 +334,38 @@ static void test_input_server_and_output_errors(test_env *env)
     CHECK(access(png, F_OK) != 0);
 }
 
-static void script_garbage_welcome(fake_connection *conn)
+/* A fake server's first step: the client's HELLO. */
+static void expect_hello(fake_connection *conn)
 {
     fc_test_message m = { 0 };
     if (!fake_expect(conn, FC_MSG_HELLO, &m))
         conn->failures++;
     fc_test_message_free(&m);
+}
+
+/* A fake server running `script`, its "127.0.0.1:PORT" in address; NULL (a failed check) when none starts. */
+static fake_server *start_fake(fake_script script, char address[32])
+{
+    fake_server *fake = fake_server_start(script);
+    CHECK(fake != NULL);
+    if (fake)
+        snprintf(address, 32, "127.0.0.1:%u", (unsigned)fake_server_port(fake));
+    return fake;
+}
+
+static void script_garbage_welcome(fake_connection *conn)
+{
+    expect_hello(conn);
     static const char garbage[] = "SSH-2.0-OpenSSH_9.2\r\n";
     fc_test_send(conn->fd, garbage, sizeof garbage - 1, NULL);
 }
 
 static void test_protocol_failure(test_env *env)
 {
-    fake_server *fake = fake_server_start(script_garbage_welcome);
-    CHECK(fake != NULL);
+    char address[32];
+    fake_server *fake = start_fake(script_garbage_welcome, address);
     if (!fake)
         return;
-    char address[32];
-    snprintf(address, sizeof address, "127.0.0.1:%u", (unsigned)fake_server_port(fake));
     expect_exit(env, 7, (const char *const[]){ "snapshot", scratch(env, "ball.f32"), "-o", scratch(env, "never.png"),
                                                "--server", address, NULL });
     CHECK_CODE(fake_server_finish(fake), 0);
@@ -360,10 +374,7 @@ static void test_protocol_failure(test_env *env)
 /* A server that takes the HELLO and never answers, until the client hangs up. */
 static void script_silent_after_hello(fake_connection *conn)
 {
-    fc_test_message m = { 0 };
-    if (!fake_expect(conn, FC_MSG_HELLO, &m))
-        conn->failures++;
-    fc_test_message_free(&m);
+    expect_hello(conn);
     char byte;
     while (read(conn->fd, &byte, 1) > 0) {
     }
@@ -389,12 +400,10 @@ static void test_connect_timeout(test_env *env)
     expect_exit(env, 2, (const char *const[]){ "info", "--connect-timeout", "soon", NULL });
     expect_exit(env, 2, (const char *const[]){ "info", "--connect-timeout", NULL });
 
-    fake_server *fake = fake_server_start(script_silent_after_hello);
-    CHECK(fake != NULL);
+    char address[32];
+    fake_server *fake = start_fake(script_silent_after_hello, address);
     if (!fake)
         return;
-    char address[32];
-    snprintf(address, sizeof address, "127.0.0.1:%u", (unsigned)fake_server_port(fake));
     struct timespec start;
     clock_gettime(CLOCK_MONOTONIC, &start);
     cli_result r;
