@@ -389,7 +389,7 @@ static double elapsed_ms(const struct timespec *since)
 
 /* --connect-timeout bounds the wait for the WELCOME (the library's default is
  * 10 s): against a server that never answers, the CLI gives up after about
- * the second asked for, saying it timed out; a value that is no number of
+ * the half second asked for, saying it timed out; a value that is no number of
  * seconds in (0, 3600] is a usage error, before any connection. */
 static void test_connect_timeout(test_env *env)
 {
@@ -411,7 +411,9 @@ static void test_connect_timeout(test_env *env)
                                         "0.5", NULL });
     double ms = elapsed_ms(&start);
     CHECK_MSG(r.status == 7 && strstr(r.err, "timed out") != NULL, "exit %d; stderr: %s", r.status, r.err);
-    CHECK_MSG(ms >= 400.0 && ms < 5000.0, "gave up after %.0f ms, asked 500 (the default is 10000)", ms);
+    /* Below the default's 10 s with room for a slow start (ASan, a loaded machine):
+     * the half second asked for was used, not the default. */
+    CHECK_MSG(ms >= 400.0 && ms < 9000.0, "gave up after %.0f ms, asked 500 (the default is 10000)", ms);
     CHECK(access(png, F_OK) != 0);
     CHECK_CODE(fake_server_finish(fake), 0);
 }
