@@ -293,8 +293,8 @@ static fc_code reserve(fc_compute_splat *s, uint32_t width, uint32_t height, fc_
 {
     if (s->nearest_depth && width <= s->width && height <= s->height)
         return FC_OK;
-    width = (uint32_t)fc_gl_non_pot(width > s->width ? width : s->width);
-    height = (uint32_t)fc_gl_non_pot(height > s->height ? height : s->height);
+    width = fc_gl_grown_extent(width, s->width);
+    height = fc_gl_grown_extent(height, s->height);
     release_images(s);
     s->allocations++;
     fc_code code = fc_gl_texture_create(GL_R32UI, width, height, false, &s->nearest_depth, err);
@@ -326,8 +326,8 @@ static fc_code reserve_sun(fc_compute_splat *s, const fc_view *sun, fc_error *er
 {
     if (s->sun_sum && sun->width <= s->sun_width && sun->height <= s->sun_height)
         return FC_OK;
-    uint32_t width = (uint32_t)fc_gl_non_pot(sun->width > s->sun_width ? sun->width : s->sun_width);
-    uint32_t height = (uint32_t)fc_gl_non_pot(sun->height > s->sun_height ? sun->height : s->sun_height);
+    uint32_t width = fc_gl_grown_extent(sun->width, s->sun_width);
+    uint32_t height = fc_gl_grown_extent(sun->height, s->sun_height);
     glDeleteTextures(1, &s->sun_sum);
     s->sun_sum = 0;
     s->sun_width = s->sun_height = 0;

@@ -55,6 +55,11 @@ uint64_t fc_gl_non_pot(uint64_t n)
     return n;
 }
 
+uint32_t fc_gl_grown_extent(uint32_t asked, uint32_t allocated)
+{
+    return (uint32_t)fc_gl_non_pot(asked > allocated ? asked : allocated);
+}
+
 fc_code fc_gl_texture_create(GLenum internal_format, uint32_t width, uint32_t height, bool linear,
                              GLuint *texture, fc_error *err)
 {

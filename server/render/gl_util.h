@@ -37,6 +37,10 @@ fc_code fc_gl_texture_create(GLenum internal_format, uint32_t width, uint32_t he
  * nothing. */
 uint64_t fc_gl_non_pot(uint64_t n);
 
+/* The extent a texture that only grows takes when `asked` meets its
+ * `allocated` one: the larger, never a power of two (fc_gl_non_pot). */
+uint32_t fc_gl_grown_extent(uint32_t asked, uint32_t allocated);
+
 /* Bytes per texel of the sized internal formats the pipeline allocates
  * (colour, compute images, depth/stencil); 0 for any other format. */
 uint32_t fc_gl_texel_bytes(GLenum internal_format);

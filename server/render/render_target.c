@@ -58,8 +58,8 @@ static fc_code allocate(fc_render_target *t, fc_error *err)
 fc_code fc_render_target_resize(fc_render_target *t, uint32_t width, uint32_t height, fc_error *err)
 {
     if (!t->framebuffer || width > t->texture_width || height > t->texture_height) {
-        uint32_t grown_width = (uint32_t)fc_gl_non_pot(width > t->texture_width ? width : t->texture_width);
-        uint32_t grown_height = (uint32_t)fc_gl_non_pot(height > t->texture_height ? height : t->texture_height);
+        uint32_t grown_width = fc_gl_grown_extent(width, t->texture_width);
+        uint32_t grown_height = fc_gl_grown_extent(height, t->texture_height);
         delete_attachments(t);
         t->texture_width = grown_width;
         t->texture_height = grown_height;
