@@ -6,10 +6,10 @@
 
 #include "fc_colormap_tables.h"
 
-static const char *const names[FC_COLORMAP_COUNT] = {
+const char *const fc_colormap_names[FC_COLORMAP_COUNT + 1] = {
     [FC_COLORMAP_VIRIDIS] = "viridis", [FC_COLORMAP_PLASMA] = "plasma",   [FC_COLORMAP_INFERNO] = "inferno",
     [FC_COLORMAP_MAGMA] = "magma",     [FC_COLORMAP_CIVIDIS] = "cividis", [FC_COLORMAP_COOLWARM] = "coolwarm",
-    [FC_COLORMAP_TURBO] = "turbo",
+    [FC_COLORMAP_TURBO] = "turbo",       [FC_COLORMAP_COUNT] = NULL,
 };
 
 static bool is_map(fc_colormap map)
@@ -24,13 +24,13 @@ const float (*fc_colormap_table(fc_colormap map))[3]
 
 const char *fc_colormap_name(fc_colormap map)
 {
-    return is_map(map) ? names[map] : "?";
+    return is_map(map) ? fc_colormap_names[map] : "?";
 }
 
 bool fc_colormap_parse(const char *name, fc_colormap *map)
 {
     for (int i = 0; i < FC_COLORMAP_COUNT; i++)
-        if (strcmp(name, names[i]) == 0) {
+        if (strcmp(name, fc_colormap_names[i]) == 0) {
             *map = (fc_colormap)i;
             return true;
         }

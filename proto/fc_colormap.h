@@ -20,6 +20,9 @@ const float (*fc_colormap_table(fc_colormap map))[3];
 /* The map's name ("viridis", ...); "?" for a value outside the enum. */
 const char *fc_colormap_name(fc_colormap map);
 
+/* Every map's name, indexed by fc_colormap, then NULL (the colormap setting's choices). */
+extern const char *const fc_colormap_names[FC_COLORMAP_COUNT + 1];
+
 /* The map called `name` (as fc_colormap_name spells it), false for none. */
 bool fc_colormap_parse(const char *name, fc_colormap *map);
 

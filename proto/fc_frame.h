@@ -1,9 +1,10 @@
-/* fc_frame.h — allocating, validating and measuring particle frames, camera and settings defaults. */
+/* fc_frame.h — allocating, validating and measuring particle frames; the camera's defaults. */
 #ifndef FC_FRAME_H
 #define FC_FRAME_H
 
 #include <stdbool.h>
 #include "fluidcast_types.h"
+#include "fc_settings.h"   /* fc_settings_default, fc_settings_validate: the settings' table */
 
 #ifdef __cplusplus
 extern "C" {
@@ -83,18 +84,6 @@ void fc_camera_frame_bounds(const fc_frame *frame, uint32_t width, uint32_t heig
 /* Checks a camera: finite vectors, eye != target, up not parallel to the view
  * direction, fov in (0,180), width/height >= 1. */
 fc_code fc_camera_validate(const fc_camera *cam, fc_error *err);
-
-/* Default settings that make convincing water: radius 0 (auto), the
- * narrow-range filter with its default iterations, a blue-green tint, ior 1.33. */
-void fc_settings_default(fc_settings *s);
-
-/* Iterations that suit each smoothing method: the methods count different
- * things (curvature-flow time steps vs passes of a filter), so one number
- * cannot serve all. 0 for FC_SMOOTHING_NONE. */
-uint32_t fc_smoothing_default_iterations(fc_smoothing method);
-
-/* Checks every field's domain (radius >= 0 and finite, iterations <= 1000, ...). */
-fc_code fc_settings_validate(const fc_settings *s, fc_error *err);
 
 #ifdef __cplusplus
 }

@@ -1,24 +1,171 @@
-/* fc_settings.c — default render settings and their domains. */
+/* fc_settings.c — the render settings' table (fc_settings.h): one entry per
+ * field of fc_settings, and the defaults and validation made from it. */
+#include "fc_settings.h"
+
+#include <float.h>
+#include <stdbool.h>
+#include <math.h>
+#include <stdio.h>
+#include <string.h>
+
+#include "fc_colormap.h"
 #include "fc_frame.h"
 
-#include <math.h>
+/* Every value of every field is 4 bytes, so a field is `count` words. */
+_Static_assert(sizeof(float) == 4 && sizeof(uint32_t) == 4, "settings values are 4-byte words");
+_Static_assert(sizeof(fc_smoothing) == 4 && sizeof(fc_kernel) == 4 && sizeof(fc_color_by) == 4 &&
+                   sizeof(fc_colormap) == 4 && sizeof(fc_jpeg_subsampling) == 4,
+               "CHOICE fields that are enums are stored in 4 bytes, like a uint32_t");
 
-#include "fc_error.h"
+static const char *const smoothing_names[] = {"none", "curvature", "bilateral", "binomial", "narrow", NULL};
+static const char *const kernel_names[] = {"sphere", "anisotropic", NULL};
+static const char *const switch_names[] = {"off", "on", NULL};
+static const char *const color_by_names[] = {"none", "speed", "density", NULL};
+static const char *const subsampling_names[] = {"444", "420", NULL};
 
-#define MAX_RADIUS 1e6f
-#define MAX_ITERATIONS 1000u
-#define MAX_FILTER_RADIUS 64u
-#define MAX_ABSORPTION 1e6f
-#define MIN_IOR 1.0f
-#define MAX_IOR 3.0f
-#define MAX_REFRACTION 1000.0f
-#define MAX_SPECULAR 10.0f
-#define MIN_SHININESS 1.0f
-#define MAX_SHININESS 10000.0f
-#define MAX_THICKNESS_BLUR 32u
-#define MAX_NOISE 10.0f
-#define MAX_FOAM 10.0f
-#define MAX_EXPOSURE 16.0f
+/* The enums' last values, so that a new enum value without a name fails to compile. */
+_Static_assert(sizeof smoothing_names / sizeof *smoothing_names == FC_SMOOTHING_NARROW + 2, "smoothing names");
+_Static_assert(sizeof kernel_names / sizeof *kernel_names == FC_KERNEL_ANISOTROPIC + 2, "kernel names");
+_Static_assert(sizeof color_by_names / sizeof *color_by_names == FC_COLOR_BY_DENSITY + 2, "color_by names");
+_Static_assert(sizeof subsampling_names / sizeof *subsampling_names == FC_JPEG_SUBSAMPLING_YUV420 + 2,
+               "jpeg_subsampling names");
+
+/* The entry's first fields: key, name, type, count, offset (the name is the field's). */
+#define FIELD(k, field, t, n) .key = (k), .name = #field, .type = (t), .count = (n), \
+                              .offset = offsetof(fc_settings, field)
+
+static const fc_setting_spec table[] = {
+    {FIELD(1, radius, FC_SETTING_FLOAT, 1), .initial = {0.0f}, .min = 0.0, .max = FC_FRAME_MAX_RADIUS,
+     .flags = FC_SETTING_CLI_POSITIVE | FC_SETTING_FROM_FRAME, .group = FC_GROUP_SURFACE, .option = "--radius", .metavar = "R",
+     .help = "particle sphere radius in world units, for every particle. Without it each particle keeps the "
+             "radius its file gives, or else the radius is estimated from the particle spacing (0.9 x the "
+             "median nearest-neighbour distance); the radius used is printed"},
+    {FIELD(2, smoothing, FC_SETTING_CHOICE, 1), .initial = {FC_SMOOTHING_NARROW}, .choices = smoothing_names,
+     .group = FC_GROUP_SURFACE, .option = "--smoothing",
+     .help = "depth smoothing: narrow-range filter (Truong & Yuksel 2018), curvature flow (van der Laan et al. "
+             "2009), bilateral, binomial with silhouette map, or none"},
+    {FIELD(3, iterations, FC_SETTING_UINT, 1), .initial = {4}, .min = 0, .max = 1000,
+     .flags = FC_SETTING_PER_SMOOTHING, .group = FC_GROUP_SURFACE, .option = "--iterations", .metavar = "N",
+     .help = "curvature-flow steps or filter passes"},
+    {FIELD(4, fluid_color, FC_SETTING_FLOAT, 3), .initial = {0.02f, 0.15f, 0.28f}, .min = 0, .max = 1,
+     .separator = ',', .group = FC_GROUP_SHADING, .option = "--color", .metavar = "R,G,B",
+     .help = "linear colour of a thick layer"},
+    {FIELD(5, absorption, FC_SETTING_FLOAT, 3), .initial = {0.2f, 0.07f, 0.035f}, .min = 0, .max = 1e6,
+     .separator = ',', .group = FC_GROUP_SHADING, .option = "--absorption", .metavar = "R,G,B",
+     .help = "Beer-Lambert absorption per particle radius of thickness, per channel"},
+    {FIELD(6, ior, FC_SETTING_FLOAT, 1), .initial = {1.33f}, .min = 1, .max = 3, .group = FC_GROUP_SHADING,
+     .option = "--ior", .metavar = "N", .help = "index of refraction"},
+    {FIELD(7, filter_radius, FC_SETTING_UINT, 1), .initial = {0}, .min = 0, .max = 64, .group = FC_GROUP_SURFACE,
+     .option = "--filter-radius", .metavar = "PX",
+     .help = "kernel half-width of the bilateral, binomial and narrow-range filters in pixels; 0 = from the "
+             "particle size"},
+    {FIELD(8, smooth_scale, FC_SETTING_SCALE, 1), .initial = {1.0f}, .group = FC_GROUP_SURFACE,
+     .option = "--smooth-scale", .metavar = "S", .help = "resolution of the smoothing"},
+    {FIELD(9, refraction, FC_SETTING_FLOAT, 1), .initial = {0.25f}, .min = 0, .max = 1000,
+     .group = FC_GROUP_SHADING, .option = "--refraction", .metavar = "G",
+     .help = "background offset per pixel of projected thickness"},
+    {FIELD(10, specular, FC_SETTING_FLOAT, 1), .initial = {0.6f}, .min = 0, .max = 10, .group = FC_GROUP_SHADING,
+     .option = "--specular", .metavar = "S", .help = "specular intensity"},
+    {FIELD(11, shininess, FC_SETTING_FLOAT, 1), .initial = {60.0f}, .min = 1, .max = 10000,
+     .group = FC_GROUP_SHADING, .option = "--shininess", .metavar = "E", .help = "specular exponent"},
+    {FIELD(12, thickness_scale, FC_SETTING_SCALE, 1), .initial = {0.5f}, .group = FC_GROUP_SHADING,
+     .option = "--thickness-scale", .metavar = "S", .help = "resolution of the thickness pass"},
+    {FIELD(13, thickness_blur, FC_SETTING_UINT, 1), .initial = {2}, .min = 0, .max = 32,
+     .group = FC_GROUP_SHADING, .option = "--thickness-blur", .metavar = "PX",
+     .help = "blur radius of the thickness in pixels"},
+    {FIELD(14, noise, FC_SETTING_FLOAT, 1), .initial = {0.0f}, .min = 0, .max = 10, .group = FC_GROUP_SURFACE,
+     .option = "--noise", .metavar = "AMPLITUDE", .help = "surface noise; 0 = off"},
+    {FIELD(15, foam, FC_SETTING_FLOAT, 1), .initial = {0.0f}, .min = 0, .max = 10, .group = FC_GROUP_SURFACE,
+     .option = "--foam", .metavar = "INTENSITY", .help = "foam and spray; 0 = off"},
+    {FIELD(16, foam_tau, FC_SETTING_FLOAT, 1), .initial = {0.5f}, .min = 0, .max = FLT_MAX,
+     .flags = FC_SETTING_MIN_OPEN, .group = FC_GROUP_SURFACE, .option = "--foam-tau", .metavar = "V",
+     .help = "velocity change per frame that raises foam"},
+    /* A decay of 1 would never let a raised amplitude fall back. */
+    {FIELD(17, foam_decay, FC_SETTING_FLOAT, 1), .initial = {0.85f}, .min = 0, .max = 1,
+     .flags = FC_SETTING_MAX_OPEN, .group = FC_GROUP_SURFACE, .option = "--foam-decay", .metavar = "F",
+     .help = "per-frame decay of raised foam"},
+    {FIELD(18, density_threshold, FC_SETTING_FLOAT, 1), .initial = {0.0f}, .min = 0, .max = FLT_MAX,
+     .flags = FC_SETTING_FROM_FRAME, .group = FC_GROUP_SURFACE, .option = "--density-threshold", .metavar = "D",
+     .help = "particles with density below D are drawn as white spray; 0 = off. Default: half the frame's "
+             "median density when the file has densities (printed), else off"},
+    {FIELD(19, kernel, FC_SETTING_CHOICE, 1), .initial = {FC_KERNEL_SPHERE}, .choices = kernel_names,
+     .group = FC_GROUP_SURFACE, .option = "--kernel",
+     .help = "particle shape: spheres, or ellipsoids stretched along each particle's neighbours (Yu & Turk "
+             "2013: flat sheets, long jets)"},
+    {FIELD(20, shadow, FC_SETTING_CHOICE, 1), .initial = {1}, .choices = switch_names, .group = FC_GROUP_SHADING,
+     .option = "--shadow", .help = "the fluid's soft shadow on the built-in floor"},
+    {FIELD(21, exposure, FC_SETTING_FLOAT, 1), .initial = {0.0f}, .min = -16, .max = 16,
+     .group = FC_GROUP_SHADING, .option = "--exposure", .metavar = "EV",
+     .help = "stops of exposure before the filmic tone map"},
+    {FIELD(22, color_by, FC_SETTING_CHOICE, 1), .initial = {FC_COLOR_BY_NONE}, .choices = color_by_names,
+     .group = FC_GROUP_COLORING, .option = "--color-by",
+     .help = "tint the fluid by each particle's speed (needs velocities) or density (needs densities): the "
+             "colours are splatted and blurred with the thickness and thick fluid shows them; a frame without "
+             "the attribute is an error"},
+    {FIELD(23, colormap, FC_SETTING_CHOICE, 1), .initial = {FC_COLORMAP_VIRIDIS}, .choices = fc_colormap_names,
+     .group = FC_GROUP_COLORING, .option = "--colormap", .help = "the colours the attribute's range runs through"},
+    {FIELD(24, color_range, FC_SETTING_FLOAT, 2), .initial = {0.0f, 1.0f}, .min = -FLT_MAX, .max = FLT_MAX,
+     .flags = FC_SETTING_RANGE | FC_SETTING_FROM_FRAME, .separator = ':', .group = FC_GROUP_COLORING,
+     .option = "--range", .metavar = "MIN:MAX",
+     .help = "attribute values at the map's ends, MIN < MAX; values outside take the end colours. Default: "
+             "the first frame's 2nd to 98th percentile, printed, so that later runs can fix it and compare"},
+    /* Keys 25-31 are reserved (PROTOCOL.md 7.5). */
+    {FIELD(32, jpeg_subsampling, FC_SETTING_CHOICE, 1), .initial = {FC_JPEG_SUBSAMPLING_YUV444},
+     .choices = subsampling_names, .group = FC_GROUP_IMAGE, .option = "--jpeg-subsampling",
+     .help = "JPEG chroma: 444 keeps every pixel's colour, 420 shares one among 2x2 pixels (smaller files, a "
+             "faster encode; .jpg/.jpeg only)"},
+};
+
+#define TABLE_LENGTH (sizeof table / sizeof table[0])
+
+const fc_setting_spec *fc_settings_table(size_t *count)
+{
+    *count = TABLE_LENGTH;
+    return table;
+}
+
+const fc_setting_spec *fc_setting_by_key(uint32_t key)
+{
+    for (size_t i = 0; i < TABLE_LENGTH; i++)
+        if (table[i].key == key)
+            return &table[i];
+    return NULL;
+}
+
+const fc_setting_spec *fc_setting_by_name(const char *name)
+{
+    for (size_t i = 0; i < TABLE_LENGTH; i++)
+        if (strcmp(table[i].name, name) == 0)
+            return &table[i];
+    return NULL;
+}
+
+const fc_setting_spec *fc_setting_by_option(const char *option)
+{
+    for (size_t i = 0; i < TABLE_LENGTH; i++)
+        if (table[i].option && strcmp(table[i].option, option) == 0)
+            return &table[i];
+    return NULL;
+}
+
+void *fc_setting_field(const fc_setting_spec *spec, fc_settings *s)
+{
+    return (char *)s + spec->offset;
+}
+
+const void *fc_setting_field_const(const fc_setting_spec *spec, const fc_settings *s)
+{
+    return (const char *)s + spec->offset;
+}
+
+uint32_t fc_setting_choice_count(const fc_setting_spec *spec)
+{
+    uint32_t n = 0;
+    if (spec->type == FC_SETTING_CHOICE)
+        while (spec->choices[n])
+            n++;
+    return n;
+}
 
 uint32_t fc_smoothing_default_iterations(fc_smoothing method)
 {
@@ -36,137 +183,101 @@ uint32_t fc_smoothing_default_iterations(fc_smoothing method)
 
 void fc_settings_default(fc_settings *s)
 {
-    *s = (fc_settings){
-        .radius = 0.0f,
-        .smoothing = FC_SMOOTHING_NARROW,
-        .iterations = fc_smoothing_default_iterations(FC_SMOOTHING_NARROW),
-        .filter_radius = 0,
-        .smooth_scale = 1.0f,
-        .fluid_color = {0.02f, 0.15f, 0.28f},
-        .absorption = {0.2f, 0.07f, 0.035f},
-        .ior = 1.33f,
-        .refraction = 0.25f,
-        .specular = 0.6f,
-        .shininess = 60.0f,
-        .thickness_scale = 0.5f,
-        .thickness_blur = 2,
-        .noise = 0.0f,
-        .foam = 0.0f,
-        .foam_tau = 0.5f,
-        .foam_decay = 0.85f,
-        .density_threshold = 0.0f,
-        .kernel = FC_KERNEL_SPHERE,
-        .shadow = 1,
-        .exposure = 0.0f,
-        .color_by = FC_COLOR_BY_NONE,
-        .colormap = FC_COLORMAP_VIRIDIS,
-        .color_range = {0.0f, 1.0f},
-        .jpeg_subsampling = FC_JPEG_SUBSAMPLING_YUV444,
-    };
+    memset(s, 0, sizeof *s);
+    for (size_t i = 0; i < TABLE_LENGTH; i++) {
+        const fc_setting_spec *spec = &table[i];
+        void *field = fc_setting_field(spec, s);
+        if (spec->type == FC_SETTING_FLOAT || spec->type == FC_SETTING_SCALE)
+            memcpy(field, spec->initial, spec->count * sizeof(float));
+        else
+            *(uint32_t *)field = (uint32_t)spec->initial[0];
+    }
 }
 
-/* NaN fails both comparisons, so this also rejects non-finite values. */
-static bool in_range(float v, float lo, float hi)
+/* NaN fails every comparison, so this also rejects non-finite values. */
+static bool in_domain(const fc_setting_spec *spec, double v)
 {
-    return v >= lo && v <= hi;
+    bool above = spec->flags & FC_SETTING_MIN_OPEN ? v > spec->min : v >= spec->min;
+    bool below = spec->flags & FC_SETTING_MAX_OPEN ? v < spec->max : v <= spec->max;
+    return above && below;
+}
+
+/* What a value outside the domain is told: "is outside [1, 3]", "is outside
+ * [0, 1)", "must be finite and > 0" (a domain without a practical upper end). */
+static void domain_text(const fc_setting_spec *spec, char *out, size_t size)
+{
+    bool min_open = spec->flags & FC_SETTING_MIN_OPEN, max_open = spec->flags & FC_SETTING_MAX_OPEN;
+    if (spec->max >= FLT_MAX && spec->min <= -FLT_MAX)
+        snprintf(out, size, "must be finite");
+    else if (spec->max >= FLT_MAX)
+        snprintf(out, size, "must be finite and %s %g", min_open ? ">" : ">=", spec->min);
+    else
+        snprintf(out, size, "is outside %c%g, %g%c", min_open ? '(' : '[', spec->min, spec->max, max_open ? ')' : ']');
+}
+
+static fc_code validate_floats(const fc_setting_spec *spec, const float *v, fc_error *err)
+{
+    for (uint32_t c = 0; c < spec->count; c++) {
+        if (in_domain(spec, v[c]))
+            continue;
+        char domain[64], name[64];
+        domain_text(spec, domain, sizeof domain);
+        if (spec->count == 1)
+            snprintf(name, sizeof name, "%s", spec->name);
+        else
+            snprintf(name, sizeof name, "%s[%u]", spec->name, c);
+        return fc_error_set(err, FC_ERR_INVALID_VALUE, "%s %g %s", name, (double)v[c], domain);
+    }
+    return FC_OK;
 }
 
 /* The passes render at full, half or quarter resolution, nothing in between. */
-static bool is_resolution_scale(float v)
+static fc_code validate_scale(const fc_setting_spec *spec, float v, fc_error *err)
 {
-    return v == 1.0f || v == 0.5f || v == 0.25f;
+    if (v == 1.0f || v == 0.5f || v == 0.25f)
+        return FC_OK;
+    return fc_error_set(err, FC_ERR_INVALID_VALUE, "%s %g is not 1, 0.5 or 0.25", spec->name, (double)v);
 }
 
-static bool is_known_smoothing(fc_smoothing smoothing)
+static fc_code validate_choice(const fc_setting_spec *spec, uint32_t v, fc_error *err)
 {
-    return (unsigned)smoothing <= FC_SMOOTHING_NARROW;
-}
-
-static fc_code out_of_range(fc_error *err, const char *name, float v, float lo, float hi)
-{
-    return fc_error_set(err, FC_ERR_INVALID_VALUE, "%s %g is outside [%g, %g]", name, (double)v, (double)lo,
-                        (double)hi);
-}
-
-static fc_code validate_shape(const fc_settings *s, fc_error *err)
-{
-    if ((unsigned)s->kernel > FC_KERNEL_ANISOTROPIC)
-        return fc_error_set(err, FC_ERR_INVALID_VALUE, "unknown kernel %u", (unsigned)s->kernel);
-    if (!in_range(s->radius, 0.0f, MAX_RADIUS))
-        return out_of_range(err, "radius", s->radius, 0.0f, MAX_RADIUS);
-    if (!is_known_smoothing(s->smoothing))
-        return fc_error_set(err, FC_ERR_INVALID_VALUE, "unknown smoothing %u", (unsigned)s->smoothing);
-    if (s->iterations > MAX_ITERATIONS)
-        return fc_error_set(err, FC_ERR_INVALID_VALUE, "iterations %u exceed %u", s->iterations, MAX_ITERATIONS);
-    if (s->filter_radius > MAX_FILTER_RADIUS)
-        return fc_error_set(err, FC_ERR_INVALID_VALUE, "filter_radius %u exceeds %u pixels", s->filter_radius,
-                            MAX_FILTER_RADIUS);
-    if (!is_resolution_scale(s->smooth_scale))
-        return fc_error_set(err, FC_ERR_INVALID_VALUE, "smooth_scale %g is not 1, 0.5 or 0.25",
-                            (double)s->smooth_scale);
-    if (!is_resolution_scale(s->thickness_scale))
-        return fc_error_set(err, FC_ERR_INVALID_VALUE, "thickness_scale %g is not 1, 0.5 or 0.25",
-                            (double)s->thickness_scale);
-    if (s->thickness_blur > MAX_THICKNESS_BLUR)
-        return fc_error_set(err, FC_ERR_INVALID_VALUE, "thickness_blur %u exceeds %u pixels", s->thickness_blur,
-                            MAX_THICKNESS_BLUR);
-    return FC_OK;
-}
-
-static fc_code validate_shading(const fc_settings *s, fc_error *err)
-{
-    for (int c = 0; c < 3; c++) {
-        if (!in_range(s->fluid_color[c], 0.0f, 1.0f))
-            return fc_error_set(err, FC_ERR_INVALID_VALUE, "fluid_color[%d] %g is outside [0, 1]", c,
-                                (double)s->fluid_color[c]);
-        if (!in_range(s->absorption[c], 0.0f, MAX_ABSORPTION))
-            return fc_error_set(err, FC_ERR_INVALID_VALUE, "absorption[%d] %g is outside [0, %g]", c,
-                                (double)s->absorption[c], (double)MAX_ABSORPTION);
+    uint32_t n = fc_setting_choice_count(spec);
+    if (v < n)
+        return FC_OK;
+    char names[256] = "";
+    for (uint32_t i = 0; i < n; i++) {
+        size_t used = strlen(names);
+        snprintf(names + used, sizeof names - used, "%s%u (%s)", i ? ", " : "", i, spec->choices[i]);
     }
-    if (!in_range(s->ior, MIN_IOR, MAX_IOR))
-        return out_of_range(err, "ior", s->ior, MIN_IOR, MAX_IOR);
-    if (!in_range(s->refraction, 0.0f, MAX_REFRACTION))
-        return out_of_range(err, "refraction", s->refraction, 0.0f, MAX_REFRACTION);
-    if (!in_range(s->specular, 0.0f, MAX_SPECULAR))
-        return out_of_range(err, "specular", s->specular, 0.0f, MAX_SPECULAR);
-    if (!in_range(s->shininess, MIN_SHININESS, MAX_SHININESS))
-        return out_of_range(err, "shininess", s->shininess, MIN_SHININESS, MAX_SHININESS);
-    if (s->shadow > 1)
-        return fc_error_set(err, FC_ERR_INVALID_VALUE, "shadow %u is not 0 (off) or 1 (on)", s->shadow);
-    if (!in_range(s->exposure, -MAX_EXPOSURE, MAX_EXPOSURE))
-        return out_of_range(err, "exposure", s->exposure, -MAX_EXPOSURE, MAX_EXPOSURE);
-    return FC_OK;
+    return fc_error_set(err, FC_ERR_INVALID_VALUE, "unknown %s %u: one of %s", spec->name, v, names);
 }
 
-static fc_code validate_effects(const fc_settings *s, fc_error *err)
+fc_code fc_setting_validate(const fc_setting_spec *spec, const fc_settings *s, fc_error *err)
 {
-    if (!in_range(s->noise, 0.0f, MAX_NOISE))
-        return out_of_range(err, "noise", s->noise, 0.0f, MAX_NOISE);
-    if (!in_range(s->foam, 0.0f, MAX_FOAM))
-        return out_of_range(err, "foam", s->foam, 0.0f, MAX_FOAM);
-    if (!(s->foam_tau > 0.0f && isfinite(s->foam_tau)))
-        return fc_error_set(err, FC_ERR_INVALID_VALUE, "foam_tau %g must be finite and > 0", (double)s->foam_tau);
-    /* A decay of 1 would never let a raised amplitude fall back. */
-    if (!(s->foam_decay >= 0.0f && s->foam_decay < 1.0f))
-        return fc_error_set(err, FC_ERR_INVALID_VALUE, "foam_decay %g is outside [0, 1)", (double)s->foam_decay);
-    if (!(s->density_threshold >= 0.0f && isfinite(s->density_threshold)))
-        return fc_error_set(err, FC_ERR_INVALID_VALUE, "density_threshold %g must be finite and >= 0",
-                            (double)s->density_threshold);
-    return FC_OK;
+    const void *field = fc_setting_field_const(spec, s);
+    switch (spec->type) {
+    case FC_SETTING_FLOAT: return validate_floats(spec, field, err);
+    case FC_SETTING_SCALE: return validate_scale(spec, *(const float *)field, err);
+    case FC_SETTING_CHOICE: return validate_choice(spec, *(const uint32_t *)field, err);
+    case FC_SETTING_UINT: {
+        uint32_t v = *(const uint32_t *)field;
+        if (in_domain(spec, v))
+            return FC_OK;
+        return fc_error_set(err, FC_ERR_INVALID_VALUE, "%s %u is outside [%g, %g]", spec->name, v, spec->min,
+                            spec->max);
+    }
+    }
+    return fc_error_set(err, FC_ERR_INVALID_VALUE, "%s has an unknown type", spec->name);
 }
 
-/* The range must map to the colormap with a finite, positive width (its
- * width is a divisor in the shader) when it is used; without colouring it
- * need only be finite, so zeroed settings stay valid. */
+/* The range maps to the colormap with a finite, positive width (its width is
+ * a divisor in the shader) when it is used; without colouring it need only be
+ * finite (the table's domain), so zeroed settings stay valid. */
 static fc_code validate_coloring(const fc_settings *s, fc_error *err)
 {
-    if ((unsigned)s->color_by > FC_COLOR_BY_DENSITY)
-        return fc_error_set(err, FC_ERR_INVALID_VALUE, "unknown color_by %u", (unsigned)s->color_by);
-    if ((unsigned)s->colormap > FC_COLORMAP_TURBO)
-        return fc_error_set(err, FC_ERR_INVALID_VALUE, "unknown colormap %u", (unsigned)s->colormap);
     float lo = s->color_range[0], hi = s->color_range[1];
-    if (!(isfinite(lo) && isfinite(hi) && isfinite(hi - lo)))
-        return fc_error_set(err, FC_ERR_INVALID_VALUE, "color_range [%g, %g] must be finite", (double)lo,
+    if (!isfinite(hi - lo))
+        return fc_error_set(err, FC_ERR_INVALID_VALUE, "color_range [%g, %g] must have a finite width", (double)lo,
                             (double)hi);
     if (s->color_by != FC_COLOR_BY_NONE && !(lo < hi))
         return fc_error_set(err, FC_ERR_INVALID_VALUE,
@@ -177,15 +288,10 @@ static fc_code validate_coloring(const fc_settings *s, fc_error *err)
 
 fc_code fc_settings_validate(const fc_settings *s, fc_error *err)
 {
-    fc_code code = validate_shape(s, err);
-    if (code == FC_OK)
-        code = validate_shading(s, err);
-    if (code == FC_OK)
-        code = validate_effects(s, err);
-    if (code == FC_OK)
-        code = validate_coloring(s, err);
-    if (code == FC_OK && (unsigned)s->jpeg_subsampling > FC_JPEG_SUBSAMPLING_YUV420)
-        code = fc_error_set(err, FC_ERR_INVALID_VALUE, "unknown jpeg_subsampling %u",
-                            (unsigned)s->jpeg_subsampling);
-    return code;
+    for (size_t i = 0; i < TABLE_LENGTH; i++) {
+        fc_code code = fc_setting_validate(&table[i], s, err);
+        if (code != FC_OK)
+            return code;
+    }
+    return validate_coloring(s, err);
 }

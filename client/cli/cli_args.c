@@ -30,6 +30,23 @@ static fc_code take_positional(const fc_cli_command *command, const char *arg, v
     return command->positional(options, arg, err);
 }
 
+/* argv[*i] as a render setting's option, with its value. */
+static fc_code take_setting(const fc_cli_command *command, int argc, char **argv, int *i, void *options,
+                            fc_error *err)
+{
+    const char *value;
+    const fc_setting_spec *spec = fc_cli_find_setting(argv[*i], &value);
+    if (!spec)
+        return fc_error_set(err, FC_ERR_USAGE, "unknown option %s (see fluidcast %s --help)", argv[*i],
+                            command->name);
+    if (!value) {
+        if (*i + 1 >= argc)
+            return fc_error_set(err, FC_ERR_USAGE, "%s needs a value", spec->option);
+        value = argv[++*i];
+    }
+    return fc_cli_set_setting(command->settings(options), spec, value, err);
+}
+
 fc_code fc_cli_parse_args(const fc_cli_command *command, int argc, char **argv, void *options, bool *help,
                           fc_error *err)
 {
@@ -46,6 +63,12 @@ fc_code fc_cli_parse_args(const fc_cli_command *command, int argc, char **argv, 
         } else {
             const char *value;
             const fc_cli_option *option = find_option(command, arg, &value);
+            if (!option && command->settings) {
+                code = take_setting(command, argc, argv, &i, options, err);
+                if (code != FC_OK)
+                    return code;
+                continue;
+            }
             if (!option)
                 return fc_error_set(err, FC_ERR_USAGE, "unknown option %s (see fluidcast %s --help)", arg,
                                     command->name);

@@ -6,6 +6,7 @@
 #include <stdbool.h>
 #include <stddef.h>
 
+#include "cli_setting_options.h"
 #include "fluidcast_types.h"
 
 /* Applies one option to the subcommand's options struct; value is NULL for a flag. */
@@ -23,6 +24,9 @@ typedef struct fc_cli_command {
     size_t option_count;
     /* Takes one positional argument; NULL: positional arguments are refused. */
     fc_code (*positional)(void *options, const char *arg, fc_error *err);
+    /* The command's render settings, whose options (cli_setting_options.h, from
+     * the settings table) it takes besides its own; NULL: it takes none. */
+    fc_cli_settings *(*settings)(void *options);
 } fc_cli_command;
 
 /* Parses argv (the arguments after the subcommand) into `options`. Stops at

@@ -25,7 +25,7 @@ static fc_code set_server(void *o, const char *name, const char *value, fc_error
 }
 
 static const fc_cli_option options[] = {{"--server", true, set_server}};
-static const fc_cli_command command = {"info", options, 1, NULL};
+static const fc_cli_command command = {"info", options, 1, NULL, NULL};
 
 static void print_help(FILE *to)
 {

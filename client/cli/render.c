@@ -86,11 +86,11 @@ static int choose_view(render_job *job)
         status = fc_cli_fail(FC_EXIT_USAGE, "%s", err.message);
     if (status == FC_EXIT_OK) {
         /* Completed from the first frame as snapshot completes them from its one. */
-        job->settings = o->view.settings;
+        job->settings = o->view.settings.values;
         fc_cli_choices chosen;
-        fc_cli_complete_settings(&job->settings, &first, o->view.has_density_threshold, &chosen);
+        fc_cli_complete_settings(&job->settings, &first, fc_cli_setting_given(&o->view.settings, "density_threshold"), &chosen);
         /* A fixed range for the whole sequence, so that its frames compare. */
-        fc_cli_complete_color_range(&job->settings, &first, o->view.has_color_range, &chosen);
+        fc_cli_complete_color_range(&job->settings, &first, fc_cli_setting_given(&o->view.settings, "color_range"), &chosen);
         printf("render: %u frames, %s .. %s", (unsigned)job->inputs.count, job->inputs.paths[0],
                job->inputs.paths[job->inputs.count - 1]);
         if (o->camera_path)

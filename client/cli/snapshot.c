@@ -122,10 +122,10 @@ static int snapshot(const fc_snapshot_options *o, fc_frame *frame)
     if (fc_snapshot_camera(&placed, frame, &up, &cam, &err) != FC_OK)
         return fc_cli_fail(FC_EXIT_USAGE, "%s", err.message);
     /* The options' settings (checked while parsing), completed from the frame so the choices can be reported. */
-    fc_settings settings = o->settings;
+    fc_settings settings = o->settings.values;
     fc_cli_choices chosen;
-    fc_cli_complete_settings(&settings, frame, o->has_density_threshold, &chosen);
-    fc_cli_complete_color_range(&settings, frame, o->has_color_range, &chosen);
+    fc_cli_complete_settings(&settings, frame, fc_cli_setting_given(&o->settings, "density_threshold"), &chosen);
+    fc_cli_complete_color_range(&settings, frame, fc_cli_setting_given(&o->settings, "color_range"), &chosen);
     fc_image_result image = { 0 };
     status = render_remotely(o, &scene, frame, &cam, &settings, &image);
     if (status == FC_EXIT_OK && o->legend)

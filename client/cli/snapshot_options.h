@@ -9,6 +9,7 @@
 
 #include "fluidcast_types.h"
 #include "cli_mesh.h"
+#include "cli_setting_options.h"
 #include "particle_reader.h"
 
 #define FC_SNAPSHOT_DEFAULT_SERVER "127.0.0.1:7450"
@@ -26,16 +27,11 @@ typedef struct fc_snapshot_options {
     float eye[3], target[3], up[3];   /* up only when has_up: otherwise it is guessed from the particles */
     bool has_fov;
     float fov_deg;
-    fc_settings settings;          /* fc_settings_default plus the flags; radius 0: estimate from the spacing */
+    fc_cli_settings settings;      /* fc_settings_default plus the settings' options; radius 0: estimate */
     const char *background;        /* --background IMAGE, or NULL */
     const char *cubemap;           /* --cubemap value (six files or a directory), or NULL */
     fc_aov aov;
     bool has_quality;
-    bool has_jpeg_subsampling;     /* --jpeg-subsampling given: settings.jpeg_subsampling holds it */
-    bool has_iterations;      /* --iterations given: --smoothing keeps it */
-    bool has_density_threshold;   /* --density-threshold given: no spray threshold from the frame's densities */
-    bool has_colormap;             /* --colormap given (it needs --color-by) */
-    bool has_color_range;          /* --range given: no range from the first frame's percentiles */
     bool legend;                   /* --legend: a colour bar drawn into the image (snapshot_legend.h) */
     uint32_t quality;
     fc_read_options read;          /* --dataset, --step, --select (cli_read_options.h) */

@@ -49,7 +49,7 @@ static const fc_cli_option options[] = {
     {"--exit-on-unplug", false, set_exit_on_unplug},
 };
 
-static const fc_cli_command command = {"spacemouse", options, sizeof options / sizeof options[0], NULL};
+static const fc_cli_command command = {"spacemouse", options, sizeof options / sizeof options[0], NULL, NULL};
 
 static void print_help(FILE *to)
 {

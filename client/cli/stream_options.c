@@ -47,33 +47,10 @@ static fc_code set_quality(void *o, const char *name, const char *value, fc_erro
     return fc_cli_parse_uint(name, value, 1, 100, &s->quality, err);
 }
 
-static fc_code set_jpeg_subsampling(void *o, const char *name, const char *value, fc_error *err)
-{
-    static const char *const names[] = {"444", "420", NULL};
-    static const fc_jpeg_subsampling values[] = {FC_JPEG_SUBSAMPLING_YUV444, FC_JPEG_SUBSAMPLING_YUV420};
-    fc_stream_options *s = o;
-    int index;
-    fc_code code = fc_cli_parse_choice(name, value, names, &index, err);
-    if (code == FC_OK) {
-        s->has_jpeg_subsampling = true;
-        s->jpeg_subsampling = values[index];
-    }
-    return code;
-}
-
 static fc_code set_size(void *o, const char *name, const char *value, fc_error *err)
 {
     fc_stream_options *s = o;
     return fc_cli_parse_size(name, value, &s->width, &s->height, err);
-}
-
-static fc_code set_radius(void *o, const char *name, const char *value, fc_error *err)
-{
-    fc_stream_options *s = o;
-    fc_code code = fc_cli_parse_float(name, value, &s->radius, err);
-    if (code == FC_OK && !(s->radius > 0.0f))
-        return fc_error_set(err, FC_ERR_USAGE, "%s needs a positive radius, not %s", name, value);
-    return code;
 }
 
 static fc_code set_up(void *o, const char *name, const char *value, fc_error *err)
@@ -118,12 +95,17 @@ static fc_code add_file(void *o, const char *arg, fc_error *err)
 static const fc_cli_option options[] = {
     {"--server", true, set_server},   {"--session", true, set_session}, {"--out-dir", true, set_out_dir},
     {"--format", true, set_format},   {"--quality", true, set_quality}, {"--size", true, set_size},
-    {"--radius", true, set_radius},   {"--up", true, set_up},           {"--zstd", false, set_zstd},
-    {"--quantize", false, set_quantize}, {"--dataset", true, set_read}, {"--step", true, set_read},
-    {"--select", true, set_read},     {"--jpeg-subsampling", true, set_jpeg_subsampling},
+    {"--up", true, set_up},           {"--zstd", false, set_zstd},      {"--quantize", false, set_quantize},
+    {"--dataset", true, set_read},    {"--step", true, set_read},       {"--select", true, set_read},
 };
 
-static const fc_cli_command command = {"stream", options, sizeof options / sizeof options[0], add_file};
+static fc_cli_settings *settings_of(void *o)
+{
+    return &((fc_stream_options *)o)->settings;
+}
+
+static const fc_cli_command command = {"stream", options, sizeof options / sizeof options[0], add_file,
+                                       settings_of};
 
 fc_code fc_stream_parse(int argc, char **argv, fc_stream_options *out, fc_error *err)
 {
@@ -134,6 +116,7 @@ fc_code fc_stream_parse(int argc, char **argv, fc_stream_options *out, fc_error 
     out->quality = 90;
     out->width = 640;
     out->height = 360;
+    fc_cli_settings_init(&out->settings);
     fc_code code = fc_cli_parse_args(&command, argc, argv, out, &out->help, err);
     if (code != FC_OK || out->help)
         return code;
@@ -141,7 +124,7 @@ fc_code fc_stream_parse(int argc, char **argv, fc_stream_options *out, fc_error 
         return fc_error_set(err, FC_ERR_USAGE, "stream needs at least one particle file");
     if (out->has_quality && out->format != FC_FORMAT_JPEG)
         return fc_error_set(err, FC_ERR_USAGE, "--quality applies to --format jpg only");
-    if (out->has_jpeg_subsampling && out->format != FC_FORMAT_JPEG)
+    if (fc_cli_setting_given(&out->settings, "jpeg_subsampling") && out->format != FC_FORMAT_JPEG)
         return fc_error_set(err, FC_ERR_USAGE, "--jpeg-subsampling applies to --format jpg only");
     /* One image per frame, each a file: a video goes to `watch --format h264` or `render` (.mp4). */
     if (out->format == FC_FORMAT_H264)
@@ -176,11 +159,7 @@ void fc_stream_print_help(FILE *to)
           "  --out-dir DIR           ask for each frame's image and write DIR/frame_NNNNNN.EXT\n"
           "  --format FMT            png (default), jpg, exr or raw (RGBA8 rows) for --out-dir\n"
           "  --quality Q             JPEG quality 1..100 (default 90)\n"
-          "  --jpeg-subsampling 444|420\n"
-          "                          JPEG chroma: 444 (default) or 420, one colour per\n"
-          "                          2x2 pixels: smaller and faster\n"
           "  --size WxH              image size (default 640x360)\n"
-          "  --radius R              particle radius; default: estimated from the first file\n"
           "  --up X,Y,Z|x|y|z|-x|-y|-z\n"
           "                          world direction shown as up; default: guessed from the\n"
           "                          first file's particles (the axis with a flat, dense\n"
@@ -192,6 +171,9 @@ void fc_stream_print_help(FILE *to)
           "\n",
           to);
     fc_cli_print_read_options_help(to);
+    fc_settings defaults;
+    fc_settings_default(&defaults);
+    fc_cli_print_settings_help(to, &defaults);
     fputs("On a terminal a progress bar shows frames, MB/s, fps and the bytes saved by\n"
           "--zstd/--quantize; otherwise one line per frame. A summary line ends the run.\n"
           "\n",

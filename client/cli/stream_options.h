@@ -6,6 +6,7 @@
 #include <stdint.h>
 #include <stdio.h>
 
+#include "cli_setting_options.h"
 #include "fluidcast.h"
 #include "particle_reader.h"
 
@@ -21,10 +22,8 @@ typedef struct fc_stream_options {
     fc_image_format format;
     bool has_quality;
     uint32_t quality;
-    bool has_jpeg_subsampling;
-    fc_jpeg_subsampling jpeg_subsampling; /* --jpeg-subsampling: JPEG chroma (default 4:4:4) */
     uint32_t width, height;
-    float radius;                  /* 0: estimated from the first frame */
+    fc_cli_settings settings;      /* the render settings' options; radius 0: from the first frame */
     bool has_up;
     float up[3];                   /* only when has_up: otherwise guessed from the first frame */
     fc_upload_options upload;

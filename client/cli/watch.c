@@ -88,7 +88,7 @@ static const fc_cli_option options[] = {
     {"--size", true, set_size},
 };
 
-static const fc_cli_command command = {"watch", options, sizeof options / sizeof options[0], NULL};
+static const fc_cli_command command = {"watch", options, sizeof options / sizeof options[0], NULL, NULL};
 
 static fc_code parse(int argc, char **argv, watch_options *o, fc_error *err)
 {

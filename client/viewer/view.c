@@ -70,7 +70,8 @@ static int prepare_files(const fc_view_options *o, fc_frame *first, fc_settings 
         return status;
     fc_cli_print_recentring(&o->recentring);
     fc_cli_choices chosen;
-    fc_cli_complete_settings(settings, first, false, &chosen);
+    fc_cli_complete_settings(settings, first, fc_cli_setting_given(&o->settings, "density_threshold"), &chosen);
+    fc_cli_complete_color_range(settings, first, fc_cli_setting_given(&o->settings, "color_range"), &chosen);
     fc_up_guess guess;
     float up[3] = {0, 0, 1};
     fc_error err;
@@ -309,9 +310,7 @@ static int run(viewer *v, fc_frame *first, const fc_settings *settings, const fc
 static int view(viewer *v)
 {
     fc_frame first = {0};
-    fc_settings settings;
-    fc_settings_default(&settings);
-    settings.jpeg_subsampling = v->opt.jpeg_subsampling;
+    fc_settings settings = v->opt.settings.values;
     fc_camera home;
     if (v->opt.session)
         session_home(&v->opt, &home);

@@ -93,21 +93,6 @@ static fc_code set_read(void *o, const char *name, const char *value, fc_error *
     return fc_cli_set_read_option(&((fc_view_options *)o)->read, name, value, err);
 }
 
-/* A viewer is a stream: 4:2:0 by default (smaller, faster to encode); 444 for exact colour. */
-static fc_code set_jpeg_subsampling(void *o, const char *name, const char *value, fc_error *err)
-{
-    static const char *const names[] = {"444", "420", NULL};
-    static const fc_jpeg_subsampling values[] = {FC_JPEG_SUBSAMPLING_YUV444, FC_JPEG_SUBSAMPLING_YUV420};
-    fc_view_options *v = o;
-    int index;
-    fc_code code = fc_cli_parse_choice(name, value, names, &index, err);
-    if (code == FC_OK) {
-        v->has_jpeg_subsampling = true;
-        v->jpeg_subsampling = values[index];
-    }
-    return code;
-}
-
 static const fc_cli_option options[] = {
     {"--dataset", true, set_read},
     {"--step", true, set_read},
@@ -117,13 +102,24 @@ static const fc_cli_option options[] = {
     {"--size", true, set_size},
     {"--fps", true, set_fps},
     {"--format", true, set_format},
-    {"--jpeg-subsampling", true, set_jpeg_subsampling},
     {"--no-spacemouse", false, set_no_spacemouse},
     {"--log-camera", false, set_log_camera},
     {"--test-script", true, set_test_script},
 };
 
-static const fc_cli_command command = {"view", options, sizeof options / sizeof options[0], add_file};
+static fc_cli_settings *settings_of(void *o)
+{
+    return &((fc_view_options *)o)->settings;
+}
+
+static const fc_cli_command command = {"view", options, sizeof options / sizeof options[0], add_file, settings_of};
+
+/* A viewer is a stream: JPEG 4:2:0 by default (smaller, faster to encode); 444 for exact colour. */
+static void view_settings_init(fc_cli_settings *s)
+{
+    fc_cli_settings_init(s);
+    s->values.jpeg_subsampling = FC_JPEG_SUBSAMPLING_YUV420;
+}
 
 fc_code fc_view_parse(int argc, char **argv, fc_view_options *o, fc_error *err)
 {
@@ -134,11 +130,11 @@ fc_code fc_view_parse(int argc, char **argv, fc_view_options *o, fc_error *err)
     o->height = 540;
     o->fps = 24.0f;
     o->format = FC_FORMAT_RAW;
-    o->jpeg_subsampling = FC_JPEG_SUBSAMPLING_YUV420;
+    view_settings_init(&o->settings);
     fc_code code = fc_cli_parse_args(&command, argc, argv, o, &o->help, err);
     if (code != FC_OK || o->help)
         return code;
-    if (o->has_jpeg_subsampling && o->format != FC_FORMAT_JPEG)
+    if (fc_cli_setting_given(&o->settings, "jpeg_subsampling") && o->format != FC_FORMAT_JPEG)
         return fc_error_set(err, FC_ERR_USAGE, "--jpeg-subsampling applies to --format jpeg only");
     if (!o->session && o->file_count == 0)
         return fc_error_set(err, FC_ERR_USAGE, "view needs --session NAME or particle FILES");
@@ -176,10 +172,7 @@ void fc_view_print_help(FILE *to)
           "  --fps F                 playback rate of a sequence (default 24)\n"
           "  --format raw|jpeg|h264  how images travel (default raw: exact, largest); h264\n"
           "                          streams a session as video, about 1/10 of JPEG's bytes,\n"
-          "                          for links slower than a LAN (README: Viewer)\n"
-          "  --jpeg-subsampling 420|444\n"
-          "                          JPEG chroma: 420 one colour per 2x2 pixels (default:\n"
-          "                          smaller, faster), 444 every pixel's colour\n"
+          "                          for links slower than a LAN (docs/viewer.md)\n"
           "  --no-spacemouse         do not look for a SpaceMouse\n"
           "  --log-camera            print each camera sent to the daemon\n"
           "  --test-script SCRIPT    test hook: run ';'-separated commands (wait [S], drag DX DY,\n"
@@ -189,6 +182,9 @@ void fc_view_print_help(FILE *to)
           "\n",
           to);
     fc_cli_print_read_options_help(to);
+    fc_cli_settings defaults;
+    view_settings_init(&defaults);
+    fc_cli_print_settings_help(to, &defaults.values);
     fputs("mouse:\n"
           "  left drag               orbit about the pivot (fly mode: look around)\n"
           "  left double-click       the fluid under the cursor becomes the pivot; the\n"

@@ -7,6 +7,7 @@
 #include <stdint.h>
 #include <stdio.h>
 
+#include "cli_setting_options.h"
 #include "fluidcast_types.h"
 #include "particle_reader.h"
 
@@ -20,8 +21,7 @@ typedef struct fc_view_options {
     uint32_t file_count;
     uint32_t width, height;       /* initial window size */
     fc_image_format format;       /* how images travel: RAW (default), JPEG or H264 */
-    bool has_jpeg_subsampling;
-    fc_jpeg_subsampling jpeg_subsampling; /* JPEG chroma: 4:2:0 unless --jpeg-subsampling 444 */
+    fc_cli_settings settings;     /* the render settings' options; JPEG chroma 4:2:0 unless given */
     float fps;                    /* playback rate of a sequence */
     bool no_spacemouse;
     bool log_camera;              /* print every camera sent to the daemon (tests, debugging) */

@@ -136,7 +136,7 @@ static void test_help_and_version(test_env *env)
     CHECK(strstr(r.out, "snapshot") && strstr(r.out, "7  protocol or connection failure"));
     run(env, &r, (const char *const[]){ "snapshot", "--help", NULL });
     CHECK_CODE(r.status, 0);
-    CHECK(strstr(r.out, "estimated from the particle spacing") != NULL);
+    CHECK(strstr(r.out, "--radius R") && strstr(r.out, "estimated from") && strstr(r.out, "particle spacing"));
 }
 
 /* The explicit camera on the -y axis: the ball (radius 0.55 with its spheres)
