@@ -84,6 +84,8 @@ static void box_within(const fc_frame *frame, const double lo[3], const double h
 fc_code fc_framing_box_of(const fc_frame *frame, fc_framing_box *out, fc_error *err)
 {
     *out = (fc_framing_box){0};
+    if (frame->count == 0)
+        return FC_OK;   /* nothing to frame: the empty box at the origin */
     uint64_t m = frame->count < FC_FRAMING_SAMPLE_MAX ? frame->count : FC_FRAMING_SAMPLE_MAX;
     float *buffer = malloc(6 * m * sizeof *buffer);   /* the sample's xyz, then its three sorted axes */
     if (!buffer)

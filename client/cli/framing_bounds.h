@@ -55,8 +55,9 @@ typedef struct fc_framing_box {
     uint64_t sampled;     /* particles the cuts were chosen from */
 } fc_framing_box;
 
-/* The framing box of the frame's particles (positions finite: fc_frame_validate;
- * count > 0). FC_ERR_NOMEM when the sample cannot be allocated. */
+/* The framing box of the frame's particles (positions finite:
+ * fc_frame_validate); all zero for no particles. FC_ERR_NOMEM when the sample
+ * cannot be allocated. */
 fc_code fc_framing_box_of(const fc_frame *frame, fc_framing_box *out, fc_error *err);
 
 /* Grows *into to hold `box` too (a sequence's camera frames the union of its

@@ -4,7 +4,8 @@
  * pool with a jet rising from it, a handful of points) keep their whole
  * bounding box; a separate drop holding more than the tail fraction is
  * kept however far away; a 1M-particle frame chooses its cuts from the
- * bounded sample; the union of a sequence; the shared splash frames.
+ * bounded sample; no particles; the union of a sequence; the shared splash
+ * frames.
  *
  * Usage: test_framing_bounds [SHARED_DATA_DIR]; the shared files are skipped when absent. */
 #include <stdint.h>
@@ -178,6 +179,16 @@ static void test_large_frame(void)
     free(b.positions);
 }
 
+static void test_empty(void)
+{
+    const fc_frame none = { .count = 0 };
+    fc_framing_box box;
+    fc_error err;
+    CHECK_CODE(fc_framing_box_of(&none, &box, &err), FC_OK);
+    check_box_equals(&box, (const float[]){ 0, 0, 0 }, (const float[]){ 0, 0, 0 }, "no particles");
+    CHECK(box.left_out == 0 && box.sampled == 0);
+}
+
 static void test_union(void)
 {
     fc_framing_box a = { .lo = { 0, 0, 0 }, .hi = { 1, 1, 1 }, .left_out = 3, .sampled = 10 };
@@ -237,6 +248,7 @@ int main(int argc, char **argv)
     test_compact_kept_whole();
     test_separate_body_kept();
     test_large_frame();
+    test_empty();
     test_union();
     if (argc > 1)
         test_splash(argv[1]);
