@@ -7,7 +7,6 @@
 #include <string.h>
 
 #include "fc_error.h"
-#include "message_io.h"
 #include "wire_session.h"
 
 bool fc_client_absorb_stream(fc_client *c, const fc_msg_header *header)
@@ -34,7 +33,7 @@ bool fc_client_absorb_stream(fc_client *c, const fc_msg_header *header)
     return false;
 }
 
-fc_code fc_client_await_reply(fc_client *c, uint32_t id, uint16_t type, fc_error *cause, fc_error *err)
+fc_code fc_client_await_reply(fc_client *c, uint32_t id, fc_msg_type type, fc_error *cause, fc_error *err)
 {
     for (;;) {
         fc_msg_header header;
@@ -61,7 +60,7 @@ fc_code fc_client_await_reply(fc_client *c, uint32_t id, uint16_t type, fc_error
             c->broken = true;
             return fc_error_set(err, FC_ERR_CLOSED, "the server ended the connection (GOODBYE)");
         }
-        return fc_client_unexpected(c, &header, fc_message_type_name(type), err);
+        return fc_client_unexpected(c, &header, fc_msg_name(type), err);
     }
 }
 
@@ -162,7 +161,7 @@ fc_code fc_client_next_image(fc_client *client, fc_stream_image *out, fc_error *
             client->broken = true;
             return fc_error_set(err, FC_ERR_CLOSED, "the server ended the connection (GOODBYE)");
         }
-        return fc_client_unexpected(client, &header, "STREAM_IMAGE", err);
+        return fc_client_unexpected(client, &header, fc_msg_name(FC_MSG_STREAM_IMAGE), err);
     }
 }
 

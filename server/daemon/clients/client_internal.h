@@ -69,7 +69,7 @@ fc_code fc_client_take_frame(fc_client *c, fc_frame_view *view, fc_payload *payl
 
 /* ---- client_sessions.c ---- */
 
-/* Named-session and packed-upload messages (types 16..24, wire_session.h). */
+/* Named-session and packed-upload messages: the types that need a capability (fc_msg_capabilities). */
 bool fc_client_is_session_message(uint16_t type);
 fc_client_verdict fc_client_handle_session_message(fc_client *c, fc_daemon_context *ctx, const fc_msg_header *h,
                                                    fc_payload *payload, double received_ms, fc_buf *out);
