@@ -6,8 +6,8 @@
  *
  * This header is public (installed next to fluidcast.h): a binding or a tool
  * can walk the table to learn every setting the library knows. */
-#ifndef FC_SETTINGS_H
-#define FC_SETTINGS_H
+#ifndef FLUIDCAST_SETTINGS_H
+#define FLUIDCAST_SETTINGS_H
 
 #include <stddef.h>
 #include <stdint.h>

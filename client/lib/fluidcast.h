@@ -35,6 +35,7 @@
 #define FLUIDCAST_H
 
 #include "fluidcast_types.h"
+#include "fc_settings.h"   /* fc_settings_default, fc_settings_validate and the settings table */
 
 #ifdef __cplusplus
 extern "C" {
@@ -169,7 +170,7 @@ fc_code fc_client_send_frame(fc_client *client, const fc_frame *frame, fc_error 
 fc_code fc_client_set_camera(fc_client *client, const fc_camera *camera, fc_error *err);
 
 /* Sends the render settings for the following renders (fc_settings_default in
- * fc_frame.h gives a starting point). Rejections are reported by the next
+ * fc_settings.h gives a starting point). Rejections are reported by the next
  * fc_client_render. */
 fc_code fc_client_set_settings(fc_client *client, const fc_settings *settings, fc_error *err);
 

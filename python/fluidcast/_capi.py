@@ -9,11 +9,11 @@ compares, so a change to a header that is not made here fails the tests.
 C enums are ``int``-sized in the platform ABI; they are declared ``c_int`` here.
 """
 
-from ctypes import (POINTER, Structure, c_char, c_char_p, c_float, c_int, c_size_t, c_uint8, c_uint32,
-                    c_uint64, c_void_p)
+from ctypes import (POINTER, Structure, byref, c_char, c_char_p, c_double, c_float, c_int, c_size_t, c_uint8,
+                    c_uint16, c_uint32, c_uint64, c_void_p)
 
 from . import _library
-from ._enums import ERROR_MESSAGE_MAX, STAGE_COUNT
+from ._enums import ERROR_MESSAGE_MAX, STAGE_COUNT, SettingType
 
 c_enum = c_int
 
@@ -53,35 +53,25 @@ class FcCamera(Structure):
     ]
 
 
-class FcSettings(Structure):
-    """fc_settings: every render parameter (see fluidcast_types.h for each field's meaning)."""
-    _c_name_ = "fc_settings"
+class FcSettingSpec(Structure):
+    """fc_setting_spec: one entry of the settings' table (fc_settings.h)."""
+    _c_name_ = "fc_setting_spec"
     _fields_ = [
-        ("radius", c_float),
-        ("smoothing", c_enum),             # fc_smoothing
-        ("iterations", c_uint32),
-        ("filter_radius", c_uint32),
-        ("smooth_scale", c_float),
-        ("fluid_color", c_float * 3),
-        ("absorption", c_float * 3),
-        ("ior", c_float),
-        ("refraction", c_float),
-        ("specular", c_float),
-        ("shininess", c_float),
-        ("thickness_scale", c_float),
-        ("thickness_blur", c_uint32),
-        ("noise", c_float),
-        ("foam", c_float),
-        ("foam_tau", c_float),
-        ("foam_decay", c_float),
-        ("density_threshold", c_float),
-        ("kernel", c_enum),                # fc_kernel
-        ("shadow", c_uint32),
-        ("exposure", c_float),
-        ("color_by", c_enum),              # fc_color_by
-        ("colormap", c_enum),              # fc_colormap
-        ("color_range", c_float * 2),
-        ("jpeg_subsampling", c_enum),      # fc_jpeg_subsampling
+        ("name", c_char_p),
+        ("key", c_uint16),
+        ("type", c_enum),                  # fc_setting_type
+        ("count", c_uint32),
+        ("offset", c_size_t),
+        ("initial", c_float * 3),
+        ("min", c_double),
+        ("max", c_double),
+        ("flags", c_uint32),
+        ("choices", POINTER(c_char_p)),
+        ("separator", c_char),
+        ("group", c_enum),                 # fc_setting_group
+        ("option", c_char_p),
+        ("metavar", c_char_p),
+        ("help", c_char_p),
     ]
 
 
@@ -208,16 +198,63 @@ class FcUploadStats(Structure):
 
 
 #: Every struct mirrored, for the layout test.
-STRUCTS = (FcError, FcFrame, FcCamera, FcSettings, FcMesh, FcMeshTransform, FcRenderRequest, FcConnectOptions, FcServerInfo,
-           FcImageResult, FcSessionStatus, FcStreamImage, FcUploadOptions, FcUploadStats)
-
 lib, library_path = _library.load()
+
+
+def settings_table():
+    """The library's settings table (fc_settings_table): a list of FcSettingSpec, in key order."""
+    # Declared here too: FcSettings, whose fields come from this table, is
+    # needed before _declare() can set up every other prototype.
+    fn = lib.fc_settings_table
+    fn.restype = POINTER(FcSettingSpec)
+    fn.argtypes = [POINTER(c_size_t)]
+    count = c_size_t()
+    table = fn(byref(count))
+    return [table[i] for i in range(count.value)]
+
+
+def _settings_fields():
+    """fc_settings' fields from the table, in memory order: every value is 4 bytes
+    (a float, a uint32_t or an int-sized enum), so offsets follow from the counts."""
+    fields, offset = [], 0
+    for spec in sorted(settings_table(), key=lambda s: s.offset):
+        if spec.offset != offset:
+            raise ImportError("fluidcast: the settings table leaves a gap at byte %d of fc_settings" % offset)
+        scalar = {SettingType.FLOAT: c_float, SettingType.SCALE: c_float, SettingType.UINT: c_uint32,
+                  SettingType.CHOICE: c_uint32}[SettingType(spec.type)]
+        fields.append((spec.name.decode(), scalar * spec.count if spec.count > 1 else scalar))
+        offset += 4 * spec.count
+    return fields
+
+
+class FcSettings(Structure):
+    """fc_settings: every render parameter, its fields made from the library's settings table
+    (fc_settings.h: each field's meaning, domain and default)."""
+    _c_name_ = "fc_settings"
+    _fields_ = _settings_fields()
+
+
+STRUCTS = (FcError, FcFrame, FcCamera, FcSettings, FcSettingSpec, FcMesh, FcMeshTransform, FcRenderRequest, FcConnectOptions, FcServerInfo,
+           FcImageResult, FcSessionStatus, FcStreamImage, FcUploadOptions, FcUploadStats)
 
 c_client_p = c_void_p  # fc_client *, opaque
 _E = POINTER(FcError)
 
-# name: (restype, argtypes), as declared in fluidcast.h
+_SPEC_P = POINTER(FcSettingSpec)
+
+# name: (restype, argtypes), as declared in fluidcast.h and fc_settings.h
 _PROTOTYPES = {
+    "fc_settings_table": (_SPEC_P, [POINTER(c_size_t)]),
+    "fc_setting_by_key": (_SPEC_P, [c_uint32]),
+    "fc_setting_by_name": (_SPEC_P, [c_char_p]),
+    "fc_setting_by_option": (_SPEC_P, [c_char_p]),
+    "fc_settings_default": (None, [POINTER(FcSettings)]),
+    "fc_smoothing_default_iterations": (c_uint32, [c_enum]),
+    "fc_settings_validate": (c_enum, [POINTER(FcSettings), _E]),
+    "fc_setting_validate": (c_enum, [_SPEC_P, POINTER(FcSettings), _E]),
+    "fc_setting_field": (c_void_p, [_SPEC_P, POINTER(FcSettings)]),
+    "fc_setting_field_const": (c_void_p, [_SPEC_P, POINTER(FcSettings)]),
+    "fc_setting_choice_count": (c_uint32, [_SPEC_P]),
     "fc_client_connect": (c_enum, [c_char_p, POINTER(FcConnectOptions), POINTER(c_client_p), _E]),
     "fc_client_connect_session": (c_enum, [c_char_p, c_char_p, POINTER(FcConnectOptions), POINTER(c_client_p), _E]),
     "fc_client_address": (c_char_p, [c_client_p]),

@@ -189,28 +189,9 @@ _SETTING_ENUMS = {"smoothing": Smoothing, "kernel": Kernel, "color_by": ColorBy,
                   "jpeg_subsampling": JpegSubsampling}
 #: fc_settings' field names, in the header's order.
 SETTING_NAMES = tuple(name for name, _ in FcSettings._fields_)
-# fc_settings_default() of proto/fc_settings.c, used only when the library does not export it.
-_FALLBACK_DEFAULTS = dict(radius=0.0, smoothing=Smoothing.NARROW, iterations=4, filter_radius=0, smooth_scale=1.0,
-                          fluid_color=(0.02, 0.15, 0.28), absorption=(0.2, 0.07, 0.035), ior=1.33, refraction=0.25,
-                          specular=0.6, shininess=60.0, thickness_scale=0.5, thickness_blur=2, noise=0.0, foam=0.0,
-                          foam_tau=0.5, foam_decay=0.85, density_threshold=0.0, kernel=Kernel.SPHERE, shadow=1,
-                          exposure=0.0, color_by=ColorBy.NONE, colormap=Colormap.VIRIDIS, color_range=(0.0, 1.0),
-                          jpeg_subsampling=JpegSubsampling.YUV444)
-
-
 def _default_c_settings():
     settings = FcSettings()
-    fn = getattr(_capi.lib, "fc_settings_default", None)
-    if fn is not None:
-        # Filled in a roomy scratch buffer, so a library whose fc_settings grew
-        # beyond this mirror cannot write past it (tests/python checks the sizes).
-        scratch = ctypes.create_string_buffer(4096)
-        fn.restype = None
-        fn.argtypes = [ctypes.c_void_p]
-        fn(scratch)
-        ctypes.memmove(ctypes.addressof(settings), scratch, ctypes.sizeof(settings))
-    else:
-        _apply_settings(settings, _FALLBACK_DEFAULTS)
+    _capi.fc_settings_default(settings)
     return settings
 
 

@@ -97,6 +97,23 @@ class JpegSubsampling(enum.IntEnum):
     YUV420 = 1
 
 
+class SettingType(enum.IntEnum):
+    """fc_setting_type: how a setting of the table (fc_settings.h) is stored and what it may be."""
+    FLOAT = 1    #: ``count`` floats in [min, max]
+    UINT = 2     #: one unsigned integer in [min, max]
+    CHOICE = 3   #: an index into the setting's choices
+    SCALE = 4    #: a pass's resolution: 1, 0.5 or 0.25
+
+
+class SettingGroup(enum.IntEnum):
+    """fc_setting_group: the part of the command line's help a setting is listed under."""
+    SURFACE = 0
+    SHADING = 1
+    COLORING = 2
+    IMAGE = 3
+    COUNT = 4
+
+
 class Stage(enum.IntEnum):
     """fc_stage: the server-side stages whose durations come with every image."""
     UPLOAD = 0
@@ -131,6 +148,8 @@ UPLOAD_QUANTIZE16 = 0x2
 MESH_HIDE_NEAR = 0x2
 
 _PREFIX = {
+    SettingType: "FC_SETTING_",
+    SettingGroup: "FC_GROUP_",
     Code: "FC_ERR_",
     Format: "FC_FORMAT_",
     Aov: "FC_AOV_",
@@ -144,6 +163,8 @@ _PREFIX = {
 
 #: The C enum type each IntEnum mirrors.
 C_TYPES = {
+    SettingType: "fc_setting_type",
+    SettingGroup: "fc_setting_group",
     Code: "fc_code",
     Format: "fc_image_format",
     Aov: "fc_aov",

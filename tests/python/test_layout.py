@@ -17,7 +17,8 @@ from fluidcast import _capi, _enums
 
 from helpers import REPO
 
-HEADERS = [os.path.join(REPO, "proto", "fluidcast_types.h"), os.path.join(REPO, "client", "lib", "fluidcast.h")]
+HEADERS = [os.path.join(REPO, "proto", "fluidcast_types.h"), os.path.join(REPO, "proto", "fc_settings.h"),
+           os.path.join(REPO, "client", "lib", "fluidcast.h")]
 INCLUDE_DIRS = [os.path.join(REPO, "proto"), os.path.join(REPO, "client", "lib")]
 
 
@@ -103,12 +104,3 @@ def test_every_declared_function_has_a_prototype():
     text = _header_text()
     declared = set(re.findall(r"\b(fc_\w+)\s*\(", text))
     assert declared == set(_capi._PROTOTYPES)
-
-
-def test_fallback_defaults_equal_the_librarys():
-    """The Python copy of fc_settings_default(), used only when the library does not export it."""
-    from fluidcast import _client
-    c_defaults = fluidcast.default_settings()
-    assert set(_client._FALLBACK_DEFAULTS) == set(c_defaults)
-    for name, value in _client._FALLBACK_DEFAULTS.items():
-        assert c_defaults[name] == pytest.approx(value, rel=1e-6), name
