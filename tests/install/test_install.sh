@@ -3,7 +3,9 @@
 # a user outside the tree uses them (deploy/README.md, "Install").
 #   1. cmake --install into DESTDIR=WORK/root; the binaries, libfluidcast.so with
 #      its SONAME links, libfluidcast.a, the headers, fluidcast.pc, the CMake
-#      package and the udev rule are there; every header compiles alone.
+#      package and the udev rule are there; libfluidcast.so exports exactly the
+#      functions the installed headers declare (check_exports.sh); every header
+#      compiles alone.
 #   2. A consumer (tests/install/consumer) and examples/producer.c build against
 #      that tree only, shared and static, with pkg-config and with find_package.
 #   3. fluidcastd from the tree renders for each of them (a PNG each); the installed
@@ -56,7 +58,7 @@ need_file "$R$LIBDIR/libfluidcast.so.$VERSION"
 readelf -d "$R$LIBDIR/libfluidcast.so.$VERSION" | matches "SONAME.*\[libfluidcast.so.$SOMAJOR\]" ||
     fail "libfluidcast's SONAME is not libfluidcast.so.$SOMAJOR"
 need_file "$R$LIBDIR/libfluidcast.a"
-HEADERS="fluidcast.h fluidcast_types.h fc_error.h fc_frame.h"
+HEADERS="fluidcast.h fluidcast_types.h fc_error.h fc_frame.h fc_api.h"
 for h in $HEADERS; do need_file "$R$INCLUDEDIR/fluidcast/$h"; done
 need_file "$R$LIBDIR/pkgconfig/fluidcast.pc"
 for f in fluidcastConfig.cmake fluidcastConfigVersion.cmake fluidcastTargets.cmake; do
@@ -90,15 +92,18 @@ for f in "$R$BINDIR/fluidcastd" "$R$BINDIR/fluidcast" "$R$LIBDIR/libfluidcast.so
          "$R$LIBDIR/fluidcast/fluidcast-view.so" "$R$LIBDIR/fluidcast/fluidcast-hdf5.so"; do
     if readelf -d "$f" | grep -E 'RPATH|RUNPATH' | matches -F "$BUILD"; then fail "$f keeps the build tree's RPATH"; fi
 done
-# The library holds the protocol functions its headers declare.
-# (Listed to files first: grep -q ending a pipe early fails it under pipefail.)
-nm -D --defined-only "$R$LIBDIR/libfluidcast.so.$VERSION" > "$WORK/nm-shared.txt"
+# The static library holds the protocol functions its headers declare (the shared
+# library's exports are checked against the headers below, check_exports.sh).
+# (Listed to a file first: grep -q ending a pipe early fails it under pipefail.)
 nm --defined-only "$R$LIBDIR/libfluidcast.a" > "$WORK/nm-static.txt" 2>/dev/null
 for sym in fc_frame_alloc fc_frame_estimate_radius fc_camera_frame_bounds fc_settings_default fc_code_name \
            fc_client_connect fc_client_upload_frame; do
-    grep -qw "T $sym" "$WORK/nm-shared.txt" || fail "libfluidcast.so lacks $sym"
     grep -qw "T $sym" "$WORK/nm-static.txt" || fail "libfluidcast.a lacks $sym"
 done
+
+step "libfluidcast.so exports exactly the functions the installed headers declare"
+bash "$SRC/tests/install/check_exports.sh" "$R$LIBDIR/libfluidcast.so.$VERSION" "$R$INCLUDEDIR" "$CC" "$WORK/exports" ||
+    fail "libfluidcast.so's exports are not its documented API (docs/abi.md)"
 
 step "each installed header compiles with only the installed headers"
 for h in $HEADERS; do
