@@ -70,6 +70,7 @@ HEADERS="fluidcast.h fluidcast_types.h fc_error.h fc_frame.h fc_api.h"
 for h in $HEADERS; do need_file "$R$INCLUDEDIR/fluidcast/$h"; done
 need_file "$R$LIBDIR/pkgconfig/fluidcast.pc"
 # Relocatable: the prefix is where the .pc is, not the configured one (else --prefix DIR and the .deb break).
+# shellcheck disable=SC2016  # a literal ${pcfiledir}
 matches '^prefix=${pcfiledir}/' < "$R$LIBDIR/pkgconfig/fluidcast.pc" ||
     fail "fluidcast.pc's prefix is not relative to \${pcfiledir}: $(grep '^prefix=' "$R$LIBDIR/pkgconfig/fluidcast.pc")"
 for f in fluidcastConfig.cmake fluidcastConfigVersion.cmake fluidcastTargets.cmake; do
