@@ -12,8 +12,9 @@
 # seeds given in a sorted list (-seed_inputs) rather than read from a directory,
 # whose order is the file system's; -reload=0; and nothing that depends on where
 # address-space layout randomisation puts things: -use_cmp=0 (the operands of
-# recent comparisons, which libFuzzer splices into inputs, include addresses in some
-# readers) and targets built without stack-depth coverage (targets/CMakeLists.txt).
+# recent comparisons, which libFuzzer splices into inputs: with it on, runs of the
+# readers differed between layouts) and targets built without stack-depth coverage
+# (targets/CMakeLists.txt).
 # Two runs with different environments were compared target by target to check it.
 #
 # Usage: fuzz_fixed_runs.sh WORK_DIR [TARGET...]   (default: every target but fuzz_reader_hdf5)
