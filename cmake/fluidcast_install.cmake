@@ -13,7 +13,18 @@ set(FLUIDCAST_UDEV_RULES_DIR lib/udev/rules.d CACHE STRING
 set(FLUIDCAST_PYTHON_DIR lib/python3/dist-packages CACHE STRING
     "where the Python package is installed, relative to the prefix (Debian's path for python3)")
 
-# pkg-config: fluidcast.pc
+# pkg-config: fluidcast.pc, relocatable: its prefix is found from where the file
+# is (${pcfiledir}, <prefix>/<libdir>/pkgconfig), so `cmake --install --prefix
+# DIR`, a DESTDIR staging tree moved elsewhere and the .deb (packed under /usr
+# whatever prefix was configured) all give a .pc that names their own files.
+# Only an absolute CMAKE_INSTALL_LIBDIR/INCLUDEDIR stays absolute.
+if(IS_ABSOLUTE "${CMAKE_INSTALL_LIBDIR}")
+  set(FC_PC_PREFIX "${CMAKE_INSTALL_PREFIX}")
+else()
+  file(RELATIVE_PATH pc_to_prefix "/prefix/${CMAKE_INSTALL_LIBDIR}/pkgconfig" "/prefix")
+  string(REGEX REPLACE "/$" "" pc_to_prefix "${pc_to_prefix}")
+  set(FC_PC_PREFIX "\${pcfiledir}/${pc_to_prefix}")
+endif()
 foreach(dir LIBDIR INCLUDEDIR)
   if(IS_ABSOLUTE "${CMAKE_INSTALL_${dir}}")
     set(FC_PC_${dir} "${CMAKE_INSTALL_${dir}}")
@@ -41,17 +52,19 @@ install(FILES ${PROJECT_SOURCE_DIR}/deploy/udev/70-fluidcast-spacemouse.rules
 
 # The systemd units (deploy/systemd), their ExecStart pointed at where
 # fluidcastd is installed (the files say /usr/bin/fluidcastd, Debian's place).
+# Written at install time (fluidcast_install_units.cmake), under the prefix of
+# that install: `cmake --install --prefix DIR` and the .deb (/usr) get their own.
 set(FLUIDCAST_SYSTEMD_UNIT_DIR lib/systemd/system CACHE STRING
     "where the systemd units are installed, relative to the prefix (systemd reads /usr/lib/systemd/system)")
+set(unit_sources "")
 foreach(unit fluidcastd.service fluidcastd.socket fluidcastd@.service)
-  file(READ ${PROJECT_SOURCE_DIR}/deploy/systemd/${unit} unit_text)
-  string(REPLACE "/usr/bin/fluidcastd" "${CMAKE_INSTALL_FULL_BINDIR}/fluidcastd" unit_text "${unit_text}")
-  file(WRITE ${CMAKE_BINARY_DIR}/systemd/${unit} "${unit_text}")
-  install(FILES ${CMAKE_BINARY_DIR}/systemd/${unit} DESTINATION ${FLUIDCAST_SYSTEMD_UNIT_DIR})
+  list(APPEND unit_sources ${PROJECT_SOURCE_DIR}/deploy/systemd/${unit})
 endforeach()
-set_property(DIRECTORY ${PROJECT_SOURCE_DIR} APPEND PROPERTY CMAKE_CONFIGURE_DEPENDS
-  ${PROJECT_SOURCE_DIR}/deploy/systemd/fluidcastd.service ${PROJECT_SOURCE_DIR}/deploy/systemd/fluidcastd.socket
-  ${PROJECT_SOURCE_DIR}/deploy/systemd/fluidcastd@.service)
+install(CODE "
+  set(FC_UNIT_SOURCES \"${unit_sources}\")
+  set(FC_UNIT_DIR \"${FLUIDCAST_SYSTEMD_UNIT_DIR}\")
+  set(FC_UNIT_BINDIR \"${CMAKE_INSTALL_BINDIR}\")
+  include(\"${CMAKE_CURRENT_LIST_DIR}/fluidcast_install_units.cmake\")")
 
 # The Python package, once python/fluidcast exists (reconfigure to pick it up).
 if(EXISTS ${PROJECT_SOURCE_DIR}/python/fluidcast/__init__.py)

@@ -14,7 +14,13 @@ set(CPACK_RESOURCE_FILE_README ${PROJECT_SOURCE_DIR}/README.md)
 set(CPACK_STRIP_FILES ON)
 set(CPACK_GENERATOR DEB)
 set(CPACK_SOURCE_GENERATOR "")
-set(CPACK_PACKAGING_INSTALL_PREFIX ${CMAKE_INSTALL_PREFIX})
+# Debian packages install under /usr, whatever prefix `cmake --install` was
+# configured for: every installed path is relative to the prefix (the .pc and
+# the CMake package find it from where they lie, the systemd units are written
+# at install time), so the package is right from any build. With
+# -DCMAKE_INSTALL_PREFIX=/usr the library goes to Debian's multiarch directory
+# (lib/x86_64-linux-gnu); from another prefix's build, to /usr/lib.
+set(CPACK_PACKAGING_INSTALL_PREFIX /usr)
 
 set(CPACK_DEBIAN_FILE_NAME DEB-DEFAULT)
 set(CPACK_DEBIAN_PACKAGE_MAINTAINER "${CPACK_PACKAGE_CONTACT}")
@@ -45,7 +51,7 @@ if(EXISTS ${PROJECT_SOURCE_DIR}/python/fluidcast/__init__.py)
 endif()
 set(CPACK_DEBIAN_PACKAGE_SUGGESTS "libzstd-dev")
 if(NOT CMAKE_INSTALL_PREFIX STREQUAL "/usr")
-  message(STATUS "cpack -G DEB would install under ${CMAKE_INSTALL_PREFIX}: configure with "
-                 "-DCMAKE_INSTALL_PREFIX=/usr for a Debian package")
+  message(STATUS "cpack -G DEB packs under /usr with the library in /usr/${CMAKE_INSTALL_LIBDIR}: configure "
+                 "with -DCMAKE_INSTALL_PREFIX=/usr for Debian's multiarch library directory")
 endif()
 include(CPack)

@@ -2,6 +2,7 @@
 #ifndef FC_ERROR_H
 #define FC_ERROR_H
 
+#include "fc_api.h"
 #include "fluidcast_types.h"
 
 #ifdef __cplusplus
@@ -10,17 +11,17 @@ extern "C" {
 
 /* Fills *err (when err is non-NULL) with code and a printf-style message, and
  * returns code, so failures read `return fc_error_set(err, FC_ERR_IO, "...", ...);`. */
-fc_code fc_error_set(fc_error *err, fc_code code, const char *fmt, ...)
+FC_API fc_code fc_error_set(fc_error *err, fc_code code, const char *fmt, ...)
 #if defined(__GNUC__)
     __attribute__((format(printf, 3, 4)))
 #endif
     ;
 
 /* Resets *err to FC_OK with an empty message. */
-void fc_error_clear(fc_error *err);
+FC_API void fc_error_clear(fc_error *err);
 
 /* Stable lower-case name of a code, e.g. "malformed" for FC_ERR_MALFORMED; "unknown" otherwise. */
-const char *fc_code_name(fc_code code);
+FC_API const char *fc_code_name(fc_code code);
 
 #ifdef __cplusplus
 }

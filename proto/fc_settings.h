@@ -12,6 +12,7 @@
 #include <stddef.h>
 #include <stdint.h>
 
+#include "fc_api.h"
 #include "fc_error.h"
 #include "fluidcast_types.h"
 
@@ -68,41 +69,41 @@ typedef struct fc_setting_spec {
 } fc_setting_spec;
 
 /* The table, in key order, and its length in *count. Never NULL. */
-const fc_setting_spec *fc_settings_table(size_t *count);
+FC_API const fc_setting_spec *fc_settings_table(size_t *count);
 
 /* The setting with SETTINGS key `key`, NULL for a reserved or unknown key. */
-const fc_setting_spec *fc_setting_by_key(uint32_t key);
+FC_API const fc_setting_spec *fc_setting_by_key(uint32_t key);
 
 /* The setting called `name` (a field name, "ior"), NULL for none. */
-const fc_setting_spec *fc_setting_by_name(const char *name);
+FC_API const fc_setting_spec *fc_setting_by_name(const char *name);
 
 /* The setting whose command-line option is `option` ("--ior"), NULL for none. */
-const fc_setting_spec *fc_setting_by_option(const char *option);
+FC_API const fc_setting_spec *fc_setting_by_option(const char *option);
 
 /* Default settings that make convincing water: radius 0 (auto), the
  * narrow-range filter with its default iterations, a blue-green tint, ior 1.33
  * (every field from the table's `initial`). */
-void fc_settings_default(fc_settings *s);
+FC_API void fc_settings_default(fc_settings *s);
 
 /* Iterations that suit each smoothing method: the methods count different
  * things (curvature-flow time steps vs passes of a filter), so one number
  * cannot serve all. 0 for FC_SMOOTHING_NONE. */
-uint32_t fc_smoothing_default_iterations(fc_smoothing method);
+FC_API uint32_t fc_smoothing_default_iterations(fc_smoothing method);
 
 /* Checks every field against its domain in the table, then the rules between
  * fields (a colour range to colour by). FC_ERR_INVALID_VALUE naming the field,
  * its value and what it may be. */
-fc_code fc_settings_validate(const fc_settings *s, fc_error *err);
+FC_API fc_code fc_settings_validate(const fc_settings *s, fc_error *err);
 
 /* Checks one setting's value(s) as stored in `s`. */
-fc_code fc_setting_validate(const fc_setting_spec *spec, const fc_settings *s, fc_error *err);
+FC_API fc_code fc_setting_validate(const fc_setting_spec *spec, const fc_settings *s, fc_error *err);
 
 /* The field's storage in `s` (spec->count values of 4 bytes). */
-void *fc_setting_field(const fc_setting_spec *spec, fc_settings *s);
-const void *fc_setting_field_const(const fc_setting_spec *spec, const fc_settings *s);
+FC_API void *fc_setting_field(const fc_setting_spec *spec, fc_settings *s);
+FC_API const void *fc_setting_field_const(const fc_setting_spec *spec, const fc_settings *s);
 
 /* The number of names of a CHOICE setting (0 for other types). */
-uint32_t fc_setting_choice_count(const fc_setting_spec *spec);
+FC_API uint32_t fc_setting_choice_count(const fc_setting_spec *spec);
 
 #ifdef __cplusplus
 }

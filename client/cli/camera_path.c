@@ -52,14 +52,23 @@ static fc_code key_error(const key_context *k, fc_error *err, const char *member
     return fc_error_set(err, FC_ERR_PARSE, "%s: keyframe %u: \"%s\" %s", k->name, (unsigned)k->index, member, what);
 }
 
-static fc_code read_vector(const key_context *k, const cJSON *item, double out[3], fc_error *err)
+/* A JSON number as the float the camera carries, checked after the conversion:
+ * false when it is not a number or is not finite as a float (1e39 is a finite
+ * double but an infinite float). */
+static bool number_as_float(const cJSON *item, float *out)
+{
+    if (!cJSON_IsNumber(item))
+        return false;
+    *out = (float)item->valuedouble;
+    return isfinite(*out);
+}
+
+static fc_code read_vector(const key_context *k, const cJSON *item, float out[3], fc_error *err)
 {
     bool ok = cJSON_IsArray(item) && cJSON_GetArraySize(item) == 3;
     int i = 0;
-    for (const cJSON *e = ok ? item->child : NULL; e && ok; e = e->next, i++) {
-        ok = cJSON_IsNumber(e) && isfinite(e->valuedouble);
-        out[i < 3 ? i : 2] = e->valuedouble;
-    }
+    for (const cJSON *e = ok ? item->child : NULL; e && ok; e = e->next, i++)
+        ok = number_as_float(e, &out[i < 3 ? i : 2]);
     return ok ? FC_OK : key_error(k, err, item->string, "must be an array of 3 finite numbers");
 }
 
@@ -72,10 +81,12 @@ static fc_code read_frame(const key_context *k, const cJSON *item, uint32_t *out
     return FC_OK;
 }
 
-static fc_code read_fov(const key_context *k, const cJSON *item, double *out, fc_error *err)
+/* Checked as a float: 179.99999999995 is below 180 as a double but rounds to
+ * 180.0f, which fc_camera_validate (and so the daemon) refuses; 1e-50 rounds to 0. */
+static fc_code read_fov(const key_context *k, const cJSON *item, float *out, fc_error *err)
 {
-    double v = item->valuedouble;
-    if (!cJSON_IsNumber(item) || !(v > 0.0 && v < 180.0))
+    float v;
+    if (!number_as_float(item, &v) || !(v > 0.0f && v < 180.0f))
         return key_error(k, err, "fov", "must be a number of degrees in (0, 180)");
     *out = v;
     return FC_OK;
@@ -132,6 +143,7 @@ static fc_code read_key(const key_context *k, const cJSON *object, fc_camera_key
     for (int m = M_FRAME; m <= M_TARGET; m++)
         if (!seen[m])
             return key_error(k, err, MEMBER_NAMES[m], "is missing");
+    /* Compared as the floats the camera carries: 1 and 1.00000001 are one float. */
     if (key->eye[0] == key->target[0] && key->eye[1] == key->target[1] && key->eye[2] == key->target[2])
         return key_error(k, err, "eye", "is the target: the camera needs a direction");
     return FC_OK;

@@ -34,10 +34,14 @@
 #define FC_CAMERA_PATH_MAX_BYTES (16u << 20)
 #define FC_CAMERA_PATH_MAX_KEYS 100000u
 
+/* The values are the floats fc_camera carries, converted from the file's
+ * numbers before they are checked: a number that is finite or below 180 as a
+ * double but not as a float (1e39, 179.99999999995) is refused here rather
+ * than sent to the daemon, which would refuse the render. */
 typedef struct fc_camera_key {
     uint32_t frame;
-    double eye[3], target[3], up[3];
-    double fov_deg;
+    float eye[3], target[3], up[3];
+    float fov_deg;
     bool has_up, has_fov;
 } fc_camera_key;
 
@@ -49,8 +53,9 @@ typedef struct fc_camera_path {
 /* Parses `size` bytes of JSON; `name` (the file's) starts every message.
  * FC_ERR_PARSE for text that is not JSON (naming the line and column), for a
  * structure other than the above (naming the keyframe, its frame and the
- * member: missing, of the wrong type, unknown, given twice, a fov outside
- * (0, 180), an eye equal to its target, frames that do not increase) and for
+ * member: missing, of the wrong type, unknown, given twice, a number that is
+ * not finite as a float, a fov outside (0, 180) as a float, an eye equal to its
+ * target as floats, frames that do not increase) and for
  * no keyframe; FC_ERR_LIMIT for more than FC_CAMERA_PATH_MAX_KEYS keyframes
  * or FC_CAMERA_PATH_MAX_BYTES bytes; FC_ERR_NOMEM. Free with fc_camera_path_free. */
 fc_code fc_camera_path_parse(const char *text, size_t size, const char *name, fc_camera_path *out, fc_error *err);

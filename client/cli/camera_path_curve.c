@@ -24,17 +24,17 @@ static uint32_t segment_of(const fc_camera_path *p, uint32_t frame)
 static void tangent(const fc_camera_path *p, uint32_t i, size_t offset, double out[3])
 {
     uint32_t a = i > 0 ? i - 1 : i, b = i + 1 < p->count ? i + 1 : i;
-    const double *pa = (const double *)((const char *)&p->keys[a] + offset);
-    const double *pb = (const double *)((const char *)&p->keys[b] + offset);
+    const float *pa = (const float *)((const char *)&p->keys[a] + offset);
+    const float *pb = (const float *)((const char *)&p->keys[b] + offset);
     double dt = (double)p->keys[b].frame - (double)p->keys[a].frame;
     for (int k = 0; k < 3; k++)
-        out[k] = dt > 0 ? (pb[k] - pa[k]) / dt : 0.0;
+        out[k] = dt > 0 ? ((double)pb[k] - pa[k]) / dt : 0.0;
 }
 
 static void hermite(const fc_camera_path *p, uint32_t i, double s, size_t offset, float out[3])
 {
-    const double *p0 = (const double *)((const char *)&p->keys[i] + offset);
-    const double *p1 = (const double *)((const char *)&p->keys[i + 1] + offset);
+    const float *p0 = (const float *)((const char *)&p->keys[i] + offset);
+    const float *p1 = (const float *)((const char *)&p->keys[i + 1] + offset);
     double h = (double)p->keys[i + 1].frame - (double)p->keys[i].frame;
     double m0[3], m1[3];
     tangent(p, i, offset, m0);
@@ -56,17 +56,16 @@ static double key_fov(const fc_camera_key *key, const fc_camera *base)
     return key->has_fov ? key->fov_deg : base->fov_y_deg;
 }
 
-/* A keyframe's own camera: before the first, after the last, or on one. */
+/* A keyframe's own camera, its values exactly as parsed: before the first,
+ * after the last, or on one. */
 static void hold(const fc_camera_key *key, const fc_camera *base, fc_camera *out)
 {
-    double up[3];
-    key_up(key, base, up);
     for (int k = 0; k < 3; k++) {
-        out->eye[k] = (float)key->eye[k];
-        out->target[k] = (float)key->target[k];
-        out->up[k] = (float)up[k];
+        out->eye[k] = key->eye[k];
+        out->target[k] = key->target[k];
+        out->up[k] = key->has_up ? key->up[k] : base->up[k];
     }
-    out->fov_y_deg = (float)key_fov(key, base);
+    out->fov_y_deg = key->has_fov ? key->fov_deg : base->fov_y_deg;
 }
 
 void fc_camera_path_at(const fc_camera_path *p, uint32_t frame, const fc_camera *base, fc_camera *out)

@@ -1,6 +1,7 @@
 /* cli_mesh.c — see cli_mesh.h. */
 #include "cli_mesh.h"
 
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -12,14 +13,14 @@
 #include "mesh_reader.h"
 #include "render_inputs.h"
 
+/* Parsed as the float it is stored in and checked as that float. */
 static fc_code parse_unit(const char *option, const char *text, float *out, fc_error *err)
 {
-    double v;
     char *end;
-    v = strtod(text, &end);
-    if (end == text || *end != '\0' || !(v >= 0.0 && v <= 1.0))
+    float v = strtof(text, &end);
+    if (end == text || *end != '\0' || !(v >= 0.0f && v <= 1.0f))
         return fc_error_set(err, FC_ERR_USAGE, "--mesh: %s needs a number in [0, 1], not \"%s\"", option, text);
-    *out = (float)v;
+    *out = v;
     return FC_OK;
 }
 
@@ -133,10 +134,13 @@ static fc_code find_transform(const char *path, uint32_t frame, float transform[
             p = end;
         }
         p += strspn(p, " \t\r\n");
+        /* The matrix is checked as the floats MESH_TRANSFORM carries: 1e39 is a finite double only. */
         bool finite = true;
-        for (int k = 0; k < n; k++)
-            finite = finite && values[k] == values[k] && values[k] > -3e38 && values[k] < 3e38;
-        if (n != 13 || *p != '\0' || !finite || values[0] < 0 || values[0] != (double)(uint32_t)values[0])
+        for (int k = 1; k < n; k++)
+            finite = finite && isfinite((float)values[k]);
+        /* The frame is range-checked before its conversion, which is undefined outside uint32_t's range. */
+        bool frame_ok = n > 0 && values[0] >= 0.0 && values[0] <= (double)UINT32_MAX && values[0] == floor(values[0]);
+        if (n != 13 || *p != '\0' || !finite || !frame_ok)
             code = fc_error_set(err, FC_ERR_PARSE, "%s: line %u: not \"FRAME\" and 12 finite numbers (a 3x4 matrix)",
                                 path, number);
         else if ((uint32_t)values[0] == frame) {

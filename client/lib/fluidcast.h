@@ -34,6 +34,7 @@
 #ifndef FLUIDCAST_H
 #define FLUIDCAST_H
 
+#include "fc_api.h"
 #include "fluidcast_types.h"
 #include "fc_settings.h"   /* fc_settings_default, fc_settings_validate and the settings table */
 
@@ -95,8 +96,8 @@ typedef struct fc_image_result {
  * no address of the host accepts the connection in time, a server code (e.g.
  * FC_ERR_VERSION, FC_ERR_UNAUTHORIZED) when the server refuses the HELLO, FC_ERR_CLOSED /
  * FC_ERR_PROTOCOL / FC_ERR_IO when the handshake breaks. */
-fc_code fc_client_connect(const char *host_port, const fc_connect_options *options,
-                          fc_client **out, fc_error *err);
+FC_API fc_code fc_client_connect(const char *host_port, const fc_connect_options *options,
+                                 fc_client **out, fc_error *err);
 
 /* ---- Many daemons behind one DNS name ------------------------------------------
  * An address "srv:NAME" (e.g. "srv:_fluidcast._tcp.render.example.org") names the
@@ -137,17 +138,17 @@ fc_code fc_client_connect(const char *host_port, const fc_connect_options *optio
  * names the last failure); FC_ERR_USAGE for "srv:" with no name or a malformed
  * FLUIDCAST_DNS_SERVER; FC_ERR_PROTOCOL for a DNS answer that does not parse.
  * Any other address behaves exactly as with fc_client_connect. */
-fc_code fc_client_connect_session(const char *address, const char *session, const fc_connect_options *options,
-                                  fc_client **out, fc_error *err);
+FC_API fc_code fc_client_connect_session(const char *address, const char *session, const fc_connect_options *options,
+                                         fc_client **out, fc_error *err);
 
 /* The daemon this client is connected to: "HOST:PORT" as tried (for "srv:"
  * addresses the chosen target), or "unix:PATH". Owned by the client; valid
  * until fc_client_close. */
-const char *fc_client_address(const fc_client *client);
+FC_API const char *fc_client_address(const fc_client *client);
 
 /* Copies what the server announced at connect time into *out. Both pointers
  * must be valid; never fails. */
-void fc_client_server_info(const fc_client *client, fc_server_info *out);
+FC_API void fc_client_server_info(const fc_client *client, fc_server_info *out);
 
 /* Sends a particle frame; it replaces the previous one on the server. Every
  * array the frame has travels (density, velocity, ids, radius; NULL = absent).
@@ -163,16 +164,16 @@ void fc_client_server_info(const fc_client *client, fc_server_info *out);
  * Errors: FC_ERR_TOO_LARGE (without sending) when the encoded frame exceeds the
  * server's message limit, FC_ERR_USAGE for an empty or NULL frame, plus the
  * connection errors. */
-fc_code fc_client_send_frame(fc_client *client, const fc_frame *frame, fc_error *err);
+FC_API fc_code fc_client_send_frame(fc_client *client, const fc_frame *frame, fc_error *err);
 
 /* Sends the camera for the following renders (image size included). Rejections
  * are reported by the next fc_client_render. */
-fc_code fc_client_set_camera(fc_client *client, const fc_camera *camera, fc_error *err);
+FC_API fc_code fc_client_set_camera(fc_client *client, const fc_camera *camera, fc_error *err);
 
 /* Sends the render settings for the following renders (fc_settings_default in
  * fc_settings.h gives a starting point). Rejections are reported by the next
  * fc_client_render. */
-fc_code fc_client_set_settings(fc_client *client, const fc_settings *settings, fc_error *err);
+FC_API fc_code fc_client_set_settings(fc_client *client, const fc_settings *settings, fc_error *err);
 
 /* ---- Scene images ----------------------------------------------------------
  * By default the server draws a floor and a sky behind the fluid and reflects a
@@ -190,24 +191,24 @@ fc_code fc_client_set_settings(fc_client *client, const fc_settings *settings, f
 /* Sends a background image, drawn behind the fluid and refracted through it
  * instead of the built-in floor and sky, stretched over the whole image: `size`
  * bytes of an image file. data NULL with size 0 goes back to the built-in scene. */
-fc_code fc_client_set_background_bytes(fc_client *client, const void *data, size_t size, fc_error *err);
+FC_API fc_code fc_client_set_background_bytes(fc_client *client, const void *data, size_t size, fc_error *err);
 
 /* fc_client_set_background_bytes with the contents of the file at `path`
  * (NULL: back to the built-in scene). FC_ERR_IO naming the file when it cannot
  * be read, FC_ERR_USAGE when it is empty. */
-fc_code fc_client_set_background_file(fc_client *client, const char *path, fc_error *err);
+FC_API fc_code fc_client_set_background_file(fc_client *client, const char *path, fc_error *err);
 
 /* Sends an environment cube map, reflected in the fluid instead of the
  * procedural sky: six image files data[i] of sizes[i] bytes, in the order
  * +X, -X, +Y, -Y, +Z, -Z (OpenGL cube-map convention), square and of one size.
  * data and sizes NULL go back to the procedural sky. */
-fc_code fc_client_set_environment_bytes(fc_client *client, const void *const data[6], const size_t sizes[6],
-                                        fc_error *err);
+FC_API fc_code fc_client_set_environment_bytes(fc_client *client, const void *const data[6], const size_t sizes[6],
+                                               fc_error *err);
 
 /* fc_client_set_environment_bytes with the contents of six files, in the same
  * order (paths NULL: back to the procedural sky). FC_ERR_IO naming a file that
  * cannot be read, FC_ERR_USAGE for a NULL path or an empty file. */
-fc_code fc_client_set_environment_files(fc_client *client, const char *const paths[6], fc_error *err);
+FC_API fc_code fc_client_set_environment_files(fc_client *client, const char *const paths[6], fc_error *err);
 
 /* ---- Meshes ----------------------------------------------------------------
  * Triangle meshes drawn with the fluid (PROTOCOL.md section 12): a tank, an
@@ -230,19 +231,20 @@ fc_code fc_client_set_environment_files(fc_client *client, const char *const pat
 
 /* Fills *mesh with no arrays, id 0, no flags, light grey (0.8), opacity 1 and
  * the identity transform: set the arrays and counts, then send it. */
-void fc_mesh_defaults(fc_mesh *mesh);
+FC_API void fc_mesh_defaults(fc_mesh *mesh);
 
 /* Sends `mesh` (its arrays are copied into the message; the caller keeps them).
  * A mesh with triangle_count 0 and vertex_count 0 removes mesh `id`. */
-fc_code fc_client_upload_mesh(fc_client *client, const fc_mesh *mesh, fc_error *err);
+FC_API fc_code fc_client_upload_mesh(fc_client *client, const fc_mesh *mesh, fc_error *err);
 
 /* Removes mesh `id` (no error if there is none). */
-fc_code fc_client_remove_mesh(fc_client *client, uint32_t id, fc_error *err);
+FC_API fc_code fc_client_remove_mesh(fc_client *client, uint32_t id, fc_error *err);
 
 /* Places meshes already sent anew, all in one message (a simulation's rigid
  * bodies, once per frame): `count` entries of distinct ids, at most 64. The
  * server moves all of them or, if one id was never sent, none. */
-fc_code fc_client_move_meshes(fc_client *client, const fc_mesh_transform *entries, uint32_t count, fc_error *err);
+FC_API fc_code fc_client_move_meshes(fc_client *client, const fc_mesh_transform *entries, uint32_t count,
+                                     fc_error *err);
 
 /* Asks for an image of the current frame, camera and settings and waits for it.
  * On success *out holds the image (the caller frees it with fc_image_result_free).
@@ -250,15 +252,15 @@ fc_code fc_client_move_meshes(fc_client *client, const fc_mesh_transform *entrie
  * rejected an earlier message of this client (a FRAME, CAMERA, SETTINGS, scene image or mesh) that
  * error is returned, since it is the cause, even if an image followed; the reply
  * to this request is consumed either way so the connection stays in step. */
-fc_code fc_client_render(fc_client *client, const fc_render_request *request,
-                         fc_image_result *out, fc_error *err);
+FC_API fc_code fc_client_render(fc_client *client, const fc_render_request *request,
+                                fc_image_result *out, fc_error *err);
 
 /* Releases the image bytes and empties the result. Safe on an emptied result. */
-void fc_image_result_free(fc_image_result *result);
+FC_API void fc_image_result_free(fc_image_result *result);
 
 /* Says GOODBYE to the server (best effort), closes the connection and frees the
  * client. NULL is ignored. */
-void fc_client_close(fc_client *client);
+FC_API void fc_client_close(fc_client *client);
 
 /* ---- Sessions, streaming, multi-rank frames, packed uploads ----------------
  * A producer (a simulation) publishes frames to a named session; any number of
@@ -306,7 +308,7 @@ typedef struct fc_session_status {
  * receives the session's state. Errors: FC_ERR_BAD_STATE when the connection
  * is in a session already, FC_ERR_INVALID_VALUE / FC_ERR_USAGE for a name not
  * of 1..64 bytes, FC_ERR_LIMIT when the server holds its maximum of sessions. */
-fc_code fc_client_publish(fc_client *client, const char *name, fc_session_status *status, fc_error *err);
+FC_API fc_code fc_client_publish(fc_client *client, const char *name, fc_session_status *status, fc_error *err);
 
 /* Makes this connection a viewer of session `name` (which need not have a
  * producer yet). Every frame published from now on is rendered for it with its
@@ -331,8 +333,8 @@ fc_code fc_client_publish(fc_client *client, const char *name, fc_session_status
  * fc_client_render still works: it renders the session's newest frame and its
  * image is never dropped. Errors as for fc_client_publish, plus those of a
  * RENDER for the format and FC_ERR_LIMIT for a size beyond the server's. */
-fc_code fc_client_subscribe(fc_client *client, const char *name, const fc_render_request *format,
-                            uint32_t width, uint32_t height, fc_session_status *status, fc_error *err);
+FC_API fc_code fc_client_subscribe(fc_client *client, const char *name, const fc_render_request *format,
+                                   uint32_t width, uint32_t height, fc_session_status *status, fc_error *err);
 
 /* One image of a subscribed session. */
 typedef struct fc_stream_image {
@@ -353,15 +355,15 @@ typedef struct fc_stream_image {
  * when not subscribed; a server code when the server rejected an earlier
  * request of this client (e.g. a CAMERA) or could not render an image for this
  * viewer (the subscription stays either way); the connection errors. */
-fc_code fc_client_next_image(fc_client *client, fc_stream_image *out, fc_error *err);
-void fc_stream_image_free(fc_stream_image *image);
+FC_API fc_code fc_client_next_image(fc_client *client, fc_stream_image *out, fc_error *err);
+FC_API void fc_stream_image_free(fc_stream_image *image);
 
 /* Asks the server to make this viewer's next H.264 image a key frame (an
  * empty SETTINGS): the current frame comes again as an IDR frame, flagged
  * `view_change` and `keyframe`, after the image already in flight. For a
  * decoder that lost its place. Other formats just get the current frame
  * again. FC_ERR_USAGE when not subscribed; the connection errors. */
-fc_code fc_client_request_keyframe(fc_client *client, fc_error *err);
+FC_API fc_code fc_client_request_keyframe(fc_client *client, fc_error *err);
 
 /* Leaves the session: a producer stops publishing (the session ends for its
  * viewers once its last producer has left or disconnected), a viewer stops
@@ -370,12 +372,12 @@ fc_code fc_client_request_keyframe(fc_client *client, fc_error *err);
  * server has left too: FC_OK. FC_ERR_BAD_STATE when the connection is in no session; an
  * error the server reported for an earlier request of this client (e.g. a
  * chunk) is returned like fc_client_render does, after the confirmation. */
-fc_code fc_client_leave_session(fc_client *client, fc_error *err);
+FC_API fc_code fc_client_leave_session(fc_client *client, fc_error *err);
 
 /* The server's live sessions, oldest first: *sessions (free it with
  * fc_session_list_free) gets *count entries. */
-fc_code fc_client_list_sessions(fc_client *client, fc_session_status **sessions, uint32_t *count, fc_error *err);
-void fc_session_list_free(fc_session_status *sessions);
+FC_API fc_code fc_client_list_sessions(fc_client *client, fc_session_status **sessions, uint32_t *count, fc_error *err);
+FC_API void fc_session_list_free(fc_session_status *sessions);
 
 /* How a frame travels (fc_client_upload_frame, fc_client_send_chunk). */
 #define FC_UPLOAD_ZSTD 0x1u          /* zstd-compress the particle data (lossless) */
@@ -398,8 +400,8 @@ typedef struct fc_upload_stats {
  * plain). *stats (may be NULL) receives the bytes it took. Errors as for
  * fc_client_send_frame, plus FC_ERR_USAGE for an encoding the server did not
  * grant or, with FC_UPLOAD_QUANTIZE16, non-finite positions. */
-fc_code fc_client_upload_frame(fc_client *client, const fc_frame *frame, const fc_upload_options *options,
-                               fc_upload_stats *stats, fc_error *err);
+FC_API fc_code fc_client_upload_frame(fc_client *client, const fc_frame *frame, const fc_upload_options *options,
+                                      fc_upload_stats *stats, fc_error *err);
 
 /* Sends chunk `index` of `count` (K) of frame `frame_number` of the session
  * this connection publishes to: `part` holds this rank's particles. Every
@@ -410,14 +412,14 @@ fc_code fc_client_upload_frame(fc_client *client, const fc_frame *frame, const f
  * when K or the attributes differ from the frame's first chunk; FC_ERR_INCOMPLETE
  * (to every rank that sent a chunk) when the frame still lacks chunks after the
  * server's chunk timeout; FC_ERR_BAD_STATE without fc_client_publish. */
-fc_code fc_client_send_chunk(fc_client *client, uint64_t frame_number, uint32_t index, uint32_t count,
-                             const fc_frame *part, const fc_upload_options *options, fc_upload_stats *stats,
-                             fc_error *err);
+FC_API fc_code fc_client_send_chunk(fc_client *client, uint64_t frame_number, uint32_t index, uint32_t count,
+                                    const fc_frame *part, const fc_upload_options *options, fc_upload_stats *stats,
+                                    fc_error *err);
 
 /* Reads whatever the server has sent without waiting: returns the first server
  * ERROR (its code; the connection stays usable), FC_OK when there is none.
  * For producers that only send and want to hear about rejected chunks. */
-fc_code fc_client_poll_errors(fc_client *client, fc_error *err);
+FC_API fc_code fc_client_poll_errors(fc_client *client, fc_error *err);
 
 #ifdef __cplusplus
 }

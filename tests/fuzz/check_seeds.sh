@@ -3,7 +3,7 @@
 # into an empty copy of the corpus layout, must equal the committed ones byte
 # for byte. A protocol change (a new settings key, a new FRAME attribute) that
 # changes what an encoder writes leaves the committed seeds stale until they are
-# regenerated (README.md: build-fuzz/fuzz_make_seeds tests/fuzz/corpus).
+# regenerated (README.md, "The seed corpus": fuzz_make_seeds tests/fuzz/corpus).
 # Usage: check_seeds.sh MAKE_SEEDS CORPUS_DIR WORK_DIR
 set -euo pipefail
 make_seeds=$1 corpus=$2 work=$3

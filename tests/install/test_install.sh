@@ -3,14 +3,19 @@
 # a user outside the tree uses them (deploy/README.md, "Install").
 #   1. cmake --install into DESTDIR=WORK/root; the binaries, libfluidcast.so with
 #      its SONAME links, libfluidcast.a, the headers, fluidcast.pc, the CMake
-#      package and the udev rule are there; every header compiles alone.
+#      package and the udev rule are there; libfluidcast.so exports exactly the
+#      functions the installed headers declare (check_exports.sh); every header
+#      compiles alone.
 #   2. A consumer (tests/install/consumer) and examples/producer.c build against
-#      that tree only, shared and static, with pkg-config and with find_package.
+#      that tree only, shared and static, with pkg-config and with find_package;
+#      the consumer also against `cmake --install --prefix WORK/moved`, a prefix
+#      given at install time only (the .pc and the CMake package are relocatable).
 #   3. fluidcastd from the tree renders for each of them (a PNG each); the installed
 #      fluidcast draws a legend, writes an .mp4 and runs `view` through its modules
 #      (<libdir>/fluidcast).
-#   4. cpack -G DEB: name, Depends (the modules' libraries too), files; dpkg -x and
-#      run what it holds (the CLI's modules included), and
+#   4. cpack -G DEB: under /usr whatever the configured prefix; name, Depends (the
+#      modules' libraries too), files; dpkg -x and run what it holds (the CLI's
+#      modules included), a consumer built with its .pc, its exports; and
 #      apt-get's simulation resolves its Depends on this system.
 # Never installs anything onto this machine.
 #
@@ -18,8 +23,13 @@
 set -euo pipefail
 [ $# -eq 11 ] || { echo "usage: $0 BUILD SOURCE WORK CMAKE CPACK CC PREFIX BINDIR LIBDIR INCLUDEDIR VERSION" >&2; exit 2; }
 BUILD=$1 SRC=$2 WORK=$3 CMAKE=$4 CPACK=$5 CC=$6 PREFIX=$7 BINDIR=$8 LIBDIR=$9 INCLUDEDIR=${10} VERSION=${11}
-abs() { case $1 in /*) echo "$1" ;; *) echo "$PREFIX/$1" ;; esac; }
-BINDIR=$(abs "$BINDIR") LIBDIR=$(abs "$LIBDIR") INCLUDEDIR=$(abs "$INCLUDEDIR")
+# under PREFIX DIR: DIR under PREFIX, unless DIR is absolute (CMAKE_INSTALL_<dir>'s rule).
+under() { case $2 in /*) echo "$2" ;; *) echo "$1/$2" ;; esac; }
+BINDIR_REL=$BINDIR LIBDIR_REL=$LIBDIR INCLUDEDIR_REL=$INCLUDEDIR
+BINDIR=$(under "$PREFIX" "$BINDIR_REL") LIBDIR=$(under "$PREFIX" "$LIBDIR_REL") INCLUDEDIR=$(under "$PREFIX" "$INCLUDEDIR_REL")
+# The .deb installs under /usr whatever prefix was configured (cmake/fluidcast_packaging.cmake).
+DEB_BINDIR=$(under /usr "$BINDIR_REL") DEB_LIBDIR=$(under /usr "$LIBDIR_REL")
+DEB_INCLUDEDIR=$(under /usr "$INCLUDEDIR_REL")
 SOMAJOR=${VERSION%%.*}
 
 step() { echo "== $(date +%T) $*"; }
@@ -56,9 +66,13 @@ need_file "$R$LIBDIR/libfluidcast.so.$VERSION"
 readelf -d "$R$LIBDIR/libfluidcast.so.$VERSION" | matches "SONAME.*\[libfluidcast.so.$SOMAJOR\]" ||
     fail "libfluidcast's SONAME is not libfluidcast.so.$SOMAJOR"
 need_file "$R$LIBDIR/libfluidcast.a"
-HEADERS="fluidcast.h fluidcast_types.h fc_error.h fc_frame.h"
+HEADERS="fluidcast.h fluidcast_types.h fc_error.h fc_frame.h fc_api.h"
 for h in $HEADERS; do need_file "$R$INCLUDEDIR/fluidcast/$h"; done
 need_file "$R$LIBDIR/pkgconfig/fluidcast.pc"
+# Relocatable: the prefix is where the .pc is, not the configured one (else --prefix DIR and the .deb break).
+# shellcheck disable=SC2016  # a literal ${pcfiledir}
+matches '^prefix=${pcfiledir}/' < "$R$LIBDIR/pkgconfig/fluidcast.pc" ||
+    fail "fluidcast.pc's prefix is not relative to \${pcfiledir}: $(grep '^prefix=' "$R$LIBDIR/pkgconfig/fluidcast.pc")"
 for f in fluidcastConfig.cmake fluidcastConfigVersion.cmake fluidcastTargets.cmake; do
     need_file "$R$LIBDIR/cmake/fluidcast/$f"
 done
@@ -90,15 +104,18 @@ for f in "$R$BINDIR/fluidcastd" "$R$BINDIR/fluidcast" "$R$LIBDIR/libfluidcast.so
          "$R$LIBDIR/fluidcast/fluidcast-view.so" "$R$LIBDIR/fluidcast/fluidcast-hdf5.so"; do
     if readelf -d "$f" | grep -E 'RPATH|RUNPATH' | matches -F "$BUILD"; then fail "$f keeps the build tree's RPATH"; fi
 done
-# The library holds the protocol functions its headers declare.
-# (Listed to files first: grep -q ending a pipe early fails it under pipefail.)
-nm -D --defined-only "$R$LIBDIR/libfluidcast.so.$VERSION" > "$WORK/nm-shared.txt"
+# The static library holds the protocol functions its headers declare (the shared
+# library's exports are checked against the headers below, check_exports.sh).
+# (Listed to a file first: grep -q ending a pipe early fails it under pipefail.)
 nm --defined-only "$R$LIBDIR/libfluidcast.a" > "$WORK/nm-static.txt" 2>/dev/null
 for sym in fc_frame_alloc fc_frame_estimate_radius fc_camera_frame_bounds fc_settings_default fc_code_name \
            fc_client_connect fc_client_upload_frame; do
-    grep -qw "T $sym" "$WORK/nm-shared.txt" || fail "libfluidcast.so lacks $sym"
     grep -qw "T $sym" "$WORK/nm-static.txt" || fail "libfluidcast.a lacks $sym"
 done
+
+step "libfluidcast.so exports exactly the functions the installed headers declare"
+bash "$SRC/tests/install/check_exports.sh" "$R$LIBDIR/libfluidcast.so.$VERSION" "$R$INCLUDEDIR" "$CC" "$WORK/exports" ||
+    fail "libfluidcast.so's exports are not its documented API (docs/abi.md)"
 
 step "each installed header compiles with only the installed headers"
 for h in $HEADERS; do
@@ -145,6 +162,26 @@ CB=$WORK/cmake-consumer
 readelf -d "$CB/consumer_shared" | matches "NEEDED.*libfluidcast.so.$SOMAJOR" || fail "consumer_shared does not need libfluidcast.so"
 if readelf -d "$CB/consumer_static" | matches "NEEDED.*libfluidcast"; then fail "consumer_static needs libfluidcast.so"; fi
 
+MOVED=$WORK/moved
+step "cmake --install $BUILD --prefix $MOVED: pkg-config and find_package there"
+# Another prefix than the configured one, given at install time: the .pc, the CMake package and the
+# systemd units must name this prefix's files (PKG_CONFIG_PATH alone, no sysroot).
+"$CMAKE" --install "$BUILD" --prefix "$MOVED" > "$WORK/install-moved.log"
+M_BINDIR=$(under "$MOVED" "$BINDIR_REL") M_LIBDIR=$(under "$MOVED" "$LIBDIR_REL")
+matches "^ExecStart=$M_BINDIR/fluidcastd " < "$MOVED/lib/systemd/system/fluidcastd.service" ||
+    fail "the units under $MOVED do not run $M_BINDIR/fluidcastd: $(grep ExecStart "$MOVED/lib/systemd/system/fluidcastd.service")"
+# shellcheck disable=SC2046
+"$CC" -std=c11 -Wall -Wextra -Werror -D_POSIX_C_SOURCE=200809L -o "$WORK/consumer_moved_pc" "$CONSUMER/consumer.c" \
+      $(PKG_CONFIG_PATH="$M_LIBDIR/pkgconfig" pkg-config --cflags --libs fluidcast) -lm ||
+    fail "the consumer does not build with pkg-config against $MOVED"
+"$CMAKE" -S "$CONSUMER" -B "$WORK/cmake-moved" -DCMAKE_C_COMPILER="$CC" -DCMAKE_PREFIX_PATH="$MOVED" \
+         -DFC_EXAMPLES_DIR="$EX" -DCMAKE_FIND_USE_PACKAGE_REGISTRY=OFF > "$WORK/cmake-moved.log" ||
+    { cat "$WORK/cmake-moved.log"; fail "the consumer project does not configure against $MOVED"; }
+grep -q "fluidcast_DIR:PATH=$M_LIBDIR/cmake/fluidcast" "$WORK/cmake-moved/CMakeCache.txt" ||
+    fail "find_package(fluidcast) did not find $MOVED: $(grep fluidcast_DIR "$WORK/cmake-moved/CMakeCache.txt")"
+"$CMAKE" --build "$WORK/cmake-moved" --target consumer_shared > "$WORK/cmake-moved-build.log" ||
+    { cat "$WORK/cmake-moved-build.log"; fail "the consumer does not build with find_package against $MOVED"; }
+
 # Starts DAEMON (a fluidcastd) on a free loopback port; sets ADDR.
 start_daemon() {
     local daemon=$1 libdir=$2 portfile=$WORK/port.$RANDOM
@@ -172,6 +209,10 @@ for prog in "$WORK/consumer_pc_shared" "$WORK/consumer_pc_static" "$CB/consumer_
 done
 for prog in "$WORK/producer_pc_shared" "$CB/producer_shared" "$CB/producer_static"; do
     LD_LIBRARY_PATH="$R$LIBDIR" "$prog" "$ADDR" "install-$(basename "$prog")" 3 || fail "$prog failed"
+done
+for prog in "$WORK/consumer_moved_pc" "$WORK/cmake-moved/consumer_shared"; do
+    LD_LIBRARY_PATH="$M_LIBDIR" "$prog" "$ADDR" "$prog.png" || fail "$prog did not render"
+    check_png "$prog.png"
 done
 LD_LIBRARY_PATH="$R$LIBDIR" "$R$BINDIR/fluidcast" info --server "$ADDR" > "$WORK/info.txt" ||
     fail "the installed fluidcast info failed"
@@ -244,25 +285,38 @@ for dep in libc6 libzstd1 libegl1 libopenimageio2.4 libavformat59 libsdl2-2.0-0 
     grep "^ Depends:" "$WORK/deb-info.txt" | matches -w "$dep" || fail "Depends lacks $dep"
 done
 dpkg-deb -c "$DEB" | awk '{print $6}' > "$WORK/deb-files.txt"
-for f in "$BINDIR/fluidcastd" "$BINDIR/fluidcast" "$LIBDIR/libfluidcast.so.$VERSION" "$LIBDIR/libfluidcast.so.$SOMAJOR" \
-         "$LIBDIR/libfluidcast.so" "$LIBDIR/libfluidcast.a" "$INCLUDEDIR/fluidcast/fluidcast.h" \
-         "$INCLUDEDIR/fluidcast/fluidcast_types.h" "$LIBDIR/pkgconfig/fluidcast.pc" \
-         "$LIBDIR/cmake/fluidcast/fluidcastConfig.cmake" "$PREFIX/lib/udev/rules.d/70-fluidcast-spacemouse.rules" \
-         "$LIBDIR/fluidcast/fluidcast-image.so" "$LIBDIR/fluidcast/fluidcast-video.so" \
-         "$LIBDIR/fluidcast/fluidcast-view.so" "$LIBDIR/fluidcast/fluidcast-hdf5.so"; do
+for f in "$DEB_BINDIR/fluidcastd" "$DEB_BINDIR/fluidcast" "$DEB_LIBDIR/libfluidcast.so.$VERSION" "$DEB_LIBDIR/libfluidcast.so.$SOMAJOR" \
+         "$DEB_LIBDIR/libfluidcast.so" "$DEB_LIBDIR/libfluidcast.a" "$DEB_INCLUDEDIR/fluidcast/fluidcast.h" \
+         "$DEB_INCLUDEDIR/fluidcast/fluidcast_types.h" "$DEB_LIBDIR/pkgconfig/fluidcast.pc" \
+         "$DEB_LIBDIR/cmake/fluidcast/fluidcastConfig.cmake" "/usr/lib/udev/rules.d/70-fluidcast-spacemouse.rules" \
+         "$DEB_LIBDIR/fluidcast/fluidcast-image.so" "$DEB_LIBDIR/fluidcast/fluidcast-video.so" \
+         "$DEB_LIBDIR/fluidcast/fluidcast-view.so" "$DEB_LIBDIR/fluidcast/fluidcast-hdf5.so"; do
     grep -qx "\.$f" "$WORK/deb-files.txt" || fail "the .deb lacks $f"
 done
 
 step "dpkg -x the .deb and run what it holds"
 X=$WORK/extracted
 dpkg -x "$DEB" "$X"
-LD_LIBRARY_PATH="$X$LIBDIR" "$X$BINDIR/fluidcast" --version | tee "$WORK/version.txt"
+LD_LIBRARY_PATH="$X$DEB_LIBDIR" "$X$DEB_BINDIR/fluidcast" --version | tee "$WORK/version.txt"
 grep -q "$VERSION" "$WORK/version.txt" || fail "fluidcast --version does not say $VERSION"
-LD_LIBRARY_PATH="$X$LIBDIR" "$X$BINDIR/fluidcastd" --help | matches -- "--port-file" || fail "fluidcastd --help"
-start_daemon "$X$BINDIR/fluidcastd" "$X$LIBDIR"
-LD_LIBRARY_PATH="$X$LIBDIR" "$CB/consumer_shared" "$ADDR" "$WORK/from_deb.png" || fail "no render from the .deb's daemon and library"
+LD_LIBRARY_PATH="$X$DEB_LIBDIR" "$X$DEB_BINDIR/fluidcastd" --help | matches -- "--port-file" || fail "fluidcastd --help"
+start_daemon "$X$DEB_BINDIR/fluidcastd" "$X$DEB_LIBDIR"
+LD_LIBRARY_PATH="$X$DEB_LIBDIR" "$CB/consumer_shared" "$ADDR" "$WORK/from_deb.png" || fail "no render from the .deb's daemon and library"
 check_png "$WORK/from_deb.png"
-check_modules "$X$BINDIR/fluidcast" "$X$LIBDIR" deb
+# The .deb's own .pc (where pkg-config finds it once installed: its prefix is /usr) and exports.
+PC_DEB=$X$DEB_LIBDIR/pkgconfig
+[ "$(PKG_CONFIG_PATH="$PC_DEB" pkg-config --variable=prefix fluidcast)" -ef "$X/usr" ] ||
+    fail "the .deb's fluidcast.pc has prefix $(PKG_CONFIG_PATH="$PC_DEB" pkg-config --variable=prefix fluidcast)"
+# shellcheck disable=SC2046
+"$CC" -std=c11 -Wall -Wextra -Werror -D_POSIX_C_SOURCE=200809L -o "$WORK/consumer_deb_pc" "$CONSUMER/consumer.c" \
+      $(PKG_CONFIG_PATH="$PC_DEB" pkg-config --cflags --libs fluidcast) -lm || fail "no build with the .deb's .pc"
+LD_LIBRARY_PATH="$X$DEB_LIBDIR" "$WORK/consumer_deb_pc" "$ADDR" "$WORK/consumer_deb_pc.png" ||
+    fail "the consumer built with the .deb's .pc did not render"
+bash "$SRC/tests/install/check_exports.sh" "$X$DEB_LIBDIR/libfluidcast.so.$VERSION" "$X$DEB_INCLUDEDIR" "$CC" \
+    "$WORK/exports-deb" || fail "the .deb's libfluidcast.so exports are not its documented API"
+matches "^ExecStart=/usr/bin/fluidcastd " < "$X/usr/lib/systemd/system/fluidcastd.service" ||
+    fail "the .deb's fluidcastd.service does not run /usr/bin/fluidcastd"
+check_modules "$X$DEB_BINDIR/fluidcast" "$X$DEB_LIBDIR" deb
 stop_daemon
 
 if command -v apt-get > /dev/null; then

@@ -4,7 +4,9 @@
  * at constant speed; three pass through every keyframe, leave it with the
  * Catmull-Rom slope (neighbours' chord over their frame distance) and hold
  * still outside; up and fov linear. Every malformed file is refused with
- * FC_ERR_PARSE naming the line and column, or the keyframe and member. */
+ * FC_ERR_PARSE naming the line and column, or the keyframe and member; values
+ * are checked as the floats the camera carries (a fov of 179.99999999995 is
+ * 180.0f, refused). */
 #define _POSIX_C_SOURCE 200809L   /* mkstemp, fdopen */
 #include <math.h>
 #include <stdio.h>
@@ -13,6 +15,7 @@
 
 #include "camera_path.h"
 #include "fc_error.h"
+#include "fc_frame.h"
 #include "test_util.h"
 
 static const fc_camera BASE = {
@@ -94,6 +97,40 @@ static void expect_error(const char *text, fc_code code, const char *message)
     CHECK(p.keys == NULL && p.count == 0);
 }
 
+/* Every value is checked as the float the camera carries, not as the file's
+ * double: found by fuzz_camera_path, whose regression seed
+ * regress_fov_rounds_to_180_as_float.json is the first case. */
+static void expect_float_checks(void)
+{
+    expect_error("[{\"frame\": 0, \"eye\": [0,-1,0], \"target\": [0,0,0], \"fov\": 179.99999999995}]",
+                 FC_ERR_PARSE, "cam.json: keyframe 1: \"fov\" must be a number of degrees in (0, 180)");
+    expect_error("[{\"frame\": 0, \"eye\": [0,-1,0], \"target\": [0,0,0], \"fov\": 1e-50}]", FC_ERR_PARSE,
+                 "cam.json: keyframe 1: \"fov\" must be a number of degrees in (0, 180)");
+    expect_error("[{\"frame\": 0, \"eye\": [0,-1,1e39], \"target\": [0,0,0]}]", FC_ERR_PARSE,
+                 "cam.json: keyframe 1: \"eye\" must be an array of 3 finite numbers");
+    expect_error("[{\"frame\": 0, \"eye\": [0,-1,0], \"target\": [0,0,0], \"up\": [0,-3.5e38,1]}]", FC_ERR_PARSE,
+                 "cam.json: keyframe 1: \"up\" must be an array of 3 finite numbers");
+    expect_error("[{\"frame\": 0, \"eye\": [1,2,3], \"target\": [1.00000001,2,3]}]", FC_ERR_PARSE,
+                 "cam.json: keyframe 1: \"eye\" is the target");
+}
+
+/* The largest float below 180 is a valid fov, and the camera at its keyframe
+ * is one the daemon accepts. */
+static void test_largest_fov(void)
+{
+    fc_camera_path p;
+    fc_error err;
+    CHECK_CODE(parse("[{\"frame\": 0, \"eye\": [0,-1,0], \"target\": [0,0,0], \"fov\": 179.99998}]", &p, &err),
+               FC_OK);
+    if (p.count != 1)
+        return;
+    fc_camera c;
+    fc_camera_path_at(&p, 0, &BASE, &c);
+    CHECK_MSG(c.fov_y_deg < 180.0f && c.fov_y_deg > 179.9999f, "fov %.9g", (double)c.fov_y_deg);
+    CHECK_CODE(fc_camera_validate(&c, &err), FC_OK);
+    fc_camera_path_free(&p);
+}
+
 static void test_errors(void)
 {
     const char *key0 = "{\"frame\": 0, \"eye\": [0,-1,0], \"target\": [0,0,0]}";
@@ -125,6 +162,7 @@ static void test_errors(void)
                  "\"frame\" must be a whole number");
     expect_error("[{\"frame\": 0, \"eye\": [0,-1,0], \"target\": [0,0,0], \"fov\": 180}]", FC_ERR_PARSE,
                  "\"fov\" must be a number of degrees in (0, 180)");
+    expect_float_checks();
     expect_error("[{\"frame\": 0, \"eye\": [0,-1,0], \"target\": [0,0,0], \"fvo\": 30}]", FC_ERR_PARSE,
                  "keyframe 1: unknown member \"fvo\"");
     expect_error("[{\"frame\": 0, \"eye\": [0,-1,0], \"eye\": [0,-2,0], \"target\": [0,0,0]}]", FC_ERR_PARSE,
@@ -161,6 +199,7 @@ int main(void)
     test_two_keys_are_linear();
     test_three_keys_catmull_rom();
     test_errors();
+    test_largest_fov();
     test_load();
     return test_result();
 }

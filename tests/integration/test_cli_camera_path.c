@@ -128,7 +128,7 @@ static void expect_failure(const test_env *env, const char *camera, const char *
 
 static void test_malformed_files(const test_env *env)
 {
-    char line[PATH_CAP + 32], path[PATH_CAP];
+    char line[PATH_CAP + 96], path[PATH_CAP];
     CHECK(write_text(env, "syntax.json", "[\n  { \"frame\": 0, \"eye\": [0, -3, 0] \"target\": [0, 0, 0] }\n]\n"));
     snprintf(line, sizeof line, "%s:2:", path_in(env, "syntax.json", path));
     expect_failure(env, "syntax.json", NULL, 3, line);
@@ -137,6 +137,12 @@ static void test_malformed_files(const test_env *env)
     CHECK(write_text(env, "order.json", "[ { \"frame\": 2, \"eye\": [0, -3, 0], \"target\": [0, 0, 0] },\n"
                                         "  { \"frame\": 1, \"eye\": [0, -5, 0], \"target\": [0, 0, 0] } ]"));
     expect_failure(env, "order.json", NULL, 3, "keyframe 2 is at frame 1, not after keyframe 1's frame 2");
+    /* Below 180 as a double, 180.0f as the float sent: refused here, not by the daemon (exit 5). */
+    CHECK(write_text(env, "fov180.json", "[ { \"frame\": 0, \"eye\": [0, -3, 0], \"target\": [0, 0, 0], "
+                                         "\"fov\": 179.99999999995 } ]"));
+    snprintf(line, sizeof line, "%s: keyframe 1: \"fov\" must be a number of degrees in (0, 180)",
+             path_in(env, "fov180.json", path));
+    expect_failure(env, "fov180.json", NULL, 3, line);
     expect_failure(env, "absent.json", NULL, 3, "absent.json: No such file or directory");
     expect_failure(env, "cam.json", (const char *const[]){"--orbit", "90", NULL}, 2, "leave out --orbit");
     expect_failure(env, "cam.json", (const char *const[]){"--eye", "0,-3,0", "--target", "0,0,0", NULL}, 2,

@@ -224,7 +224,8 @@ static void test_per_frame_mesh(const test_env *env)
 /* --mesh FILE:transforms=PLACEMENTS: one static box about the origin, moved
  * per frame by a 3x4 matrix: onto the ball in odd frames (x = its centre),
  * far aside in even ones; the ball shows in even frames only. A placements
- * line that is not a frame and 12 numbers is an input error naming the line. */
+ * line that is not a frame and 12 numbers (finite as floats) is an input error
+ * naming the line. */
 static void test_mesh_transforms(const test_env *env)
 {
     char box[PATH_CAP], placements[PATH_CAP], bad[PATH_CAP];
@@ -272,6 +273,17 @@ static void test_mesh_transforms(const test_env *env)
     render(env, (const char *const[]){pattern_input(env, in), NULL}, path_in(env, "rigid_bad/f_%04d.png", out),
            (const char *const[]){"--mesh", mesh, NULL}, &r);
     CHECK_MSG(r.status == 3 && strstr(r.err, "rigid_bad.txt: line 1"), "bad placements: exit %d: %s", r.status, r.err);
+    /* A frame beyond uint32_t and a matrix entry finite as a double but not as the float sent. */
+    const char *const out_of_range[] = {"5000000000 1 0 0 0 0 1 0 0 0 0 1 0\n", "0 1 0 0 1e39 0 1 0 0 0 0 1 0\n"};
+    for (int k = 0; k < 2; k++) {
+        FILE *o = fopen(path_in(env, "in/rigid_range.txt", bad), "w");
+        CHECK(o && fputs(out_of_range[k], o) >= 0 && fclose(o) == 0);
+        snprintf(mesh, sizeof mesh, "%s:transforms=%s", box, bad);
+        render(env, (const char *const[]){pattern_input(env, in), NULL},
+               path_in(env, "rigid_range/f_%04d.png", out), (const char *const[]){"--mesh", mesh, NULL}, &r);
+        CHECK_MSG(r.status == 3 && strstr(r.err, "rigid_range.txt: line 1"), "%s: exit %d: %s", out_of_range[k],
+                  r.status, r.err);
+    }
 }
 
 /* The video has the PNGs' frames, in their order, within `min_psnr` dB. */

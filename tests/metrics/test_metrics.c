@@ -271,7 +271,8 @@ static void check_drain(fc_test_daemon *d, uint16_t metrics_port)
     CHECK_MSG(poll(&p, 1, 60000) == 1, "no reply to the large render within 60 s");
     kill(d->pid, SIGTERM);
     int ready = 0, healthy = 0;
-    for (int i = 0; i < 100 && ready != 503; i++) {
+    /* Up to 30 s for the signal to be handled: a wait, generous for a loaded machine, not a timing. */
+    for (int i = 0; i < 1500 && ready != 503; i++) {
         ready = http_status(metrics_port, "GET", "/readyz");
         healthy = http_status(metrics_port, "GET", "/healthz");
         if (ready != 503)

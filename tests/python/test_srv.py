@@ -4,7 +4,6 @@ that $FLUIDCAST_DNS_SERVER points libfluidcast at. Skipped without dnsmasq
 (deploy/setup.sh installs it)."""
 
 import os
-import random
 import shutil
 import signal
 import socket
@@ -36,12 +35,20 @@ def _answers(port, name):
     return reply[:2] == b"\x5e\xed" and struct.unpack(">H", reply[6:8])[0] > 0   # an answer record
 
 
+def _free_udp_port():
+    """A port the kernel finds free on 127.0.0.1 now, rather than a random guess; dnsmasq binds it next,
+    and if something took it meanwhile, the caller tries another."""
+    with socket.socket(socket.AF_INET, socket.SOCK_DGRAM) as s:
+        s.bind(("127.0.0.1", 0))
+        return s.getsockname()[1]
+
+
 class Dnsmasq:
-    """dnsmasq serving only ``records`` on 127.0.0.1 and a random port; stopped by its pid."""
+    """dnsmasq serving only ``records`` on 127.0.0.1 and a free port; stopped by its pid."""
 
     def __init__(self, directory, records):
         for _ in range(5):
-            self.port = random.randint(20000, 60000)
+            self.port = _free_udp_port()
             config = directory / "dnsmasq.conf"
             config.write_text("port=%d\nlisten-address=127.0.0.1\nbind-interfaces\nno-resolv\nno-hosts\nno-poll\n%s\n"
                               % (self.port, "\n".join(records)))

@@ -172,7 +172,8 @@ static void test_chunk_errors(const fc_test_daemon *d)
     double waited = svc_now_ms() - sent;
     CHECK(svc_expect_error(b, 30, FC_ERR_INCOMPLETE, &remote));
     CHECK_MSG(strstr(remote.message, "2 of its 3 chunks") != NULL, "message \"%s\"", remote.message);
-    CHECK_MSG(waited >= TIMEOUT_MS - 50 && waited < TIMEOUT_MS + 5000, "INCOMPLETE after %.0f ms", waited);
+    /* Not before the chunk timeout (its clock starts after `sent`); how much later depends on the machine's load. */
+    CHECK_MSG(waited >= TIMEOUT_MS - 50, "INCOMPLETE after %.0f ms, before the chunk timeout", waited);
     close(a);
     close(b);
 }

@@ -164,10 +164,9 @@ static void test_stalled_viewer(const fc_test_daemon *d)
     int stalled = stalled_viewer(d, "watched", subscribe_id);
     double with_ms = produce_with_fast_viewer(d, "watched", &fast);
 
-    /* Generous: the machine is shared, but a producer held up by the stalled
-     * viewer would take as long as the viewer stays stalled (forever). */
-    CHECK_MSG(with_ms < 2.0 * without_ms + 1000.0, "producer: %.0f ms with a stalled viewer, %.0f ms without",
-              with_ms, without_ms);
+    /* A producer held up by the stalled viewer would not finish while it stays
+     * stalled (it reads only below): that it finished is the check, not its time. */
+    printf("producer: %.0f ms with a stalled viewer, %.0f ms without\n", with_ms, without_ms);
     CHECK_MSG(fast.seen.ended && fast.seen.last_frame == FRAMES && fast.seen.images + fast.seen.missed == FRAMES,
               "fast viewer: %d image(s), %llu missed, last frame %llu", fast.seen.images,
               (unsigned long long)fast.seen.missed, (unsigned long long)fast.seen.last_frame);

