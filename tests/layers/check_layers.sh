@@ -11,7 +11,7 @@
 #      use proto/; proto/ uses neither, and client/ and server/ never use each
 #      other (TREES_ALLOWED below). Neither includes nor calls may go against it;
 #   4. in the daemon, dependencies run one way between its folders
-#      (server/daemon/README.md): net -> clients -> sessions, gpu -> uploads,
+#      (server/daemon/README.md): net -> conversations -> sessions, gpu -> uploads,
 #      and metrics/ below them all (DAEMON_FORBIDDEN below);
 #   5. with --objects: no variable a program can change (static or global,
 #      in .data or .bss) in the daemon's folders: the daemon's state is made
@@ -46,11 +46,11 @@ TREES=${TREES# }
 TREES_ALLOWED="client:proto server:proto"
 
 # Daemon folders that must not depend on another: "from:to ...", paths under server/daemon/.
-DAEMON_FORBIDDEN="sessions:clients sessions:net sessions:gpu
-clients:net
-gpu:clients gpu:sessions gpu:net
-uploads:clients uploads:sessions uploads:net uploads:gpu
-metrics:clients metrics:sessions metrics:net metrics:gpu metrics:uploads"
+DAEMON_FORBIDDEN="sessions:conversations sessions:net sessions:gpu
+conversations:net
+gpu:conversations gpu:sessions gpu:net
+uploads:conversations uploads:sessions uploads:net uploads:gpu
+metrics:conversations metrics:sessions metrics:net metrics:gpu metrics:uploads"
 
 status=0
 work=$(mktemp -d)
