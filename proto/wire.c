@@ -1,5 +1,6 @@
-/* wire.c — protocol v1 framing and the session, camera, render, image and
- * error messages (FRAME: wire_frame.c, SETTINGS: wire_settings.c). */
+/* wire.c — the protocol v1 codecs of HELLO, WELCOME, CAMERA, RENDER, IMAGE,
+ * ERROR and GOODBYE (framing: wire_io.c, FRAME: wire_frame.c, SETTINGS:
+ * wire_settings.c). */
 #include "wire.h"
 
 #include <string.h>
@@ -15,36 +16,6 @@
 #define IMAGE_FIXED_SIZE 28u    /* width .. stage count, plus the data size */
 #define STAGE_ENTRY_SIZE 8u
 #define MAX_WIRE_CODE 99u
-
-/* ---- Framing ---- */
-
-void fc_wire_encode_header(uint8_t out[FC_WIRE_HEADER_SIZE], const fc_msg_header *h)
-{
-    memcpy(out, FC_WIRE_MAGIC, 4);
-    wire_store_le(out + 4, h->type, 2);
-    wire_store_le(out + 6, h->flags, 2);
-    wire_store_le(out + 8, h->request_id, 4);
-    wire_store_le(out + 12, h->length, 4);
-}
-
-fc_code fc_wire_decode_header(const uint8_t in[FC_WIRE_HEADER_SIZE], uint32_t max_payload,
-                              fc_msg_header *h, fc_error *err)
-{
-    if (memcmp(in, FC_WIRE_MAGIC, 4) != 0)
-        return fc_error_set(err, FC_ERR_BAD_MAGIC, "message starts with %02x %02x %02x %02x, not \"FCST\"",
-                            in[0], in[1], in[2], in[3]);
-    wire_reader r = wire_reader_start(in + 4, FC_WIRE_HEADER_SIZE - 4, "header", err);
-    h->type = wire_get_u16(&r, "type");
-    h->flags = wire_get_u16(&r, "flags");
-    h->request_id = wire_get_u32(&r, "request_id");
-    h->length = wire_get_u32(&r, "length");
-    if (h->length > max_payload)
-        return fc_error_set(err, FC_ERR_TOO_LARGE, "payload of %u bytes exceeds the limit of %u", h->length,
-                            max_payload);
-    if (h->flags != 0)
-        return fc_error_set(err, FC_ERR_MALFORMED, "header flags 0x%04x must be 0 in protocol v1", h->flags);
-    return FC_OK;
-}
 
 /* ---- HELLO / WELCOME ---- */
 

@@ -22,17 +22,44 @@ extern "C" {
 #define FC_DEFAULT_PORT 7450
 #define FC_DEFAULT_QUALITY 90u         /* what RENDER's quality 0 means */
 
-typedef enum fc_msg_type {
-    FC_MSG_HELLO = 1,      /* client -> server */
-    FC_MSG_WELCOME = 2,    /* server -> client */
-    FC_MSG_FRAME = 3,      /* client -> server */
-    FC_MSG_CAMERA = 4,     /* client -> server */
-    FC_MSG_SETTINGS = 5,   /* client -> server */
-    FC_MSG_RENDER = 6,     /* client -> server */
-    FC_MSG_IMAGE = 7,      /* server -> client */
-    FC_MSG_ERROR = 8,      /* server -> client */
-    FC_MSG_GOODBYE = 9     /* either way */
-} fc_msg_type;
+/* Every message type of the protocol, X(NAME, number), in the order and with
+ * the numbers of PROTOCOL.md section 7's table (tests/proto/test_msg_types.c
+ * holds the two equal). Both fc_msg_type (FC_MSG_HELLO = 1, ...) and
+ * fc_msg_name are made from this one list, so a type cannot lack its name.
+ * Numbers are the wire's: never renumber. Types 10 and up are extensions
+ * (PROTOCOL.md 9): scene images (wire_scene.h), meshes (wire_mesh.h), and the
+ * session and packed-upload messages (wire_session.h), which need a capability. */
+#define FC_MSG_TYPES(X)                                                                                     \
+    X(HELLO, 1)            /* client -> server */                                                           \
+    X(WELCOME, 2)          /* server -> client */                                                           \
+    X(FRAME, 3)            /* client -> server */                                                           \
+    X(CAMERA, 4)           /* client -> server */                                                           \
+    X(SETTINGS, 5)         /* client -> server */                                                           \
+    X(RENDER, 6)           /* client -> server */                                                           \
+    X(IMAGE, 7)            /* server -> client */                                                           \
+    X(ERROR, 8)            /* server -> client */                                                           \
+    X(GOODBYE, 9)          /* either way */                                                                 \
+    X(BACKGROUND, 10)      /* client -> server: background image file, or empty */                         \
+    X(ENVIRONMENT, 11)     /* client -> server: six cube-map face files, or empty */                        \
+    X(MESH, 12)            /* client -> server: one mesh, or the removal of one */                          \
+    X(MESH_TRANSFORM, 13)  /* client -> server: new transforms of meshes already sent */                    \
+    X(PUBLISH, 16)         /* client -> server: become a producer of a named session */                     \
+    X(SUBSCRIBE, 17)       /* client -> server: become a viewer of a named session */                       \
+    X(SESSION_STATE, 18)   /* server -> client: answers PUBLISH / SUBSCRIBE */                              \
+    X(SESSION_END, 19)     /* either way: leave a session / the session is over */                          \
+    X(STREAM_IMAGE, 20)    /* server -> viewer: one rendered frame of the session */                        \
+    X(CHUNK, 21)           /* producer -> server: chunk i of K of a multi-rank frame */                     \
+    X(FRAME_PACKED, 22)    /* client -> server: a FRAME in a packed body */                                 \
+    X(LIST_SESSIONS, 23)   /* client -> server: which sessions exist */                                     \
+    X(SESSION_LIST, 24)    /* server -> client: answers LIST_SESSIONS */
+
+#define FC_MSG_ENUMERATOR(name, number) FC_MSG_##name = number,
+typedef enum fc_msg_type { FC_MSG_TYPES(FC_MSG_ENUMERATOR) } fc_msg_type;
+#undef FC_MSG_ENUMERATOR
+
+/* The upper-case name of a message type as PROTOCOL.md writes it, e.g.
+ * "WELCOME" for 2; NULL for a number no message type has. */
+const char *fc_msg_name(uint16_t type);
 
 typedef struct fc_msg_header {
     uint16_t type;         /* fc_msg_type */

@@ -1,4 +1,6 @@
-/* wire_io.c — little-endian primitives for the message codecs. */
+/* wire_io.c — little-endian primitives for the message codecs, and the
+ * message header (framing) they start and end messages with. Below every
+ * codec: it calls none of them. */
 #include "wire_io.h"
 
 #include <stdarg.h>
@@ -39,6 +41,36 @@ static float bits_float(uint32_t u)
     float f;
     memcpy(&f, &u, sizeof f);
     return f;
+}
+
+/* ---- Framing ---- */
+
+void fc_wire_encode_header(uint8_t out[FC_WIRE_HEADER_SIZE], const fc_msg_header *h)
+{
+    memcpy(out, FC_WIRE_MAGIC, 4);
+    wire_store_le(out + 4, h->type, 2);
+    wire_store_le(out + 6, h->flags, 2);
+    wire_store_le(out + 8, h->request_id, 4);
+    wire_store_le(out + 12, h->length, 4);
+}
+
+fc_code fc_wire_decode_header(const uint8_t in[FC_WIRE_HEADER_SIZE], uint32_t max_payload,
+                              fc_msg_header *h, fc_error *err)
+{
+    if (memcmp(in, FC_WIRE_MAGIC, 4) != 0)
+        return fc_error_set(err, FC_ERR_BAD_MAGIC, "message starts with %02x %02x %02x %02x, not \"FCST\"",
+                            in[0], in[1], in[2], in[3]);
+    wire_reader r = wire_reader_start(in + 4, FC_WIRE_HEADER_SIZE - 4, "header", err);
+    h->type = wire_get_u16(&r, "type");
+    h->flags = wire_get_u16(&r, "flags");
+    h->request_id = wire_get_u32(&r, "request_id");
+    h->length = wire_get_u32(&r, "length");
+    if (h->length > max_payload)
+        return fc_error_set(err, FC_ERR_TOO_LARGE, "payload of %u bytes exceeds the limit of %u", h->length,
+                            max_payload);
+    if (h->flags != 0)
+        return fc_error_set(err, FC_ERR_MALFORMED, "header flags 0x%04x must be 0 in protocol v1", h->flags);
+    return FC_OK;
 }
 
 /* ---- Writing ---- */

@@ -119,7 +119,7 @@ fc_code fc_wire_write_mesh(fc_buf *out, uint32_t request_id, const fc_mesh *m, f
         code = wire_check_length(FC_MESH_FIXED_SIZE, arrays, 1, "MESH", err);
     if (code != FC_OK)
         return code;
-    size_t start = wire_begin_message(out, (fc_msg_type)FC_MSG_MESH, request_id,
+    size_t start = wire_begin_message(out, FC_MSG_MESH, request_id,
                                       (uint32_t)(FC_MESH_FIXED_SIZE + arrays));
     fc_buf_reserve(out, (size_t)arrays);
     put_fixed(out, m, m->flags | (normals ? FC_MESH_WIRE_NORMALS : 0u));
@@ -243,7 +243,7 @@ fc_code fc_wire_write_mesh_transforms(fc_buf *out, uint32_t request_id, const fc
     fc_code code = check_transforms(entries, count, err);
     if (code != FC_OK)
         return code;
-    size_t start = wire_begin_message(out, (fc_msg_type)FC_MSG_MESH_TRANSFORM, request_id,
+    size_t start = wire_begin_message(out, FC_MSG_MESH_TRANSFORM, request_id,
                                       4u + FC_MESH_TRANSFORM_ENTRY_SIZE * count);
     wire_put_u32(out, count);
     for (uint32_t i = 0; i < count; i++) {

@@ -16,12 +16,6 @@
 extern "C" {
 #endif
 
-/* Message types (kept out of fc_msg_type, like the scene images). */
-enum {
-    FC_MSG_MESH = 12,            /* client -> server: one mesh, or the removal of one */
-    FC_MSG_MESH_TRANSFORM = 13   /* client -> server: new transforms of meshes already sent */
-};
-
 #define FC_MESH_FIXED_SIZE 80u              /* MESH bytes before the vertices */
 #define FC_MESH_WIRE_NORMALS 1u             /* MESH flags bit 0: per-vertex normals follow the indices */
 #define FC_MESH_WIRE_FLAGS (FC_MESH_WIRE_NORMALS | FC_MESH_HIDE_NEAR)

@@ -11,7 +11,6 @@
 #include "fc_error.h"
 #include "fc_frame.h"
 #include "wire_frame_io.h"
-#include "wire_session_io.h"
 
 #define QUANT_FIXED_SIZE 40u             /* count, attributes, reserved, lo[3], hi[3] */
 #define QUANT_STEPS 65535.0
@@ -227,7 +226,7 @@ static fc_code finish_message(fc_buf *out, size_t start, fc_code code, fc_error 
 fc_code fc_wire_write_frame_packed(fc_buf *out, uint32_t request_id, const fc_frame *frame, uint32_t encoding,
                                    int zstd_level, fc_error *err)
 {
-    size_t start = begin_session_message(out, FC_MSG_FRAME_PACKED, request_id, 0);
+    size_t start = wire_begin_message(out, FC_MSG_FRAME_PACKED, request_id, 0);
     fc_code code = put_packed_body(out, frame, encoding, zstd_level, err);
     return finish_message(out, start, code, err);
 }
@@ -235,7 +234,7 @@ fc_code fc_wire_write_frame_packed(fc_buf *out, uint32_t request_id, const fc_fr
 fc_code fc_wire_write_chunk(fc_buf *out, uint32_t request_id, const fc_chunk_header *h, const fc_frame *part,
                             uint32_t encoding, int zstd_level, fc_error *err)
 {
-    size_t start = begin_session_message(out, FC_MSG_CHUNK, request_id, 0);
+    size_t start = wire_begin_message(out, FC_MSG_CHUNK, request_id, 0);
     wire_put_u64(out, h->frame_number);
     wire_put_u32(out, h->index);
     wire_put_u32(out, h->count);

@@ -19,7 +19,7 @@ fc_code fc_wire_write_background(fc_buf *out, uint32_t request_id, const fc_enco
     fc_code code = wire_check_length(0, size, 1, "BACKGROUND", err);
     if (code != FC_OK)
         return code;
-    size_t start = wire_begin_message(out, (fc_msg_type)FC_MSG_BACKGROUND, request_id, (uint32_t)size);
+    size_t start = wire_begin_message(out, FC_MSG_BACKGROUND, request_id, (uint32_t)size);
     if (size > 0)
         wire_put_bytes(out, image->data, (size_t)size);
     return wire_end_message(out, start, err);
@@ -49,7 +49,7 @@ fc_code fc_wire_write_environment(fc_buf *out, uint32_t request_id, const fc_enc
         if (code != FC_OK)
             return code;
     }
-    size_t start = wire_begin_message(out, (fc_msg_type)FC_MSG_ENVIRONMENT, request_id, length);
+    size_t start = wire_begin_message(out, FC_MSG_ENVIRONMENT, request_id, length);
     for (int i = 0; faces && i < FC_CUBE_FACES; i++) {
         wire_put_u64(out, faces[i].size);
         wire_put_bytes(out, faces[i].data, (size_t)faces[i].size);

@@ -17,13 +17,6 @@
 extern "C" {
 #endif
 
-/* Message types (numbered after GOODBYE; kept out of fc_msg_type so that
- * switches over the core messages stay complete). */
-enum {
-    FC_MSG_BACKGROUND = 10,     /* client -> server: background image file, or empty */
-    FC_MSG_ENVIRONMENT = 11     /* client -> server: six cube-map face files, or empty */
-};
-
 #define FC_SCENE_IMAGE_MAX_SIDE 8192u   /* largest width or height of any scene image, in pixels */
 #define FC_CUBE_FACES 6                 /* +X, -X, +Y, -Y, +Z, -Z */
 

@@ -6,18 +6,13 @@
 #include <string.h>
 
 #include "fc_error.h"
-#include "wire_session_io.h"
+#include "wire_io.h"
 
 #define RENDER_FIELDS_SIZE 12u          /* format, quality, aov: RENDER's payload */
 #define SUBSCRIBE_FIXED_SIZE (RENDER_FIELDS_SIZE + 8u)
 #define SESSION_INFO_FIXED_SIZE 24u     /* producers, viewers, frames, last_frame */
 #define SESSION_NAME_MIN_SIZE 3u        /* u16 length + at least one byte */
 #define STREAM_TAG_SIZE 24u
-
-size_t begin_session_message(fc_buf *out, int type, uint32_t request_id, uint32_t length)
-{
-    return wire_begin_message(out, (fc_msg_type)type, request_id, length);
-}
 
 /* ---- Session names: u16 length (1..64) + bytes, no NUL ---- */
 
@@ -61,12 +56,12 @@ static void get_name(wire_reader *r, char *name)
 }
 
 /* A message whose whole payload is a session name (PUBLISH, SESSION_END). */
-static fc_code write_named(fc_buf *out, int type, uint32_t request_id, const char *name, fc_error *err)
+static fc_code write_named(fc_buf *out, fc_msg_type type, uint32_t request_id, const char *name, fc_error *err)
 {
     fc_code code = check_name(name, err);
     if (code != FC_OK)
         return code;
-    size_t start = begin_session_message(out, type, request_id, (uint32_t)name_size(name));
+    size_t start = wire_begin_message(out, type, request_id, (uint32_t)name_size(name));
     put_name(out, name);
     return wire_end_message(out, start, err);
 }
@@ -103,8 +98,8 @@ fc_code fc_wire_write_subscribe(fc_buf *out, uint32_t request_id, const fc_subsc
     fc_code code = check_name(m->name, err);
     if (code != FC_OK)
         return code;
-    size_t start = begin_session_message(out, FC_MSG_SUBSCRIBE, request_id,
-                                      (uint32_t)(SUBSCRIBE_FIXED_SIZE + name_size(m->name)));
+    size_t start = wire_begin_message(out, FC_MSG_SUBSCRIBE, request_id,
+                                   (uint32_t)(SUBSCRIBE_FIXED_SIZE + name_size(m->name)));
     wire_put_u32(out, (uint32_t)m->request.format);
     wire_put_u32(out, m->request.quality);
     wire_put_u32(out, (uint32_t)m->request.aov);
@@ -170,7 +165,7 @@ fc_code fc_wire_write_session_state(fc_buf *out, uint32_t request_id, const fc_s
     fc_code code = check_name(m->name, err);
     if (code != FC_OK)
         return code;
-    size_t start = begin_session_message(out, FC_MSG_SESSION_STATE, request_id, (uint32_t)info_size(m));
+    size_t start = wire_begin_message(out, FC_MSG_SESSION_STATE, request_id, (uint32_t)info_size(m));
     put_info(out, m);
     return wire_end_message(out, start, err);
 }
@@ -190,7 +185,7 @@ fc_code fc_wire_read_session_state(const uint8_t *p, size_t n, fc_session_info *
 
 fc_code fc_wire_write_list_sessions(fc_buf *out, uint32_t request_id, fc_error *err)
 {
-    return wire_write_empty(out, (fc_msg_type)FC_MSG_LIST_SESSIONS, request_id, err);
+    return wire_write_empty(out, FC_MSG_LIST_SESSIONS, request_id, err);
 }
 
 fc_code fc_wire_read_list_sessions(const uint8_t *p, size_t n, fc_error *err)
@@ -211,7 +206,7 @@ fc_code fc_wire_write_session_list(fc_buf *out, uint32_t request_id, const fc_se
     fc_code code = wire_check_length(length, 0, 1, "SESSION_LIST", err);
     if (code != FC_OK)
         return code;
-    size_t start = begin_session_message(out, FC_MSG_SESSION_LIST, request_id, (uint32_t)length);
+    size_t start = wire_begin_message(out, FC_MSG_SESSION_LIST, request_id, (uint32_t)length);
     wire_put_u32(out, count);
     for (uint32_t i = 0; i < count; i++)
         put_info(out, &sessions[i]);
@@ -249,7 +244,7 @@ fc_code fc_wire_read_session_list(const uint8_t *p, size_t n, fc_session_info **
 
 fc_code fc_wire_write_session_leave(fc_buf *out, uint32_t request_id, fc_error *err)
 {
-    return wire_write_empty(out, (fc_msg_type)FC_MSG_SESSION_END, request_id, err);
+    return wire_write_empty(out, FC_MSG_SESSION_END, request_id, err);
 }
 
 fc_code fc_wire_read_session_leave(const uint8_t *p, size_t n, fc_error *err)
@@ -317,23 +312,23 @@ fc_code fc_wire_read_stream_image(const uint8_t *p, size_t n, fc_stream_tag *tag
     return FC_OK;
 }
 
-const char *fc_wire_session_type_name(uint16_t type)
+/* ---- Capabilities ---- */
+
+uint32_t fc_msg_capabilities(uint16_t type)
 {
     switch (type) {
-    case FC_MSG_PUBLISH: return "PUBLISH";
-    case FC_MSG_SUBSCRIBE: return "SUBSCRIBE";
-    case FC_MSG_SESSION_STATE: return "SESSION_STATE";
-    case FC_MSG_SESSION_END: return "SESSION_END";
-    case FC_MSG_STREAM_IMAGE: return "STREAM_IMAGE";
-    case FC_MSG_CHUNK: return "CHUNK";
-    case FC_MSG_FRAME_PACKED: return "FRAME_PACKED";
-    case FC_MSG_LIST_SESSIONS: return "LIST_SESSIONS";
-    case FC_MSG_SESSION_LIST: return "SESSION_LIST";
+    case FC_MSG_PUBLISH:
+    case FC_MSG_SUBSCRIBE:
+    case FC_MSG_SESSION_STATE:
+    case FC_MSG_SESSION_END:
+    case FC_MSG_STREAM_IMAGE:
+    case FC_MSG_CHUNK:
+    case FC_MSG_LIST_SESSIONS:
+    case FC_MSG_SESSION_LIST: return FC_CAP_SESSIONS;
+    case FC_MSG_FRAME_PACKED: return FC_CAP_ZSTD | FC_CAP_QUANTIZE16;
     }
-    return NULL;
+    return 0;
 }
-
-/* ---- Capabilities ---- */
 
 uint32_t fc_pack_allowed(uint32_t capabilities)
 {

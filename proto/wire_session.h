@@ -26,20 +26,6 @@ enum {
 /* FC_CAP_DEVICE (bit 3, WELCOME's device) is defined with WELCOME in wire.h. */
 #define FC_CAPS_ALL (FC_CAP_SESSIONS | FC_CAP_ZSTD | FC_CAP_QUANTIZE16 | FC_CAP_DEVICE)
 
-/* Message types of sessions and packed uploads (numbered from 16 so the core
- * protocol can grow below). */
-enum {
-    FC_MSG_PUBLISH = 16,        /* client -> server: become a producer of a named session */
-    FC_MSG_SUBSCRIBE = 17,      /* client -> server: become a viewer of a named session */
-    FC_MSG_SESSION_STATE = 18,  /* server -> client: answers PUBLISH / SUBSCRIBE */
-    FC_MSG_SESSION_END = 19,    /* either way: leave a session / the session is over */
-    FC_MSG_STREAM_IMAGE = 20,   /* server -> viewer: one rendered frame of the session */
-    FC_MSG_CHUNK = 21,          /* producer -> server: chunk i of K of a multi-rank frame */
-    FC_MSG_FRAME_PACKED = 22,   /* client -> server: a FRAME in a packed body */
-    FC_MSG_LIST_SESSIONS = 23,  /* client -> server: which sessions exist */
-    FC_MSG_SESSION_LIST = 24    /* server -> client: answers LIST_SESSIONS */
-};
-
 #define FC_SESSION_NAME_MAX 64u        /* bytes of a session name (UTF-8, no NUL) */
 #define FC_CHUNK_COUNT_MAX 4096u       /* ranks K of one multi-rank frame */
 
@@ -140,8 +126,11 @@ fc_code fc_wire_view_frame_packed(uint8_t *p, size_t n, uint32_t allowed_encodin
 fc_code fc_wire_view_chunk(uint8_t *p, size_t n, uint32_t allowed_encoding, uint64_t max_particles,
                            const fc_block_source *src, fc_chunk_header *h, fc_frame_view *part, fc_error *err);
 
-/* Upper-case name of a session message type, e.g. "PUBLISH"; NULL for other types. */
-const char *fc_wire_session_type_name(uint16_t type);
+/* The capability bits of which a connection must have been granted one for
+ * `type` to be defined on it (PROTOCOL.md 9): FC_CAP_SESSIONS for types 16..21,
+ * 23 and 24, FC_CAP_ZSTD | FC_CAP_QUANTIZE16 for FRAME_PACKED; 0 for the types
+ * every connection may send. */
+uint32_t fc_msg_capabilities(uint16_t type);
 
 /* The FC_PACK_* bits a set of granted capabilities allows. */
 uint32_t fc_pack_allowed(uint32_t capabilities);

@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # compare_images.sh — VTK's vtkOpenGLFluidMapper and fluidcast side by side on the
 # same particles, camera, image size, radius and background, one PNG per frame.
-# `compare_images.sh --help` explains; README.md (Benchmarks, "Side by side with VTK") shows it.
+# `compare_images.sh --help` explains; docs/benchmarks.md ("Side by side with VTK") shows it.
 set -euo pipefail
 
 ROOT=$(cd "$(dirname "$0")/../.." && pwd)

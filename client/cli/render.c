@@ -27,6 +27,7 @@
 #include "render_reader.h"
 #include "cli_mesh.h"
 #include "render_writer.h"
+#include "snapshot_camera.h"
 #include "snapshot_scene.h"
 #include "up_choice.h"
 
@@ -101,6 +102,8 @@ static int choose_view(render_job *job)
             printf("; camera framed on the bounds of %u of them\n", (unsigned)bounds.framed);
         if (!up.given)
             printf("up %s\n", up.note);
+        if (!o->camera_path && !o->view.has_eye)
+            fc_snapshot_print_left_out(&bounds.box, true);
         fc_cli_print_radius(&job->settings, &chosen, "the first frame's particle spacing");
         if (chosen.spray)
             printf("spray: particles below density %g (half the first frame's median; --density-threshold to "

@@ -10,15 +10,18 @@
 
 #define DEG_TO_RAD 0.017453292519943295
 
-static void grow_box(fc_sequence_bounds *b, const fc_frame *frame)
+static fc_code grow_box(fc_sequence_bounds *b, const fc_frame *frame, fc_error *err)
 {
-    float lo[3], hi[3];
-    fc_frame_bounds(frame, lo, hi);
-    for (int k = 0; k < 3; k++) {
-        b->lo[k] = b->framed == 0 || lo[k] < b->lo[k] ? lo[k] : b->lo[k];
-        b->hi[k] = b->framed == 0 || hi[k] > b->hi[k] ? hi[k] : b->hi[k];
-    }
+    fc_framing_box box;
+    fc_code code = fc_framing_box_of(frame, &box, err);
+    if (code != FC_OK)
+        return code;
+    if (b->framed == 0)
+        b->box = box;
+    else
+        fc_framing_box_union(&b->box, &box);
     b->framed++;
+    return FC_OK;
 }
 
 fc_code fc_sequence_bounds_read(const fc_render_inputs *in, const fc_read_options *options, fc_sequence_bounds *out,
@@ -27,30 +30,25 @@ fc_code fc_sequence_bounds_read(const fc_render_inputs *in, const fc_read_option
 {
     memset(out, 0, sizeof *out);
     fc_code code = fc_load_particles_checked(in->paths[0], options, first, err);
-    if (code != FC_OK)
-        return code;
-    grow_box(out, first);
-    for (uint32_t i = 1; i < in->count; i++) {
+    if (code == FC_OK)
+        code = grow_box(out, first, err);
+    for (uint32_t i = 1; code == FC_OK && i < in->count; i++) {
         fc_frame frame = {0};
         fc_error ignored;
         bool read = fc_load_particles_checked(in->paths[i], options, &frame, &ignored) == FC_OK;
         if (read)
-            grow_box(out, &frame);
+            code = grow_box(out, &frame, err);
         fc_frame_free(&frame);
         if (!read)
             break;
     }
-    return FC_OK;
+    return code;
 }
 
 fc_code fc_sequence_camera(const fc_snapshot_options *view, const fc_sequence_bounds *bounds, fc_up_choice *up,
                            fc_camera *cam, fc_error *err)
 {
-    float corners[6];
-    memcpy(corners, bounds->lo, sizeof bounds->lo);
-    memcpy(corners + 3, bounds->hi, sizeof bounds->hi);
-    const fc_frame box = {.count = 2, .positions = corners};
-    return fc_snapshot_camera(view, &box, up, cam, err);
+    return fc_snapshot_camera(view, &bounds->box, up, cam, err);
 }
 
 /* Rodrigues: v cos a + (k x v) sin a + k (k . v)(1 - cos a), k a unit vector. */

@@ -65,7 +65,7 @@ static int render_remotely(const fc_snapshot_options *o, const fc_snapshot_scene
 
 /* The up direction is reported like the radius: only when the CLI chose it. */
 static int write_image(const fc_snapshot_options *o, const fc_image_result *image, const fc_settings *settings,
-                       const fc_cli_choices *chosen, const fc_up_choice *up)
+                       const fc_cli_choices *chosen, const fc_up_choice *up, const fc_framing_box *box)
 {
     fc_error err;
     if (fc_output_write(o->output, image->data, image->size, &err) != FC_OK)
@@ -83,6 +83,7 @@ static int write_image(const fc_snapshot_options *o, const fc_image_result *imag
         fc_cli_print_radius(settings, chosen, NULL);
     if (!up->given)
         printf("up %s\n", up->note);
+    fc_snapshot_print_left_out(box, false);
     if (chosen->spray)
         printf("spray: particles below density %g (half the median; --density-threshold to change)\n",
                (double)settings->density_threshold);
@@ -116,10 +117,13 @@ static int snapshot(const fc_snapshot_options *o, fc_frame *frame)
     fc_error err;
     if (fc_up_choose(o->has_up, o->up, frame, &up, &err) != FC_OK)
         return fc_cli_fail(FC_EXIT_INPUT, "%s", err.message);
+    fc_framing_box box = { 0 }; /* what the auto camera frames: the fluid, not droplets flung far from it */
+    if (!o->has_eye && fc_framing_box_of(frame, &box, &err) != FC_OK)
+        return fc_cli_fail(FC_EXIT_INPUT, "%s", err.message);
     fc_snapshot_options placed = *o; /* --eye/--target in the recentred frame, like the particles */
     fc_cli_recentre_point(&o->recentring, placed.eye);
     fc_cli_recentre_point(&o->recentring, placed.target);
-    if (fc_snapshot_camera(&placed, frame, &up, &cam, &err) != FC_OK)
+    if (fc_snapshot_camera(&placed, &box, &up, &cam, &err) != FC_OK)
         return fc_cli_fail(FC_EXIT_USAGE, "%s", err.message);
     /* The options' settings (checked while parsing), completed from the frame so the choices can be reported. */
     fc_settings settings = o->settings;
@@ -131,7 +135,7 @@ static int snapshot(const fc_snapshot_options *o, fc_frame *frame)
     if (status == FC_EXIT_OK && o->legend)
         status = add_legend(o, &settings, &image);
     if (status == FC_EXIT_OK)
-        status = write_image(o, &image, &settings, &chosen, &up);
+        status = write_image(o, &image, &settings, &chosen, &up, &box);
     fc_image_result_free(&image);
     return status;
 }

@@ -2,6 +2,7 @@
 #include "snapshot_camera.h"
 
 #include <math.h>
+#include <stdio.h>
 #include <string.h>
 
 #include "fc_error.h"
@@ -30,8 +31,8 @@ static void refit_to_fov(fc_camera *cam, float fov_deg)
     cam->fov_y_deg = fov_deg;
 }
 
-fc_code fc_snapshot_camera(const fc_snapshot_options *o, const fc_frame *frame, fc_up_choice *up, fc_camera *cam,
-                           fc_error *err)
+fc_code fc_snapshot_camera(const fc_snapshot_options *o, const fc_framing_box *box, fc_up_choice *up,
+                           fc_camera *cam, fc_error *err)
 {
     if (o->has_eye) {
         memcpy(cam->eye, o->eye, sizeof cam->eye);
@@ -42,7 +43,7 @@ fc_code fc_snapshot_camera(const fc_snapshot_options *o, const fc_frame *frame, 
         fc_up_choice_fit_view(up, o->eye, o->target);
         memcpy(cam->up, up->up, sizeof cam->up);
     } else {
-        fc_frame_upright(frame, o->width, o->height, up->up, cam);
+        fc_box_upright(box, o->width, o->height, up->up, cam);
         if (o->has_fov)
             refit_to_fov(cam, o->fov_deg);
     }
@@ -50,4 +51,13 @@ fc_code fc_snapshot_camera(const fc_snapshot_options *o, const fc_frame *frame, 
     if (fc_camera_validate(cam, &why) != FC_OK)
         return fc_error_set(err, FC_ERR_USAGE, "bad camera: %s", why.message);
     return FC_OK;
+}
+
+void fc_snapshot_print_left_out(const fc_framing_box *box, bool sequence)
+{
+    if (box->left_out == 0)
+        return;
+    printf("framing: the fluid without %s%llu particle%s%s far from it (--eye/--target to frame them)\n",
+           sequence ? "up to " : "", (unsigned long long)box->left_out, box->left_out == 1 ? "" : "s",
+           sequence ? " a frame" : "");
 }

@@ -60,7 +60,7 @@ static void print_help(FILE *to)
           "normalised to [-1, 1], buttons held, pressed and released), and the device\n"
           "arriving and leaving. Plug it in or out at any time. Ends on Ctrl-C.\n"
           "Without permission to open the device it says so: install\n"
-          "deploy/udev/70-fluidcast-spacemouse.rules (see the README).\n"
+          "deploy/udev/70-fluidcast-spacemouse.rules (see docs/viewer.md).\n"
           "\n"
           "options:\n"
           "  --dump                  print the reports (required)\n"

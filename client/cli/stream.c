@@ -37,7 +37,8 @@ static int set_up_view(fc_client *c, const fc_stream_options *o, const fc_frame 
     if (!up.given)
         printf("up %s\n", up.note);
     fc_camera cam;
-    fc_frame_upright(first, o->width, o->height, up.up, &cam);
+    if (fc_frame_upright(first, o->width, o->height, up.up, &cam, &err) != FC_OK)
+        return fc_cli_fail(FC_EXIT_INPUT, "%s", err.message);
     fc_error why;
     if (fc_camera_validate(&cam, &why) != FC_OK)
         return fc_cli_fail(FC_EXIT_USAGE, "bad camera: %s", why.message);

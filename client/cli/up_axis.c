@@ -8,82 +8,11 @@
 
 #include "fc_error.h"
 #include "fc_frame.h"
+#include "spread_sample.h"
 
 /* End slabs this many spacings thick hold the first layer or two of a floor
  * whatever the jitter, but only the very tip of a crest or jet. */
 #define SLAB_SPACINGS 1.5
-/* The spacing is the median nearest-neighbour distance of this many sampled
- * particles, found by brute force among the whole sample: a couple of million
- * distances, about a millisecond, where fc_frame_estimate_radius's exact
- * search would take tens (it is made for the radius, not for this). */
-#define SPACING_QUERIES 128u
-
-static uint64_t gcd64(uint64_t a, uint64_t b)
-{
-    while (b) {
-        uint64_t t = a % b;
-        a = b;
-        b = t;
-    }
-    return a;
-}
-
-/* Visits i * step mod count for a step coprime with count near count / phi:
- * distinct particles spread over the whole array, so files stored layer by
- * layer or block by block are sampled everywhere, not just their first part. */
-static void gather_sample(const fc_frame *frame, float *out, uint64_t m)
-{
-    uint64_t n = frame->count;
-    uint64_t step = (uint64_t)((double)n * 0.6180339887) | 1u;
-    while (gcd64(step, n) != 1)
-        step += 2;
-    uint64_t index = 0;
-    for (uint64_t i = 0; i < m; i++) {
-        memcpy(out + 3 * i, frame->positions + 3 * index, 3 * sizeof *out);
-        index = (index + step) % n;
-    }
-}
-
-static int compare_floats(const void *a, const void *b)
-{
-    float x = *(const float *)a, y = *(const float *)b;
-    return (x > y) - (x < y);
-}
-
-/* Squared distance from particle q to its nearest neighbour at a different
- * position in the sample; FLT_MAX when every particle sits on q. */
-static float nearest_sq(const fc_frame *sample, uint64_t q)
-{
-    const float *p = sample->positions + 3 * q;
-    float best = FLT_MAX;
-    for (uint64_t j = 0; j < sample->count; j++) {
-        const float *o = sample->positions + 3 * j;
-        float dx = o[0] - p[0], dy = o[1] - p[1], dz = o[2] - p[2];
-        float d = dx * dx + dy * dy + dz * dz;
-        if (d > 0.0f && d < best)
-            best = d;
-    }
-    return best;
-}
-
-/* The typical distance between neighbouring particles of the sample (0 when
- * they all coincide). The median ignores spray and isolated droplets. */
-static double sample_spacing(const fc_frame *sample)
-{
-    float distances[SPACING_QUERIES];
-    uint32_t found = 0;
-    uint64_t queries = sample->count < SPACING_QUERIES ? sample->count : SPACING_QUERIES;
-    for (uint64_t i = 0; i < queries; i++) {
-        float d = nearest_sq(sample, i * (sample->count / queries));
-        if (d < FLT_MAX)
-            distances[found++] = sqrtf(d);
-    }
-    if (found == 0)
-        return 0.0;
-    qsort(distances, found, sizeof distances[0], compare_floats);
-    return distances[found / 2];
-}
-
 /* One end slab: how many particles, and their extents across the axis. */
 typedef struct end_slab {
     uint32_t count;
@@ -188,7 +117,7 @@ static int pick_axis(const fc_up_guess *g)
 
 static void analyse(const fc_frame *sample, fc_up_guess *g)
 {
-    double spacing = sample_spacing(sample);
+    double spacing = fc_sample_spacing(sample);
     if (!(spacing > 0.0))
         return;
     g->slab = (float)(SLAB_SPACINGS * spacing);
@@ -218,7 +147,7 @@ fc_code fc_up_axis_guess(const fc_frame *frame, fc_up_guess *out, fc_error *err)
     if (!positions)
         return fc_error_set(err, FC_ERR_NOMEM, "no memory for a %llu-particle sample to guess the up axis",
                             (unsigned long long)m);
-    gather_sample(frame, positions, m);
+    fc_spread_sample(frame, positions, m);
     fc_frame sample = {.count = m, .positions = positions};
     analyse(&sample, out);
     free(positions);

@@ -33,9 +33,13 @@ static void rotate_z_to(const double u[3], const double x[3], double out[3])
         out[k] = x[k] + vx[k] + vvx[k] / (1.0 + c);
 }
 
-void fc_frame_upright(const fc_frame *frame, uint32_t width, uint32_t height, const float up[3], fc_camera *cam)
+void fc_box_upright(const fc_framing_box *box, uint32_t width, uint32_t height, const float up[3], fc_camera *cam)
 {
-    fc_camera_frame_bounds(frame, width, height, cam);
+    float corners[6];
+    memcpy(corners, box->lo, sizeof box->lo);
+    memcpy(corners + 3, box->hi, sizeof box->hi);
+    const fc_frame two_corners = {.count = 2, .positions = corners};
+    fc_camera_frame_bounds(&two_corners, width, height, cam);
     double length = sqrt((double)up[0] * up[0] + (double)up[1] * up[1] + (double)up[2] * up[2]);
     memcpy(cam->up, up, sizeof cam->up);
     if (!(length > 0.0))
@@ -47,4 +51,14 @@ void fc_frame_upright(const fc_frame *frame, uint32_t width, uint32_t height, co
     rotate_z_to(u, offset, turned);
     for (int k = 0; k < 3; k++)
         cam->eye[k] = (float)(cam->target[k] + turned[k]);
+}
+
+fc_code fc_frame_upright(const fc_frame *frame, uint32_t width, uint32_t height, const float up[3], fc_camera *cam,
+                         fc_error *err)
+{
+    fc_framing_box box;
+    fc_code code = fc_framing_box_of(frame, &box, err);
+    if (code == FC_OK)
+        fc_box_upright(&box, width, height, up, cam);
+    return code;
 }

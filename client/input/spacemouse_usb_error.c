@@ -12,7 +12,7 @@ fc_code fc_sm_usb_error(int rc, const char *step, const fc_sm_device_id *d, fc_e
     if (rc == LIBUSB_ERROR_ACCESS)
         return fc_error_set(err, FC_ERR_IO,
                             "no permission to open %s (%04x:%04x, bus %u device %u): install %s "
-                            "(README, SpaceMouse) and re-plug it",
+                            "(docs/viewer.md, SpaceMouse) and re-plug it",
                             name, d->vendor, d->product, d->bus, d->address, FC_SM_UDEV_RULE);
     if (rc == LIBUSB_ERROR_BUSY)
         return fc_error_set(err, FC_ERR_IO, "%s (%04x:%04x) is claimed by another libusb program: %s failed",

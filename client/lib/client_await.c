@@ -2,7 +2,6 @@
 #include "client_await.h"
 
 #include "fc_error.h"
-#include "message_io.h"
 #include "wire_session.h"
 
 bool fc_client_absorb_stream(fc_client *c, const fc_msg_header *header)
@@ -29,7 +28,7 @@ bool fc_client_absorb_stream(fc_client *c, const fc_msg_header *header)
     return false;
 }
 
-fc_code fc_client_await_reply(fc_client *c, uint32_t id, uint16_t type, fc_error *cause, fc_error *err)
+fc_code fc_client_await_reply(fc_client *c, uint32_t id, fc_msg_type type, fc_error *cause, fc_error *err)
 {
     for (;;) {
         fc_msg_header header;
@@ -56,6 +55,6 @@ fc_code fc_client_await_reply(fc_client *c, uint32_t id, uint16_t type, fc_error
             c->broken = true;
             return fc_error_set(err, FC_ERR_CLOSED, "the server ended the connection (GOODBYE)");
         }
-        return fc_client_unexpected(c, &header, fc_message_type_name(type), err);
+        return fc_client_unexpected(c, &header, fc_msg_name(type), err);
     }
 }

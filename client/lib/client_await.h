@@ -18,6 +18,6 @@ bool fc_client_absorb_stream(fc_client *c, const fc_msg_header *header);
  * A server ERROR answering `id` is returned; the first ERROR answering an
  * earlier request is kept in *cause (the caller decides what it explains);
  * stream messages are absorbed. */
-fc_code fc_client_await_reply(fc_client *c, uint32_t id, uint16_t type, fc_error *cause, fc_error *err);
+fc_code fc_client_await_reply(fc_client *c, uint32_t id, fc_msg_type type, fc_error *cause, fc_error *err);
 
 #endif

@@ -98,6 +98,8 @@ fc_code fc_client_unexpected(fc_client *c, const fc_msg_header *header, const ch
                              fc_error *err)
 {
     c->broken = true;
-    return fc_error_set(err, FC_ERR_PROTOCOL, "unexpected %s (request %u) from the server while waiting for %s",
-                        fc_message_type_name(header->type), (unsigned)header->request_id, awaited);
+    const char *name = fc_msg_name(header->type);
+    return fc_error_set(err, FC_ERR_PROTOCOL,
+                        "unexpected %s (type %u, request %u) from the server while waiting for %s",
+                        name ? name : "message", (unsigned)header->type, (unsigned)header->request_id, awaited);
 }

@@ -37,7 +37,7 @@ static fc_code check_streaming(const fc_client *c, fc_error *err)
 /* Sends c->tx (request `id`) and waits for its reply of `type`. An earlier
  * request's rejection, when one arrives on the way, is returned instead, as
  * it is the cause (as fc_client_render does). */
-static fc_code exchange(fc_client *c, uint32_t id, uint16_t type, fc_error *err)
+static fc_code exchange(fc_client *c, uint32_t id, fc_msg_type type, fc_error *err)
 {
     fc_code code = fc_client_send_tx(c, err);
     if (code != FC_OK)

@@ -107,7 +107,7 @@ fc_code fc_client_next_image(fc_client *client, fc_stream_image *out, fc_error *
             client->broken = true;
             return fc_error_set(err, FC_ERR_CLOSED, "the server ended the connection (GOODBYE)");
         }
-        return fc_client_unexpected(client, &header, "STREAM_IMAGE", err);
+        return fc_client_unexpected(client, &header, fc_msg_name(FC_MSG_STREAM_IMAGE), err);
     }
 }
 

@@ -73,7 +73,7 @@ static fc_code receive_welcome(fc_client *c, fc_error *err)
     if (header.type == FC_MSG_ERROR)
         return fc_client_decode_server_error(c, err);
     if (header.type != FC_MSG_WELCOME || header.request_id != c->last_request_id)
-        return fc_client_unexpected(c, &header, "WELCOME", err);
+        return fc_client_unexpected(c, &header, fc_msg_name(FC_MSG_WELCOME), err);
 
     fc_welcome welcome;
     fc_error why;

@@ -11,7 +11,4 @@
 fc_code fc_message_receive(int fd, uint32_t max_payload, fc_msg_header *header, fc_buf *payload,
                            fc_error *err);
 
-/* Upper-case name of a message type for error messages, e.g. "WELCOME". */
-const char *fc_message_type_name(uint16_t type);
-
 #endif

@@ -62,7 +62,8 @@ static void wake(void *ctx)
 }
 
 /* A sequence's first frame gives the settings (radius, spray) and the home
- * camera: framed on its bounds, upright along the guessed up axis. */
+ * camera: framed on its fluid (framing_bounds.h), upright along the guessed
+ * up axis. */
 static int prepare_files(const fc_view_options *o, fc_frame *first, fc_settings *settings, fc_camera *home)
 {
     int status = fc_cli_load_particles(o->files[0], &o->read, first);
@@ -76,7 +77,8 @@ static int prepare_files(const fc_view_options *o, fc_frame *first, fc_settings 
     fc_error err;
     if (fc_up_axis_guess(first, &guess, &err) == FC_OK)
         fc_up_axis_vector(&guess, up);
-    fc_frame_upright(first, o->width, o->height, up, home);
+    if (fc_frame_upright(first, o->width, o->height, up, home, &err) != FC_OK)
+        return fc_cli_fail(FC_EXIT_INPUT, "%s", err.message);
     return FC_EXIT_OK;
 }
 

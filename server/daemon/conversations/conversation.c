@@ -37,17 +37,11 @@ void fc_conversation_free(fc_conversation *c)
     fc_mesh_set_free(&c->meshes);
 }
 
-static bool is_defined_type(uint16_t type)
+/* A type defined for every connection, whatever it negotiated: before HELLO
+ * nothing is negotiated, so the types that need a capability are undefined. */
+static bool is_defined_without_capabilities(uint16_t type)
 {
-    return type >= FC_MSG_HELLO && type <= FC_MSG_MESH_TRANSFORM;
-}
-
-static const char *message_name(uint16_t type)
-{
-    static const char *const names[] = {"HELLO", "WELCOME", "FRAME",   "CAMERA",     "SETTINGS",   "RENDER",
-                                        "IMAGE", "ERROR",   "GOODBYE", "BACKGROUND", "ENVIRONMENT",
-                                        "MESH",  "MESH_TRANSFORM"};
-    return is_defined_type(type) ? names[type - FC_MSG_HELLO] : "unknown";
+    return fc_msg_name(type) != NULL && fc_msg_capabilities(type) == 0;
 }
 
 /* Shorthand for the handlers: answer the message `h` with err. */
@@ -299,10 +293,10 @@ static fc_conversation_verdict handle_before_hello(fc_conversation *c, fc_daemon
     if (h->type == FC_MSG_GOODBYE)
         return handle_goodbye(c, ctx, h, payload, out);
     fc_error err;
-    if (!is_defined_type(h->type))
+    if (!is_defined_without_capabilities(h->type))
         fc_error_set(&err, FC_ERR_UNKNOWN_TYPE, "message type %u is not defined", (unsigned)h->type);
     else
-        fc_error_set(&err, FC_ERR_BAD_STATE, "%s before HELLO", message_name(h->type));
+        fc_error_set(&err, FC_ERR_BAD_STATE, "%s before HELLO", fc_msg_name(h->type));
     return reply_error(c, ctx, h, &err, FC_CONV_CLOSE, out);
 }
 
@@ -314,7 +308,7 @@ static fc_conversation_verdict refuse_after_hello(fc_conversation *c, fc_daemon_
     if (h->type == FC_MSG_HELLO)
         fc_error_set(&err, FC_ERR_BAD_STATE, "HELLO was already answered");
     else if (h->type == FC_MSG_WELCOME || h->type == FC_MSG_IMAGE || h->type == FC_MSG_ERROR)
-        fc_error_set(&err, FC_ERR_BAD_STATE, "%s is sent by servers, not clients", message_name(h->type));
+        fc_error_set(&err, FC_ERR_BAD_STATE, "%s is sent by servers, not clients", fc_msg_name(h->type));
     else
         fc_error_set(&err, FC_ERR_UNKNOWN_TYPE, "message type %u is not defined in protocol version %u",
                      (unsigned)h->type, FC_PROTOCOL_VERSION);

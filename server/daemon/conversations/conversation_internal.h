@@ -69,7 +69,7 @@ fc_code fc_conversation_take_frame(fc_conversation *c, fc_frame_view *view, fc_p
 
 /* ---- conversation_sessions.c ---- */
 
-/* Named-session and packed-upload messages (types 16..24, wire_session.h). */
+/* Named-session and packed-upload messages: the types that need a capability (fc_msg_capabilities). */
 bool fc_conversation_is_session_message(uint16_t type);
 fc_conversation_verdict fc_conversation_handle_session_message(fc_conversation *c, fc_daemon_context *ctx,
                                                                const fc_msg_header *h, fc_payload *payload,

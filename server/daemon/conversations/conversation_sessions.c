@@ -15,7 +15,7 @@
 
 bool fc_conversation_is_session_message(uint16_t type)
 {
-    return fc_wire_session_type_name(type) != NULL;
+    return fc_msg_capabilities(type) != 0;
 }
 
 static fc_conversation_verdict reply_error(fc_conversation *c, const fc_msg_header *h, const fc_error *err, fc_buf *out)
@@ -263,12 +263,6 @@ static fc_conversation_verdict handle_list_sessions(fc_conversation *c, const fc
 
 /* ---- Dispatch ---- */
 
-/* The capabilities a message type needs: it is undefined on connections that did not get them. */
-static uint32_t required_capabilities(uint16_t type)
-{
-    return type == FC_MSG_FRAME_PACKED ? (uint32_t)(FC_CAP_ZSTD | FC_CAP_QUANTIZE16) : (uint32_t)FC_CAP_SESSIONS;
-}
-
 fc_conversation_verdict fc_conversation_handle_session_message(fc_conversation *c, fc_daemon_context *ctx,
                                                                const fc_msg_header *h, fc_payload *message,
                                                                double received_ms, fc_buf *out)
@@ -276,9 +270,10 @@ fc_conversation_verdict fc_conversation_handle_session_message(fc_conversation *
     const uint8_t *payload = message->bytes;
     (void)ctx;
     fc_error err;
-    if (!(c->capabilities & required_capabilities(h->type))) {
+    /* A type is undefined on connections that were granted none of the capabilities it needs. */
+    if (!(c->capabilities & fc_msg_capabilities(h->type))) {
         fc_error_set(&err, FC_ERR_UNKNOWN_TYPE, "%s (type %u) needs a capability this connection did not negotiate",
-                     fc_wire_session_type_name(h->type), (unsigned)h->type);
+                     fc_msg_name(h->type), (unsigned)h->type);
         return reply_error(c, h, &err, out);
     }
     switch (h->type) {
@@ -289,7 +284,7 @@ fc_conversation_verdict fc_conversation_handle_session_message(fc_conversation *
     case FC_MSG_FRAME_PACKED: return handle_frame_packed(c, h, message, received_ms, out);
     case FC_MSG_LIST_SESSIONS: return handle_list_sessions(c, h, payload, out);
     default:
-        fc_error_set(&err, FC_ERR_BAD_STATE, "%s is sent by servers, not clients", fc_wire_session_type_name(h->type));
+        fc_error_set(&err, FC_ERR_BAD_STATE, "%s is sent by servers, not clients", fc_msg_name(h->type));
         return reply_error(c, h, &err, out);
     }
 }

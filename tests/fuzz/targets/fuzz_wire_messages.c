@@ -174,7 +174,7 @@ static fc_code decode_environment(fuzz_payload in, fc_error *err)
     return FC_OK;
 }
 
-/* The extensions this target knows, which fc_msg_type leaves out. */
+/* The extensions this target knows: the scene images. */
 static fc_code decode_extension(uint16_t type, fuzz_payload in, fc_error *err)
 {
     switch (type) {
@@ -186,7 +186,7 @@ static fc_code decode_extension(uint16_t type, fuzz_payload in, fc_error *err)
 
 static fc_code decode_payload(uint16_t type, fuzz_payload in, fc_error *err)
 {
-    switch ((fc_msg_type)type) {
+    switch (type) {
     case FC_MSG_HELLO: return decode_hello(in, err);
     case FC_MSG_WELCOME: return decode_welcome(in, err);
     case FC_MSG_FRAME: return decode_frame(in, err);
