@@ -5,16 +5,6 @@
 
 #include "fc_error.h"
 
-static const char *const read_option_names[] = { "--dataset", "--step", "--select" };
-
-bool fc_cli_is_read_option(const char *name)
-{
-    for (size_t i = 0; i < sizeof read_option_names / sizeof read_option_names[0]; i++)
-        if (strcmp(name, read_option_names[i]) == 0)
-            return true;
-    return false;
-}
-
 static fc_code set_step(fc_read_options *o, const char *name, const char *value, fc_error *err)
 {
     uint64_t step = 0;

@@ -4,14 +4,10 @@
 #ifndef FC_CLI_READ_OPTIONS_H
 #define FC_CLI_READ_OPTIONS_H
 
-#include <stdbool.h>
 #include <stdio.h>
 
 #include "fluidcast_types.h"
 #include "particle_reader.h"
-
-/* Whether `name` ("--dataset") is a reader option; all of them take a value. */
-bool fc_cli_is_read_option(const char *name);
 
 /* Applies reader option `name` with its value to *o. FC_ERR_USAGE naming the
  * option for a bad value (the value string must outlive *o). */

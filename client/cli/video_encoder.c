@@ -25,7 +25,6 @@ struct fc_video_encoder {
     fc_cli_module module;          /* fluidcast-video.so */
     const fc_video_module *video;  /* its interface */
     fc_video_file *file;
-    uint64_t frames;
 };
 
 static const char *extension_of(const char *path)
@@ -132,15 +131,7 @@ const char *fc_video_codec_name(const fc_video_encoder *v)
 
 fc_code fc_video_write_rgba(fc_video_encoder *v, const uint8_t *rgba, fc_error *err)
 {
-    fc_code code = v->video->write_rgba(v->file, rgba, err);
-    if (code == FC_OK)
-        v->frames++;
-    return code;
-}
-
-uint64_t fc_video_frame_count(const fc_video_encoder *v)
-{
-    return v->frames;
+    return v->video->write_rgba(v->file, rgba, err);
 }
 
 fc_code fc_video_close(fc_video_encoder *v, fc_error *err)

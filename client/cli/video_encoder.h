@@ -41,9 +41,6 @@ const char *fc_video_codec_name(const fc_video_encoder *v);
 /* Appends one frame: width * height RGBA8 pixels, rows top to bottom. */
 fc_code fc_video_write_rgba(fc_video_encoder *v, const uint8_t *rgba, fc_error *err);
 
-/* Frames written so far. */
-uint64_t fc_video_frame_count(const fc_video_encoder *v);
-
 /* Flushes the encoder, writes the trailer (so whatever was written plays) and
  * frees the encoder; NULL is ignored. FC_ERR_IO when the file cannot be
  * completed. */

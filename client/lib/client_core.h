@@ -20,7 +20,7 @@ struct fc_client {
     fc_server_info info;
     fc_buf tx;                 /* encoded outgoing message, reused so frames do not reallocate */
     fc_buf rx;                 /* payload of the last incoming message, reused likewise */
-    /* a viewer's stream (client_stream.c) */
+    /* a viewer's stream (client_stream.c; what arrives while awaiting other replies: client_await.c) */
     bool subscribed;
     uint32_t subscribe_id;     /* request id of the SUBSCRIBE: its images and end echo it */
     uint32_t stream_skipped;   /* images dropped while waiting for other replies, not yet reported */

@@ -5,8 +5,8 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "client_await.h"
 #include "client_core.h"
-#include "client_stream.h"
 #include "fc_error.h"
 
 static fc_code send_render(fc_client *c, const fc_render_request *request, uint32_t *id, fc_error *err)

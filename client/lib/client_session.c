@@ -5,7 +5,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "client_stream.h"
+#include "client_await.h"
 #include "fc_error.h"
 #include "wire_session.h"
 

@@ -1,4 +1,5 @@
-/* mesh_builder.c — see mesh_builder.h. */
+/* mesh_builder.c — see mesh_builder.h; also fc_mesh_data_free (mesh_reader.h):
+ * the arrays are grown here, so they are freed here too. */
 #include "mesh_builder.h"
 
 #include <math.h>
@@ -85,6 +86,13 @@ fc_code fc_mesh_builder_finish(fc_mesh_builder *b, const fc_cursor *c, fc_mesh_d
     *out = b->mesh;
     *b = (fc_mesh_builder){0};
     return FC_OK;
+}
+
+void fc_mesh_data_free(fc_mesh_data *m)
+{
+    free(m->vertices);
+    free(m->indices);
+    *m = (fc_mesh_data){0};
 }
 
 void fc_mesh_builder_free(fc_mesh_builder *b)

@@ -1,6 +1,9 @@
 /* mesh_builder.h — internal to the mesh readers: growing vertex and index
  * arrays within the protocol's limits, polygons fanned into triangles, every
- * index and coordinate checked as it comes (cursor-style messages). */
+ * index and coordinate checked as it comes (cursor-style messages). The
+ * bottom of the mesh readers: the format readers (mesh_formats.h) fill a
+ * builder, the dispatcher (mesh_reader.c) calls them and finishes it; the
+ * builder calls neither. */
 #ifndef FC_MESH_BUILDER_H
 #define FC_MESH_BUILDER_H
 
@@ -29,12 +32,5 @@ fc_code fc_mesh_builder_reserve(fc_mesh_builder *b, const fc_cursor *c, uint64_t
 /* Hands the arrays over (PARSE when the file held no triangle); the builder is emptied. */
 fc_code fc_mesh_builder_finish(fc_mesh_builder *b, const fc_cursor *c, fc_mesh_data *out, fc_error *err);
 void fc_mesh_builder_free(fc_mesh_builder *b);
-
-/* The format readers (mesh_*.c). */
-fc_code fc_read_mesh_obj(fc_cursor *c, fc_mesh_builder *b, fc_error *err);
-fc_code fc_read_mesh_stl(fc_cursor *c, fc_mesh_builder *b, fc_error *err);
-fc_code fc_read_mesh_ply(fc_cursor *c, fc_mesh_builder *b, fc_error *err);
-fc_code fc_read_mesh_vtk(fc_cursor *c, fc_mesh_builder *b, fc_error *err);
-fc_code fc_read_mesh_vtp(fc_cursor *c, fc_mesh_builder *b, fc_error *err);
 
 #endif

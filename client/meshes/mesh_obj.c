@@ -3,7 +3,7 @@
  * negative counting back from the last vertex read so far. Polygons are
  * fanned into triangles; every other statement (vn, vt, g, o, s, usemtl,
  * mtllib, l, p, comments) is skipped. */
-#include "mesh_builder.h"
+#include "mesh_formats.h"
 
 #include <stdlib.h>
 

@@ -3,7 +3,7 @@
  * element gives x, y, z (any scalar type); the face element's list property
  * vertex_indices (or vertex_index, else its first list) gives polygons, fanned
  * into triangles. Other elements and properties are read past. */
-#include "mesh_builder.h"
+#include "mesh_formats.h"
 
 #include <math.h>
 #include <stdlib.h>

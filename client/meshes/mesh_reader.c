@@ -8,14 +8,7 @@
 #include <strings.h>
 
 #include "fc_error.h"
-#include "mesh_builder.h"
-
-void fc_mesh_data_free(fc_mesh_data *m)
-{
-    free(m->vertices);
-    free(m->indices);
-    *m = (fc_mesh_data){0};
-}
+#include "mesh_formats.h"
 
 fc_mesh_format fc_mesh_format_from_path(const char *path)
 {

@@ -33,6 +33,7 @@ typedef struct fc_mesh_data {
     uint32_t triangle_count;    /* >= 1 for a mesh read successfully */
 } fc_mesh_data;
 
+/* Frees the arrays (defined beside the code that grows them, mesh_builder.c). */
 void fc_mesh_data_free(fc_mesh_data *m);
 
 /* From the extension, case-insensitive: .obj .stl .ply .vtk .vtp. */

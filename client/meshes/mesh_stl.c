@@ -3,7 +3,7 @@
  * size is exactly 84 + 50 T; else ascii ("solid", then "facet normal ...
  * outer loop vertex x y z ... endloop endfacet", "endsolid"). STL stores each
  * triangle's corners, so each triangle brings its own three vertices. */
-#include "mesh_builder.h"
+#include "mesh_formats.h"
 
 #include <string.h>
 

@@ -5,7 +5,7 @@
  * 4.x layout (SIZE numbers: a count, then that many point indices, per cell)
  * or the 5.1 layout (OFFSETS and CONNECTIVITY arrays). Binary data is
  * big-endian. The first POINT_DATA, CELL_DATA or FIELD ends the geometry. */
-#include "mesh_builder.h"
+#include "mesh_formats.h"
 
 #include <math.h>
 #include <stdlib.h>

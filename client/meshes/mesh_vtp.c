@@ -6,7 +6,7 @@
  * both readers accept the same encodings. Point Normals and other arrays are
  * skipped (MESH carries positions and triangles only). Strips-, Lines- or
  * Verts-only files and several pieces are refused with a reason. */
-#include "mesh_builder.h"
+#include "mesh_formats.h"
 
 #include <expat.h>
 #include <limits.h>

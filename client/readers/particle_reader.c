@@ -82,6 +82,9 @@ static fc_code read_format(fc_cursor *c, fc_file_format format, fc_frame *frame,
     case FC_FILE_VTK_XML:
         return fc_read_vtkxml(c, frame, err);
     case FC_FILE_HDF5:
+        /* Checked here, so that libhdf5 (or the command's module of it) only ever sees HDF5. */
+        if (!fc_is_hdf5(c->data, c->size))
+            return fc_error_set(err, FC_ERR_PARSE, "%s: not an HDF5 file (no \\x89HDF signature)", c->name);
         return fc_read_hdf5(c, frame, err);
     case FC_FILE_PVD:
         return fc_error_set(err, FC_ERR_PARSE, "%s: a .pvd collection names other files: read it by its path, "

@@ -13,7 +13,8 @@ fc_code fc_read_vtk(fc_cursor *c, fc_frame *frame, fc_error *err);
 fc_code fc_read_csv(fc_cursor *c, fc_frame *frame, fc_error *err);
 fc_code fc_read_bgeo(fc_cursor *c, fc_frame *frame, fc_error *err);
 fc_code fc_read_npy(fc_cursor *c, fc_frame *frame, fc_error *err);
-/* HDF5 (libhdf5, from the bytes in memory): reader_hdf5.c. */
+/* HDF5 (libhdf5, from the bytes in memory): reader_hdf5.c. c's data has the HDF5
+ * signature (fc_is_hdf5): the caller, fc_read_particles_mem, has checked it. */
 fc_code fc_read_hdf5(fc_cursor *c, fc_frame *frame, fc_error *err);
 fc_code fc_read_vtkxml(fc_cursor *c, fc_frame *frame, fc_error *err);
 /* A .pvd collection's first DataSet file attribute, copied into file (NUL-terminated). */

@@ -338,8 +338,6 @@ static fc_code store_tables(const fc_cursor *c, const h5_source *s, const h5_tab
 fc_code fc_read_hdf5(fc_cursor *c, fc_frame *frame, fc_error *err)
 {
     h5_source s = { c->name, c->size };
-    if (!fc_is_hdf5(c->data, c->size))
-        return fc_error_set(err, FC_ERR_PARSE, "%s: not an HDF5 file (no \\x89HDF signature)", c->name);
     H5Eset_auto2(H5E_DEFAULT, NULL, NULL); /* errors come back as values, not printed by libhdf5 */
     hid_t file = -1;
     fc_code code = open_image(&s, c->data, &file, err);

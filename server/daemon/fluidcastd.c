@@ -2,7 +2,7 @@
  * service (GL thread and encoders), the named sessions, the listeners and the
  * event loop, in that order, telling a service manager (systemd) how far it
  * got (service_manager.h); exit 0 on SIGINT/SIGTERM, 1 when it cannot start,
- * 2 on a bad command line. The folders below (net/, clients/, sessions/, gpu/,
+ * 2 on a bad command line. The folders below (net/, conversations/, sessions/, gpu/,
  * uploads/) are the daemon's layers: README.md maps them. */
 #include <arpa/inet.h>
 #include <errno.h>

@@ -52,7 +52,6 @@ fc_code fc_mesh_buffers_create(fc_pipeline *p, const fc_mesh *mesh, fc_mesh_buff
     }
     glVertexArrayElementBuffer(b->vertex_array, b->indices);
     b->index_count = (GLsizei)(3 * mesh->triangle_count);
-    b->bytes = vertex_bytes * (mesh->normals ? 2 : 1) + index_bytes;
     measure_bounds(mesh, b);
     fc_code code = fc_gl_check("uploading a mesh", err);
     if (code != FC_OK) {
@@ -72,9 +71,4 @@ void fc_mesh_buffers_destroy(fc_mesh_buffers *b)
     glDeleteBuffers(1, &b->normals);
     glDeleteBuffers(1, &b->indices);
     free(b);
-}
-
-uint64_t fc_mesh_buffers_bytes(const fc_mesh_buffers *b)
-{
-    return b ? b->bytes : 0;
 }

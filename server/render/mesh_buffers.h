@@ -17,7 +17,6 @@ struct fc_mesh_buffers {
     GLuint indices;
     GLsizei index_count;   /* 3 T */
     float lo[3], hi[3];    /* bounds of the vertices, in the mesh's own frame */
-    uint64_t bytes;        /* GPU memory of the three buffers */
 };
 
 #endif

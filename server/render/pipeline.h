@@ -77,12 +77,11 @@ void fc_scene_textures_destroy(fc_scene_textures *t);
  * through a pipeline from a validated fc_mesh (its arrays are copied; the
  * mesh's colour, opacity, flags and transform are not kept: each render
  * names them, fc_scene_mesh). Owned by the caller like scene textures, not
- * counted in fc_pipeline_gpu_memory (fc_mesh_buffers_bytes tells its size).
+ * counted in fc_pipeline_gpu_memory.
  * FC_ERR_RENDER when the GPU runs out of memory. */
 typedef struct fc_mesh_buffers fc_mesh_buffers;
 fc_code fc_mesh_buffers_create(fc_pipeline *p, const fc_mesh *mesh, fc_mesh_buffers **out, fc_error *err);
 void fc_mesh_buffers_destroy(fc_mesh_buffers *b);
-uint64_t fc_mesh_buffers_bytes(const fc_mesh_buffers *b);
 
 /* One mesh of a render, placed and coloured. */
 typedef struct fc_scene_mesh {

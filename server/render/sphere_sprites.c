@@ -63,13 +63,6 @@ static fc_code build_ellipsoids(const char *shader_dir, const char *helper_file,
     return build(shader_dir, files, count, &s->ellipsoid_program, s, err);
 }
 
-fc_code fc_sphere_sprites_create(const char *shader_dir, const char *fragment_file, fc_sphere_sprites *s,
-                                 fc_error *err)
-{
-    *s = (fc_sphere_sprites){0};
-    return build_spheres(shader_dir, NULL, fragment_file, s, err);
-}
-
 fc_code fc_sphere_sprites_create_with(const char *shader_dir, const char *helper_file, const char *fragment_file,
                                       fc_sphere_sprites *s, fc_error *err)
 {

@@ -23,11 +23,10 @@ typedef struct fc_sphere_sprites {
     float max_point_size;   /* the driver's limit: larger spheres are drawn as quads */
 } fc_sphere_sprites;
 
-fc_code fc_sphere_sprites_create(const char *shader_dir, const char *fragment_file, fc_sphere_sprites *s,
-                                 fc_error *err);
-/* The same with a file of helper functions linked in: e.g.
- * particle_attributes.frag.glsl for fragment shaders that read the particle
- * records (bind them with fc_particle_attributes_bind). */
+/* The sphere program of a pass's fragment shader, with a file of helper
+ * functions linked in (NULL: none): e.g. particle_attributes.frag.glsl for
+ * fragment shaders that read the particle records (bind them with
+ * fc_particle_attributes_bind). */
 fc_code fc_sphere_sprites_create_with(const char *shader_dir, const char *helper_file, const char *fragment_file,
                                       fc_sphere_sprites *s, fc_error *err);
 /* The same, with a second program that draws the ellipsoids where the

@@ -406,7 +406,7 @@ static void vanishing_viewers(const fc_test_daemon *d, scene *s)
 static void forced_miss(void)
 {
     static const char *const environment[] = {"FLUIDCASTD_TEST_LOSE_CONTEXT=3", NULL};
-    /* Room for the encoder at 128x96 (24 bytes per pixel + 4 MiB, client_memory.h), not at 256x256. */
+    /* Room for the encoder at 128x96 (24 bytes per pixel + 4 MiB, conversation_memory.h), not at 256x256. */
     static const char *const args[] = {"--max-image", "256x256", "--refresh-ms", "0", "--max-session-memory",
                                        "5000000", NULL};
     fc_test_daemon_setup setup = {.extra_args = args, .environment = environment};

@@ -3,7 +3,7 @@
  * its one image in flight, so that a viewer leaving while its image is being
  * encoded frees the encoder when the job is done with it.
  *
- * A viewer has at most one image in flight (clients/viewer.h), so one encoder
+ * A viewer has at most one image in flight (conversations/viewer.h), so one encoder
  * thread at a time encodes a stream, its frames in order; the job queues
  * between the threads order the hand-overs. The encoder is made by the first
  * image and again at an image of another size (a resize), each time starting

@@ -41,7 +41,7 @@ fc_code fc_connection_create(int fd, const char *peer, uint64_t id, fc_daemon_co
     c->fd = fd;
     snprintf(c->peer, sizeof c->peer, "%s", peer);
     fc_buf_init(&c->out);
-    fc_client_init(&c->client, c->peer, ctx, id, &c->out);
+    fc_conversation_init(&c->conversation, c->peer, ctx, id, &c->out);
     c->last_message_ms = fc_monotonic_ms();
     *out = c;
     return FC_OK;
@@ -52,7 +52,7 @@ void fc_connection_destroy(fc_connection *c)
     if (!c)
         return;
     close(c->fd);
-    fc_client_free(&c->client);
+    fc_conversation_free(&c->conversation);
     free(c->payload);
     fc_buf_free(&c->out);
     free(c);
@@ -73,7 +73,7 @@ short fc_connection_wanted_events(const fc_connection *c)
          * order of the requests. */
         if (has_pending_output(c))
             return POLLOUT;
-        return c->client.reply_pending ? 0 : POLLIN;
+        return c->conversation.reply_pending ? 0 : POLLIN;
     case FC_CONN_FLUSHING:
         return POLLOUT;
     case FC_CONN_LINGERING:
@@ -94,12 +94,12 @@ static bool message_in_progress(const fc_connection *c)
  * our replies wait to be read, and never for a viewer, which only listens. */
 static double client_deadline_ms(const fc_connection *c)
 {
-    const fc_daemon_context *ctx = c->client.ctx;
-    if (c->phase != FC_CONN_OPEN || has_pending_output(c) || c->client.reply_pending)
+    const fc_daemon_context *ctx = c->conversation.ctx;
+    if (c->phase != FC_CONN_OPEN || has_pending_output(c) || c->conversation.reply_pending)
         return -1.0;
     if (message_in_progress(c))
         return ctx->read_timeout_ms > 0.0 ? c->started_ms + ctx->read_timeout_ms : -1.0;
-    if (c->client.role == FC_ROLE_VIEWER || ctx->idle_timeout_ms <= 0.0)
+    if (c->conversation.role == FC_ROLE_VIEWER || ctx->idle_timeout_ms <= 0.0)
         return -1.0;
     return c->last_message_ms + ctx->idle_timeout_ms;
 }
@@ -119,7 +119,7 @@ int fc_connection_timeout_ms(const fc_connection *c, double now_ms)
     else if (c->phase == FC_CONN_OPEN && c->backlog_check_ms > 0.0)
         deadline = c->backlog_check_ms;
     else if (c->phase == FC_CONN_OPEN)
-        deadline = fc_client_deadline_ms(&c->client);
+        deadline = fc_conversation_deadline_ms(&c->conversation);
     deadline = earliest(deadline, client_deadline_ms(c));
     if (deadline < 0.0)
         return -1;
@@ -152,13 +152,13 @@ static size_t kernel_backlog(int fd)
  * there would be exactly the stale frames latest-wins is meant to drop. */
 static void report_drained(fc_connection *c)
 {
-    size_t allowance = fc_client_backlog_allowance(&c->client);
+    size_t allowance = fc_conversation_backlog_allowance(&c->conversation);
     if (allowance != SIZE_MAX && kernel_backlog(c->fd) > allowance) {
         c->backlog_check_ms = fc_monotonic_ms() + BACKLOG_POLL_MS;
         return;
     }
     c->backlog_check_ms = 0.0;
-    fc_client_output_drained(&c->client);
+    fc_conversation_output_drained(&c->conversation);
 }
 
 static void flush(fc_connection *c)
@@ -167,7 +167,7 @@ static void flush(fc_connection *c)
         ssize_t n = send(c->fd, c->out.data + c->out_sent, c->out.len - c->out_sent, MSG_NOSIGNAL);
         if (n > 0) {
             c->out_sent += (size_t)n;
-            fc_metrics_add(c->client.ctx->metrics, FC_METRIC_BYTES_SENT, (uint64_t)n);
+            fc_metrics_add(c->conversation.ctx->metrics, FC_METRIC_BYTES_SENT, (uint64_t)n);
         } else if (n < 0 && errno == EINTR) {
             continue;
         } else if (n < 0 && (errno == EAGAIN || errno == EWOULDBLOCK)) {
@@ -196,11 +196,11 @@ static void start_closing(fc_connection *c)
     flush(c);
 }
 
-static void apply_verdict(fc_connection *c, fc_client_verdict verdict)
+static void apply_verdict(fc_connection *c, fc_conversation_verdict verdict)
 {
-    if (verdict == FC_CLIENT_ABORT)
+    if (verdict == FC_CONV_ABORT)
         c->phase = FC_CONN_DONE;
-    else if (verdict == FC_CLIENT_CLOSE)
+    else if (verdict == FC_CONV_CLOSE)
         start_closing(c);
 }
 
@@ -209,7 +209,7 @@ static void apply_verdict(fc_connection *c, fc_client_verdict verdict)
 static fc_error error_for_client(const fc_connection *c, const fc_error *err)
 {
     fc_error reply = *err;
-    if (fc_client_unauthenticated(&c->client))
+    if (fc_conversation_unauthenticated(&c->conversation))
         fc_error_set(&reply, FC_ERR_UNAUTHORIZED, "authentication required");
     return reply;
 }
@@ -217,14 +217,14 @@ static fc_error error_for_client(const fc_connection *c, const fc_error *err)
 static void close_with_error(fc_connection *c, fc_daemon_context *ctx, uint32_t request_id, const fc_error *err)
 {
     fc_error reply = error_for_client(c, err);
-    apply_verdict(c, fc_client_reply_error(ctx, c->peer, request_id, &reply, FC_CLIENT_CLOSE, &c->out));
+    apply_verdict(c, fc_conversation_reply_error(ctx, c->peer, request_id, &reply, FC_CONV_CLOSE, &c->out));
 }
 
 void fc_connection_refuse(fc_connection *c, fc_daemon_context *ctx)
 {
     fc_error err;
     fc_error_set(&err, FC_ERR_LIMIT, "the server has its maximum of %u connections", (unsigned)ctx->max_connections);
-    apply_verdict(c, fc_client_reply_error(ctx, c->peer, 0, &err, FC_CLIENT_CLOSE, &c->out));
+    apply_verdict(c, fc_conversation_reply_error(ctx, c->peer, 0, &err, FC_CONV_CLOSE, &c->out));
 }
 
 /* A client that stopped mid-message or sent nothing for too long gives up its
@@ -261,17 +261,17 @@ static void forget_payload(fc_connection *c)
  * found earlier) and start on the next one. */
 static void deliver(fc_connection *c, fc_daemon_context *ctx)
 {
-    fc_client_verdict verdict;
+    fc_conversation_verdict verdict;
     if (c->header_error.code != FC_OK) {
         /* Before the handshake any error ends the connection. */
         fc_error reply = error_for_client(c, &c->header_error);
-        fc_client_verdict then =
-            c->client.state == FC_CLIENT_READY ? FC_CLIENT_CONTINUE : FC_CLIENT_CLOSE;
-        verdict = fc_client_reply_error(ctx, c->peer, c->header.request_id, &reply, then, &c->out);
+        fc_conversation_verdict then =
+            c->conversation.state == FC_CONV_READY ? FC_CONV_CONTINUE : FC_CONV_CLOSE;
+        verdict = fc_conversation_reply_error(ctx, c->peer, c->header.request_id, &reply, then, &c->out);
     } else {
-        c->client.message_started_ms = c->started_ms;
+        c->conversation.message_started_ms = c->started_ms;
         fc_payload payload = {c->payload, c->payload_cap};
-        verdict = fc_client_handle(&c->client, ctx, &c->header, &payload, fc_monotonic_ms(), &c->out);
+        verdict = fc_conversation_handle(&c->conversation, ctx, &c->header, &payload, fc_monotonic_ms(), &c->out);
         if (!payload.bytes)
             forget_payload(c);   /* a frame decoded in place kept it */
     }
@@ -391,7 +391,7 @@ static read_result receive_payload(fc_connection *c, fc_daemon_context *ctx)
 static void read_messages(fc_connection *c, fc_daemon_context *ctx)
 {
     unsigned long first = c->messages;
-    while (c->phase == FC_CONN_OPEN && !has_pending_output(c) && !c->client.reply_pending &&
+    while (c->phase == FC_CONN_OPEN && !has_pending_output(c) && !c->conversation.reply_pending &&
            c->messages - first < MESSAGES_PER_WAKE) {
         read_result result = c->have_header ? receive_payload(c, ctx) : receive_header(c, ctx);
         if (result == READ_WOULD_BLOCK)
@@ -422,7 +422,7 @@ void fc_connection_on_events(fc_connection *c, short revents, fc_daemon_context 
     /* A socket error surfaces from send() or recv(), whichever comes first. */
     if (revents & (POLLOUT | POLLHUP | POLLERR))
         flush(c);
-    if (c->phase == FC_CONN_OPEN && c->client.reply_pending && (revents & (POLLHUP | POLLERR)))
+    if (c->phase == FC_CONN_OPEN && c->conversation.reply_pending && (revents & (POLLHUP | POLLERR)))
         c->phase = FC_CONN_DONE;   /* reset while its RENDER renders: nobody is left to answer */
     else if (c->phase == FC_CONN_OPEN && (revents & (POLLIN | POLLHUP | POLLERR)))
         read_messages(c, ctx);
@@ -432,13 +432,13 @@ void fc_connection_on_events(fc_connection *c, short revents, fc_daemon_context 
     if (c->phase == FC_CONN_OPEN && revents == 0 && c->backlog_check_ms > 0.0)
         report_drained(c);
     else if (c->phase == FC_CONN_OPEN && revents == 0)
-        fc_client_tick(&c->client, fc_monotonic_ms());
+        fc_conversation_tick(&c->conversation, fc_monotonic_ms());
 }
 
 void fc_connection_on_job_done(fc_connection *c, const fc_render_job *job)
 {
     if (c->phase != FC_CONN_OPEN)
         return;
-    fc_client_job_done(&c->client, job);
+    fc_conversation_job_done(&c->conversation, job);
     flush(c);
 }

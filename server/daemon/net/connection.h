@@ -1,6 +1,7 @@
 /* connection.h — one client socket: reads whole messages (header, then
- * payload), hands them to its client (clients/client.h), queues the replies (and a viewer's
- * stream images) and flushes them as the socket accepts them. All I/O is
+ * payload), hands them to its conversation (conversations/conversation.h),
+ * queues the replies (and a viewer's stream images) and flushes them as the
+ * socket accepts them. All I/O is
  * non-blocking; the event loop calls in when poll() reports the socket ready,
  * when a timer is due, or when a render job of this connection finished. */
 #ifndef FC_DAEMON_CONNECTION_H
@@ -9,7 +10,7 @@
 #include <stdbool.h>
 #include <stddef.h>
 
-#include "clients/client.h"
+#include "conversations/conversation.h"
 
 typedef enum fc_connection_phase {
     FC_CONN_OPEN = 0,      /* reading and answering messages */
@@ -41,7 +42,7 @@ typedef struct fc_connection {
     /* replies not yet sent */
     fc_buf out;
     size_t out_sent;
-    fc_client client;
+    fc_conversation conversation;
 } fc_connection;
 
 /* Takes ownership of the connected, non-blocking socket fd. */

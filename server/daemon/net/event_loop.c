@@ -277,7 +277,7 @@ static void publish_gauges(fc_event_loop *loop)
 /* A connection whose RENDER is being rendered, or whose replies are not all sent. */
 static bool connection_busy(const fc_connection *c)
 {
-    return c->phase == FC_CONN_OPEN && (c->client.reply_pending || fc_connection_wanted_events(c) == POLLOUT);
+    return c->phase == FC_CONN_OPEN && (c->conversation.reply_pending || fc_connection_wanted_events(c) == POLLOUT);
 }
 
 /* Prepares a drain round: only busy connections are polled, so no new request

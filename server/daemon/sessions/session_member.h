@@ -1,11 +1,11 @@
 /* session_member.h — how a named session talks to the connections in it.
  *
  * A session knows its producers and viewers only as members: a handle with a
- * table of functions, which whoever joins fills in (the clients layer:
- * clients/client_sessions.c) and embeds in its own state. The session calls
- * its members through that table, never by name, so no file of the session
- * layer includes a client header and the dependencies run one way:
- * clients -> sessions. Event-loop thread only. */
+ * table of functions, which whoever joins fills in (the conversations layer:
+ * conversations/conversation_sessions.c) and embeds in its own state. The
+ * session calls its members through that table, never by name, so no file of
+ * the session layer includes a conversation header and the dependencies run
+ * one way: conversations -> sessions. Event-loop thread only. */
 #ifndef FC_DAEMON_SESSION_MEMBER_H
 #define FC_DAEMON_SESSION_MEMBER_H
 

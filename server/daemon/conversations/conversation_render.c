@@ -1,11 +1,11 @@
-/* client_render.c — turning a client's state into render jobs; frames
+/* conversation_render.c — turning a client's state into render jobs; frames
  * becoming the client's current frame or its named session's newest. */
-#include "clients/client_internal.h"
+#include "conversations/conversation_internal.h"
 
 #include <stdio.h>
 #include <string.h>
 
-#include "clients/client_memory.h"
+#include "conversations/conversation_memory.h"
 #include "fc_error.h"
 #include "fc_frame.h"
 #include "monotonic.h"
@@ -17,7 +17,7 @@
  * recycled buffer (up to an eighth). */
 #define PAYLOAD_SLACK_BYTES 64
 
-fc_code fc_client_check_image_limit(const fc_limits *limits, uint32_t width, uint32_t height, fc_error *err)
+fc_code fc_conversation_check_image_limit(const fc_limits *limits, uint32_t width, uint32_t height, fc_error *err)
 {
     if (width <= limits->max_width && height <= limits->max_height)
         return FC_OK;
@@ -25,13 +25,13 @@ fc_code fc_client_check_image_limit(const fc_limits *limits, uint32_t width, uin
                         (unsigned)height, (unsigned)limits->max_width, (unsigned)limits->max_height);
 }
 
-fc_shared_frame *fc_client_current_frame(const fc_client *c)
+fc_shared_frame *fc_conversation_current_frame(const fc_conversation *c)
 {
     return c->session ? c->session->latest : c->frame;
 }
 
-fc_code fc_client_submit_render(fc_client *c, fc_shared_frame *frame, const fc_render_order *order,
-                                fc_error *err)
+fc_code fc_conversation_submit_render(fc_conversation *c, fc_shared_frame *frame, const fc_render_order *order,
+                                      fc_error *err)
 {
     fc_render_job *job = fc_render_job_create(frame);
     if (!job)
@@ -63,7 +63,7 @@ fc_code fc_client_submit_render(fc_client *c, fc_shared_frame *frame, const fc_r
     return FC_OK;
 }
 
-static fc_code share_frame(fc_client *c, fc_frame_view *view, fc_foam_track *foam, uint64_t number,
+static fc_code share_frame(fc_conversation *c, fc_frame_view *view, fc_foam_track *foam, uint64_t number,
                            double received_ms, double decode_ms, fc_shared_frame **out, fc_error *err)
 {
     fc_code code = fc_shared_frame_create(view, c->ctx->frames, ++c->ctx->last_frame_id, foam, out, err);
@@ -78,7 +78,7 @@ static fc_code share_frame(fc_client *c, fc_frame_view *view, fc_foam_track *foa
 
 /* The foam history a new frame continues: the named session's, or this
  * connection's own, begun with its first FRAME. */
-static fc_code foam_history(fc_client *c, bool publishes, fc_foam_track **out, fc_error *err)
+static fc_code foam_history(fc_conversation *c, bool publishes, fc_foam_track **out, fc_error *err)
 {
     if (publishes) {
         *out = c->session->foam;
@@ -90,16 +90,16 @@ static fc_code foam_history(fc_client *c, bool publishes, fc_foam_track **out, f
 }
 
 /* The frame a new one replaces must make room for it. */
-static fc_code admit_frame(const fc_client *c, bool publishes, const fc_frame *frame, fc_error *err)
+static fc_code admit_frame(const fc_conversation *c, bool publishes, const fc_frame *frame, fc_error *err)
 {
     const fc_shared_frame *replaced = publishes ? c->session->latest : c->frame;
     char what[64];
     snprintf(what, sizeof what, "a frame of %llu particles", (unsigned long long)frame->count);
-    return fc_client_memory_admit(c, replaced ? fc_memory_of_frame(&replaced->frame) : 0, fc_memory_of_frame(frame),
-                                  what, err);
+    return fc_conversation_memory_admit(c, replaced ? fc_memory_of_frame(&replaced->frame) : 0,
+                                        fc_memory_of_frame(frame), what, err);
 }
 
-fc_code fc_client_keep_payload(fc_client *c, fc_frame_view *view, fc_payload *payload, fc_error *err)
+fc_code fc_conversation_keep_payload(fc_conversation *c, fc_frame_view *view, fc_payload *payload, fc_error *err)
 {
     if (view->block)
         return FC_OK;
@@ -122,10 +122,10 @@ fc_code fc_client_keep_payload(fc_client *c, fc_frame_view *view, fc_payload *pa
     return FC_OK;
 }
 
-fc_code fc_client_take_frame(fc_client *c, fc_frame_view *view, fc_payload *payload, double received_ms,
-                             double decode_ms, fc_error *err)
+fc_code fc_conversation_take_frame(fc_conversation *c, fc_frame_view *view, fc_payload *payload, double received_ms,
+                                   double decode_ms, fc_error *err)
 {
-    fc_code code = fc_client_keep_payload(c, view, payload, err);
+    fc_code code = fc_conversation_keep_payload(c, view, payload, err);
     if (code != FC_OK)
         return code;
     if (c->role == FC_ROLE_VIEWER)

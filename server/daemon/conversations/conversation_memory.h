@@ -1,4 +1,4 @@
-/* client_memory.h — the one place that accounts what a connection holds on
+/* conversation_memory.h — the one place that accounts what a connection holds on
  * the daemon, against --max-session-memory (PROTOCOL.md 6.4). What it holds
  * is measured from its state each time it asks for more, so there is no
  * counter that could drift from the truth:
@@ -19,14 +19,14 @@
  * thread keeps (the foam history, copies on the GPU), the blocks the frame
  * pool keeps for reuse (daemon memory, bounded there: frame_pool.h), and
  * what a frame or chunk decoded in place keeps beyond its arrays with its
- * message's buffer: at most 64 bytes and an eighth (fc_client_keep_payload).
+ * message's buffer: at most 64 bytes and an eighth (fc_conversation_keep_payload).
  * Event-loop thread only. */
-#ifndef FC_DAEMON_CLIENT_MEMORY_H
-#define FC_DAEMON_CLIENT_MEMORY_H
+#ifndef FC_DAEMON_CONVERSATION_MEMORY_H
+#define FC_DAEMON_CONVERSATION_MEMORY_H
 
 #include <stdint.h>
 
-#include "clients/client.h"
+#include "conversations/conversation.h"
 
 uint64_t fc_memory_of_frame(const fc_frame *frame);
 uint64_t fc_memory_of_scene_part(const fc_scene_part *part);   /* 0 for NULL */
@@ -36,12 +36,12 @@ uint64_t fc_memory_of_scene_part(const fc_scene_part *part);   /* 0 for NULL */
 uint64_t fc_memory_of_video(fc_image_format format, uint32_t width, uint32_t height);
 
 /* Everything the list above counts for this connection. */
-uint64_t fc_client_memory_held(const fc_client *c);
+uint64_t fc_conversation_memory_held(const fc_conversation *c);
 
-/* FC_OK when the client, giving up `released` bytes of what it holds and
+/* FC_OK when the conversation, giving up `released` bytes of what it holds and
  * taking `added` more, stays within its limit; else FC_ERR_LIMIT with a reason
  * that names `what` (e.g. "a frame of 1000 particles") and the limit. */
-fc_code fc_client_memory_admit(const fc_client *c, uint64_t released, uint64_t added, const char *what,
-                               fc_error *err);
+fc_code fc_conversation_memory_admit(const fc_conversation *c, uint64_t released, uint64_t added, const char *what,
+                                     fc_error *err);
 
 #endif

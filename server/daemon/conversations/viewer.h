@@ -14,7 +14,7 @@
 #include "gpu/render_job.h"
 #include "wire_session.h"
 
-struct fc_client;
+struct fc_conversation;
 
 typedef struct fc_viewer {
     uint32_t subscribe_id;         /* request id of the SUBSCRIBE: stream images and the end echo it */
@@ -36,37 +36,37 @@ typedef struct fc_viewer {
     uint32_t end_request_id;
 } fc_viewer;
 
-/* Subscribes the client (already added to c->session as a viewer) with
+/* Subscribes the conversation (already added to c->session as a viewer) with
  * request id `subscribe_id`; a frame the session has already is sent at once. */
-void fc_viewer_start(struct fc_client *c, uint32_t subscribe_id, const fc_subscribe *sub, uint32_t auto_width,
+void fc_viewer_start(struct fc_conversation *c, uint32_t subscribe_id, const fc_subscribe *sub, uint32_t auto_width,
                      uint32_t auto_height);
 /* CAMERA or SETTINGS changed: the current frame is rendered again for this viewer. */
-void fc_viewer_view_changed(struct fc_client *c, double now_ms);
+void fc_viewer_view_changed(struct fc_conversation *c, double now_ms);
 /* The client asked for a key frame (an empty SETTINGS, PROTOCOL.md 10.7): an
  * H.264 viewer's next image is an IDR frame; the current frame is sent again
  * as one. Other viewers just get the current frame again. */
-void fc_viewer_keyframe_requested(struct fc_client *c, double now_ms);
+void fc_viewer_keyframe_requested(struct fc_conversation *c, double now_ms);
 /* The client sent SESSION_END: no more images; SESSION_END answers request_id
  * once the image in flight (if any) has gone out. */
-void fc_viewer_leave(struct fc_client *c, uint32_t request_id);
+void fc_viewer_leave(struct fc_conversation *c, uint32_t request_id);
 /* A stream job of this viewer finished: queue its image (or its ERROR). */
-void fc_viewer_job_done(struct fc_client *c, const fc_render_job *job);
+void fc_viewer_job_done(struct fc_conversation *c, const fc_render_job *job);
 /* The connection's output queue is empty. */
-void fc_viewer_drained(struct fc_client *c);
+void fc_viewer_drained(struct fc_conversation *c);
 /* How much of its output the kernel may still hold before the viewer's next
  * image starts: about one image (so a link stays busy), SIZE_MAX when no image waits. */
-size_t fc_viewer_backlog_allowance(const struct fc_client *c);
+size_t fc_viewer_backlog_allowance(const struct fc_conversation *c);
 /* When the viewer next needs fc_viewer_tick without I/O; negative for never. */
-double fc_viewer_deadline_ms(const struct fc_client *c);
-void fc_viewer_tick(struct fc_client *c, double now_ms);
+double fc_viewer_deadline_ms(const struct fc_conversation *c);
+void fc_viewer_tick(struct fc_conversation *c, double now_ms);
 /* Leaves the named session without a word to the client (SESSION_END went
  * out already, the client has gone, or the caller answers). */
-void fc_viewer_detach(struct fc_client *c);
+void fc_viewer_detach(struct fc_conversation *c);
 
-/* What the named session tells a viewer, through the client's member
- * (client_sessions.c): the session published a new frame; */
-void fc_viewer_on_new_frame(struct fc_client *c);
+/* What the named session tells a viewer, through the conversation's member
+ * (conversation_sessions.c): the session published a new frame; */
+void fc_viewer_on_new_frame(struct fc_conversation *c);
 /* the session lost its last producer: the viewer gets what is pending, then SESSION_END. */
-void fc_viewer_on_session_ended(struct fc_client *c);
+void fc_viewer_on_session_ended(struct fc_conversation *c);
 
 #endif

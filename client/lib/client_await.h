@@ -1,7 +1,9 @@
-/* client_stream.h — a viewer's stream messages arriving between the replies a
- * client waits for. Internal to the library. */
-#ifndef FC_CLIENT_STREAM_H
-#define FC_CLIENT_STREAM_H
+/* client_await.h — waiting for the reply to a request, with a viewer's stream
+ * messages arriving between the replies a client waits for. Below both the
+ * requests (client_render.c, client_session.c) and the stream's own reading
+ * (client_stream.c), so they all call down into it. Internal to the library. */
+#ifndef FC_CLIENT_AWAIT_H
+#define FC_CLIENT_AWAIT_H
 
 #include <stdbool.h>
 

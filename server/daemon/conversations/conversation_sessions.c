@@ -1,41 +1,41 @@
-/* client_sessions.c — a client's named-session and packed-upload messages:
+/* conversation_sessions.c — a client's named-session and packed-upload messages:
  * PUBLISH, SUBSCRIBE, SESSION_END, CHUNK, FRAME_PACKED and LIST_SESSIONS. */
-#include "clients/client_internal.h"
+#include "conversations/conversation_internal.h"
 
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
-#include "clients/client_memory.h"
+#include "conversations/conversation_memory.h"
 #include "fc_error.h"
 #include "monotonic.h"
 #include "sessions/session.h"
 #include "uploads/frame_pool.h"
 #include "wire_session.h"
 
-bool fc_client_is_session_message(uint16_t type)
+bool fc_conversation_is_session_message(uint16_t type)
 {
     return fc_msg_capabilities(type) != 0;
 }
 
-static fc_client_verdict reply_error(fc_client *c, const fc_msg_header *h, const fc_error *err, fc_buf *out)
+static fc_conversation_verdict reply_error(fc_conversation *c, const fc_msg_header *h, const fc_error *err, fc_buf *out)
 {
-    return fc_client_reply_error(c->ctx, c->peer, h->request_id, err, FC_CLIENT_CONTINUE, out);
+    return fc_conversation_reply_error(c->ctx, c->peer, h->request_id, err, FC_CONV_CONTINUE, out);
 }
 
-static fc_client_verdict reply_state(fc_client *c, const fc_msg_header *h, fc_buf *out)
+static fc_conversation_verdict reply_state(fc_conversation *c, const fc_msg_header *h, fc_buf *out)
 {
     fc_session_info info;
     fc_error err;
     fc_session_describe(c->session, &info);
     if (fc_wire_write_session_state(out, h->request_id, &info, &err) != FC_OK) {
         fc_log_write(c->ctx->log, FC_LOG_ERROR, "%s: cannot queue SESSION_STATE: %s", c->peer, err.message);
-        return FC_CLIENT_ABORT;
+        return FC_CONV_ABORT;
     }
-    return FC_CLIENT_CONTINUE;
+    return FC_CONV_CONTINUE;
 }
 
-static fc_code check_no_role(const fc_client *c, fc_error *err)
+static fc_code check_no_role(const fc_conversation *c, fc_error *err)
 {
     if (c->role == FC_ROLE_NONE)
         return FC_OK;
@@ -43,7 +43,7 @@ static fc_code check_no_role(const fc_client *c, fc_error *err)
                         c->role == FC_ROLE_PRODUCER ? "publishes to" : "watches", c->session->name);
 }
 
-void fc_client_detach(fc_client *c)
+void fc_conversation_detach(fc_conversation *c)
 {
     fc_session *session = c->session;
     if (!session)
@@ -62,18 +62,18 @@ void fc_client_detach(fc_client *c)
 
 static void on_new_frame(fc_session_member *viewer)
 {
-    fc_viewer_on_new_frame(fc_client_of_member(viewer));
+    fc_viewer_on_new_frame(fc_conversation_of_member(viewer));
 }
 
 static void on_session_ended(fc_session_member *viewer)
 {
-    fc_viewer_on_session_ended(fc_client_of_member(viewer));
+    fc_viewer_on_session_ended(fc_conversation_of_member(viewer));
 }
 
 /* The ERROR answers the chunk; the connection stays open. */
 static void on_chunk_failed(fc_session_member *producer, uint32_t request_id, const fc_error *err)
 {
-    fc_client_send_error(fc_client_of_member(producer), request_id, err);
+    fc_conversation_send_error(fc_conversation_of_member(producer), request_id, err);
 }
 
 static const fc_session_member_ops member_ops = {
@@ -84,8 +84,8 @@ static const fc_session_member_ops member_ops = {
 
 /* ---- PUBLISH / SUBSCRIBE / SESSION_END ---- */
 
-static fc_client_verdict handle_publish(fc_client *c, const fc_msg_header *h, const uint8_t *payload,
-                                        fc_buf *out)
+static fc_conversation_verdict handle_publish(fc_conversation *c, const fc_msg_header *h, const uint8_t *payload,
+                                              fc_buf *out)
 {
     char name[FC_SESSION_NAME_MAX + 1];
     fc_session *session;
@@ -101,8 +101,8 @@ static fc_client_verdict handle_publish(fc_client *c, const fc_msg_header *h, co
     return reply_state(c, h, out);
 }
 
-static fc_client_verdict handle_subscribe(fc_client *c, const fc_msg_header *h, const uint8_t *payload,
-                                          fc_buf *out)
+static fc_conversation_verdict handle_subscribe(fc_conversation *c, const fc_msg_header *h, const uint8_t *payload,
+                                                fc_buf *out)
 {
     fc_subscribe sub;
     fc_session *session;
@@ -116,8 +116,8 @@ static fc_client_verdict handle_subscribe(fc_client *c, const fc_msg_header *h, 
     snprintf(what, sizeof what, "an H.264 stream of %ux%u", (unsigned)width, (unsigned)height);
     uint64_t encoder = fc_memory_of_video(sub.request.format, c->has_camera ? c->camera.width : width,
                                           c->has_camera ? c->camera.height : height);
-    if (fc_client_check_image_limit(&c->ctx->welcome.limits, width, height, &err) != FC_OK ||
-        fc_client_memory_admit(c, 0, encoder, what, &err) != FC_OK ||
+    if (fc_conversation_check_image_limit(&c->ctx->welcome.limits, width, height, &err) != FC_OK ||
+        fc_conversation_memory_admit(c, 0, encoder, what, &err) != FC_OK ||
         fc_registry_open(c->ctx->sessions, sub.name, &session, &err) != FC_OK ||
         fc_session_add_viewer(session, &c->member, &err) != FC_OK)
         return reply_error(c, h, &err, out);
@@ -125,14 +125,14 @@ static fc_client_verdict handle_subscribe(fc_client *c, const fc_msg_header *h, 
     c->session = session;
     fc_log_write(c->ctx->log, FC_LOG_INFO, "%s: watches session '%s'", c->peer, sub.name);
     /* The acknowledgement goes first: the first image may follow at once. */
-    fc_client_verdict verdict = reply_state(c, h, out);
-    if (verdict == FC_CLIENT_CONTINUE)
+    fc_conversation_verdict verdict = reply_state(c, h, out);
+    if (verdict == FC_CONV_CONTINUE)
         fc_viewer_start(c, h->request_id, &sub, width, height);
     return verdict;
 }
 
-static fc_client_verdict handle_session_end(fc_client *c, const fc_msg_header *h, const uint8_t *payload,
-                                            fc_buf *out)
+static fc_conversation_verdict handle_session_end(fc_conversation *c, const fc_msg_header *h, const uint8_t *payload,
+                                                  fc_buf *out)
 {
     fc_error err;
     if (fc_wire_read_session_leave(payload, h->length, &err) != FC_OK)
@@ -147,21 +147,21 @@ static fc_client_verdict handle_session_end(fc_client *c, const fc_msg_header *h
     }
     if (c->role == FC_ROLE_VIEWER) {
         fc_viewer_leave(c, h->request_id);
-        return FC_CLIENT_CONTINUE;
+        return FC_CONV_CONTINUE;
     }
     char name[FC_SESSION_NAME_MAX + 1];
     memcpy(name, c->session->name, sizeof name);
-    fc_client_detach(c);
+    fc_conversation_detach(c);
     fc_log_write(c->ctx->log, FC_LOG_INFO, "%s: stopped publishing to session '%s'", c->peer, name);
     if (fc_wire_write_session_end(out, h->request_id, name, &err) != FC_OK)
-        return FC_CLIENT_ABORT;
-    return FC_CLIENT_CONTINUE;
+        return FC_CONV_ABORT;
+    return FC_CONV_CONTINUE;
 }
 
 /* ---- Frames: FRAME_PACKED and CHUNK ---- */
 
-static fc_client_verdict handle_frame_packed(fc_client *c, const fc_msg_header *h, fc_payload *payload,
-                                             double received_ms, fc_buf *out)
+static fc_conversation_verdict handle_frame_packed(fc_conversation *c, const fc_msg_header *h, fc_payload *payload,
+                                                   double received_ms, fc_buf *out)
 {
     fc_frame_view view = {0};
     fc_error err;
@@ -170,13 +170,13 @@ static fc_client_verdict handle_frame_packed(fc_client *c, const fc_msg_header *
     fc_code code = fc_wire_view_frame_packed(payload->bytes, h->length, fc_pack_allowed(c->capabilities),
                                              c->ctx->welcome.limits.max_particles, &blocks, &view, &err);
     if (code == FC_OK)
-        code = fc_client_take_frame(c, &view, payload, received_ms, fc_monotonic_ms() - start, &err);
-    return code == FC_OK ? FC_CLIENT_CONTINUE : reply_error(c, h, &err, out);
+        code = fc_conversation_take_frame(c, &view, payload, received_ms, fc_monotonic_ms() - start, &err);
+    return code == FC_OK ? FC_CONV_CONTINUE : reply_error(c, h, &err, out);
 }
 
 /* Publishes a frame the chunks completed, unless a newer one is out already
  * (chunks of two frames can complete out of order; viewers only go forward). */
-static fc_code publish_assembled(fc_client *c, fc_assembled_frame *done, fc_error *err)
+static fc_code publish_assembled(fc_conversation *c, fc_assembled_frame *done, fc_error *err)
 {
     fc_session *session = c->session;
     if (session->latest && done->frame_number <= session->latest->number) {
@@ -199,16 +199,16 @@ static fc_code publish_assembled(fc_client *c, fc_assembled_frame *done, fc_erro
 }
 
 /* The frames being assembled hold every chunk until their last one arrives. */
-static fc_code admit_chunk(const fc_client *c, const fc_chunk *chunk, fc_error *err)
+static fc_code admit_chunk(const fc_conversation *c, const fc_chunk *chunk, fc_error *err)
 {
     char what[96];
     snprintf(what, sizeof what, "chunk %u of frame %llu (%llu particles)", chunk->header.index,
              (unsigned long long)chunk->header.frame_number, (unsigned long long)chunk->part.frame.count);
-    return fc_client_memory_admit(c, 0, fc_memory_of_frame(&chunk->part.frame), what, err);
+    return fc_conversation_memory_admit(c, 0, fc_memory_of_frame(&chunk->part.frame), what, err);
 }
 
-static fc_client_verdict handle_chunk(fc_client *c, const fc_msg_header *h, fc_payload *payload,
-                                      double received_ms, fc_buf *out)
+static fc_conversation_verdict handle_chunk(fc_conversation *c, const fc_msg_header *h, fc_payload *payload,
+                                            double received_ms, fc_buf *out)
 {
     fc_error err;
     if (c->role != FC_ROLE_PRODUCER) {
@@ -222,7 +222,7 @@ static fc_client_verdict handle_chunk(fc_client *c, const fc_msg_header *h, fc_p
     fc_code code = fc_wire_view_chunk(payload->bytes, h->length, fc_pack_allowed(c->capabilities),
                                       c->ctx->welcome.limits.max_particles, &blocks, &chunk.header, &chunk.part, &err);
     if (code == FC_OK)
-        code = fc_client_keep_payload(c, &chunk.part, payload, &err);
+        code = fc_conversation_keep_payload(c, &chunk.part, payload, &err);
     if (code == FC_OK)
         code = admit_chunk(c, &chunk, &err);
     if (code != FC_OK) {
@@ -241,13 +241,13 @@ static fc_client_verdict handle_chunk(fc_client *c, const fc_msg_header *h, fc_p
     fc_frame_pool_give_view(pool, &chunk.part);
     if (code == FC_OK && complete)
         code = publish_assembled(c, &done, &err);
-    return code == FC_OK ? FC_CLIENT_CONTINUE : reply_error(c, h, &err, out);
+    return code == FC_OK ? FC_CONV_CONTINUE : reply_error(c, h, &err, out);
 }
 
 /* ---- LIST_SESSIONS ---- */
 
-static fc_client_verdict handle_list_sessions(fc_client *c, const fc_msg_header *h, const uint8_t *payload,
-                                              fc_buf *out)
+static fc_conversation_verdict handle_list_sessions(fc_conversation *c, const fc_msg_header *h, const uint8_t *payload,
+                                                    fc_buf *out)
 {
     fc_session_info *list = NULL;
     uint32_t count = 0;
@@ -258,13 +258,14 @@ static fc_client_verdict handle_list_sessions(fc_client *c, const fc_msg_header 
     if (code == FC_OK)
         code = fc_wire_write_session_list(out, h->request_id, list, count, &err);
     free(list);
-    return code == FC_OK ? FC_CLIENT_CONTINUE : reply_error(c, h, &err, out);
+    return code == FC_OK ? FC_CONV_CONTINUE : reply_error(c, h, &err, out);
 }
 
 /* ---- Dispatch ---- */
 
-fc_client_verdict fc_client_handle_session_message(fc_client *c, fc_daemon_context *ctx, const fc_msg_header *h,
-                                                   fc_payload *message, double received_ms, fc_buf *out)
+fc_conversation_verdict fc_conversation_handle_session_message(fc_conversation *c, fc_daemon_context *ctx,
+                                                               const fc_msg_header *h, fc_payload *message,
+                                                               double received_ms, fc_buf *out)
 {
     const uint8_t *payload = message->bytes;
     (void)ctx;

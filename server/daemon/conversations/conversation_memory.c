@@ -1,5 +1,5 @@
-/* client_memory.c — see client_memory.h. */
-#include "clients/client_memory.h"
+/* conversation_memory.c — see conversation_memory.h. */
+#include "conversations/conversation_memory.h"
 
 #include "fc_error.h"
 #include "sessions/session.h"
@@ -34,7 +34,7 @@ uint64_t fc_memory_of_video(fc_image_format format, uint32_t width, uint32_t hei
 }
 
 /* A viewer's stream encoder, at the size its images have now. */
-static uint64_t memory_of_viewer(const fc_client *c)
+static uint64_t memory_of_viewer(const fc_conversation *c)
 {
     if (c->role != FC_ROLE_VIEWER)
         return 0;
@@ -57,7 +57,7 @@ static uint64_t memory_of_assembly(const fc_chunk_assembly *a)
     return bytes;
 }
 
-uint64_t fc_client_memory_held(const fc_client *c)
+uint64_t fc_conversation_memory_held(const fc_conversation *c)
 {
     uint64_t bytes = memory_of_shared(c->frame) + fc_memory_of_scene_part(c->scene.background) +
                      fc_memory_of_scene_part(c->scene.environment) + fc_mesh_set_bytes(&c->meshes) + c->out->len +
@@ -68,11 +68,11 @@ uint64_t fc_client_memory_held(const fc_client *c)
     return bytes;
 }
 
-fc_code fc_client_memory_admit(const fc_client *c, uint64_t released, uint64_t added, const char *what,
-                               fc_error *err)
+fc_code fc_conversation_memory_admit(const fc_conversation *c, uint64_t released, uint64_t added, const char *what,
+                                     fc_error *err)
 {
     uint64_t limit = c->ctx->max_session_memory;
-    uint64_t held = fc_client_memory_held(c);
+    uint64_t held = fc_conversation_memory_held(c);
     uint64_t kept = held > released ? held - released : 0;
     if (added <= limit && kept <= limit - added)
         return FC_OK;

@@ -1,9 +1,9 @@
 /* viewer.c — see viewer.h. */
-#include "clients/viewer.h"
+#include "conversations/viewer.h"
 
 #include <string.h>
 
-#include "clients/client_internal.h"
+#include "conversations/conversation_internal.h"
 #include "fc_error.h"
 #include "monotonic.h"
 #include "sessions/session.h"
@@ -14,12 +14,12 @@ typedef enum image_reason {
     REASON_REFRESH           /* lossless copy of a frame shown lossy */
 } image_reason;
 
-static bool is_viewer(const struct fc_client *c)
+static bool is_viewer(const struct fc_conversation *c)
 {
     return c->role == FC_ROLE_VIEWER;
 }
 
-static fc_render_order order_for(const struct fc_client *c, image_reason reason, double now_ms)
+static fc_render_order order_for(const struct fc_conversation *c, image_reason reason, double now_ms)
 {
     const fc_viewer *v = &c->viewer;
     const fc_session *session = c->session;
@@ -53,13 +53,13 @@ static fc_render_order order_for(const struct fc_client *c, image_reason reason,
     return order;
 }
 
-static void dispatch(struct fc_client *c, image_reason reason, double now_ms)
+static void dispatch(struct fc_conversation *c, image_reason reason, double now_ms)
 {
     fc_viewer *v = &c->viewer;
     fc_render_order order = order_for(c, reason, now_ms);
     fc_error err;
-    if (fc_client_submit_render(c, c->session->latest, &order, &err) != FC_OK) {
-        fc_client_send_error(c, v->subscribe_id, &err);
+    if (fc_conversation_submit_render(c, c->session->latest, &order, &err) != FC_OK) {
+        fc_conversation_send_error(c, v->subscribe_id, &err);
         return;
     }
     v->busy = true;
@@ -73,7 +73,7 @@ static void dispatch(struct fc_client *c, image_reason reason, double now_ms)
     v->refresh_due_ms = lossy && refresh_ms > 0.0 ? now_ms + refresh_ms : 0.0;
 }
 
-static void send_end(struct fc_client *c)
+static void send_end(struct fc_conversation *c)
 {
     fc_error err;
     fc_session *session = c->session;
@@ -84,7 +84,7 @@ static void send_end(struct fc_client *c)
 }
 
 /* Starts the next image this viewer is due, or ends its subscription. */
-static void pump(struct fc_client *c, double now_ms)
+static void pump(struct fc_conversation *c, double now_ms)
 {
     fc_viewer *v = &c->viewer;
     if (!is_viewer(c) || v->busy)
@@ -101,7 +101,7 @@ static void pump(struct fc_client *c, double now_ms)
         dispatch(c, REASON_REFRESH, now_ms);
 }
 
-void fc_viewer_start(struct fc_client *c, uint32_t subscribe_id, const fc_subscribe *sub, uint32_t auto_width,
+void fc_viewer_start(struct fc_conversation *c, uint32_t subscribe_id, const fc_subscribe *sub, uint32_t auto_width,
                      uint32_t auto_height)
 {
     fc_viewer *v = &c->viewer;
@@ -119,7 +119,7 @@ void fc_viewer_start(struct fc_client *c, uint32_t subscribe_id, const fc_subscr
     pump(c, fc_monotonic_ms());
 }
 
-void fc_viewer_view_changed(struct fc_client *c, double now_ms)
+void fc_viewer_view_changed(struct fc_conversation *c, double now_ms)
 {
     if (!is_viewer(c))
         return;
@@ -128,7 +128,7 @@ void fc_viewer_view_changed(struct fc_client *c, double now_ms)
     pump(c, now_ms);
 }
 
-void fc_viewer_keyframe_requested(struct fc_client *c, double now_ms)
+void fc_viewer_keyframe_requested(struct fc_conversation *c, double now_ms)
 {
     if (!is_viewer(c))
         return;
@@ -136,7 +136,7 @@ void fc_viewer_keyframe_requested(struct fc_client *c, double now_ms)
     fc_viewer_view_changed(c, now_ms);
 }
 
-void fc_viewer_leave(struct fc_client *c, uint32_t request_id)
+void fc_viewer_leave(struct fc_conversation *c, uint32_t request_id)
 {
     c->viewer.ending = true;
     c->viewer.deliver_last = false;
@@ -144,7 +144,7 @@ void fc_viewer_leave(struct fc_client *c, uint32_t request_id)
     pump(c, fc_monotonic_ms());
 }
 
-void fc_viewer_job_done(struct fc_client *c, const fc_render_job *job)
+void fc_viewer_job_done(struct fc_conversation *c, const fc_render_job *job)
 {
     if (!is_viewer(c))
         return;
@@ -152,20 +152,20 @@ void fc_viewer_job_done(struct fc_client *c, const fc_render_job *job)
     fc_error err;
     if (job->error.code != FC_OK) {
         c->viewer.keyframe_wanted = true;
-        fc_client_send_error(c, job->request_id, &job->error);
+        fc_conversation_send_error(c, job->request_id, &job->error);
         return;
     }
-    if (fc_client_queue_message(c, &job->message, "the STREAM_IMAGE", &err) != FC_OK) {
+    if (fc_conversation_queue_message(c, &job->message, "the STREAM_IMAGE", &err) != FC_OK) {
         /* The image is lost like one a slow viewer misses; the ERROR says why.
          * An H.264 viewer lost an access unit its next frames would refer to. */
         c->viewer.keyframe_wanted = true;
-        fc_client_send_error(c, job->request_id, &err);
+        fc_conversation_send_error(c, job->request_id, &err);
         return;
     }
     c->viewer.queued_bytes = job->message.len;
 }
 
-size_t fc_viewer_backlog_allowance(const struct fc_client *c)
+size_t fc_viewer_backlog_allowance(const struct fc_conversation *c)
 {
     enum { MIN_ALLOWANCE = 64 * 1024 };
     if (!is_viewer(c) || !c->viewer.queued)
@@ -173,7 +173,7 @@ size_t fc_viewer_backlog_allowance(const struct fc_client *c)
     return c->viewer.queued_bytes > MIN_ALLOWANCE ? c->viewer.queued_bytes : MIN_ALLOWANCE;
 }
 
-void fc_viewer_drained(struct fc_client *c)
+void fc_viewer_drained(struct fc_conversation *c)
 {
     if (!is_viewer(c) || !c->viewer.queued)
         return;
@@ -182,19 +182,19 @@ void fc_viewer_drained(struct fc_client *c)
     pump(c, fc_monotonic_ms());
 }
 
-double fc_viewer_deadline_ms(const struct fc_client *c)
+double fc_viewer_deadline_ms(const struct fc_conversation *c)
 {
     if (!is_viewer(c) || c->viewer.busy || c->viewer.refresh_due_ms <= 0.0)
         return -1.0;
     return c->viewer.refresh_due_ms;
 }
 
-void fc_viewer_tick(struct fc_client *c, double now_ms)
+void fc_viewer_tick(struct fc_conversation *c, double now_ms)
 {
     pump(c, now_ms);
 }
 
-void fc_viewer_detach(struct fc_client *c)
+void fc_viewer_detach(struct fc_conversation *c)
 {
     fc_session *session = c->session;
     c->session = NULL;
@@ -207,12 +207,12 @@ void fc_viewer_detach(struct fc_client *c)
 
 /* ---- What the named session tells its viewers ---- */
 
-void fc_viewer_on_new_frame(struct fc_client *viewer)
+void fc_viewer_on_new_frame(struct fc_conversation *viewer)
 {
     pump(viewer, fc_monotonic_ms());
 }
 
-void fc_viewer_on_session_ended(struct fc_client *viewer)
+void fc_viewer_on_session_ended(struct fc_conversation *viewer)
 {
     fc_viewer *v = &viewer->viewer;
     if (v->ending)
