@@ -253,7 +253,7 @@ static void print_sequence_help(FILE *to)
             "                          resume an interrupted batch (the camera is the same)\n"
             "\n"
             "camera and image (as for snapshot):\n"
-            "  --server HOST:PORT      server address (default " FC_SNAPSHOT_DEFAULT_SERVER ")\n"
+            "  --server HOST:PORT      server address (default " FC_DEFAULT_SERVER ")\n"
             "                          or srv:NAME: one daemon of a DNS SRV name\n"
             "  --size WxH              image size (default 1280x720)\n"
             "  --eye X,Y,Z, --target X,Y,Z\n"

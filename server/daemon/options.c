@@ -14,7 +14,7 @@ enum { MAX_ENCODERS = 64 };
 void fc_daemon_options_default(fc_daemon_options *o)
 {
     memset(o, 0, sizeof *o);
-    snprintf(o->listen_host, sizeof o->listen_host, "%s", FC_DEFAULT_LISTEN_HOST);
+    snprintf(o->listen_host, sizeof o->listen_host, "%s", FC_DEFAULT_HOST);
     snprintf(o->listen_port, sizeof o->listen_port, "%d", FC_DEFAULT_PORT);
     o->gpu.mode = FC_GPU_AUTO;
     o->log_level = FC_LOG_INFO;
@@ -102,7 +102,7 @@ void fc_daemon_options_print_help(FILE *out, const char *program)
             "Under systemd (deploy/systemd): readiness and stopping are announced with\n"
             "sd_notify (Type=notify), and sockets passed by socket activation (LISTEN_FDS)\n"
             "are served instead of --listen and --unix.\n",
-            program, FC_DEFAULT_LISTEN_HOST, FC_DEFAULT_PORT, FC_DEFAULT_MAX_PARTICLES,
+            program, FC_DEFAULT_HOST, FC_DEFAULT_PORT, FC_DEFAULT_MAX_PARTICLES,
             FC_DEFAULT_MAX_IMAGE_SIDE, FC_DEFAULT_MAX_IMAGE_SIDE, FC_DEFAULT_MAX_MESSAGE,
             FC_DEFAULT_CHUNK_TIMEOUT_MS, FC_DEFAULT_REFRESH_MS, FC_PNG_DEFAULT_COMPRESSION, FC_DEFAULT_MAX_SESSIONS,
             FC_DEFAULT_MAX_CONNECTIONS, FC_DEFAULT_IDLE_TIMEOUT_MS, FC_DEFAULT_READ_TIMEOUT_MS,
@@ -140,60 +140,23 @@ static fc_code parse_image_size(const char *text, fc_limits *limits, fc_error *e
     return FC_OK;
 }
 
-static fc_code parse_port(const char *option, const char *text, char *port_out, size_t size, fc_error *err)
-{
-    char *end = NULL;
-    unsigned long port = strtoul(text, &end, 10);
-    if (text[0] < '0' || text[0] > '9' || *end != '\0' || port > 65535)
-        return fc_error_set(err, FC_ERR_USAGE, "%s: port '%s' is not a number from 0 to 65535", option, text);
-    snprintf(port_out, size, "%lu", port);
-    return FC_OK;
-}
-
-/* "HOST:PORT" or "[IPV6]:PORT" into host and port (brackets removed). */
-static fc_code parse_host_port(const char *option, const char *text, char *host_out, size_t host_size,
-                               char *port_out, size_t port_size, fc_error *err)
-{
-    const char *host = text;
-    size_t host_len;
-    const char *port;
-    if (text[0] == '[') {
-        const char *close = strchr(text, ']');
-        if (!close || close[1] != ':')
-            return fc_error_set(err, FC_ERR_USAGE, "%s '%s': expected [IPV6]:PORT", option, text);
-        host = text + 1;
-        host_len = (size_t)(close - host);
-        port = close + 2;
-    } else {
-        const char *colon = strrchr(text, ':');
-        if (!colon)
-            return fc_error_set(err, FC_ERR_USAGE, "%s '%s': expected HOST:PORT", option, text);
-        if (memchr(text, ':', (size_t)(colon - text)))
-            return fc_error_set(err, FC_ERR_USAGE, "%s '%s': write IPv6 addresses as [ADDR]:PORT", option, text);
-        host_len = (size_t)(colon - text);
-        port = colon + 1;
-    }
-    if (host_len == 0 || host_len >= host_size)
-        return fc_error_set(err, FC_ERR_USAGE, "%s '%s': missing or overlong host", option, text);
-    memcpy(host_out, host, host_len);
-    host_out[host_len] = '\0';
-    return parse_port(option, port, port_out, port_size, err);
-}
-
 fc_code fc_daemon_options_parse_listen(const char *text, fc_daemon_options *o, fc_error *err)
 {
-    return parse_host_port("--listen", text, o->listen_host, sizeof o->listen_host, o->listen_port,
-                           sizeof o->listen_port, err);
+    static const fc_host_port_rules rules = {"--listen", FC_DEFAULT_PORT, true};
+    return fc_host_port_parse(text, &rules, o->listen_host, o->listen_port, err);
 }
 
+/* A port alone is one on FC_DEFAULT_HOST; any other address needs its port:
+ * the default port is the render port, which the metrics must never share. */
 fc_code fc_daemon_options_parse_metrics_listen(const char *text, fc_daemon_options *o, fc_error *err)
 {
-    if (text[0] >= '0' && text[0] <= '9' && !strchr(text, ':')) {
-        snprintf(o->metrics_host, sizeof o->metrics_host, "%s", FC_DEFAULT_LISTEN_HOST);
-        return parse_port("--metrics-listen", text, o->metrics_port, sizeof o->metrics_port, err);
+    static const fc_host_port_rules rules = {"--metrics-listen", 0, true};
+    char address[FC_HOST_MAX + FC_PORT_MAX + 8];
+    if (text[0] != '\0' && strspn(text, "0123456789") == strlen(text) && strlen(text) < FC_PORT_MAX + 2) {
+        snprintf(address, sizeof address, "%s:%s", FC_DEFAULT_HOST, text);
+        text = address;
     }
-    return parse_host_port("--metrics-listen", text, o->metrics_host, sizeof o->metrics_host, o->metrics_port,
-                           sizeof o->metrics_port, err);
+    return fc_host_port_parse(text, &rules, o->metrics_host, o->metrics_port, err);
 }
 
 static bool is_known_option(const char *name)

@@ -5,11 +5,11 @@
 #include <stdbool.h>
 #include <stdio.h>
 
+#include "fc_host_port.h"
 #include "gl/egl_context.h"
 #include "log.h"
 #include "wire.h"
 
-#define FC_DEFAULT_LISTEN_HOST "127.0.0.1"
 #define FC_DEFAULT_MAX_PARTICLES 16777216u   /* 2^24 */
 #define FC_DEFAULT_MAX_IMAGE_SIDE 8192u
 #define FC_DEFAULT_MAX_MESSAGE (1024u * 1024u * 1024u)   /* 1 GiB */
@@ -22,8 +22,8 @@
 #define FC_DEFAULT_MAX_SESSION_MEMORY (4ull << 30)   /* 4 GiB */
 
 typedef struct fc_daemon_options {
-    char listen_host[256];     /* name or address; brackets of "[v6]:port" removed */
-    char listen_port[8];       /* decimal, "0" = any free port */
+    char listen_host[FC_HOST_MAX];   /* name or address; brackets of "[v6]:port" removed */
+    char listen_port[FC_PORT_MAX];   /* decimal, "0" = any free port */
     bool listen_given;         /* --listen was given: with --unix, TCP is served only then */
     const char *unix_path;     /* --unix: NULL for none; points into argv */
     fc_gpu_choice gpu;
@@ -40,8 +40,8 @@ typedef struct fc_daemon_options {
     uint32_t idle_timeout_ms;  /* close a connection with no complete message for this long; 0 = never */
     uint32_t read_timeout_ms;  /* a started message must be complete within this; 0 = never */
     uint64_t max_session_memory;   /* bytes one connection (with the named session it produces) may hold */
-    char metrics_host[256];    /* --metrics-listen: "" = no metrics endpoint */
-    char metrics_port[8];
+    char metrics_host[FC_HOST_MAX];  /* --metrics-listen: "" = no metrics endpoint */
+    char metrics_port[FC_PORT_MAX];
     const char *token_file;    /* --token-file: NULL for none (then FLUIDCAST_TOKEN); points into argv */
     bool help;                 /* --help: print usage and exit */
 } fc_daemon_options;
@@ -55,10 +55,10 @@ fc_code fc_daemon_options_parse(int argc, char **argv, fc_daemon_options *o, fc_
 /* TCP is served unless only --unix was given. */
 bool fc_daemon_options_serve_tcp(const fc_daemon_options *o);
 
-/* Parses "HOST:PORT", "[IPV6]:PORT" into the listen fields. */
+/* Parses --listen's address (fc_host_port.h; port 0 = any free port, none = FC_DEFAULT_PORT). */
 fc_code fc_daemon_options_parse_listen(const char *text, fc_daemon_options *o, fc_error *err);
 /* Parses --metrics-listen's "HOST:PORT", "[IPV6]:PORT" or "PORT" (then on
- * 127.0.0.1: the metrics are for the operator, not the world). */
+ * FC_DEFAULT_HOST: the metrics are for the operator, not the world). */
 fc_code fc_daemon_options_parse_metrics_listen(const char *text, fc_daemon_options *o, fc_error *err);
 
 void fc_daemon_options_print_help(FILE *out, const char *program);
