@@ -1,11 +1,11 @@
 /* auth_token.c — loading the shared secret, comparing tokens in constant time. */
 #include "auth_token.h"
 
-#include <errno.h>
-#include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 
 #include "fc_error.h"
+#include "fc_file.h"
 
 static fc_code set_token(const char *text, size_t len, const char *source, fc_auth_token *out, fc_error *err)
 {
@@ -20,27 +20,26 @@ static fc_code set_token(const char *text, size_t len, const char *source, fc_au
     return FC_OK;
 }
 
+/* The file holds the token, optionally followed by one line end (LF or CRLF). */
 static fc_code load_file(const char *path, fc_auth_token *out, fc_error *err)
 {
-    FILE *f = fopen(path, "rb");
-    if (!f)
-        return fc_error_set(err, FC_ERR_IO, "--token-file %s: %s", path, strerror(errno));
-    /* One byte beyond the limit plus a CRLF, to tell an overlong token from one with a line end. */
-    char text[FC_HELLO_TOKEN_MAX + 3];
-    size_t len = fread(text, 1, sizeof text, f);
-    bool failed = ferror(f) != 0;
-    bool more = !failed && len == sizeof text && fgetc(f) != EOF;
-    fclose(f);
-    if (failed)
-        return fc_error_set(err, FC_ERR_IO, "--token-file %s: read error", path);
-    if (more)
+    uint8_t *data = NULL;
+    size_t len = 0;
+    fc_error read_err;
+    fc_code code = fc_read_file(path, FC_HELLO_TOKEN_MAX + 2, &data, &len, &read_err);
+    if (code == FC_ERR_TOO_LARGE)
         return fc_error_set(err, FC_ERR_USAGE, "--token-file %s: the token is longer than %d bytes", path,
                             FC_HELLO_TOKEN_MAX);
+    if (code != FC_OK)
+        return fc_error_set(err, code, "--token-file %s", read_err.message);
+    const char *text = (const char *)data;
     if (len > 0 && text[len - 1] == '\n')
         len--;
     if (len > 0 && text[len - 1] == '\r')
         len--;
-    return set_token(text, len, path, out, err);
+    code = set_token(text, len, path, out, err);
+    free(data);
+    return code;
 }
 
 fc_code fc_auth_token_load(const char *path, const char *env_value, fc_auth_token *out, fc_error *err)
