@@ -345,7 +345,7 @@ void fc_snapshot_set_defaults(fc_snapshot_options *o)
 {
     memset(o, 0, sizeof *o);
     o->read.recentring = &o->recentring;
-    o->server = FC_SNAPSHOT_DEFAULT_SERVER;
+    o->server = FC_DEFAULT_SERVER;
     o->width = 1280;
     o->height = 720;
     o->fov_deg = FC_SNAPSHOT_DEFAULT_FOV;
@@ -474,7 +474,7 @@ static void print_camera_help(FILE *to)
 {
     fputs("camera and image:\n"
           "  -o, --output OUT        image file to write (required)\n"
-          "  --server HOST:PORT      server address (default " FC_SNAPSHOT_DEFAULT_SERVER ";\n"
+          "  --server HOST:PORT      server address (default " FC_DEFAULT_SERVER ";\n"
           "                          port 7450 when omitted; IPv6 as [::1]:7450)\n"
           "                          or srv:NAME: one daemon of a DNS SRV name\n"
           "  --size WxH              image size in pixels (default 1280x720)\n"

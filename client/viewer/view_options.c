@@ -11,7 +11,7 @@
 #include "cli_values.h"
 #include "fc_error.h"
 
-#define DEFAULT_SERVER "127.0.0.1:7450"
+#include "fc_host_port.h"
 
 static fc_code set_server(void *o, const char *name, const char *value, fc_error *err)
 {
@@ -129,7 +129,7 @@ fc_code fc_view_parse(int argc, char **argv, fc_view_options *o, fc_error *err)
 {
     memset(o, 0, sizeof *o);
     o->read.recentring = &o->recentring;
-    o->server = DEFAULT_SERVER;
+    o->server = FC_DEFAULT_SERVER;
     o->width = 960;
     o->height = 540;
     o->fps = 24.0f;
@@ -167,7 +167,7 @@ void fc_view_print_help(FILE *to)
           "fps, server stage times and round-trip latency.\n"
           "\n"
           "options:\n"
-          "  --server ADDR           HOST:PORT or unix:PATH (default " DEFAULT_SERVER ")\n"
+          "  --server ADDR           HOST:PORT or unix:PATH (default " FC_DEFAULT_SERVER ")\n"
           "                          or srv:NAME, a DNS SRV name: the session's daemon by\n"
           "                          rendezvous hashing of the session name\n"
           "  --session NAME          follow this session instead of playing files\n"
