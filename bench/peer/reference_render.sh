@@ -29,9 +29,10 @@ options:
   --up X,Y,Z         up direction (default 0,0,1)
   --fov DEG          vertical field of view (default 40)
   --size WxH         image size (default 960x540)
-  --samples N        Cycles samples per pixel (default 64; no denoiser)
-  --mesh-scale S     the meshing spheres' radius over R (default 1.5)
+  --samples N        Cycles samples per pixel (default 32; no denoiser: more for less grain)
+  --mesh-scale S     the meshing spheres' radius over R (default 2)
   --voxel-scale V    the voxel size over R (default 0.5)
+  --smooth N         passes of vertex smoothing on the mesh (default 30)
   --absorption R,G,B absorption per world unit (default 0.02,0.007,0.0035 per radius)
   --threads N        render threads (default 2; the machine is shared)
   --keep-blend       also write IMAGE.png.blend, the scene, to look at in Blender
@@ -47,7 +48,7 @@ EOF
 die() { echo "reference_render: $*" >&2; exit 1; }
 
 FILE="" OUT="" RADIUS="" EYE="" TARGET="" UP=0,0,1 FOV=40 SIZE=960x540
-SAMPLES=64 MESH_SCALE=1.5 VOXEL_SCALE=0.5 ABSORPTION="" THREADS=2 KEEP_BLEND=0
+SAMPLES=32 MESH_SCALE=2 VOXEL_SCALE=0.5 SMOOTH=30 ABSORPTION="" THREADS=2 KEEP_BLEND=0
 need_value() { [ $# -ge 2 ] || die "$1 needs a value (--help)"; }
 while [ $# -gt 0 ]; do
     case $1 in
@@ -62,6 +63,7 @@ while [ $# -gt 0 ]; do
         --samples) need_value "$@"; SAMPLES=$2; shift 2 ;;
         --mesh-scale) need_value "$@"; MESH_SCALE=$2; shift 2 ;;
         --voxel-scale) need_value "$@"; VOXEL_SCALE=$2; shift 2 ;;
+        --smooth) need_value "$@"; SMOOTH=$2; shift 2 ;;
         --absorption) need_value "$@"; ABSORPTION=$2; shift 2 ;;
         --threads) need_value "$@"; THREADS=$2; shift 2 ;;
         --keep-blend) KEEP_BLEND=1; shift ;;
@@ -99,7 +101,7 @@ mkdir -p "$(dirname "$OUT")"
 OUT=$(cd "$(dirname "$OUT")" && pwd)/$(basename "$OUT")
 scene_args=(--particles "$WORK/particles.f32" --out "$OUT" --size "$SIZE" --eye="$EYE" --target="$TARGET"
             --up="$UP" --fov="$FOV" --radius "$RADIUS" --samples "$SAMPLES" --mesh-scale "$MESH_SCALE"
-            --voxel-scale "$VOXEL_SCALE" --threads "$THREADS")
+            --voxel-scale "$VOXEL_SCALE" --smooth "$SMOOTH" --threads "$THREADS")
 [ -z "$ABSORPTION" ] || scene_args+=(--absorption="$ABSORPTION")
 [ "$KEEP_BLEND" = 0 ] || scene_args+=(--blend "$OUT.blend")
 if ! timeout "${STEP_TIMEOUT:-600}" blender -b --factory-startup -noaudio --python-exit-code 1 -P "$HERE/reference_scene.py" \

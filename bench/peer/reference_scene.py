@@ -26,7 +26,9 @@ inside. Shadow rays pass the surface (Cycles renders no caustics from a sun),
 so the floor's shadow is the absorption along the sun ray, as fluidcast's.
 Meshing: geometry nodes Mesh to Points -> Points to Volume (spheres of
 mesh-scale x radius on voxels of voxel-scale x radius) -> Volume to Mesh, then
-a Smooth modifier (6 passes) that rounds off the voxel steps.
+islands of negative signed volume (the voids between spheres) deleted,
+and a Smooth modifier (30 passes) that rounds off the voxel steps and the
+particle-scale roughness.
 """
 import argparse
 import math
@@ -78,9 +80,10 @@ def parse_args():
     p.add_argument("--up", type=vec3, required=True)
     p.add_argument("--fov", type=float, required=True)
     p.add_argument("--radius", type=float, required=True)
-    p.add_argument("--samples", type=int, default=64)
-    p.add_argument("--mesh-scale", type=float, default=1.5)
+    p.add_argument("--samples", type=int, default=32)
+    p.add_argument("--mesh-scale", type=float, default=2.0)
     p.add_argument("--voxel-scale", type=float, default=0.5)
+    p.add_argument("--smooth", type=int, default=30, help="passes of vertex smoothing")
     p.add_argument("--absorption", type=vec3, help="per world unit (default: 0.02,0.007,0.0035 per radius)")
     p.add_argument("--threads", type=int, default=0, help="0: Blender's choice")
     p.add_argument("--blend", help="also save the scene to this .blend file")
@@ -268,6 +271,11 @@ def make_water_material(absorption):
     return mat
 
 
+def socket(sockets, identifier):
+    """A socket by identifier: names repeat across a node's data types."""
+    return next(s for s in sockets if s.identifier == identifier)
+
+
 def make_fluid(xyz, radius, args, material):
     mesh = bpy.data.meshes.new("particles")
     mesh.vertices.add(len(xyz))
@@ -290,13 +298,43 @@ def make_fluid(xyz, radius, args, material):
     to_mesh = nodes.new("GeometryNodeVolumeToMesh")
     to_mesh.resolution_mode = "GRID"
     to_mesh.inputs["Threshold"].default_value = 0.5
+    # Volume to Mesh also closes the small voids the spheres leave inside the
+    # fluid: surfaces of their own, facing inwards, which a glass shader
+    # draws as grain. Each island's signed volume (the sum of position .
+    # normal x area / 3 over its faces) is negative for a void: those go.
+    island = nodes.new("GeometryNodeInputMeshIsland")
+    area = nodes.new("GeometryNodeInputMeshFaceArea")
+    position = nodes.new("GeometryNodeInputPosition")
+    normal = nodes.new("GeometryNodeInputNormal")
+    dot = nodes.new("ShaderNodeVectorMath")
+    dot.operation = "DOT_PRODUCT"
+    volume = nodes.new("ShaderNodeMath")
+    volume.operation = "MULTIPLY"
+    accumulate = nodes.new("GeometryNodeAccumulateField")
+    accumulate.data_type = "FLOAT"
+    accumulate.domain = "FACE"
+    is_void = nodes.new("FunctionNodeCompare")
+    is_void.data_type = "FLOAT"
+    is_void.operation = "LESS_THAN"
+    is_void.inputs["B"].default_value = 0.0
+    delete = nodes.new("GeometryNodeDeleteGeometry")
+    delete.domain = "FACE"
+    links.new(position.outputs["Position"], dot.inputs[0])
+    links.new(normal.outputs["Normal"], dot.inputs[1])
+    links.new(dot.outputs["Value"], volume.inputs[0])
+    links.new(area.outputs["Area"], volume.inputs[1])
+    links.new(volume.outputs["Value"], socket(accumulate.inputs, "Value Float"))
+    links.new(island.outputs["Island Index"], accumulate.inputs["Group Index"])
+    links.new(socket(accumulate.outputs, "Total Float"), is_void.inputs["A"])
+    links.new(is_void.outputs["Result"], delete.inputs["Selection"])
     smooth = nodes.new("GeometryNodeSetShadeSmooth")
     set_material = nodes.new("GeometryNodeSetMaterial")
     set_material.inputs["Material"].default_value = material
     links.new(group_in.outputs[0], to_points.inputs["Mesh"])
     links.new(to_points.outputs["Points"], to_volume.inputs["Points"])
     links.new(to_volume.outputs["Volume"], to_mesh.inputs["Volume"])
-    links.new(to_mesh.outputs["Mesh"], smooth.inputs["Geometry"])
+    links.new(to_mesh.outputs["Mesh"], delete.inputs["Geometry"])
+    links.new(delete.outputs["Geometry"], smooth.inputs["Geometry"])
     links.new(smooth.outputs["Geometry"], set_material.inputs["Geometry"])
     links.new(set_material.outputs["Geometry"], group_out.inputs[0])
     modifier = obj.modifiers.new("mesh_particles", "NODES")
@@ -304,7 +342,7 @@ def make_fluid(xyz, radius, args, material):
     # the voxel steps rounded off: a few passes of vertex smoothing
     relax = obj.modifiers.new("relax", "SMOOTH")
     relax.factor = 0.5
-    relax.iterations = 6
+    relax.iterations = args.smooth
     return obj
 
 

@@ -93,13 +93,14 @@ def read_presets():
 
 
 def group_files(files):
-    """The files grouped by data set (kind and folder), in order: each group
+    """The files grouped by data set (kind, folder and suggested radius: the
+    same scene at another resolution is another set), in order: each group
     shares one camera, floor and radius."""
     groups = OrderedDict()
     for path in files:
         path = os.path.abspath(path)
         kind, radius = data_set(path)
-        key = (kind, os.path.dirname(path))
+        key = (kind, os.path.dirname(path), radius)
         groups.setdefault(key, {"kind": kind, "radius": radius, "files": []})["files"].append(path)
     for i, group in enumerate(groups.values()):
         group["name"] = f"{i:02d}_{group['kind']}"
