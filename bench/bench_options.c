@@ -6,6 +6,7 @@
 #include <string.h>
 
 #include "fc_error.h"
+#include "fc_options.h"
 
 static const struct {
     const char *name;
@@ -40,6 +41,7 @@ void bench_options_print_usage(void)
            "wall time copying the frame), encode ms, wall ms, and\n"
            "the GPU MiB the pipeline holds after the row's frames (its own count from the sizes and\n"
            "formats it allocated; the driver's next to it where GL_NVX_gpu_memory_info reports one).\n"
+           "A value may follow the option or an '='.\n"
            "Every combination of the lists runs; --iterations default: each method's own default;\n"
            "--scale: the resolution of depth smoothing, as a fraction of the image's.\n"
            "--smoothing:");
@@ -173,22 +175,22 @@ static fc_code parse_bounded(const char *option, const char *value, long lo, lon
     return FC_OK;
 }
 
-static fc_code parse_frames(const char *value, bench_options *o, fc_error *err)
+static fc_code set_frames(void *o, const char *name, const char *value, fc_error *err)
 {
     long n = 0;
-    fc_code code = parse_bounded("--frames", value, 1, 10000, &n, err);
+    fc_code code = parse_bounded(name, value, 1, 10000, &n, err);
     if (code == FC_OK)
-        o->frames = (int)n;
+        ((bench_options *)o)->frames = (int)n;
     return code;
 }
 
 /* fc_settings_validate allows kernels up to 64 pixels. */
-static fc_code parse_filter_radius(const char *value, bench_options *o, fc_error *err)
+static fc_code set_filter_radius(void *o, const char *name, const char *value, fc_error *err)
 {
     long n = 0;
-    fc_code code = parse_bounded("--filter-radius", value, 0, 64, &n, err);
+    fc_code code = parse_bounded(name, value, 0, 64, &n, err);
     if (code == FC_OK)
-        o->filter_radius = (uint32_t)n;
+        ((bench_options *)o)->filter_radius = (uint32_t)n;
     return code;
 }
 
@@ -262,69 +264,141 @@ static fc_code parse_constants(const char *value, bench_options *o, fc_error *er
     return FC_OK;
 }
 
-static fc_code parse_valued(const char *option, const char *value, bench_options *o, fc_error *err)
+static fc_code set_gpu(void *o, const char *name, const char *value, fc_error *err)
 {
-    if (!strcmp(option, "--gpu"))
-        return fc_gpu_choice_parse(value, &o->gpu, err);
-    if (!strcmp(option, "--particles"))
-        return parse_list(option, value, &o->n_particles, parse_particles, o, err);
-    if (!strcmp(option, "--size"))
-        return parse_list(option, value, &o->n_sizes, parse_size, o, err);
-    if (!strcmp(option, "--smoothing"))
-        return parse_list(option, value, &o->n_smoothings, parse_smoothing, o, err);
-    if (!strcmp(option, "--iterations"))
-        return parse_list(option, value, &o->n_iterations, parse_iterations, o, err);
-    if (!strcmp(option, "--scale"))
-        return parse_list(option, value, &o->n_smooth_scales, parse_smooth_scale, o, err);
-    if (!strcmp(option, "--frames"))
-        return parse_frames(value, o, err);
-    if (!strcmp(option, "--encode"))
-        return parse_encoding(value, o, err);
-    if (!strcmp(option, "--shader-dir")) {
-        o->shader_dir = value;
-        return FC_OK;
-    }
-    if (!strcmp(option, "--splat"))
-        return parse_splat(value, o, err);
-    if (!strcmp(option, "--filter-radius"))
-        return parse_filter_radius(value, o, err);
-    if (!strcmp(option, "--kernel"))
-        return parse_kernel(value, o, err);
-    if (!strcmp(option, "--shadow"))
-        return parse_shadow(value, o, err);
-    if (!strcmp(option, "--thickness-scale"))
-        return parse_thickness_scale(value, o, err);
-    if (!strcmp(option, "--constants"))
-        return parse_constants(value, o, err);
-    if (!strcmp(option, "--image")) {
-        o->image_path = value;
-        return FC_OK;
-    }
-    if (!strcmp(option, "--write-scene")) {
-        o->action = BENCH_WRITE_SCENE;
-        o->scene_path = value;
-        return FC_OK;
-    }
-    return fc_error_set(err, FC_ERR_USAGE, "unknown option %s (see --help)", option);
+    (void)name;
+    return fc_gpu_choice_parse(value, &((bench_options *)o)->gpu, err);
 }
+
+static fc_code set_particles(void *target, const char *name, const char *value, fc_error *err)
+{
+    bench_options *o = target;
+    return parse_list(name, value, &o->n_particles, parse_particles, o, err);
+}
+
+static fc_code set_sizes(void *target, const char *name, const char *value, fc_error *err)
+{
+    bench_options *o = target;
+    return parse_list(name, value, &o->n_sizes, parse_size, o, err);
+}
+
+static fc_code set_smoothings(void *target, const char *name, const char *value, fc_error *err)
+{
+    bench_options *o = target;
+    return parse_list(name, value, &o->n_smoothings, parse_smoothing, o, err);
+}
+
+static fc_code set_iterations(void *target, const char *name, const char *value, fc_error *err)
+{
+    bench_options *o = target;
+    return parse_list(name, value, &o->n_iterations, parse_iterations, o, err);
+}
+
+static fc_code set_smooth_scales(void *target, const char *name, const char *value, fc_error *err)
+{
+    bench_options *o = target;
+    return parse_list(name, value, &o->n_smooth_scales, parse_smooth_scale, o, err);
+}
+
+static fc_code set_encoding(void *o, const char *name, const char *value, fc_error *err)
+{
+    (void)name;
+    return parse_encoding(value, o, err);
+}
+
+static fc_code set_shader_dir(void *o, const char *name, const char *value, fc_error *err)
+{
+    (void)name, (void)err;
+    ((bench_options *)o)->shader_dir = value;
+    return FC_OK;
+}
+
+static fc_code set_splat(void *o, const char *name, const char *value, fc_error *err)
+{
+    (void)name;
+    return parse_splat(value, o, err);
+}
+
+static fc_code set_kernel(void *o, const char *name, const char *value, fc_error *err)
+{
+    (void)name;
+    return parse_kernel(value, o, err);
+}
+
+static fc_code set_shadow(void *o, const char *name, const char *value, fc_error *err)
+{
+    (void)name;
+    return parse_shadow(value, o, err);
+}
+
+static fc_code set_thickness_scale(void *o, const char *name, const char *value, fc_error *err)
+{
+    (void)name;
+    return parse_thickness_scale(value, o, err);
+}
+
+static fc_code set_constants(void *o, const char *name, const char *value, fc_error *err)
+{
+    (void)name;
+    return parse_constants(value, o, err);
+}
+
+static fc_code set_image(void *o, const char *name, const char *value, fc_error *err)
+{
+    (void)name, (void)err;
+    ((bench_options *)o)->image_path = value;
+    return FC_OK;
+}
+
+static fc_code set_write_scene(void *target, const char *name, const char *value, fc_error *err)
+{
+    (void)name, (void)err;
+    bench_options *o = target;
+    o->action = BENCH_WRITE_SCENE;
+    o->scene_path = value;
+    return FC_OK;
+}
+
+static fc_code set_profile(void *o, const char *name, const char *value, fc_error *err)
+{
+    (void)name, (void)value, (void)err;
+    ((bench_options *)o)->profile = 1;
+    return FC_OK;
+}
+
+/* The options; their help is bench_options_print_usage's prose. */
+static const fc_option options[] = {
+    {"--gpu", "auto|software|N", set_gpu, NULL, NULL},
+    {"--particles", "LIST", set_particles, NULL, NULL},
+    {"--size", "LIST", set_sizes, NULL, NULL},
+    {"--smoothing", "LIST", set_smoothings, NULL, NULL},
+    {"--iterations", "LIST", set_iterations, NULL, NULL},
+    {"--scale", "LIST", set_smooth_scales, NULL, NULL},
+    {"--frames", "N", set_frames, NULL, NULL},
+    {"--encode", "FORMAT", set_encoding, NULL, NULL},
+    {"--shader-dir", "DIR", set_shader_dir, NULL, NULL},
+    {"--splat", "METHOD", set_splat, NULL, NULL},
+    {"--filter-radius", "PX", set_filter_radius, NULL, NULL},
+    {"--kernel", "KERNEL", set_kernel, NULL, NULL},
+    {"--shadow", "on|off", set_shadow, NULL, NULL},
+    {"--thickness-scale", "SCALE", set_thickness_scale, NULL, NULL},
+    {"--constants", "MODE", set_constants, NULL, NULL},
+    {"--image", "PATH", set_image, NULL, NULL},
+    {"--write-scene", "PATH", set_write_scene, NULL, NULL},
+    {"--profile", NULL, set_profile, NULL, NULL},
+};
+
+static const fc_option_table table = {"fluidcast-bench", options, sizeof options / sizeof options[0], NULL, NULL};
 
 fc_code bench_options_parse(int argc, char **argv, bench_options *o, fc_error *err)
 {
-    for (int i = 1; i < argc; i++) {
-        if (!strcmp(argv[i], "--help")) {
-            o->action = BENCH_HELP;
-            return FC_OK;
-        }
-        if (!strcmp(argv[i], "--profile")) {
-            o->profile = 1;
-            continue;
-        }
-        if (i + 1 == argc)
-            return fc_error_set(err, FC_ERR_USAGE, "%s needs a value", argv[i]);
-        fc_code rc = parse_valued(argv[i], argv[i + 1], o, err);
-        if (rc != FC_OK)
-            return rc;
-        i++;
+    bool help = false;
+    fc_code code = fc_options_parse(&table, argc - 1, argv + 1, o, &help, err);
+    if (code != FC_OK)
+        return code;
+    if (help) {
+        o->action = BENCH_HELP;
+        return FC_OK;
     }
     if (o->action == BENCH_WRITE_SCENE && o->n_particles != 1)
         return fc_error_set(err, FC_ERR_USAGE, "--write-scene takes exactly one --particles count");

@@ -229,10 +229,9 @@ static fc_code run_with_daemon(int argc, char **argv, run_plan *plan, fc_error *
 int main(int argc, char **argv)
 {
     e2e_options options;
-    e2e_options_default(&options);
     fc_error err = {0};
-    if (e2e_options_parse(argc, argv, &options, &err) != FC_OK) {
-        fprintf(stderr, "fluidcast-e2e-bench: %s (see --help)\n", err.message);
+    if (e2e_options_default(&options, &err) != FC_OK || e2e_options_parse(argc, argv, &options, &err) != FC_OK) {
+        fprintf(stderr, "fluidcast-e2e-bench: %s\n", err.message);
         return 2;
     }
     if (options.help) {

@@ -6,43 +6,7 @@
 #include <string.h>
 
 #include "fc_error.h"
-
-void e2e_options_default(e2e_options *o)
-{
-    *o = (e2e_options){.gpu = "software",
-                       .particles = {16384, 65536},
-                       .n_particles = 2,
-                       .sizes = {{640, 360}, {1280, 720}},
-                       .n_sizes = 2,
-                       .formats = {FC_FORMAT_JPEG, FC_FORMAT_PNG},
-                       .n_formats = 2,
-                       .quality = 90,
-                       .stream_subsampling = FC_JPEG_SUBSAMPLING_YUV420,
-                       .requests = 20,
-                       .stream_seconds = 10.0};
-}
-
-void e2e_options_print_usage(void)
-{
-    printf("usage: fluidcast-e2e-bench [options]\n"
-           "End-to-end loopback benchmark: particle upload -> image at the client, through a real fluidcastd.\n"
-           "Prints markdown tables: request/response latency, the server's stage times, streaming throughput.\n"
-           "  --server HOST:PORT     use a running daemon instead of starting one\n"
-           "  --daemon PATH          fluidcastd to start (default: the one built with it)\n"
-           "  --gpu software|auto    passed to the started daemon (default software)\n"
-           "  --particles LIST       particle counts, k/m suffixes (default 16k,64k; the H200 target: 1m)\n"
-           "  --size LIST            image sizes WxH (default 640x360,1280x720)\n"
-           "  --format LIST          jpeg, png, exr, raw (default jpeg,png)\n"
-           "  --quality Q            JPEG quality 1..100 (default 90)\n"
-           "  --stream-jpeg-subsampling 420|444\n"
-           "                         the streaming viewer's JPEG chroma (default 420, as fluidcast view)\n"
-           "  --requests N           timed requests per configuration, 0 = skip (default 20)\n"
-           "  --stream-seconds S     producer run per configuration, 0 = skip (default 10)\n"
-           "  --push-fps F           producer rate, 0 = as fast as the server accepts (default 0)\n"
-           "  --density              frames carry a density per particle too, as SPH codes send them\n"
-           "  --help                 this text\n"
-           "A value may follow the option or an '='. Every configuration is particles x size x format.\n");
-}
+#include "fc_options.h"
 
 const char *e2e_format_name(fc_image_format f)
 {
@@ -130,72 +94,135 @@ static fc_code parse_number(const char *option, const char *value, double lo, do
     return FC_OK;
 }
 
-static fc_code apply_option(const char *name, const char *value, e2e_options *o, fc_error *err)
+static e2e_options *as_options(void *target)
+{
+    return target;
+}
+
+static fc_code set_server(void *o, const char *name, const char *value, fc_error *err)
+{
+    (void)name, (void)err;
+    as_options(o)->server = value;
+    return FC_OK;
+}
+
+static fc_code set_daemon(void *o, const char *name, const char *value, fc_error *err)
+{
+    (void)name, (void)err;
+    as_options(o)->daemon_path = value;
+    return FC_OK;
+}
+
+static fc_code set_gpu(void *o, const char *name, const char *value, fc_error *err)
+{
+    if (strcmp(value, "software") != 0 && strcmp(value, "auto") != 0)
+        return fc_error_set(err, FC_ERR_USAGE, "%s: '%s' is not software or auto", name, value);
+    as_options(o)->gpu = value;
+    return FC_OK;
+}
+
+static fc_code set_particles(void *target, const char *name, const char *value, fc_error *err)
+{
+    e2e_options *o = target;
+    return parse_list(name, value, &o->n_particles, o->particles, sizeof o->particles[0], count_item, err);
+}
+
+static fc_code set_sizes(void *target, const char *name, const char *value, fc_error *err)
+{
+    e2e_options *o = target;
+    return parse_list(name, value, &o->n_sizes, o->sizes, sizeof o->sizes[0], size_item, err);
+}
+
+static fc_code set_formats(void *target, const char *name, const char *value, fc_error *err)
+{
+    e2e_options *o = target;
+    return parse_list(name, value, &o->n_formats, o->formats, sizeof o->formats[0], format_item, err);
+}
+
+static fc_code set_quality(void *o, const char *name, const char *value, fc_error *err)
 {
     double v = 0;
-    fc_code code = FC_OK;
-    if (strcmp(name, "--server") == 0)
-        o->server = value;
-    else if (strcmp(name, "--daemon") == 0)
-        o->daemon_path = value;
-    else if (strcmp(name, "--gpu") == 0) {
-        if (strcmp(value, "software") != 0 && strcmp(value, "auto") != 0)
-            return fc_error_set(err, FC_ERR_USAGE, "--gpu: '%s' is not software or auto", value);
-        o->gpu = value;
-    } else if (strcmp(name, "--particles") == 0)
-        code = parse_list(name, value, &o->n_particles, o->particles, sizeof o->particles[0], count_item, err);
-    else if (strcmp(name, "--size") == 0)
-        code = parse_list(name, value, &o->n_sizes, o->sizes, sizeof o->sizes[0], size_item, err);
-    else if (strcmp(name, "--format") == 0)
-        code = parse_list(name, value, &o->n_formats, o->formats, sizeof o->formats[0], format_item, err);
-    else if (strcmp(name, "--quality") == 0) {
-        if ((code = parse_number(name, value, 1, 100, &v, err)) == FC_OK)
-            o->quality = (uint32_t)v;
-    } else if (strcmp(name, "--stream-jpeg-subsampling") == 0) {
-        if (strcmp(value, "420") == 0)
-            o->stream_subsampling = FC_JPEG_SUBSAMPLING_YUV420;
-        else if (strcmp(value, "444") == 0)
-            o->stream_subsampling = FC_JPEG_SUBSAMPLING_YUV444;
-        else
-            return fc_error_set(err, FC_ERR_USAGE, "%s: '%s' is not 420 or 444", name, value);
-    } else if (strcmp(name, "--requests") == 0) {
-        if ((code = parse_number(name, value, 0, 1000000, &v, err)) == FC_OK)
-            o->requests = (int)v;
-    } else if (strcmp(name, "--stream-seconds") == 0)
-        code = parse_number(name, value, 0, 86400, &o->stream_seconds, err);
-    else if (strcmp(name, "--push-fps") == 0)
-        code = parse_number(name, value, 0, 1e6, &o->push_fps, err);
-    else
-        return fc_error_set(err, FC_ERR_USAGE, "unknown option '%s'", name);
+    fc_code code = parse_number(name, value, 1, 100, &v, err);
+    if (code == FC_OK)
+        as_options(o)->quality = (uint32_t)v;
     return code;
+}
+
+static fc_code set_subsampling(void *o, const char *name, const char *value, fc_error *err)
+{
+    if (strcmp(value, "420") == 0)
+        as_options(o)->stream_subsampling = FC_JPEG_SUBSAMPLING_YUV420;
+    else if (strcmp(value, "444") == 0)
+        as_options(o)->stream_subsampling = FC_JPEG_SUBSAMPLING_YUV444;
+    else
+        return fc_error_set(err, FC_ERR_USAGE, "%s: '%s' is not 420 or 444", name, value);
+    return FC_OK;
+}
+
+static fc_code set_requests(void *o, const char *name, const char *value, fc_error *err)
+{
+    double v = 0;
+    fc_code code = parse_number(name, value, 0, 1000000, &v, err);
+    if (code == FC_OK)
+        as_options(o)->requests = (int)v;
+    return code;
+}
+
+static fc_code set_stream_seconds(void *o, const char *name, const char *value, fc_error *err)
+{
+    return parse_number(name, value, 0, 86400, &as_options(o)->stream_seconds, err);
+}
+
+static fc_code set_push_fps(void *o, const char *name, const char *value, fc_error *err)
+{
+    return parse_number(name, value, 0, 1e6, &as_options(o)->push_fps, err);
+}
+
+static fc_code set_density(void *o, const char *name, const char *value, fc_error *err)
+{
+    (void)name, (void)value, (void)err;
+    as_options(o)->density = 1;
+    return FC_OK;
+}
+
+/* Every option with its help and default, in the order the usage lists them. */
+static const fc_option options[] = {
+    {"--server", "HOST:PORT", set_server, "use a running daemon instead of starting one", NULL},
+    {"--daemon", "PATH", set_daemon, "fluidcastd to start (default: the one built with it)", NULL},
+    {"--gpu", "software|auto", set_gpu, "passed to the started daemon", "software"},
+    {"--particles", "LIST", set_particles, "particle counts, k/m suffixes (the H200 target: 1m)", "16k,64k"},
+    {"--size", "LIST", set_sizes, "image sizes WxH", "640x360,1280x720"},
+    {"--format", "LIST", set_formats, "jpeg, png, exr, raw", "jpeg,png"},
+    {"--quality", "Q", set_quality, "JPEG quality 1..100", "90"},
+    {"--stream-jpeg-subsampling", "420|444", set_subsampling,
+     "the streaming viewer's JPEG chroma, 420 as fluidcast view asks", "420"},
+    {"--requests", "N", set_requests, "timed requests per configuration, 0 = skip", "20"},
+    {"--stream-seconds", "S", set_stream_seconds, "producer run per configuration, 0 = skip", "10"},
+    {"--push-fps", "F", set_push_fps, "producer rate, 0 = as fast as the server accepts", "0"},
+    {"--density", NULL, set_density, "frames carry a density per particle too, as SPH codes send them", NULL},
+};
+
+static const fc_option_table table = {"fluidcast-e2e-bench", options, sizeof options / sizeof options[0], NULL, NULL};
+
+fc_code e2e_options_default(e2e_options *o, fc_error *err)
+{
+    *o = (e2e_options){0};
+    return fc_options_set_defaults(&table, o, err);
+}
+
+void e2e_options_print_usage(void)
+{
+    printf("usage: fluidcast-e2e-bench [options]\n"
+           "End-to-end loopback benchmark: particle upload -> image at the client, through a real fluidcastd.\n"
+           "Prints markdown tables: request/response latency, the server's stage times, streaming throughput.\n");
+    fc_options_print_help(stdout, &table);
+    printf("A value may follow the option or an '='. Every configuration is particles x size x format.\n");
 }
 
 fc_code e2e_options_parse(int argc, char **argv, e2e_options *o, fc_error *err)
 {
-    for (int i = 1; i < argc; i++) {
-        if (strcmp(argv[i], "--help") == 0 || strcmp(argv[i], "-h") == 0) {
-            o->help = 1;
-            continue;
-        }
-        if (strcmp(argv[i], "--density") == 0) {
-            o->density = 1;
-            continue;
-        }
-        char name[64];
-        const char *eq = strchr(argv[i], '=');
-        const char *value;
-        if (eq && (size_t)(eq - argv[i]) < sizeof name) {
-            snprintf(name, sizeof name, "%.*s", (int)(eq - argv[i]), argv[i]);
-            value = eq + 1;
-        } else {
-            if (i + 1 >= argc)
-                return fc_error_set(err, FC_ERR_USAGE, "%s needs a value", argv[i]);
-            snprintf(name, sizeof name, "%s", argv[i]);
-            value = argv[++i];
-        }
-        fc_code code = apply_option(name, value, o, err);
-        if (code != FC_OK)
-            return code;
-    }
-    return FC_OK;
+    bool help = false;
+    fc_code code = fc_options_parse(&table, argc - 1, argv + 1, o, &help, err);
+    o->help = help;
+    return code;
 }

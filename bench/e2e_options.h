@@ -26,9 +26,10 @@ typedef struct e2e_options {
                                                4:2:0 by default as fluidcast view asks */
 } e2e_options;
 
-/* Defaults: 16k,64k particles, 640x360,1280x720, JPEG q90 and PNG, 20
- * requests, 10 s streams pushed as fast as accepted, software GL. */
-void e2e_options_default(e2e_options *o);
+/* The defaults of e2e_options.c's table (16k,64k particles, 640x360,1280x720,
+ * JPEG q90 and PNG, 20 requests, 10 s streams pushed as fast as accepted,
+ * software GL); an error only for a default its setter refuses. */
+fc_code e2e_options_default(e2e_options *o, fc_error *err);
 
 /* Parses argv over the defaults; FC_ERR_USAGE naming the offending argument. */
 fc_code e2e_options_parse(int argc, char **argv, e2e_options *o, fc_error *err);

@@ -12,6 +12,8 @@
 #include <unistd.h>
 
 #include "fc_error.h"
+#include "fc_file.h"
+#include "fc_options.h"
 #include "image_decoder.h"
 #include "png_encoder.h"
 
@@ -25,6 +27,8 @@ typedef struct png_bench_options {
     unsigned rounds;
     uint32_t channels;   /* 4, or 3 (alpha dropped) */
     uint32_t synthetic_w, synthetic_h;
+    const char *files[MAX_IMAGES];
+    unsigned n_files;
 } png_bench_options;
 
 static void usage(void)
@@ -79,18 +83,15 @@ static double median(double *v, unsigned n)
 /* Reads and decodes one file to 8-bit rows of `channels`. */
 static int load_image(const char *path, uint32_t channels, fc_png_rows *rows)
 {
-    FILE *f = fopen(path, "rb");
-    if (!f)
-        return 0;
-    fseek(f, 0, SEEK_END);
-    long size = ftell(f);
-    fseek(f, 0, SEEK_SET);
-    uint8_t *bytes = size > 0 ? malloc((size_t)size) : NULL;
-    int ok = bytes && fread(bytes, 1, (size_t)size, f) == (size_t)size;
-    fclose(f);
-    fc_image img = {0};
+    uint8_t *bytes = NULL;
+    size_t size = 0;
     fc_error err;
-    ok = ok && fc_decode_image_bytes(bytes, (size_t)size, 65536, &img, &err) == FC_OK && img.type == FC_PIXEL_U8;
+    if (fc_read_file(path, SIZE_MAX, &bytes, &size, &err) != FC_OK) {
+        fprintf(stderr, "fluidcast-png-bench: %s\n", err.message);
+        return 0;
+    }
+    fc_image img = {0};
+    int ok = fc_decode_image_bytes(bytes, size, 65536, &img, &err) == FC_OK && img.type == FC_PIXEL_U8;
     free(bytes);
     if (!ok) {
         fprintf(stderr, "fluidcast-png-bench: %s: not an 8-bit image\n", path);
@@ -119,40 +120,86 @@ static fc_png_rows synthetic(uint32_t w, uint32_t h, uint32_t channels)
     return (fc_png_rows){px, w, h, channels};
 }
 
-static int parse_args(int argc, char **argv, png_bench_options *o, int *first_file)
+static fc_code set_rgb(void *o, const char *name, const char *value, fc_error *err)
+{
+    (void)name, (void)value, (void)err;
+    ((png_bench_options *)o)->channels = 3;
+    return FC_OK;
+}
+
+static fc_code set_threads(void *target, const char *name, const char *value, fc_error *err)
+{
+    png_bench_options *o = target;
+    o->n_threads = parse_list(value, 64, o->threads);
+    return o->n_threads ? FC_OK : fc_error_set(err, FC_ERR_USAGE, "%s '%s': expected counts 0..64", name, value);
+}
+
+static fc_code set_levels(void *target, const char *name, const char *value, fc_error *err)
+{
+    png_bench_options *o = target;
+    o->n_levels = parse_list(value, 9, o->levels);
+    return o->n_levels ? FC_OK : fc_error_set(err, FC_ERR_USAGE, "%s '%s': expected levels 0..9", name, value);
+}
+
+static fc_code set_rounds(void *o, const char *name, const char *value, fc_error *err)
+{
+    unsigned one[MAX_LIST];
+    if (parse_list(value, 1000, one) != 1 || one[0] == 0)
+        return fc_error_set(err, FC_ERR_USAGE, "%s '%s': expected a number 1..1000", name, value);
+    ((png_bench_options *)o)->rounds = one[0];
+    return FC_OK;
+}
+
+static fc_code set_synthetic(void *target, const char *name, const char *value, fc_error *err)
+{
+    png_bench_options *o = target;
+    char tail;
+    if (sscanf(value, "%ux%u%c", &o->synthetic_w, &o->synthetic_h, &tail) != 2 || o->synthetic_w == 0 ||
+        o->synthetic_h == 0)
+        return fc_error_set(err, FC_ERR_USAGE, "%s '%s': expected WIDTHxHEIGHT", name, value);
+    return FC_OK;
+}
+
+static fc_code add_file(void *target, const char *arg, fc_error *err)
+{
+    png_bench_options *o = target;
+    if (o->n_files == MAX_IMAGES)
+        return fc_error_set(err, FC_ERR_USAGE, "at most %d images", MAX_IMAGES);
+    o->files[o->n_files++] = arg;
+    return FC_OK;
+}
+
+/* The options; their help is usage()'s. */
+static const fc_option options[] = {
+    {"--threads", "LIST", set_threads, NULL, NULL},
+    {"--level", "LIST", set_levels, NULL, NULL},
+    {"--rounds", "N", set_rounds, NULL, NULL},
+    {"--rgb", NULL, set_rgb, NULL, NULL},
+    {"--synthetic", "WxH", set_synthetic, NULL, NULL},
+};
+
+static const fc_option_table table = {"fluidcast-png-bench", options, sizeof options / sizeof options[0],
+                                      add_file, NULL};
+
+/* Options over the defaults. *done when there is nothing to run: then the
+ * exit status is returned (0 after --help, 2 for a usage error). */
+static int parse_args(int argc, char **argv, png_bench_options *o, bool *done)
 {
     *o = (png_bench_options){.threads = {1, 2, 4, 8, 0}, .n_threads = 5, .levels = {4}, .n_levels = 1, .rounds = 7,
                              .channels = 4};
-    int i = 1;
-    for (; i < argc && strncmp(argv[i], "--", 2) == 0; i++) {
-        const char *a = argv[i], *v = i + 1 < argc ? argv[i + 1] : "";
-        unsigned one[MAX_LIST];
-        if (strcmp(a, "--help") == 0) {
-            usage();
-            exit(0);
-        } else if (strcmp(a, "--rgb") == 0) {
-            o->channels = 3;
-        } else if (strcmp(a, "--threads") == 0 && (o->n_threads = parse_list(v, 64, o->threads)) > 0) {
-            i++;
-        } else if (strcmp(a, "--level") == 0 && (o->n_levels = parse_list(v, 9, o->levels)) > 0) {
-            i++;
-        } else if (strcmp(a, "--rounds") == 0 && parse_list(v, 1000, one) == 1 && one[0] > 0) {
-            o->rounds = one[0];
-            i++;
-        } else if (strcmp(a, "--synthetic") == 0 && sscanf(v, "%ux%u", &o->synthetic_w, &o->synthetic_h) == 2 &&
-                   o->synthetic_w > 0 && o->synthetic_h > 0) {
-            i++;
-        } else {
-            fprintf(stderr, "fluidcast-png-bench: bad option %s %s (--help)\n", a, v);
-            return 0;
-        }
+    bool help = false;
+    fc_error err;
+    *done = true;
+    if (fc_options_parse(&table, argc - 1, argv + 1, o, &help, &err) != FC_OK) {
+        fprintf(stderr, "fluidcast-png-bench: %s\n", err.message);
+        return 2;
     }
-    *first_file = i;
-    if (i == argc && o->synthetic_w == 0) {
+    if (help || (o->n_files == 0 && o->synthetic_w == 0)) {
         usage();
-        return 0;
+        return help ? 0 : 2;
     }
-    return 1;
+    *done = false;
+    return 0;
 }
 
 /* One configuration's medians, summed over the images. */
@@ -218,16 +265,17 @@ static void print_rows(const png_bench_options *o, unsigned n_images, size_t pix
 int main(int argc, char **argv)
 {
     png_bench_options o;
-    int first;
-    if (!parse_args(argc, argv, &o, &first))
-        return 2;
+    bool done;
+    int status = parse_args(argc, argv, &o, &done);
+    if (done)
+        return status;
     fc_png_rows images[MAX_IMAGES];
     unsigned n = 0;
     size_t pixel_bytes = 0;
     if (o.synthetic_w)
         images[n++] = synthetic(o.synthetic_w, o.synthetic_h, o.channels);
-    for (int i = first; i < argc && n < MAX_IMAGES; i++)
-        if (load_image(argv[i], o.channels, &images[n]))
+    for (unsigned i = 0; i < o.n_files && n < MAX_IMAGES; i++)
+        if (load_image(o.files[i], o.channels, &images[n]))
             n++;
     for (unsigned i = 0; i < n; i++)
         pixel_bytes += (size_t)images[i].width * images[i].height * images[i].channels;
@@ -237,7 +285,6 @@ int main(int argc, char **argv)
            pixel_bytes, o.channels, sysconf(_SC_NPROCESSORS_ONLN), o.rounds);
     printf("| level | threads | images | wall ms per image | MB/s | CPU ms per image | bytes per image | speed-up |\n");
     printf("|---|---|---|---|---|---|---|---|\n");
-    int status = 0;
     for (unsigned l = 0; l < o.n_levels && status == 0; l++) {
         png_bench_row rows[MAX_LIST] = {{0}};
         if (!run(&o, images, n, o.levels[l], rows))

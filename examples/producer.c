@@ -5,7 +5,7 @@
  *
  *     fluidcast-example-producer [SERVER [SESSION [FRAMES]]]
  *
- * defaults: 127.0.0.1:7450, "slosh", 96 frames. */
+ * defaults: FC_DEFAULT_SERVER, "slosh", 96 frames. */
 #include <stdio.h>
 #include <stdlib.h>
 #include <time.h>
@@ -54,7 +54,7 @@ static fc_code run(fc_client *c, uint32_t frames, fc_error *err)
 
 int main(int argc, char **argv)
 {
-    const char *server = argc > 1 ? argv[1] : "127.0.0.1:7450";
+    const char *server = argc > 1 ? argv[1] : FC_DEFAULT_SERVER;
     const char *session = argc > 2 ? argv[2] : "slosh";
     uint32_t frames = argc > 3 ? (uint32_t)strtoul(argv[3], NULL, 10) : 96;
     fc_connect_options options = {.client_name = "example producer"};

@@ -6,7 +6,7 @@
  *
  *     fluidcast-example-producer_ranks [SERVER [SESSION [FRAMES [RANKS]]]]
  *
- * defaults: 127.0.0.1:7450, "slosh", 96 frames, 4 ranks. */
+ * defaults: FC_DEFAULT_SERVER, "slosh", 96 frames, 4 ranks. */
 #include <pthread.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -82,7 +82,7 @@ int main(int argc, char **argv)
     pthread_barrier_init(&step_done, NULL, count);
     for (uint32_t i = 0; i < count; i++) {
         memset(&ranks[i], 0, sizeof ranks[i]);
-        ranks[i].server = argc > 1 ? argv[1] : "127.0.0.1:7450";
+        ranks[i].server = argc > 1 ? argv[1] : FC_DEFAULT_SERVER;
         ranks[i].session = argc > 2 ? argv[2] : "slosh";
         ranks[i].frames = argc > 3 ? (uint32_t)strtoul(argv[3], NULL, 10) : 96;
         ranks[i].index = i;

@@ -48,6 +48,15 @@ typedef enum fc_code {
 
 #define FC_ERROR_MESSAGE_MAX 256
 
+/* ---- Addresses ------------------------------------------------------------
+ * Where fluidcastd listens and clients connect unless told otherwise. The
+ * grammar of an address is fc_host_port.h's (proto/PROTOCOL.md section 1.1). */
+#define FC_DEFAULT_PORT 7450
+#define FC_DEFAULT_HOST "127.0.0.1"
+#define FC_STRINGIFY_(x) #x
+#define FC_STRINGIFY(x) FC_STRINGIFY_(x)
+#define FC_DEFAULT_SERVER FC_DEFAULT_HOST ":" FC_STRINGIFY(FC_DEFAULT_PORT)   /* "127.0.0.1:7450" */
+
 /* An error value: a code plus a human-readable reason. Functions that can fail
  * return an fc_code and, when given a non-NULL fc_error*, fill it in. */
 typedef struct fc_error {

@@ -19,7 +19,6 @@ extern "C" {
 #define FC_PROTOCOL_VERSION 1u
 #define FC_WIRE_MAGIC "FCST"           /* first four bytes of every message */
 #define FC_WIRE_HEADER_SIZE 16u
-#define FC_DEFAULT_PORT 7450
 #define FC_DEFAULT_QUALITY 90u         /* what RENDER's quality 0 means */
 
 /* Every message type of the protocol, X(NAME, number), in the order and with

@@ -4,13 +4,13 @@
 #include "camera_path.h"
 
 #include <cjson/cJSON.h>
-#include <errno.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "fc_error.h"
+#include "fc_file.h"
 
 /* ---- syntax ---- */
 
@@ -218,20 +218,11 @@ fc_code fc_camera_path_parse(const char *text, size_t size, const char *name, fc
 fc_code fc_camera_path_load(const char *path, fc_camera_path *out, fc_error *err)
 {
     memset(out, 0, sizeof *out);
-    FILE *f = fopen(path, "rb");
-    if (!f)
-        return fc_error_set(err, FC_ERR_IO, "%s: %s", path, strerror(errno));
-    char *text = malloc(FC_CAMERA_PATH_MAX_BYTES + 1);
-    size_t size = text ? fread(text, 1, FC_CAMERA_PATH_MAX_BYTES + 1, f) : 0;
-    bool failed = !text || ferror(f);
-    fclose(f);
-    fc_code code;
-    if (!text)
-        code = fc_error_set(err, FC_ERR_NOMEM, "%s: no memory to read it", path);
-    else if (failed)
-        code = fc_error_set(err, FC_ERR_IO, "%s: cannot be read", path);
-    else
-        code = fc_camera_path_parse(text, size, path, out, err);
+    uint8_t *text = NULL;
+    size_t size = 0;
+    fc_code code = fc_read_file(path, FC_CAMERA_PATH_MAX_BYTES, &text, &size, err);
+    if (code == FC_OK)
+        code = fc_camera_path_parse((const char *)text, size, path, out, err);
     free(text);
     return code;
 }

@@ -60,7 +60,8 @@ typedef struct fc_camera_path {
  * or FC_CAMERA_PATH_MAX_BYTES bytes; FC_ERR_NOMEM. Free with fc_camera_path_free. */
 fc_code fc_camera_path_parse(const char *text, size_t size, const char *name, fc_camera_path *out, fc_error *err);
 
-/* Reads and parses the file. FC_ERR_IO naming it when it cannot be read. */
+/* Reads (fc_read_file) and parses the file. FC_ERR_IO naming it when it cannot
+ * be read, FC_ERR_TOO_LARGE when it holds more than FC_CAMERA_PATH_MAX_BYTES. */
 fc_code fc_camera_path_load(const char *path, fc_camera_path *out, fc_error *err);
 
 void fc_camera_path_free(fc_camera_path *p);

@@ -5,11 +5,11 @@
 #include <string.h>
 
 #include "cli_values.h"
+#include "fc_options.h"
 #include "fc_error.h"
 
-/* The help's option column: text starts at this column, and lines end before the last. */
-#define HELP_TEXT_COLUMN 26
-#define HELP_WIDTH 80
+/* At most this many settings: keys are bits of a u64 (wire_settings.c, fc_cli_settings.given). */
+#define SETTINGS_MAX 64
 /* Enough for any setting's values as written on the command line (three floats). */
 #define VALUE_TEXT_MAX 256
 
@@ -28,21 +28,6 @@ bool fc_cli_setting_given(const fc_cli_settings *s, const char *name)
 {
     const fc_setting_spec *spec = fc_setting_by_name(name);
     return spec && (s->given & key_bit(spec));
-}
-
-const fc_setting_spec *fc_cli_find_setting(const char *arg, const char **inline_value)
-{
-    *inline_value = NULL;
-    size_t name_len = strcspn(arg, "=");
-    char name[64];
-    if (name_len >= sizeof name)
-        return NULL;
-    memcpy(name, arg, name_len);
-    name[name_len] = '\0';
-    const fc_setting_spec *spec = fc_setting_by_option(name);
-    if (spec && arg[name_len] == '=')
-        *inline_value = arg + name_len + 1;
-    return spec;
 }
 
 /* "R,G,B" or "MIN:MAX" into spec->count floats. */
@@ -127,6 +112,25 @@ fc_code fc_cli_set_setting(fc_cli_settings *s, const fc_setting_spec *spec, cons
     return FC_OK;
 }
 
+/* An fc_option setter: `target` is the fc_cli_settings, `name` the setting's option. */
+static fc_code set_from_option(void *target, const char *name, const char *value, fc_error *err)
+{
+    return fc_cli_set_setting(target, fc_setting_by_option(name), value, err);
+}
+
+fc_code fc_cli_take_setting(fc_cli_settings *s, int argc, char **argv, int *i, bool *known, fc_error *err)
+{
+    size_t count;
+    const fc_setting_spec *table = fc_settings_table(&count);
+    fc_option rows[SETTINGS_MAX];
+    size_t listed = 0;
+    for (size_t k = 0; k < count && listed < SETTINGS_MAX; k++)
+        if (table[k].option)
+            rows[listed++] = (fc_option){table[k].option, "VALUE", set_from_option, NULL, NULL};
+    const fc_option_table options = {"fluidcast", rows, listed, NULL, NULL};
+    return fc_options_take(&options, argc, argv, i, s, known, err);
+}
+
 /* ---- help ---- */
 
 static const char *const group_titles[FC_GROUP_COUNT] = {
@@ -136,10 +140,11 @@ static const char *const group_titles[FC_GROUP_COUNT] = {
     [FC_GROUP_IMAGE] = "image",
 };
 
-/* "--kernel sphere|anisotropic", "--ior N". */
+/* The value as the help names it: "sphere|anisotropic", "N". */
 static void usage_text(const fc_setting_spec *spec, char *out, size_t size)
 {
-    size_t used = (size_t)snprintf(out, size, "%s ", spec->option);
+    size_t used = 0;
+    out[0] = '\0';
     if (spec->type != FC_SETTING_CHOICE) {
         snprintf(out + used, size - used, "%s", spec->metavar);
         return;
@@ -204,27 +209,6 @@ static void default_text(const fc_setting_spec *spec, const fc_settings *d, char
     }
 }
 
-/* Writes `text` word by word from HELP_TEXT_COLUMN, starting on a line whose first `column` characters are out. */
-static void print_wrapped(FILE *to, const char *text, int column)
-{
-    const char *word = text;
-    while (*word) {
-        size_t len = strcspn(word, " ");
-        if (column > HELP_TEXT_COLUMN && column + 1 + (int)len >= HELP_WIDTH) {
-            fprintf(to, "\n%*s", HELP_TEXT_COLUMN, "");
-            column = HELP_TEXT_COLUMN;
-        } else if (column > HELP_TEXT_COLUMN) {
-            fputc(' ', to);
-            column++;
-        }
-        fprintf(to, "%.*s", (int)len, word);
-        column += (int)len;
-        word += len;
-        word += strspn(word, " ");
-    }
-    fputc('\n', to);
-}
-
 static void print_setting(FILE *to, const fc_setting_spec *spec, const fc_settings *d)
 {
     char usage[128], domain[64], def[128], text[1024];
@@ -236,15 +220,7 @@ static void print_setting(FILE *to, const fc_setting_spec *spec, const fc_settin
         snprintf(text, sizeof text, "%s (%s%s%s)", spec->help, domain, domain[0] && def[0] ? "; " : "", def);
     else
         snprintf(text, sizeof text, "%s", spec->help);
-    int width = fprintf(to, "  %s", usage);
-    if (width > HELP_TEXT_COLUMN - 2) {
-        fprintf(to, "\n%*s", HELP_TEXT_COLUMN, "");
-        width = HELP_TEXT_COLUMN;
-    } else {
-        fprintf(to, "%*s", HELP_TEXT_COLUMN - width, "");
-        width = HELP_TEXT_COLUMN;
-    }
-    print_wrapped(to, text, width);
+    fc_options_print_option(to, &(fc_option){spec->option, usage, NULL, text, NULL});
 }
 
 void fc_cli_print_settings_help(FILE *to, const fc_settings *defaults)

@@ -24,9 +24,10 @@ void fc_cli_settings_init(fc_cli_settings *s);
 /* Whether the user gave the setting called `name` (a field name, "colormap"). */
 bool fc_cli_setting_given(const fc_cli_settings *s, const char *name);
 
-/* The setting whose option `arg` names, as "--name" or "--name=value" (then
- * *inline_value points at the value); NULL when `arg` is no setting's option. */
-const fc_setting_spec *fc_cli_find_setting(const char *arg, const char **inline_value);
+/* Takes argv[*i] when it is a render setting's option ("--ior 1.5" or
+ * "--ior=1.5", moving *i past a value in the next argument), as
+ * fc_options_take does: *known false, and nothing done, when it is not one. */
+fc_code fc_cli_take_setting(fc_cli_settings *s, int argc, char **argv, int *i, bool *known, fc_error *err);
 
 /* Parses `value` as the setting's option and stores it: FC_ERR_USAGE naming the
  * option when it is malformed or outside the setting's domain. A settings

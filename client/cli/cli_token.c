@@ -3,36 +3,22 @@
 #include "cli_token.h"
 
 #include <errno.h>
-#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "cli_args.h"
 #include "fc_error.h"
-#include "wire.h"
+#include "fc_token_file.h"
 
 static const char OPTION[] = "--token-file";
 static const char VARIABLE[] = "FLUIDCAST_TOKEN";
 
 static fc_code publish_file_token(const char *path, fc_error *err)
 {
-    FILE *f = fopen(path, "rb");
-    if (!f)
-        return fc_error_set(err, FC_ERR_IO, "%s %s: %s", OPTION, path, strerror(errno));
-    /* Room for the longest token, a CRLF and one byte more to detect an overlong one. */
-    char token[FC_HELLO_TOKEN_MAX + 4];
-    size_t len = fread(token, 1, sizeof token - 1, f);
-    bool failed = ferror(f) != 0;
-    fclose(f);
-    if (failed)
-        return fc_error_set(err, FC_ERR_IO, "%s %s: read error", OPTION, path);
-    token[len] = '\0';
-    token[strcspn(token, "\r\n")] = '\0';
-    if (token[0] == '\0')
-        return fc_error_set(err, FC_ERR_USAGE, "%s %s: the file holds no token", OPTION, path);
-    if (strlen(token) > FC_HELLO_TOKEN_MAX)
-        return fc_error_set(err, FC_ERR_USAGE, "%s %s: the token is longer than %d bytes", OPTION, path,
-                            FC_HELLO_TOKEN_MAX);
+    char token[FC_HELLO_TOKEN_MAX + 1];
+    fc_code code = fc_token_file_read(path, token, err);
+    if (code != FC_OK)
+        return code;
     if (setenv(VARIABLE, token, 1) != 0)
         return fc_error_set(err, FC_ERR_NOMEM, "cannot set %s: %s", VARIABLE, strerror(errno));
     return FC_OK;

@@ -11,7 +11,7 @@
 #include "fc_error.h"
 #include "fluidcast.h"
 
-#define DEFAULT_SERVER "127.0.0.1:7450"
+#include "fc_host_port.h"
 
 typedef struct info_options {
     const char *server;
@@ -35,7 +35,7 @@ static void print_help(FILE *to)
           "limits, capabilities) and its sessions with their producers, viewers and frames.\n"
           "\n"
           "options:\n"
-          "  --server ADDR           HOST:PORT or unix:PATH (default " DEFAULT_SERVER ")\n"
+          "  --server ADDR           HOST:PORT or unix:PATH (default " FC_DEFAULT_SERVER ")\n"
           "                          or srv:NAME, a DNS SRV name: one of its daemons by\n"
           "                          SRV priority and weight\n"
           "  -h, --help              show this help\n"
@@ -94,7 +94,7 @@ static int info(const info_options *o)
 
 int fc_info_main(int argc, char **argv)
 {
-    info_options options = {DEFAULT_SERVER};
+    info_options options = {FC_DEFAULT_SERVER};
     bool help;
     fc_error err;
     if (fc_cli_parse_args(&command, argc, argv, &options, &help, &err) != FC_OK)

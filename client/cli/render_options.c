@@ -67,39 +67,15 @@ static fc_code set_quality(void *o, const char *name, const char *value, fc_erro
 }
 
 /* render's own options; the rest are snapshot's. */
-static const fc_cli_option own_options[] = {
-    {"--start", true, set_start}, {"--end", true, set_end},     {"--step", true, set_step},
-    {"--fps", true, set_fps},     {"--orbit", true, set_orbit}, {"--skip-existing", false, set_skip_existing},
-    {"--quality", true, set_quality}, {"--camera-path", true, set_camera_path},
+static const fc_option own_options[] = {
+    {"--start", "N", set_start, NULL, NULL},          {"--end", "N", set_end, NULL, NULL},
+    {"--step", "N", set_step, NULL, NULL},            {"--fps", "F", set_fps, NULL, NULL},
+    {"--orbit", "DEGREES", set_orbit, NULL, NULL},    {"--skip-existing", NULL, set_skip_existing, NULL, NULL},
+    {"--quality", "Q", set_quality, NULL, NULL},      {"--camera-path", "PATH", set_camera_path, NULL, NULL},
 };
 
-static const fc_cli_option *find_own(const char *arg, const char **inline_value)
-{
-    *inline_value = NULL;
-    size_t name_len = strcspn(arg, "=");
-    for (size_t i = 0; i < sizeof own_options / sizeof own_options[0]; i++) {
-        const fc_cli_option *option = &own_options[i];
-        if (strlen(option->name) == name_len && strncmp(arg, option->name, name_len) == 0) {
-            if (arg[name_len] == '=')
-                *inline_value = arg + name_len + 1;
-            return option;
-        }
-    }
-    return NULL;
-}
-
-static fc_code take_own(fc_render_options *o, const fc_cli_option *option, const char *value, int argc, char **argv,
-                        int *i, fc_error *err)
-{
-    if (!option->takes_value && value)
-        return fc_error_set(err, FC_ERR_USAGE, "%s takes no value", option->name);
-    if (option->takes_value && !value) {
-        if (*i + 1 >= argc)
-            return fc_error_set(err, FC_ERR_USAGE, "%s needs a value", option->name);
-        value = argv[++*i];
-    }
-    return option->set(o, option->name, value, err);
-}
+static const fc_option_table own_table = {"fluidcast render", own_options,
+                                          sizeof own_options / sizeof own_options[0], NULL, NULL};
 
 static fc_code add_input(fc_render_options *o, const char *arg, fc_error *err)
 {
@@ -116,12 +92,11 @@ static fc_code take_argument(fc_render_options *o, int argc, char **argv, int *i
     const char *arg = argv[*i];
     if (arg[0] != '-' || arg[1] == '\0')
         return add_input(o, arg, err);
-    const char *value;
-    const fc_cli_option *own = find_own(arg, &value);
-    if (own)
-        return take_own(o, own, value, argc, argv, i, err);
     bool known;
-    fc_code code = fc_snapshot_take_option(&o->view, argc, argv, i, &known, err);
+    fc_code code = fc_options_take(&own_table, argc, argv, i, o, &known, err);
+    if (known)
+        return code;
+    code = fc_snapshot_take_option(&o->view, argc, argv, i, &known, err);
     if (!known)
         return fc_error_set(err, FC_ERR_USAGE, "unknown option %s (see fluidcast render --help)", arg);
     return code;
@@ -254,7 +229,7 @@ static void print_sequence_help(FILE *to)
             "                          resume an interrupted batch (the camera is the same)\n"
             "\n"
             "camera and image (as for snapshot):\n"
-            "  --server HOST:PORT      server address (default " FC_SNAPSHOT_DEFAULT_SERVER ")\n"
+            "  --server HOST:PORT      server address (default " FC_DEFAULT_SERVER ")\n"
             "                          or srv:NAME: one daemon of a DNS SRV name\n"
             "  --size WxH              image size (default 1280x720)\n"
             "  --eye X,Y,Z, --target X,Y,Z\n"

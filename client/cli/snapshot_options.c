@@ -12,157 +12,150 @@
 #include "fc_colormap.h"
 #include "fc_error.h"
 #include "fc_frame.h"
+#include "fc_options.h"
 #include "output_file.h"
 
-typedef struct option_spec option_spec;
-typedef fc_code (*option_handler)(fc_snapshot_options *o, const option_spec *spec, const char *value,
-                                  fc_error *err);
-
-/* snapshot's own options; the render settings' come from the settings table (cli_setting_options.h). */
-struct option_spec {
-    const char *name;
-    option_handler handle;
-};
-
-static fc_code set_output(fc_snapshot_options *o, const option_spec *spec, const char *value, fc_error *err)
+static fc_code set_output(void *target, const char *name, const char *value, fc_error *err)
 {
-    (void)spec;
+    fc_snapshot_options *o = target;
+    (void)name;
     (void)err;
     o->output = value;
     return FC_OK;
 }
 
-static fc_code set_server(fc_snapshot_options *o, const option_spec *spec, const char *value, fc_error *err)
+static fc_code set_server(void *target, const char *name, const char *value, fc_error *err)
 {
-    (void)spec;
+    fc_snapshot_options *o = target;
+    (void)name;
     (void)err;
     o->server = value;
     return FC_OK;
 }
 
-static fc_code set_size(fc_snapshot_options *o, const option_spec *spec, const char *value, fc_error *err)
+static fc_code set_size(void *target, const char *name, const char *value, fc_error *err)
 {
-    return fc_cli_parse_size(spec->name, value, &o->width, &o->height, err);
+    fc_snapshot_options *o = target;
+    return fc_cli_parse_size(name, value, &o->width, &o->height, err);
 }
 
-static fc_code set_eye(fc_snapshot_options *o, const option_spec *spec, const char *value, fc_error *err)
+static fc_code set_eye(void *target, const char *name, const char *value, fc_error *err)
 {
+    fc_snapshot_options *o = target;
     o->has_eye = true;
-    return fc_cli_parse_vec3(spec->name, value, o->eye, err);
+    return fc_cli_parse_vec3(name, value, o->eye, err);
 }
 
-static fc_code set_target(fc_snapshot_options *o, const option_spec *spec, const char *value, fc_error *err)
+static fc_code set_target(void *target, const char *name, const char *value, fc_error *err)
 {
+    fc_snapshot_options *o = target;
     o->has_target = true;
-    return fc_cli_parse_vec3(spec->name, value, o->target, err);
+    return fc_cli_parse_vec3(name, value, o->target, err);
 }
 
-static fc_code set_up(fc_snapshot_options *o, const option_spec *spec, const char *value, fc_error *err)
+static fc_code set_up(void *target, const char *name, const char *value, fc_error *err)
 {
+    fc_snapshot_options *o = target;
     o->has_up = true;
-    return fc_cli_parse_up(spec->name, value, o->up, err);
+    return fc_cli_parse_up(name, value, o->up, err);
 }
 
-static fc_code set_fov(fc_snapshot_options *o, const option_spec *spec, const char *value, fc_error *err)
+static fc_code set_fov(void *target, const char *name, const char *value, fc_error *err)
 {
+    fc_snapshot_options *o = target;
     o->has_fov = true;
-    fc_code code = fc_cli_parse_float(spec->name, value, &o->fov_deg, err);
+    fc_code code = fc_cli_parse_float(name, value, &o->fov_deg, err);
     if (code == FC_OK && !(o->fov_deg > 0.0f && o->fov_deg < 180.0f))
-        return fc_error_set(err, FC_ERR_USAGE, "%s needs degrees between 0 and 180, not %s", spec->name, value);
+        return fc_error_set(err, FC_ERR_USAGE, "%s needs degrees between 0 and 180, not %s", name, value);
     return code;
 }
 
-static fc_code set_aov(fc_snapshot_options *o, const option_spec *spec, const char *value, fc_error *err)
+static fc_code set_aov(void *target, const char *name, const char *value, fc_error *err)
 {
+    fc_snapshot_options *o = target;
     static const char *const names[] = {"depth", "smoothed-depth", "thickness", "normal", "noise", NULL};
     static const fc_aov values[] = {FC_AOV_DEPTH, FC_AOV_SMOOTHED_DEPTH, FC_AOV_THICKNESS, FC_AOV_NORMAL,
                                     FC_AOV_NOISE};
     int index;
-    fc_code code = fc_cli_parse_choice(spec->name, value, names, &index, err);
+    fc_code code = fc_cli_parse_choice(name, value, names, &index, err);
     if (code == FC_OK)
         o->aov = values[index];
     return code;
 }
 
-static fc_code set_quality(fc_snapshot_options *o, const option_spec *spec, const char *value, fc_error *err)
+static fc_code set_quality(void *target, const char *name, const char *value, fc_error *err)
 {
+    fc_snapshot_options *o = target;
     o->has_quality = true;
-    return fc_cli_parse_uint(spec->name, value, 1, 100, &o->quality, err);
+    return fc_cli_parse_uint(name, value, 1, 100, &o->quality, err);
 }
 
 /* ---- scene images: the files are checked once the command line is complete ---- */
 
-static fc_code set_background(fc_snapshot_options *o, const option_spec *spec, const char *value, fc_error *err)
+static fc_code set_background(void *target, const char *name, const char *value, fc_error *err)
 {
+    fc_snapshot_options *o = target;
     if (value[0] == '\0')
-        return fc_error_set(err, FC_ERR_USAGE, "%s needs an image file", spec->name);
+        return fc_error_set(err, FC_ERR_USAGE, "%s needs an image file", name);
     o->background = value;
     return FC_OK;
 }
 
-static fc_code set_cubemap(fc_snapshot_options *o, const option_spec *spec, const char *value, fc_error *err)
+static fc_code set_cubemap(void *target, const char *name, const char *value, fc_error *err)
 {
+    fc_snapshot_options *o = target;
     if (value[0] == '\0')
-        return fc_error_set(err, FC_ERR_USAGE, "%s needs six image files or a directory", spec->name);
+        return fc_error_set(err, FC_ERR_USAGE, "%s needs six image files or a directory", name);
     o->cubemap = value;
     return FC_OK;
 }
 
-static fc_code set_mesh(fc_snapshot_options *o, const option_spec *spec, const char *value, fc_error *err)
+static fc_code set_mesh(void *target, const char *name, const char *value, fc_error *err)
 {
+    fc_snapshot_options *o = target;
     if (o->mesh_count == FC_CLI_MAX_MESHES)
-        return fc_error_set(err, FC_ERR_USAGE, "%s: at most %d meshes", spec->name, FC_CLI_MAX_MESHES);
+        return fc_error_set(err, FC_ERR_USAGE, "%s: at most %d meshes", name, FC_CLI_MAX_MESHES);
     fc_code code = fc_cli_mesh_parse(value, &o->meshes[o->mesh_count], err);
     if (code == FC_OK)
         o->mesh_count++;
     return code;
 }
 
-static fc_code set_read(fc_snapshot_options *o, const option_spec *spec, const char *value, fc_error *err)
+static fc_code set_read(void *target, const char *name, const char *value, fc_error *err)
 {
-    return fc_cli_set_read_option(&o->read, spec->name, value, err);
+    fc_snapshot_options *o = target;
+    return fc_cli_set_read_option(&o->read, name, value, err);
 }
 
-static const option_spec options[] = {
-    {"-o", set_output},
-    {"--output", set_output},
-    {"--server", set_server},
-    {"--size", set_size},
-    {"--eye", set_eye},
-    {"--target", set_target},
-    {"--up", set_up},
-    {"--fov", set_fov},
-    {"--background", set_background},
-    {"--cubemap", set_cubemap},
-    {"--mesh", set_mesh},
-    {"--aov", set_aov},
-    {"--quality", set_quality},
-    {"--dataset", set_read},
-    {"--step", set_read},
-    {"--select", set_read},
+/* snapshot's own options (their help is written below); the render settings'
+ * come from the settings table (fc_cli_take_setting). */
+static const fc_option options[] = {
+    {"-o", "OUT", set_output, NULL, NULL},
+    {"--output", "OUT", set_output, NULL, NULL},
+    {"--server", "HOST:PORT", set_server, NULL, NULL},
+    {"--size", "WxH", set_size, NULL, NULL},
+    {"--eye", "X,Y,Z", set_eye, NULL, NULL},
+    {"--target", "X,Y,Z", set_target, NULL, NULL},
+    {"--up", "UP", set_up, NULL, NULL},
+    {"--fov", "DEG", set_fov, NULL, NULL},
+    {"--background", "IMAGE", set_background, NULL, NULL},
+    {"--cubemap", "FILES", set_cubemap, NULL, NULL},
+    {"--mesh", "FILE", set_mesh, NULL, NULL},
+    {"--aov", "NAME", set_aov, NULL, NULL},
+    {"--quality", "Q", set_quality, NULL, NULL},
+    {"--dataset", "PATH", set_read, NULL, NULL},
+    {"--step", "N", set_read, NULL, NULL},
+    {"--select", "SELECTION", set_read, NULL, NULL},
 };
 
-/* Finds the option `arg` names, as "--name" or "--name=value" (then *inline_value
- * points at the value). NULL when unknown. */
-static const option_spec *find_option(const char *arg, const char **inline_value)
-{
-    *inline_value = NULL;
-    size_t name_len = strcspn(arg, "=");
-    for (size_t i = 0; i < sizeof options / sizeof options[0]; i++) {
-        if (strlen(options[i].name) == name_len && strncmp(arg, options[i].name, name_len) == 0) {
-            if (arg[name_len] == '=')
-                *inline_value = arg + name_len + 1;
-            return &options[i];
-        }
-    }
-    return NULL;
-}
+static const fc_option_table own_table = {"fluidcast snapshot", options, sizeof options / sizeof options[0], NULL,
+                                          NULL};
 
 void fc_snapshot_set_defaults(fc_snapshot_options *o)
 {
     memset(o, 0, sizeof *o);
     o->read.recentring = &o->recentring;
-    o->server = FC_SNAPSHOT_DEFAULT_SERVER;
+    o->server = FC_DEFAULT_SERVER;
     o->width = 1280;
     o->height = 720;
     o->fov_deg = FC_SNAPSHOT_DEFAULT_FOV;
@@ -244,18 +237,10 @@ static fc_code check_combinations(fc_snapshot_options *o, fc_error *err)
 
 fc_code fc_snapshot_take_option(fc_snapshot_options *o, int argc, char **argv, int *i, bool *known, fc_error *err)
 {
-    const char *value;
-    const option_spec *spec = find_option(argv[*i], &value);
-    const fc_setting_spec *setting = spec ? NULL : fc_cli_find_setting(argv[*i], &value);
-    *known = spec || setting;
-    if (!*known)
-        return FC_OK;
-    if (!value) {
-        if (*i + 1 >= argc)
-            return fc_error_set(err, FC_ERR_USAGE, "%s needs a value", spec ? spec->name : setting->option);
-        value = argv[++*i];
-    }
-    return spec ? spec->handle(o, spec, value, err) : fc_cli_set_setting(&o->settings, setting, value, err);
+    fc_code code = fc_options_take(&own_table, argc, argv, i, o, known, err);
+    if (*known)
+        return code;
+    return fc_cli_take_setting(&o->settings, argc, argv, i, known, err);
 }
 
 fc_code fc_snapshot_parse(int argc, char **argv, fc_snapshot_options *out, fc_error *err)
@@ -292,7 +277,7 @@ static void print_camera_help(FILE *to)
 {
     fputs("camera and image:\n"
           "  -o, --output OUT        image file to write (required)\n"
-          "  --server HOST:PORT      server address (default " FC_SNAPSHOT_DEFAULT_SERVER ";\n"
+          "  --server HOST:PORT      server address (default " FC_DEFAULT_SERVER ";\n"
           "                          port 7450 when omitted; IPv6 as [::1]:7450)\n"
           "                          or srv:NAME: one daemon of a DNS SRV name\n"
           "  --size WxH              image size in pixels (default 1280x720)\n"

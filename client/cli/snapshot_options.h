@@ -12,7 +12,7 @@
 #include "cli_setting_options.h"
 #include "particle_reader.h"
 
-#define FC_SNAPSHOT_DEFAULT_SERVER "127.0.0.1:7450"
+#include "fc_host_port.h"   /* FC_DEFAULT_SERVER */
 #define FC_SNAPSHOT_DEFAULT_FOV 40.0f
 #define FC_SNAPSHOT_DEFAULT_QUALITY 90u
 

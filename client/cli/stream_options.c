@@ -11,7 +11,7 @@
 #include "cli_values.h"
 #include "fc_error.h"
 
-#define DEFAULT_SERVER "127.0.0.1:7450"
+#include "fc_host_port.h"
 
 static fc_code set_server(void *o, const char *name, const char *value, fc_error *err)
 {
@@ -99,19 +99,19 @@ static const fc_cli_option options[] = {
     {"--dataset", true, set_read},    {"--step", true, set_read},       {"--select", true, set_read},
 };
 
-static fc_cli_settings *settings_of(void *o)
+static fc_code take_setting(void *o, int argc, char **argv, int *i, bool *known, fc_error *err)
 {
-    return &((fc_stream_options *)o)->settings;
+    return fc_cli_take_setting(&((fc_stream_options *)o)->settings, argc, argv, i, known, err);
 }
 
 static const fc_cli_command command = {"stream", options, sizeof options / sizeof options[0], add_file,
-                                       settings_of};
+                                       take_setting};
 
 fc_code fc_stream_parse(int argc, char **argv, fc_stream_options *out, fc_error *err)
 {
     memset(out, 0, sizeof *out);
     out->read.recentring = &out->recentring;
-    out->server = DEFAULT_SERVER;
+    out->server = FC_DEFAULT_SERVER;
     out->format = FC_FORMAT_PNG;
     out->quality = 90;
     out->width = 640;
@@ -151,7 +151,7 @@ void fc_stream_print_help(FILE *to)
           "frames the first file's particles and stays put for the whole sequence.\n"
           "\n"
           "options:\n"
-          "  --server ADDR           HOST:PORT or unix:PATH (default " DEFAULT_SERVER ")\n"
+          "  --server ADDR           HOST:PORT or unix:PATH (default " FC_DEFAULT_SERVER ")\n"
           "                          or srv:NAME, a DNS SRV name: the session's daemon by\n"
           "                          rendezvous hashing of the session name\n"
           "  --session NAME          publish to session NAME (1..64 bytes); viewers see every\n"

@@ -16,7 +16,7 @@
 #include "fluidcast.h"
 #include "output_file.h"
 
-#define DEFAULT_SERVER "127.0.0.1:7450"
+#include "fc_host_port.h"
 
 typedef struct watch_options {
     bool help;
@@ -93,7 +93,7 @@ static const fc_cli_command command = {"watch", options, sizeof options / sizeof
 static fc_code parse(int argc, char **argv, watch_options *o, fc_error *err)
 {
     memset(o, 0, sizeof *o);
-    o->server = DEFAULT_SERVER;
+    o->server = FC_DEFAULT_SERVER;
     o->format = FC_FORMAT_PNG;
     o->quality = 90;
     o->width = 640;
@@ -126,7 +126,7 @@ static void print_help(FILE *to)
           "\n"
           "options:\n"
           "  --session NAME          the session to watch (required)\n"
-          "  --server ADDR           HOST:PORT or unix:PATH (default " DEFAULT_SERVER ")\n"
+          "  --server ADDR           HOST:PORT or unix:PATH (default " FC_DEFAULT_SERVER ")\n"
           "                          or srv:NAME, a DNS SRV name: the session's daemon by\n"
           "                          rendezvous hashing of the session name\n"
           "  --out-dir DIR           write each image as DIR/NAME_NNNNNN.EXT (frame number);\n"

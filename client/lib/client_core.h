@@ -8,7 +8,7 @@
 #include <stdint.h>
 
 #include "fluidcast.h"
-#include "host_port.h"
+#include "fc_host_port.h"
 #include "wire.h"
 
 struct fc_client {

@@ -3,16 +3,14 @@
  * the next fc_client_render reports. */
 #include "fluidcast.h"
 
-#include <errno.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "client_core.h"
 #include "fc_error.h"
+#include "fc_file.h"
 #include "wire_scene.h"
-
-#define READ_CHUNK (1u << 20)
 
 static fc_code send_encoded(fc_client *c, const char *what, fc_error *err)
 {
@@ -52,44 +50,16 @@ fc_code fc_client_set_environment_bytes(fc_client *client, const void *const dat
     return code != FC_OK ? code : send_encoded(client, "the environment faces", err);
 }
 
-/* Reads a whole file into a malloc'd buffer, refusing files the server's
- * message limit could never carry before reading them to the end. */
-static fc_code read_file(const char *path, uint32_t limit, uint8_t **data, size_t *size, fc_error *err)
+/* A whole image file, refused before it is read to the end when the server's
+ * message limit could never carry it. */
+static fc_code read_image_file(const fc_client *client, const char *path, uint8_t **data, size_t *size,
+                               fc_error *err)
 {
-    FILE *f = fopen(path, "rb");
-    if (!f)
-        return fc_error_set(err, FC_ERR_IO, "cannot open %s: %s", path, strerror(errno));
-    uint8_t *buffer = NULL;
-    size_t used = 0;
-    fc_code code = FC_OK;
-    for (;;) {
-        uint8_t *grown = realloc(buffer, used + READ_CHUNK);
-        if (!grown) {
-            code = fc_error_set(err, FC_ERR_NOMEM, "no memory to read %s", path);
-            break;
-        }
-        buffer = grown;
-        size_t got = fread(buffer + used, 1, READ_CHUNK, f);
-        used += got;
-        if (used > limit) {
-            code = fc_error_set(err, FC_ERR_TOO_LARGE, "%s exceeds the server's message limit of %u bytes", path,
-                                (unsigned)limit);
-            break;
-        }
-        if (got < READ_CHUNK) {
-            if (ferror(f))
-                code = fc_error_set(err, FC_ERR_IO, "cannot read %s", path);
-            break;
-        }
-    }
-    fclose(f);
-    if (code != FC_OK) {
-        free(buffer);
-        return code;
-    }
-    *data = buffer;
-    *size = used;
-    return FC_OK;
+    fc_code code = fc_read_file(path, client->info.max_message, data, size, err);
+    if (code == FC_ERR_TOO_LARGE)
+        return fc_error_set(err, code, "%s exceeds the server's message limit of %u bytes", path,
+                            (unsigned)client->info.max_message);
+    return code;
 }
 
 fc_code fc_client_set_background_file(fc_client *client, const char *path, fc_error *err)
@@ -101,7 +71,7 @@ fc_code fc_client_set_background_file(fc_client *client, const char *path, fc_er
         return code;
     uint8_t *data;
     size_t size;
-    code = read_file(path, client->info.max_message, &data, &size, err);
+    code = read_image_file(client, path, &data, &size, err);
     if (code != FC_OK)
         return code;
     if (size == 0)
@@ -126,7 +96,7 @@ fc_code fc_client_set_environment_files(fc_client *client, const char *const pat
         if (!paths[i])
             code = fc_error_set(err, FC_ERR_USAGE, "no file for environment face %s", fc_cube_face_name(i));
         else
-            code = read_file(paths[i], client->info.max_message, &data[i], &sizes[i], err);
+            code = read_image_file(client, paths[i], &data[i], &sizes[i], err);
         if (code == FC_OK && sizes[i] == 0)
             code = fc_error_set(err, FC_ERR_USAGE, "%s is empty, not an image", paths[i]);
         faces[i] = data[i];

@@ -8,7 +8,7 @@
 
 #include "client_core.h"
 #include "fc_error.h"
-#include "host_port.h"
+#include "fc_host_port.h"
 #include "socket_io.h"
 #include "srv_candidates.h"
 #include "wire_session.h"
@@ -131,7 +131,7 @@ static fc_code open_socket(const char *address, uint32_t timeout_ms, int *fd, fc
         return fc_socket_connect_unix(address + strlen(FC_UNIX_PREFIX), fd, err);
     char host[FC_HOST_MAX];
     char port[FC_PORT_MAX];
-    fc_code code = fc_host_port_parse(address, host, port, err);
+    fc_code code = fc_host_port_parse(address, &fc_server_address_rules, host, port, err);
     return code != FC_OK ? code : fc_socket_connect(host, port, timeout_ms, fd, err);
 }
 

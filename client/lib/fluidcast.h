@@ -87,8 +87,9 @@ typedef struct fc_image_result {
     size_t size;                  /* bytes in data */
 } fc_image_result;
 
-/* Connects to `host_port` — "HOST:PORT", "HOST" (port 7450), "[IPV6]:PORT",
- * "[IPV6]", "unix:PATH" for a Unix-domain socket, or "srv:NAME" for one of the
+/* Connects to `host_port` — "HOST:PORT", "HOST" (port FC_DEFAULT_PORT), "[IPV6]:PORT",
+ * "[IPV6]" (a bare IPv6 literal is refused: brackets, proto/PROTOCOL.md 1.1),
+ * "unix:PATH" for a Unix-domain socket, or "srv:NAME" for one of the
  * daemons of a DNS SRV name (see fc_client_connect_session) — sends HELLO (asking for
  * every capability this library has) and checks the WELCOME (protocol version 1). On success
  * *out is a new client the caller owns (fc_client_close releases it); on failure

@@ -17,24 +17,16 @@
 
 #define ANSWER_MAX 65536   /* the largest DNS message (over TCP, when the UDP answer was truncated) */
 
-/* "ADDR" or "ADDR:PORT" into an IPv4 socket address. */
+/* "ADDR" or "ADDR:PORT" (the HOST:PORT grammar, port 53 when none) into an
+ * IPv4 socket address. */
 static fc_code parse_dns_server(const char *text, struct sockaddr_in *out, fc_error *err)
 {
+    static const fc_host_port_rules rules = {FC_DNS_SERVER_ENV, 53, false};
     char host[FC_HOST_MAX];
-    char port[FC_PORT_MAX] = "53";
-    const char *colon = strchr(text, ':');
-    size_t host_len = colon ? (size_t)(colon - text) : strlen(text);
-    if (host_len == 0 || host_len >= sizeof host)
-        return fc_error_set(err, FC_ERR_USAGE, FC_DNS_SERVER_ENV "=\"%s\": expected an IPv4 ADDR or ADDR:PORT",
-                            text);
-    memcpy(host, text, host_len);
-    host[host_len] = '\0';
-    if (colon) {
-        char ignored[FC_HOST_MAX];
-        if (fc_host_port_parse(text, ignored, port, err) != FC_OK)
-            return fc_error_set(err, FC_ERR_USAGE, FC_DNS_SERVER_ENV "=\"%s\": expected ADDR:PORT, port 1..65535",
-                                text);
-    }
+    char port[FC_PORT_MAX];
+    fc_code code = fc_host_port_parse(text, &rules, host, port, err);
+    if (code != FC_OK)
+        return code;
     memset(out, 0, sizeof *out);
     out->sin_family = AF_INET;
     out->sin_port = htons((uint16_t)atoi(port));

@@ -7,7 +7,7 @@
 
 #include <stddef.h>
 #include <stdint.h>
-#include "host_port.h"
+#include "fc_host_port.h"
 
 #define FC_SRV_PREFIX "srv:"
 #define FC_SRV_MAX_TARGETS 64   /* targets kept of one answer; a 64 KiB DNS message holds a few hundred */

@@ -1,13 +1,13 @@
 /* mesh_reader.c — see mesh_reader.h: the format from the name, the file into memory. */
 #include "mesh_reader.h"
 
-#include <errno.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include <strings.h>
 
 #include "fc_error.h"
+#include "fc_file.h"
 #include "mesh_formats.h"
 
 fc_mesh_format fc_mesh_format_from_path(const char *path)
@@ -49,44 +49,6 @@ fc_code fc_read_mesh_mem(const char *name, const uint8_t *data, size_t size, fc_
     return code;
 }
 
-/* The whole file in a malloc'd buffer. */
-static fc_code slurp(const char *path, uint8_t **data, size_t *size, fc_error *err)
-{
-    FILE *f = fopen(path, "rb");
-    if (!f)
-        return fc_error_set(err, FC_ERR_IO, "cannot open %s: %s", path, strerror(errno));
-    uint8_t *buffer = NULL;
-    size_t used = 0, capacity = 0;
-    fc_code code = FC_OK;
-    for (;;) {
-        if (used == capacity) {
-            size_t grown_capacity = capacity ? 2 * capacity : 1u << 16;
-            uint8_t *grown = realloc(buffer, grown_capacity);
-            if (!grown) {
-                code = fc_error_set(err, FC_ERR_NOMEM, "no memory to read %s", path);
-                break;
-            }
-            buffer = grown;
-            capacity = grown_capacity;
-        }
-        size_t got = fread(buffer + used, 1, capacity - used, f);
-        used += got;
-        if (got == 0) {
-            if (ferror(f))
-                code = fc_error_set(err, FC_ERR_IO, "cannot read %s", path);
-            break;
-        }
-    }
-    fclose(f);
-    if (code != FC_OK) {
-        free(buffer);
-        return code;
-    }
-    *data = buffer;
-    *size = used;
-    return FC_OK;
-}
-
 fc_code fc_read_mesh(const char *path, fc_mesh_data *out, fc_error *err)
 {
     *out = (fc_mesh_data){0};
@@ -94,7 +56,7 @@ fc_code fc_read_mesh(const char *path, fc_mesh_data *out, fc_error *err)
         return fc_error_set(err, FC_ERR_USAGE, "%s: not a mesh file this reader knows (.obj, .stl, .ply, .vtk, .vtp)", path);
     uint8_t *data = NULL;
     size_t size = 0;
-    fc_code code = slurp(path, &data, &size, err);
+    fc_code code = fc_read_file(path, SIZE_MAX, &data, &size, err);
     if (code != FC_OK)
         return code;
     code = fc_read_mesh_mem(path, data, size, out, err);

@@ -1,15 +1,14 @@
 /* particle_reader.c — format detection, file loading and dispatch to the format readers. */
 #include "particle_reader.h"
 
-#include <errno.h>
 #include <float.h>
 #include <math.h>
 #include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <sys/stat.h>
 #include "fc_error.h"
+#include "fc_file.h"
 #include "fc_frame.h"
 #include "reader_cursor.h"
 #include "reader_fields.h"
@@ -207,40 +206,12 @@ fc_code fc_read_particles_mem_with(const uint8_t *data, size_t size, fc_file_for
     return code;
 }
 
-/* Reads the whole file into a malloc'd buffer (non-NULL even when empty). */
-static fc_code load_file(const char *path, uint8_t **data, size_t *size, fc_error *err)
-{
-    FILE *file = fopen(path, "rb");
-    if (file == NULL)
-        return fc_error_set(err, FC_ERR_IO, "%s: cannot open: %s", path, strerror(errno));
-    struct stat info;
-    if (fstat(fileno(file), &info) != 0 || !S_ISREG(info.st_mode)) {
-        fclose(file);
-        return fc_error_set(err, FC_ERR_IO, "%s: not a regular file", path);
-    }
-    *size = (size_t)info.st_size;
-    *data = malloc(*size > 0 ? *size : 1);
-    if (*data == NULL) {
-        fclose(file);
-        return fc_error_set(err, FC_ERR_NOMEM, "%s: cannot allocate %zu bytes", path, *size);
-    }
-    size_t got = fread(*data, 1, *size, file);
-    bool failed = got != *size || ferror(file);
-    fclose(file);
-    if (failed) {
-        free(*data);
-        *data = NULL;
-        return fc_error_set(err, FC_ERR_IO, "%s: read %zu of %zu bytes", path, got, *size);
-    }
-    return FC_OK;
-}
-
 /* The first DataSet of the collection at `path`, as a path: relative names are relative to the .pvd's directory. */
 static fc_code pvd_dataset_path(const char *path, char *dataset, size_t dataset_size, fc_error *err)
 {
     uint8_t *data = NULL;
     size_t size = 0;
-    fc_code code = load_file(path, &data, &size, err);
+    fc_code code = fc_read_file(path, SIZE_MAX, &data, &size, err);
     if (code != FC_OK)
         return code;
     char file[4096];
@@ -291,7 +262,7 @@ fc_code fc_read_particles_with(const char *path, const fc_read_options *options,
         return read_pvd(path, options, frame, err);
     uint8_t *data = NULL;
     size_t size = 0;
-    fc_code code = load_file(path, &data, &size, err);
+    fc_code code = fc_read_file(path, SIZE_MAX, &data, &size, err);
     if (code != FC_OK)
         return code;
     /* HDF5 files carry many names (.h5, .hdf5, .snap, .0, none): the signature decides. */

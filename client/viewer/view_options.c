@@ -11,7 +11,7 @@
 #include "cli_values.h"
 #include "fc_error.h"
 
-#define DEFAULT_SERVER "127.0.0.1:7450"
+#include "fc_host_port.h"
 
 static fc_code set_server(void *o, const char *name, const char *value, fc_error *err)
 {
@@ -107,12 +107,12 @@ static const fc_cli_option options[] = {
     {"--test-script", true, set_test_script},
 };
 
-static fc_cli_settings *settings_of(void *o)
+static fc_code take_setting(void *o, int argc, char **argv, int *i, bool *known, fc_error *err)
 {
-    return &((fc_view_options *)o)->settings;
+    return fc_cli_take_setting(&((fc_view_options *)o)->settings, argc, argv, i, known, err);
 }
 
-static const fc_cli_command command = {"view", options, sizeof options / sizeof options[0], add_file, settings_of};
+static const fc_cli_command command = {"view", options, sizeof options / sizeof options[0], add_file, take_setting};
 
 /* A viewer is a stream: JPEG 4:2:0 by default (smaller, faster to encode); 444 for exact colour. */
 static void view_settings_init(fc_cli_settings *s)
@@ -125,7 +125,7 @@ fc_code fc_view_parse(int argc, char **argv, fc_view_options *o, fc_error *err)
 {
     memset(o, 0, sizeof *o);
     o->read.recentring = &o->recentring;
-    o->server = DEFAULT_SERVER;
+    o->server = FC_DEFAULT_SERVER;
     o->width = 960;
     o->height = 540;
     o->fps = 24.0f;
@@ -163,7 +163,7 @@ void fc_view_print_help(FILE *to)
           "fps, server stage times and round-trip latency.\n"
           "\n"
           "options:\n"
-          "  --server ADDR           HOST:PORT or unix:PATH (default " DEFAULT_SERVER ")\n"
+          "  --server ADDR           HOST:PORT or unix:PATH (default " FC_DEFAULT_SERVER ")\n"
           "                          or srv:NAME, a DNS SRV name: the session's daemon by\n"
           "                          rendezvous hashing of the session name\n"
           "  --session NAME          follow this session instead of playing files\n"

@@ -18,7 +18,7 @@ extern "C" {
  * OpenImageIO's default (level 6, libpng's adaptive filters) into a file
  * about 4% larger, on one core; png_encoder.h spreads it over several
  * (bench/RESULTS.md). */
-#define FC_PNG_DEFAULT_COMPRESSION 4u
+#define FC_PNG_DEFAULT_COMPRESSION 4   /* unsuffixed: fluidcastd --help prints it (FC_STRINGIFY) */
 #define FC_PNG_MAX_COMPRESSION 9u
 
 /* Encodes img into `out` (appended after out->len) in `format`:

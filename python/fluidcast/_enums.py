@@ -132,6 +132,11 @@ class Stage(enum.IntEnum):
 #: FC_STAGE_COUNT: the number of stage timings in an image result.
 STAGE_COUNT = 11
 #: FC_ERROR_MESSAGE_MAX: bytes in an fc_error's message, NUL included.
+#: Where fluidcastd listens and clients connect unless told otherwise (FC_DEFAULT_PORT, FC_DEFAULT_HOST,
+#: FC_DEFAULT_SERVER of fluidcast_types.h).
+DEFAULT_PORT = 7450
+DEFAULT_HOST = "127.0.0.1"
+DEFAULT_SERVER = "%s:%d" % (DEFAULT_HOST, DEFAULT_PORT)
 ERROR_MESSAGE_MAX = 256
 
 #: fc_server_info.capabilities bits (FC_SERVER_CAN_*).
@@ -187,6 +192,9 @@ C_CONSTANTS = {
     "FC_UPLOAD_ZSTD": UPLOAD_ZSTD,
     "FC_UPLOAD_QUANTIZE16": UPLOAD_QUANTIZE16,
     "FC_MESH_HIDE_NEAR": MESH_HIDE_NEAR,
+    "FC_DEFAULT_PORT": DEFAULT_PORT,
+    "FC_DEFAULT_HOST": DEFAULT_HOST,
+    "FC_DEFAULT_SERVER": DEFAULT_SERVER,
 }
 
 

@@ -1,56 +1,30 @@
 /* auth_token.c — loading the shared secret, comparing tokens in constant time. */
 #include "auth_token.h"
 
-#include <errno.h>
-#include <stdio.h>
 #include <string.h>
 
 #include "fc_error.h"
+#include "fc_token_file.h"
 
-static fc_code set_token(const char *text, size_t len, const char *source, fc_auth_token *out, fc_error *err)
+/* FLUIDCAST_TOKEN's value: a C string, so only its length can be wrong. */
+static fc_code set_env_token(const char *value, fc_auth_token *out, fc_error *err)
 {
-    if (len == 0)
-        return fc_error_set(err, FC_ERR_USAGE, "%s: the token is empty", source);
+    size_t len = strlen(value);
     if (len > FC_HELLO_TOKEN_MAX)
-        return fc_error_set(err, FC_ERR_USAGE, "%s: the token is longer than %d bytes", source, FC_HELLO_TOKEN_MAX);
-    if (memchr(text, '\0', len))
-        return fc_error_set(err, FC_ERR_USAGE, "%s: the token contains a NUL byte", source);
-    memcpy(out->text, text, len);
-    out->text[len] = '\0';
-    return FC_OK;
-}
-
-static fc_code load_file(const char *path, fc_auth_token *out, fc_error *err)
-{
-    FILE *f = fopen(path, "rb");
-    if (!f)
-        return fc_error_set(err, FC_ERR_IO, "--token-file %s: %s", path, strerror(errno));
-    /* One byte beyond the limit plus a CRLF, to tell an overlong token from one with a line end. */
-    char text[FC_HELLO_TOKEN_MAX + 3];
-    size_t len = fread(text, 1, sizeof text, f);
-    bool failed = ferror(f) != 0;
-    bool more = !failed && len == sizeof text && fgetc(f) != EOF;
-    fclose(f);
-    if (failed)
-        return fc_error_set(err, FC_ERR_IO, "--token-file %s: read error", path);
-    if (more)
-        return fc_error_set(err, FC_ERR_USAGE, "--token-file %s: the token is longer than %d bytes", path,
+        return fc_error_set(err, FC_ERR_USAGE, "FLUIDCAST_TOKEN: the token is longer than %d bytes",
                             FC_HELLO_TOKEN_MAX);
-    if (len > 0 && text[len - 1] == '\n')
-        len--;
-    if (len > 0 && text[len - 1] == '\r')
-        len--;
-    return set_token(text, len, path, out, err);
+    memcpy(out->text, value, len + 1);
+    return FC_OK;
 }
 
 fc_code fc_auth_token_load(const char *path, const char *env_value, fc_auth_token *out, fc_error *err)
 {
     out->text[0] = '\0';
     if (path)
-        return load_file(path, out, err);
+        return fc_token_file_read(path, out->text, err);
     if (!env_value || env_value[0] == '\0')
         return FC_OK;
-    return set_token(env_value, strlen(env_value), "FLUIDCAST_TOKEN", out, err);
+    return set_env_token(env_value, out, err);
 }
 
 bool fc_auth_token_matches(const char *expected, const char *given)

@@ -12,10 +12,10 @@ typedef struct fc_auth_token {
     char text[FC_HELLO_TOKEN_MAX + 1];   /* "" = no authentication */
 } fc_auth_token;
 
-/* Reads the token from path, or from env_value when path is NULL; env_value
- * NULL or empty (with no path) means no token. One trailing newline (LF or
- * CRLF) of the file is dropped. FC_ERR_USAGE for an empty, overlong or
- * NUL-containing token, FC_ERR_IO for an unreadable file. */
+/* Reads the token from path (fc_token_file_read, as the clients do), or from
+ * env_value when path is NULL; env_value NULL or empty (with no path) means no
+ * token. FC_ERR_USAGE for an empty, overlong or NUL-containing token or a
+ * file of more than one line, FC_ERR_IO for an unreadable file. */
 fc_code fc_auth_token_load(const char *path, const char *env_value, fc_auth_token *out, fc_error *err);
 
 static inline bool fc_auth_token_required(const fc_auth_token *t)

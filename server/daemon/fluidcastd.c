@@ -381,8 +381,8 @@ int main(int argc, char **argv)
 {
     fc_daemon_options options;
     fc_error err;
-    fc_daemon_options_default(&options);
-    if (fc_daemon_options_parse(argc, argv, &options, &err) != FC_OK) {
+    if (fc_daemon_options_default(&options, &err) != FC_OK ||
+        fc_daemon_options_parse(argc, argv, &options, &err) != FC_OK) {
         fprintf(stderr, "fluidcastd: %s\n", err.message);
         return EXIT_BAD_USAGE;
     }

@@ -5,25 +5,14 @@
 #include <stdbool.h>
 #include <stdio.h>
 
+#include "fc_host_port.h"
 #include "gl/egl_context.h"
 #include "log.h"
 #include "wire.h"
 
-#define FC_DEFAULT_LISTEN_HOST "127.0.0.1"
-#define FC_DEFAULT_MAX_PARTICLES 16777216u   /* 2^24 */
-#define FC_DEFAULT_MAX_IMAGE_SIDE 8192u
-#define FC_DEFAULT_MAX_MESSAGE (1024u * 1024u * 1024u)   /* 1 GiB */
-#define FC_DEFAULT_CHUNK_TIMEOUT_MS 10000u
-#define FC_DEFAULT_REFRESH_MS 1000u
-#define FC_DEFAULT_MAX_SESSIONS 256u
-#define FC_DEFAULT_MAX_CONNECTIONS 1024u
-#define FC_DEFAULT_IDLE_TIMEOUT_MS 300000u
-#define FC_DEFAULT_READ_TIMEOUT_MS 30000u
-#define FC_DEFAULT_MAX_SESSION_MEMORY (4ull << 30)   /* 4 GiB */
-
 typedef struct fc_daemon_options {
-    char listen_host[256];     /* name or address; brackets of "[v6]:port" removed */
-    char listen_port[8];       /* decimal, "0" = any free port */
+    char listen_host[FC_HOST_MAX];   /* name or address; brackets of "[v6]:port" removed */
+    char listen_port[FC_PORT_MAX];   /* decimal, "0" = any free port */
     bool listen_given;         /* --listen was given: with --unix, TCP is served only then */
     const char *unix_path;     /* --unix: NULL for none; points into argv */
     fc_gpu_choice gpu;
@@ -40,25 +29,28 @@ typedef struct fc_daemon_options {
     uint32_t idle_timeout_ms;  /* close a connection with no complete message for this long; 0 = never */
     uint32_t read_timeout_ms;  /* a started message must be complete within this; 0 = never */
     uint64_t max_session_memory;   /* bytes one connection (with the named session it produces) may hold */
-    char metrics_host[256];    /* --metrics-listen: "" = no metrics endpoint */
-    char metrics_port[8];
+    char metrics_host[FC_HOST_MAX];  /* --metrics-listen: "" = no metrics endpoint */
+    char metrics_port[FC_PORT_MAX];
     const char *token_file;    /* --token-file: NULL for none (then FLUIDCAST_TOKEN); points into argv */
-    bool help;                 /* --help: print usage and exit */
+    bool help;                 /* -h/--help: print usage and exit */
 } fc_daemon_options;
 
-void fc_daemon_options_default(fc_daemon_options *o);
+/* The defaults of options.c's table, where each option's flag, default and
+ * help are written once; an error only for a default its setter refuses. */
+fc_code fc_daemon_options_default(fc_daemon_options *o, fc_error *err);
 
-/* Parses argv over the defaults already in *o. "--name value" and
- * "--name=value" both work. FC_ERR_USAGE naming the offending argument. */
+/* Parses argv (argv[0] the program) over the defaults already in *o with
+ * fc_options_parse: "--name value" and "--name=value"; FC_ERR_USAGE naming
+ * the offending argument. */
 fc_code fc_daemon_options_parse(int argc, char **argv, fc_daemon_options *o, fc_error *err);
 
 /* TCP is served unless only --unix was given. */
 bool fc_daemon_options_serve_tcp(const fc_daemon_options *o);
 
-/* Parses "HOST:PORT", "[IPV6]:PORT" into the listen fields. */
+/* Parses --listen's address (fc_host_port.h; port 0 = any free port, none = FC_DEFAULT_PORT). */
 fc_code fc_daemon_options_parse_listen(const char *text, fc_daemon_options *o, fc_error *err);
 /* Parses --metrics-listen's "HOST:PORT", "[IPV6]:PORT" or "PORT" (then on
- * 127.0.0.1: the metrics are for the operator, not the world). */
+ * FC_DEFAULT_HOST: the metrics are for the operator, not the world). */
 fc_code fc_daemon_options_parse_metrics_listen(const char *text, fc_daemon_options *o, fc_error *err);
 
 void fc_daemon_options_print_help(FILE *out, const char *program);

@@ -6,6 +6,7 @@
 #include <string.h>
 
 #include "fc_error.h"
+#include "fc_file.h"
 #include "fc_shaders.h"
 #include "flat_constants.h"
 #include "gl_util.h"
@@ -32,30 +33,20 @@ GLenum fc_shader_stage(const char *file)
     return 0;
 }
 
+/* A shader from --shader-dir; a file that cannot be read fails the pipeline
+ * as any other shader failure does (FC_ERR_GL), memory apart. */
 static fc_code read_file(const char *dir, const char *file, char **text, fc_error *err)
 {
     char path[4096];
     if (snprintf(path, sizeof path, "%s/%s", dir, file) >= (int)sizeof path)
         return fc_error_set(err, FC_ERR_GL, "shader path too long: %s/%s", dir, file);
-    FILE *f = fopen(path, "rb");
-    if (!f)
-        return fc_error_set(err, FC_ERR_GL, "cannot open shader %s", path);
-    fc_code code = FC_OK;
-    char *buffer = NULL;
-    long size = -1;
-    if (fseek(f, 0, SEEK_END) != 0 || (size = ftell(f)) < 0 || fseek(f, 0, SEEK_SET) != 0)
-        code = fc_error_set(err, FC_ERR_GL, "cannot determine the size of shader %s", path);
-    else if (!(buffer = malloc((size_t)size + 1)))
-        code = fc_error_set(err, FC_ERR_NOMEM, "out of memory reading shader %s", path);
-    else if (fread(buffer, 1, (size_t)size, f) != (size_t)size)
-        code = fc_error_set(err, FC_ERR_GL, "cannot read shader %s", path);
-    fclose(f);
-    if (code != FC_OK) {
-        free(buffer);
-        return code;
-    }
-    buffer[size] = '\0';
-    *text = buffer;
+    uint8_t *data = NULL;
+    size_t size = 0;
+    fc_error read_err;
+    fc_code code = fc_read_file(path, SIZE_MAX, &data, &size, &read_err);
+    if (code != FC_OK)
+        return fc_error_set(err, code == FC_ERR_NOMEM ? FC_ERR_NOMEM : FC_ERR_GL, "shader %s", read_err.message);
+    *text = (char *)data;
     return FC_OK;
 }
 

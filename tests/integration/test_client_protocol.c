@@ -204,7 +204,7 @@ static void test_address_errors(void)
     CHECK_CODE(fc_client_connect(refused, NULL, &client, &err), FC_ERR_CONNECT);
     CHECK(client == NULL);
     const char *malformed[] = { "localhost:http", "localhost:0", "localhost:65536", "[::1", "[::1]x",
-                                ":7450", "", "host:", "host:+80" };
+                                ":7450", "", "host:", "host:+80", "::1", "fe80::1:7450" };
     for (size_t i = 0; i < sizeof malformed / sizeof malformed[0]; i++) {
         fc_code code = fc_client_connect(malformed[i], NULL, &client, &err);
         CHECK_MSG(code == FC_ERR_USAGE, "\"%s\" gave code %d", malformed[i], (int)code);

@@ -40,8 +40,11 @@ def _c_program():
         for member in enum_type:
             c = _enums.c_name(member)
             lines.append('printf("value %s %%lld\\n", (long long)%s);' % (c, c))
-    for c in _enums.C_CONSTANTS:
-        lines.append('printf("value %s %%lld\\n", (long long)(%s));' % (c, c))
+    for c, value in _enums.C_CONSTANTS.items():
+        if isinstance(value, str):
+            lines.append('printf("string %s %%s\\n", %s);' % (c, c))
+        else:
+            lines.append('printf("value %s %%lld\\n", (long long)(%s));' % (c, c))
     lines += ["return 0;", "}"]
     return "\n".join(lines) + "\n"
 
@@ -49,7 +52,7 @@ def _c_program():
 @pytest.fixture(scope="module")
 def c_layout(tmp_path_factory):
     """What the compiled program prints: {("struct", name): (size, align), ("field", "t.f"): (offset, size),
-    ("value", NAME): value}."""
+    ("value", NAME): value} (a string constant's value as text)."""
     cc = os.environ.get("FC_TEST_CC") or shutil.which("cc") or shutil.which("gcc")
     if not cc:
         pytest.fail("no C compiler: set FC_TEST_CC")
@@ -64,7 +67,10 @@ def c_layout(tmp_path_factory):
     layout = {}
     for line in out.splitlines():
         kind, name, *numbers = line.split()
-        layout[(kind, name)] = tuple(int(n) for n in numbers)
+        if kind == "string":   # a string constant (no spaces): kept as text
+            layout[("value", name)] = tuple(numbers)
+        else:
+            layout[(kind, name)] = tuple(int(n) for n in numbers)
     return layout
 
 
