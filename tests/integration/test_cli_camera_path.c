@@ -143,7 +143,7 @@ static void test_malformed_files(const test_env *env)
     snprintf(line, sizeof line, "%s: keyframe 1: \"fov\" must be a number of degrees in (0, 180)",
              path_in(env, "fov180.json", path));
     expect_failure(env, "fov180.json", NULL, 3, line);
-    expect_failure(env, "absent.json", NULL, 3, "absent.json: No such file or directory");
+    expect_failure(env, "absent.json", NULL, 3, "absent.json: cannot open: No such file or directory");
     expect_failure(env, "cam.json", (const char *const[]){"--orbit", "90", NULL}, 2, "leave out --orbit");
     expect_failure(env, "cam.json", (const char *const[]){"--eye", "0,-3,0", "--target", "0,0,0", NULL}, 2,
                    "leave out --eye and --target");
