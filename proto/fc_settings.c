@@ -167,6 +167,13 @@ uint32_t fc_setting_choice_count(const fc_setting_spec *spec)
     return n;
 }
 
+fc_radius_source fc_radius_source_of(const fc_settings *s, bool frame_has_radii)
+{
+    if (s->radius > 0.0f)
+        return FC_RADIUS_FROM_SETTINGS;
+    return frame_has_radii ? FC_RADIUS_PER_PARTICLE : FC_RADIUS_ESTIMATED;
+}
+
 uint32_t fc_smoothing_default_iterations(fc_smoothing method)
 {
     /* Chosen by eye on the sample scenes at 640x480 (docs/gallery): enough to

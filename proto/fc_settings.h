@@ -9,6 +9,7 @@
 #ifndef FLUIDCAST_SETTINGS_H
 #define FLUIDCAST_SETTINGS_H
 
+#include <stdbool.h>
 #include <stddef.h>
 #include <stdint.h>
 
@@ -67,6 +68,19 @@ typedef struct fc_setting_spec {
     const char *metavar;         /* what its value is called in the help, "N" */
     const char *help;            /* one sentence for the help, without the domain or default */
 } fc_setting_spec;
+
+/* Where a render's sphere radius comes from (PROTOCOL.md 5). */
+typedef enum fc_radius_source {
+    FC_RADIUS_FROM_SETTINGS = 0,  /* the settings' radius, > 0: every particle's, overriding any per-particle radii */
+    FC_RADIUS_PER_PARTICLE = 1,   /* radius 0 and a frame with radii: each particle's own */
+    FC_RADIUS_ESTIMATED = 2       /* radius 0 and a frame without: estimated from the particle spacing
+                                     (fc_frame_estimate_radius) */
+} fc_radius_source;
+
+/* The rule every side applies to a radius setting and a frame (the CLI to
+ * say what it chose, the daemon to estimate once per frame, the pipeline to
+ * refuse an unresolved radius): written here once. */
+FC_API fc_radius_source fc_radius_source_of(const fc_settings *s, bool frame_has_radii);
 
 /* The table, in key order, and its length in *count. Never NULL. */
 FC_API const fc_setting_spec *fc_settings_table(size_t *count);

@@ -77,15 +77,20 @@ void fc_cli_complete_color_range(fc_settings *s, const fc_frame *frame, bool ran
 void fc_cli_complete_settings(fc_settings *s, const fc_frame *frame, bool threshold_given, fc_cli_choices *chosen)
 {
     *chosen = (fc_cli_choices){0};
-    if (!(s->radius > 0.0f) && frame->radius) {
+    switch (fc_radius_source_of(s, frame->radius != NULL)) {
+    case FC_RADIUS_PER_PARTICLE: {
         s->radius = 0.0f;
         chosen->per_particle_radius = true;
         fc_error ignored;
         if (fc_frame_median_radius(frame, &chosen->median_radius, &ignored) != FC_OK)
             chosen->median_radius = 0.0f;
-    } else if (!(s->radius > 0.0f)) {
+        break;
+    }
+    case FC_RADIUS_ESTIMATED:
         s->radius = fc_frame_estimate_radius(frame);
         chosen->radius = true;
+        break;
+    case FC_RADIUS_FROM_SETTINGS: break;
     }
     if (!threshold_given && frame->density) {
         float median = median_density(frame);

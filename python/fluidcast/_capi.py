@@ -9,7 +9,7 @@ compares, so a change to a header that is not made here fails the tests.
 C enums are ``int``-sized in the platform ABI; they are declared ``c_int`` here.
 """
 
-from ctypes import (POINTER, Structure, byref, c_char, c_char_p, c_double, c_float, c_int, c_size_t, c_uint8,
+from ctypes import (POINTER, Structure, byref, c_bool, c_char, c_char_p, c_double, c_float, c_int, c_size_t, c_uint8,
                     c_uint16, c_uint32, c_uint64, c_void_p)
 
 from . import _library
@@ -255,6 +255,7 @@ _PROTOTYPES = {
     "fc_setting_field": (c_void_p, [_SPEC_P, POINTER(FcSettings)]),
     "fc_setting_field_const": (c_void_p, [_SPEC_P, POINTER(FcSettings)]),
     "fc_setting_choice_count": (c_uint32, [_SPEC_P]),
+    "fc_radius_source_of": (c_enum, [POINTER(FcSettings), c_bool]),
     "fc_client_connect": (c_enum, [c_char_p, POINTER(FcConnectOptions), POINTER(c_client_p), _E]),
     "fc_client_connect_session": (c_enum, [c_char_p, c_char_p, POINTER(FcConnectOptions), POINTER(c_client_p), _E]),
     "fc_client_address": (c_char_p, [c_client_p]),

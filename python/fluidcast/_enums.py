@@ -114,6 +114,13 @@ class SettingGroup(enum.IntEnum):
     COUNT = 4
 
 
+class RadiusSource(enum.IntEnum):
+    """fc_radius_source: where a render's sphere radius comes from (fc_radius_source_of)."""
+    FROM_SETTINGS = 0   #: the settings' radius, > 0, overriding any per-particle radii
+    PER_PARTICLE = 1    #: radius 0 and a frame with radii: each particle's own
+    ESTIMATED = 2       #: radius 0 and a frame without: estimated from the particle spacing
+
+
 class Stage(enum.IntEnum):
     """fc_stage: the server-side stages whose durations come with every image."""
     UPLOAD = 0
@@ -153,6 +160,7 @@ UPLOAD_QUANTIZE16 = 0x2
 MESH_HIDE_NEAR = 0x2
 
 _PREFIX = {
+    RadiusSource: "FC_RADIUS_",
     SettingType: "FC_SETTING_",
     SettingGroup: "FC_GROUP_",
     Code: "FC_ERR_",
@@ -168,6 +176,7 @@ _PREFIX = {
 
 #: The C enum type each IntEnum mirrors.
 C_TYPES = {
+    RadiusSource: "fc_radius_source",
     SettingType: "fc_setting_type",
     SettingGroup: "fc_setting_group",
     Code: "fc_code",

@@ -635,7 +635,7 @@ static fc_code check_request(const fc_pipeline *p, const fc_camera *camera, cons
         code = fc_settings_validate(settings, err);
     if (code != FC_OK)
         return code;
-    if (!(settings->radius > 0.0f) && !p->particles.has_radii)
+    if (fc_radius_source_of(settings, p->particles.has_radii) == FC_RADIUS_ESTIMATED)
         return fc_error_set(err, FC_ERR_INVALID_VALUE,
                             "radius %g: the pipeline needs a resolved radius > 0 for a frame without radii",
                             (double)settings->radius);

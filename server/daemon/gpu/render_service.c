@@ -54,7 +54,7 @@ struct fc_render_service {
  * however often it is rendered. */
 static float resolve_radius(fc_render_job *job)
 {
-    if (job->settings.radius > 0.0f || job->frame->frame.radius)
+    if (fc_radius_source_of(&job->settings, job->frame->frame.radius != NULL) != FC_RADIUS_ESTIMATED)
         return job->settings.radius;
     if (job->frame->estimated_radius <= 0.0f)
         job->frame->estimated_radius = fc_frame_estimate_radius(&job->frame->frame);
