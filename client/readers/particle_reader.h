@@ -69,7 +69,7 @@ typedef struct fc_recentring {
  * A zeroed struct (or NULL) means the defaults. */
 typedef struct fc_read_options {
     const char *dataset;   /* HDF5 --dataset: a group, an N x 3 dataset, or "x=PATH,y=PATH,z=PATH"
-                            * (README "HDF5"); NULL: found by the file's layout */
+                            * (docs/formats.md, HDF5); NULL: found by the file's layout */
     bool has_step;         /* H5Part --step: read group Step#step ... */
     uint64_t step;         /* ... instead of the lowest-numbered step */
     /* --select: a particle is kept when all hold. Attributes: x y z, density, vx vy vz, speed, id,
