@@ -7,13 +7,6 @@
 set -euo pipefail
 source "$(dirname "${BASH_SOURCE[0]}")/fuzz_common.sh"
 
-if [[ $# -lt 1 ]]; then
-    echo "usage: $0 WORK_DIR [TARGET...]" >&2
-    exit 2
-fi
-work=$1
-shift
-targets=("$@")
-[[ ${#targets[@]} -gt 0 ]] || targets=("${fuzz_all_targets[@]}")
+fuzz_arguments fuzz_all_targets "$@"
 fuzz_build "$work" "${targets[@]}"
 echo "build_fuzzers.sh: built ${#targets[@]} targets in $work/build"

@@ -1,7 +1,7 @@
 # shellcheck shell=bash
 # fuzz_common.sh — sourced by the fuzz scripts (build_fuzzers.sh, replay_corpus.sh,
-# fuzz_fixed_runs.sh, fuzz_forever.sh): the list of targets, building them with
-# clang, and running one with the sanitizer settings every run shares.
+# fuzz_fixed_runs.sh, fuzz_forever.sh): the list of targets, their command line and their loop over
+# the targets, building them with clang, and running one with the sanitizer settings every run shares.
 # Environment:
 #   FC_FUZZ_CC        the clang to build with (default clang-14, else clang)
 #   FC_FUZZ_LAUNCHER  a compiler launcher for the build (ctest passes the suite's ccache)
@@ -90,11 +90,40 @@ fuzz_run() {
         "$work/build/$target" "${options[@]}" "$@"
 }
 
-# fuzz_targets_or_default TARGET...: prints the given targets, or the default ones, one per line.
-fuzz_targets_or_default() {
+# fuzz_arguments DEFAULT_LIST ARG...: a script's command line, WORK_DIR [TARGET...]: sets `work`
+# and `targets` (the targets named, else the array called DEFAULT_LIST); the usage and exit 2 without
+# WORK_DIR.
+fuzz_arguments() {
+    local -n fuzz_defaults=$1
+    shift
+    if [[ $# -lt 1 ]]; then
+        echo "usage: $0 WORK_DIR [TARGET...]" >&2
+        exit 2
+    fi
+    work=$1
+    shift
     if [[ $# -gt 0 ]]; then
-        printf '%s\n' "$@"
+        targets=("$@")
     else
-        printf '%s\n' "${fuzz_default_targets[@]}"
+        targets=("${fuzz_defaults[@]}")
+    fi
+}
+
+# fuzz_failed LOG MESSAGE: the end of a failed run's log, then what failed, on stderr.
+fuzz_failed() {
+    tail -n 80 "$1" >&2
+    echo "$(basename "$0"): $2" >&2
+}
+
+# fuzz_each FUNCTION: FUNCTION TARGET for every one of `targets`, going on past a failure; fails
+# naming every target that failed.
+fuzz_each() {
+    local run=$1 target failed=()
+    for target in "${targets[@]}"; do
+        "$run" "$target" || failed+=("$target")
+    done
+    if [[ ${#failed[@]} -gt 0 ]]; then
+        echo "$(basename "$0"): failing targets: ${failed[*]}" >&2
+        return 1
     fi
 }

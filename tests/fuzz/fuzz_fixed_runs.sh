@@ -24,13 +24,7 @@
 set -euo pipefail
 source "$(dirname "${BASH_SOURCE[0]}")/fuzz_common.sh"
 
-if [[ $# -lt 1 ]]; then
-    echo "usage: $0 WORK_DIR [TARGET...]" >&2
-    exit 2
-fi
-work=$1
-shift
-mapfile -t targets < <(fuzz_targets_or_default "$@")
+fuzz_arguments fuzz_default_targets "$@"
 runs=${FC_FUZZ_RUNS:-25000}
 fuzz_require_built "$work" "${targets[@]}"
 mkdir -p "$work/logs" "$work/fixed"
@@ -61,18 +55,10 @@ run_target() {
         echo "fuzz_fixed_runs.sh: $target: $(grep -m1 -E '^#[0-9]+[[:space:]]+DONE' "$log" | sed 's/ exec\/s.*//')"
         return 0
     fi
-    tail -n 80 "$log" >&2
-    echo "fuzz_fixed_runs.sh: $target FAILED (full log: $log, input: $work/artifacts/$target-*;" \
-         "reproduce with: $work/build/$target -seed=1 -runs=$runs -seed_inputs=@$list $corpus)" >&2
+    fuzz_failed "$log" "$target FAILED (full log: $log, input: $work/artifacts/$target-*; reproduce with:
+$work/build/$target -seed=1 -runs=$runs -seed_inputs=@$list $corpus)"
     return 1
 }
 
-failed=()
-for target in "${targets[@]}"; do
-    run_target "$target" || failed+=("$target")
-done
-if [[ ${#failed[@]} -gt 0 ]]; then
-    echo "fuzz_fixed_runs.sh: failing targets: ${failed[*]}" >&2
-    exit 1
-fi
+fuzz_each run_target || exit 1
 echo "fuzz_fixed_runs.sh: ${#targets[@]} targets ran $runs inputs each from seed 1 without a finding"

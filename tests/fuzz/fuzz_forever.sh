@@ -15,13 +15,7 @@
 set -euo pipefail
 source "$(dirname "${BASH_SOURCE[0]}")/fuzz_common.sh"
 
-if [[ $# -lt 1 ]]; then
-    echo "usage: $0 WORK_DIR [TARGET...]" >&2
-    exit 2
-fi
-work=$1
-shift
-mapfile -t targets < <(fuzz_targets_or_default "$@")
+fuzz_arguments fuzz_default_targets "$@"
 seconds=${FC_FUZZ_SECONDS:-600}
 fuzz_build "$work" "${targets[@]}"
 mkdir -p "$work/logs"
@@ -37,17 +31,9 @@ run_target() {
         echo
         return 0
     fi
-    tail -n 80 "$log" >&2
-    echo "fuzz_forever.sh: $target FAILED (full log: $log, input: $work/artifacts/$target-*)" >&2
+    fuzz_failed "$log" "$target FAILED (full log: $log, input: $work/artifacts/$target-*)"
     return 1
 }
 
-failed=()
-for target in "${targets[@]}"; do
-    run_target "$target" || failed+=("$target")
-done
-if [[ ${#failed[@]} -gt 0 ]]; then
-    echo "fuzz_forever.sh: failing targets: ${failed[*]}" >&2
-    exit 1
-fi
+fuzz_each run_target || exit 1
 echo "fuzz_forever.sh: ${#targets[@]} targets ran ${seconds}s each without a finding"

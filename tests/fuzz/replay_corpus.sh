@@ -10,14 +10,7 @@
 set -euo pipefail
 source "$(dirname "${BASH_SOURCE[0]}")/fuzz_common.sh"
 
-if [[ $# -lt 1 ]]; then
-    echo "usage: $0 WORK_DIR [TARGET...]" >&2
-    exit 2
-fi
-work=$1
-shift
-targets=("$@")
-[[ ${#targets[@]} -gt 0 ]] || targets=("${fuzz_all_targets[@]}")
+fuzz_arguments fuzz_all_targets "$@"
 fuzz_require_built "$work" "${targets[@]}"
 mkdir -p "$work/logs"
 
@@ -34,17 +27,9 @@ replay_target() {
         echo "replay_corpus.sh: $target: ${#inputs[@]} inputs"
         return 0
     fi
-    tail -n 80 "$log" >&2
-    echo "replay_corpus.sh: $target FAILED on a committed input (full log: $log)" >&2
+    fuzz_failed "$log" "$target FAILED on a committed input (full log: $log)"
     return 1
 }
 
-failed=()
-for target in "${targets[@]}"; do
-    replay_target "$target" || failed+=("$target")
-done
-if [[ ${#failed[@]} -gt 0 ]]; then
-    echo "replay_corpus.sh: failing targets: ${failed[*]}" >&2
-    exit 1
-fi
+fuzz_each replay_target || exit 1
 echo "replay_corpus.sh: every committed input of ${#targets[@]} targets passed"
