@@ -16,30 +16,19 @@
 #include "fc_frame.h"
 #include "framing_bounds.h"
 #include "particle_reader.h"
+#include "point_list.h"
 #include "test_util.h"
 
 /* ---- particle sets ---- */
 
 typedef struct builder {
-    float *positions;
-    uint64_t count, capacity;
+    point_list points;
     uint32_t seed;
 } builder;
 
 static void add(builder *b, double x, double y, double z)
 {
-    if (b->count == b->capacity) {
-        b->capacity = b->capacity ? 2 * b->capacity : 4096;
-        b->positions = realloc(b->positions, b->capacity * 3 * sizeof *b->positions);
-        if (!b->positions) {
-            fprintf(stderr, "out of memory\n");
-            exit(1);
-        }
-    }
-    float *p = b->positions + 3 * b->count++;
-    p[0] = (float)x;
-    p[1] = (float)y;
-    p[2] = (float)z;
+    point_list_add(&b->points, x, y, z);
 }
 
 /* A fixed-seed wobble of +-0.1 spacing, so no two layers are exactly flat. */
@@ -71,7 +60,7 @@ static void add_ball(builder *b, const double c[3], double r, double h)
 
 static fc_frame frame_of(const builder *b)
 {
-    return (fc_frame){ .count = b->count, .positions = b->positions };
+    return (fc_frame){ .count = b->points.count, .positions = b->points.positions };
 }
 
 static fc_framing_box framing(const builder *b)
@@ -123,7 +112,7 @@ static void test_droplets_left_out(void)
     box = framing(&b);
     check_box_equals(&box, lo, hi, "pool + 21 droplets");
     CHECK_MSG(box.left_out == 21, "%llu left out", (unsigned long long)box.left_out);
-    free(b.positions);
+    free(b.points.positions);
 }
 
 /* Compact fluids keep their whole box, so the camera they had. */
@@ -144,9 +133,9 @@ static void test_compact_kept_whole(void)
     for (int i = 0; i < 150; i++)
         add(&few, i == 0 ? 100.0 : 0.01 * (i % 10), 0.01 * (i / 10), 0.0);
     check_whole(&few, "150 points, one far away");
-    free(ball.positions);
-    free(jet.positions);
-    free(few.positions);
+    free(ball.points.positions);
+    free(jet.points.positions);
+    free(few.points.positions);
 }
 
 /* A drop holding 2% of the particles, far above the pool, is part of the scene. */
@@ -154,11 +143,11 @@ static void test_separate_body_kept(void)
 {
     builder b = { .seed = 5 };
     add_pool(&b, 40, 6, 0.025);
-    uint64_t pool = b.count;
+    uint64_t pool = b.points.count;
     add_ball(&b, (const double[]){ 0.5, 0.5, 3.0 }, 0.1, 0.025);
-    CHECK_MSG(b.count - pool > pool / 50, "the drop has %llu particles", (unsigned long long)(b.count - pool));
+    CHECK_MSG(b.points.count - pool > pool / 50, "the drop has %llu particles", (unsigned long long)(b.points.count - pool));
     check_whole(&b, "pool + a drop far above");
-    free(b.positions);
+    free(b.points.positions);
 }
 
 /* 1M particles: the cuts come from FC_FRAMING_SAMPLE_MAX of them, the box
@@ -171,12 +160,12 @@ static void test_large_frame(void)
     float lo[3], hi[3];
     fc_frame_bounds(&pool, lo, hi);
     add(&b, 0.5, 0.5, 2.0);
-    CHECK(b.count == 1000001);
+    CHECK(b.points.count == 1000001);
     fc_framing_box box = framing(&b);
     CHECK_MSG(box.sampled == FC_FRAMING_SAMPLE_MAX, "sampled %llu", (unsigned long long)box.sampled);
     check_box_equals(&box, lo, hi, "1M-particle pool + droplet");
     CHECK_MSG(box.left_out == 1, "%llu left out", (unsigned long long)box.left_out);
-    free(b.positions);
+    free(b.points.positions);
 }
 
 static void test_empty(void)

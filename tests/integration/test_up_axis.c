@@ -15,6 +15,7 @@
 #include "fc_error.h"
 #include "fc_frame.h"
 #include "particle_reader.h"
+#include "point_list.h"
 #include "test_util.h"
 #include "up_axis.h"
 
@@ -33,25 +34,13 @@ static double uniform(rng *r)
 }
 
 typedef struct builder {
-    float *positions;
-    uint64_t count, capacity;
+    point_list points;
     rng random;
 } builder;
 
 static void add(builder *b, double x, double y, double z)
 {
-    if (b->count == b->capacity) {
-        b->capacity = b->capacity ? 2 * b->capacity : 4096;
-        b->positions = realloc(b->positions, b->capacity * 3 * sizeof *b->positions);
-        if (!b->positions) {
-            fprintf(stderr, "out of memory\n");
-            exit(1);
-        }
-    }
-    float *p = b->positions + 3 * b->count++;
-    p[0] = (float)x;
-    p[1] = (float)y;
-    p[2] = (float)z;
+    point_list_add(&b->points, x, y, z);
 }
 
 static double jitter(builder *b, double spacing)
@@ -214,14 +203,14 @@ static void check_all_turns(const char *name, void (*build)(builder *))
         for (int sign = -1; sign <= 1; sign += 2) {
             builder b = { .random = { 0x9e3779b97f4a7c15ull } };
             build(&b);
-            turn(b.positions, b.count, axis, sign);
-            fc_up_guess g = guess(b.positions, b.count);
+            turn(b.points.positions, b.points.count, axis, sign);
+            fc_up_guess g = guess(b.points.positions, b.points.count);
             char what[64];
             snprintf(what, sizeof what, "%s, %s up", name, fc_up_axis_name(axis, sign));
             describe(what, &g);
             CHECK_MSG(g.from_particles && g.axis == axis && g.sign == sign, "%s: guessed %s", what,
                       fc_up_axis_name(g.axis, g.sign));
-            free(b.positions);
+            free(b.points.positions);
         }
     }
 }
@@ -232,14 +221,14 @@ static void check_no_floor(const char *name, void (*build)(builder *))
     for (int axis = 0; axis < 3; axis++) {
         builder b = { .random = { 0x2545f4914f6cdd1dull } };
         build(&b);
-        turn(b.positions, b.count, axis, 1);
-        fc_up_guess g = guess(b.positions, b.count);
+        turn(b.points.positions, b.points.count, axis, 1);
+        fc_up_guess g = guess(b.points.positions, b.points.count);
         char what[64];
         snprintf(what, sizeof what, "%s, turned %s", name, fc_up_axis_name(axis, 1));
         describe(what, &g);
         CHECK_MSG(!g.from_particles && g.axis == 2 && g.sign == 1, "%s: guessed %s", what,
                   fc_up_axis_name(g.axis, g.sign));
-        free(b.positions);
+        free(b.points.positions);
     }
 }
 
@@ -280,18 +269,18 @@ static void test_large_frame(void)
     const double h = 0.005;   /* 1.2M particles in the pool */
     fill_under(&b, 1.0, 1.0, h, pool_surface);
     spray(&b, 5000, (const double[]){ 0.4, 0.4, 0.15 }, (const double[]){ 0.6, 0.6, 1.5 });
-    turn(b.positions, b.count, 1, 1);
-    fc_up_guess g = guess(b.positions, b.count);
+    turn(b.points.positions, b.points.count, 1, 1);
+    fc_up_guess g = guess(b.points.positions, b.points.count);
     char what[64];
-    snprintf(what, sizeof what, "%llu-particle pool, +y up", (unsigned long long)b.count);
+    snprintf(what, sizeof what, "%llu-particle pool, +y up", (unsigned long long)b.points.count);
     describe(what, &g);
-    CHECK(b.count > 1000000);
+    CHECK(b.points.count > 1000000);
     /* The guess looks at a bounded sample, never the whole frame: that, not a
      * stopwatch (this suite also runs under ASan on a loaded machine), is what
      * keeps it cheap on a million particles. */
     CHECK(g.sampled == FC_UP_SAMPLE_MAX);
     CHECK(g.from_particles && g.axis == 1 && g.sign == 1);
-    free(b.positions);
+    free(b.points.positions);
 }
 
 /* ---- the shared sample data ---- */
