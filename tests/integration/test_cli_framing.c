@@ -13,11 +13,11 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include "aov_coverage.h"
 #include "cli_runner.h"
 #include "fc_error.h"
 #include "fc_frame.h"
 #include "support/daemon_process.h"
-#include "support/image_decode.h"
 #include "test_ball.h"
 #include "test_util.h"
 
@@ -102,28 +102,14 @@ static void run(const test_env *env, const char *command, const char *input, con
 static bool *coverage(const test_env *env, const char *name)
 {
     char path[PATH_CAP];
-    size_t size;
-    uint8_t *data = read_whole_file(path_in(env, name, path), &size);
-    fc_decoded_image img = { 0 };
-    fc_error err;
-    bool ok = data && fc_decode_image(data, size, "exr", 1, &img, &err) == FC_OK;
-    free(data);
-    bool right_size = ok && img.width == WIDTH && img.height == HEIGHT;
-    CHECK_MSG(right_size, "decoding %s", name);
-    bool *covered = right_size ? calloc(WIDTH * HEIGHT, sizeof *covered) : NULL;
-    for (uint32_t i = 0; covered && i < WIDTH * HEIGHT; i++)
-        covered[i] = ((const float *)img.pixels)[i * img.channels] > 0.0f;
-    if (ok)
-        fc_decoded_image_free(&img);
+    bool *covered = aov_coverage(path_in(env, name, path), WIDTH, HEIGHT);
+    CHECK_MSG(covered, "decoding %s", name);
     return covered;
 }
 
 static int differing(const bool *a, const bool *b)
 {
-    int n = 0;
-    for (int i = 0; i < WIDTH * HEIGHT; i++)
-        n += a[i] != b[i];
-    return n;
+    return coverage_difference(a, b, WIDTH * HEIGHT);
 }
 
 /* Columns from the leftmost to the rightmost fluid pixel. */

@@ -13,11 +13,11 @@
 #include <string.h>
 #include <unistd.h>
 
+#include "aov_coverage.h"
 #include "cli_runner.h"
 #include "fc_error.h"
 #include "fc_frame.h"
 #include "support/daemon_process.h"
-#include "support/image_decode.h"
 #include "test_ball.h"
 #include "test_util.h"
 
@@ -112,33 +112,15 @@ static void snapshot(const test_env *env, const char *input, const char *output,
 static bool *coverage(const test_env *env, const char *name)
 {
     char path[128];
-    size_t size;
-    uint8_t *data = read_whole_file(path_in(env, name, path, sizeof path), &size);
-    fc_decoded_image img = { 0 };
-    fc_error err;
-    bool ok = data && fc_decode_image(data, size, "exr", 1, &img, &err) == FC_OK;
-    free(data);
-    CHECK_MSG(ok && img.width == WIDTH && img.height == HEIGHT, "decoding %s", name);
-    if (!ok || img.width != WIDTH || img.height != HEIGHT) {
-        if (ok)
-            fc_decoded_image_free(&img);
-        return NULL;
-    }
-    bool *covered = calloc(WIDTH * HEIGHT, sizeof *covered);
-    const float *t = img.pixels;
-    for (uint32_t i = 0; covered && i < WIDTH * HEIGHT; i++)
-        covered[i] = t[i * img.channels] > 0.0f;
-    fc_decoded_image_free(&img);
+    bool *covered = aov_coverage(path_in(env, name, path, sizeof path), WIDTH, HEIGHT);
+    CHECK_MSG(covered, "decoding %s", name);
     return covered;
 }
 
 /* Pixels covered in one picture and not the other. */
-static int coverage_difference(const bool *a, const bool *b)
+static int differing(const bool *a, const bool *b)
 {
-    int differ = 0;
-    for (int i = 0; i < WIDTH * HEIGHT; i++)
-        differ += a[i] != b[i];
-    return differ;
+    return coverage_difference(a, b, WIDTH * HEIGHT);
 }
 
 static int covered_count(const bool *c)
@@ -191,13 +173,13 @@ static void test_guess_turns_the_camera(const test_env *env)
     bool *guess_z = coverage(env, "guess_z.exr"), *given_z = coverage(env, "given_z.exr");
     if (guess_y && given_y && guess_z && given_z) {
         CHECK_MSG(covered_count(guess_y) > 200, "%d fluid pixels", covered_count(guess_y));
-        CHECK_MSG(coverage_difference(guess_y, given_y) == 0, "%d pixels differ",
-                  coverage_difference(guess_y, given_y));
+        CHECK_MSG(differing(guess_y, given_y) == 0, "%d pixels differ",
+                  differing(guess_y, given_y));
         /* Rotating the data and the camera alike changes only float rounding. */
-        CHECK_MSG(coverage_difference(guess_y, guess_z) <= WIDTH * HEIGHT / 100, "%d pixels differ",
-                  coverage_difference(guess_y, guess_z));
-        CHECK_MSG(coverage_difference(guess_y, given_z) > WIDTH * HEIGHT / 20, "only %d pixels differ",
-                  coverage_difference(guess_y, given_z));
+        CHECK_MSG(differing(guess_y, guess_z) <= WIDTH * HEIGHT / 100, "%d pixels differ",
+                  differing(guess_y, guess_z));
+        CHECK_MSG(differing(guess_y, given_z) > WIDTH * HEIGHT / 20, "only %d pixels differ",
+                  differing(guess_y, given_z));
         check_upright(guess_y, "y-up data, guessed");
         check_upright(guess_z, "z-up data, guessed");
     }
@@ -221,9 +203,9 @@ static void test_shorthand_equals_vector(const test_env *env)
     bool *plus = coverage(env, "given_y.exr");
     if (letter && vector && x_letter && x_vector && plus) {
         CHECK(covered_count(letter) > 200);
-        CHECK(coverage_difference(letter, vector) == 0);
-        CHECK(coverage_difference(x_letter, x_vector) == 0);
-        CHECK_MSG(coverage_difference(letter, plus) > WIDTH * HEIGHT / 20, "-y looks like +y");
+        CHECK(differing(letter, vector) == 0);
+        CHECK(differing(x_letter, x_vector) == 0);
+        CHECK_MSG(differing(letter, plus) > WIDTH * HEIGHT / 20, "-y looks like +y");
     }
     free(letter);
     free(vector);
