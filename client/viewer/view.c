@@ -43,7 +43,7 @@ typedef struct viewer {
     double step_started_ms;       /* when the current step first ran (sleep, wait) */
     int status;
     bool detached;                /* the worker outlives the loop (see fc_view_link_stop) */
-    bool session_over;            /* the session ended: the window stays with its last image */
+    fc_view_session_state session_state; /* what the title last said of a followed session */
 } viewer;
 
 static double now_ms(void)
@@ -91,6 +91,53 @@ static void session_home(const fc_view_options *o, fc_camera *home)
                         .width = o->width, .height = o->height};
 }
 
+/* The title: the HUD line of the image shown, with what a followed session
+ * does; before any image, what the viewer waits for. */
+static void update_title(viewer *v)
+{
+    char line[512];
+    const char *session = v->opt.session;
+    bool ended = v->session_state == FC_VIEW_SESSION_ENDED;
+    if (!v->have_image) {
+        if (!session || v->session_state == FC_VIEW_SESSION_NONE)
+            return;
+        if (ended)
+            snprintf(line, sizeof line, "fluidcast view | session %s ended before its first frame; q quits", session);
+        else
+            snprintf(line, sizeof line, "fluidcast view | waiting for session %s", session);
+    } else {
+        char what[160];
+        const fc_view_image *img = &v->shown;
+        if (session && ended)
+            snprintf(what, sizeof what, "session %s ended, frame %llu: drag to look around, q quits", session,
+                     (unsigned long long)img->frame_number);
+        else if (session)
+            snprintf(what, sizeof what, "%s frame %llu", session, (unsigned long long)img->frame_number);
+        else
+            snprintf(what, sizeof what, "frame %u/%u%s", (unsigned)img->frame_index + 1, (unsigned)v->opt.file_count,
+                     v->ctl.playing ? "" : " paused");
+        fc_view_hud_line(&v->hud, img, what, v->ctl.mode, fc_view_smoothing_name(v->ctl.sent.settings.smoothing),
+                         line, sizeof line);
+    }
+    fc_view_window_set_hud(&v->win, line);
+    if (v->opt.log_camera)
+        printf("title: %s\n", line), fflush(stdout);
+}
+
+/* The worker learnt something new about the session: said once on stderr and in the title. */
+static void follow_session_state(viewer *v)
+{
+    fc_view_session_state state = fc_view_slots_session_state(&v->slots);
+    if (state == v->session_state)
+        return;
+    v->session_state = state;
+    if (state == FC_VIEW_SESSION_WAITING)
+        fprintf(stderr, "fluidcast: waiting for session %s\n", v->opt.session);
+    else if (state == FC_VIEW_SESSION_ENDED)
+        fprintf(stderr, "fluidcast: session %s ended; drag to look around, q quits\n", v->opt.session);
+    update_title(v);
+}
+
 static void show_image(viewer *v, fc_view_image *img)
 {
     fc_error err;
@@ -106,15 +153,7 @@ static void show_image(viewer *v, fc_view_image *img)
         printf("pick %u: %s %.6f %.6f %.6f\n", (unsigned)img->pick, img->picked ? "fluid at" : "no fluid",
                (double)img->pivot[0], (double)img->pivot[1], (double)img->pivot[2]);
     fc_view_control_picked(&v->ctl, img, now);
-    char what[96], line[400];
-    if (v->opt.session)
-        snprintf(what, sizeof what, "%s frame %llu", v->opt.session, (unsigned long long)img->frame_number);
-    else
-        snprintf(what, sizeof what, "frame %u/%u%s", (unsigned)img->frame_index + 1, (unsigned)v->opt.file_count,
-                 v->ctl.playing ? "" : " paused");
-    fc_view_hud_line(&v->hud, img, what, v->ctl.mode, fc_view_smoothing_name(v->ctl.sent.settings.smoothing), line,
-                     sizeof line);
-    fc_view_window_set_hud(&v->win, line);
+    update_title(v);
     if (v->opt.log_camera)
         printf("shown %llu: %ux%u frame %u%s\n", (unsigned long long)img->generation, (unsigned)img->width,
                (unsigned)img->height, (unsigned)img->frame_index, img->preview ? " preview" : ""), fflush(stdout);
@@ -226,22 +265,15 @@ static int wait_ms(const viewer *v)
 }
 
 /* True when the worker failed (the loop ends). The end of a session is no
- * failure: the window stays open on the last image until the user quits. */
+ * failure: the window stays on the last image, whose camera still works. */
 static bool worker_failed(viewer *v)
 {
-    if (v->session_over)
-        return false;
     char message[FC_ERROR_MESSAGE_MAX];
     int status = fc_view_slots_failure(&v->slots, message, sizeof message);
     if (message[0] == '\0')
         return false;
-    if (status != FC_EXIT_OK) {
-        v->status = fc_cli_fail(status, "%s: %s", v->opt.server, message);
-        return true;
-    }
-    fprintf(stderr, "fluidcast: %s; q quits\n", message);
-    v->session_over = true;
-    return false;
+    v->status = fc_cli_fail(status, "%s: %s", v->opt.server, message);
+    return true;
 }
 
 static void loop(viewer *v)
@@ -256,6 +288,7 @@ static void loop(viewer *v)
         fc_view_image img;
         if (fc_view_slots_take_image(&v->slots, &img))
             show_image(v, &img);
+        follow_session_state(v);
         if (worker_failed(v))
             return;
         spacemouse_frame(v);

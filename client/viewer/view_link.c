@@ -231,8 +231,63 @@ static fc_code decode_stream_image(fc_view_link *link, link_state *st, fc_stream
     return fc_client_request_keyframe(link->client, err);
 }
 
+static void set_session_state(fc_view_link *link, fc_view_session_state state)
+{
+    fc_view_slots_set_session_state(link->slots, state);
+    link->config.wake(link->config.wake_ctx);
+}
+
+/* Decodes a session's image and hands it to the UI; false on an error (in *err). */
+static bool show_stream_image(fc_view_link *link, link_state *st, fc_stream_image *img, uint64_t generation,
+                              bool preview, fc_error *err)
+{
+    fc_view_image out = {.generation = generation, .frame_number = img->frame_number, .preview = preview};
+    fc_code code = decode_stream_image(link, st, img, &out, err);
+    if (code != FC_OK)
+        return false;
+    if (!out.rgba)
+        return true;
+    out.round_trip_ms = img->view_change ? now_ms() - st->sent_ms : -1.0;
+    fc_view_slots_put_image(link->slots, &out);
+    link->config.wake(link->config.wake_ctx);
+    return true;
+}
+
+/* The session ended: its last frame stays on the server for this viewer
+ * (PROTOCOL.md 10.1), and nothing comes unasked any more. Each change of the
+ * view goes out at once and its image (flag view_change) is read back, after
+ * any refresh of the one before. Without a frame there is nothing to turn:
+ * the worker waits for the UI to stop it. */
+static bool follow_ended(fc_view_link *link, link_state *st, uint64_t done, bool have_frame, fc_error *err)
+{
+    for (;;) {
+        fc_view_request r;
+        bool stop = false;
+        if (!fc_view_slots_wait_request(link->slots, done, -1, &r, &stop))
+            return stop;
+        done = r.generation;
+        if (!have_frame)
+            continue;
+        if (send_view(link, st, &r, err) != FC_OK)
+            return false;
+        bool answered = false;
+        while (!answered) {
+            fc_stream_image img;
+            if (fc_client_next_image(link->client, &img, err) != FC_OK)
+                return false;
+            answered = img.view_change != 0;
+            bool shown = show_stream_image(link, st, &img, r.generation, r.preview, err);
+            fc_stream_image_free(&img);
+            if (!shown)
+                return false;
+        }
+    }
+}
+
 /* A session: images come when the producer publishes (or after a view
- * change); a changed camera goes out between images. */
+ * change); a changed camera goes out between images. Until the first image
+ * the session waits (for its producer or its first frame); after its end the
+ * viewer stays on the last frame (follow_ended). */
 static void run_session(fc_view_link *link, link_state *state)
 {
     fc_error err;
@@ -242,12 +297,16 @@ static void run_session(fc_view_link *link, link_state *state)
         width = even(width);
         height = even(height);
     }
-    if (fc_client_subscribe(link->client, link->config.session, &request, width, height, NULL, &err) != FC_OK) {
+    fc_session_status status;
+    if (fc_client_subscribe(link->client, link->config.session, &request, width, height, &status, &err) != FC_OK) {
         give_up(link, client_exit(&err), "%s", err.message);
         return;
     }
+    bool have_frame = status.last_frame != 0;
+    set_session_state(link, have_frame ? FC_VIEW_SESSION_LIVE : FC_VIEW_SESSION_WAITING);
     link_state st = *state;
     uint64_t done = 0, shown = 0;
+    bool preview = false;
     for (;;) {
         fc_view_request r;
         bool stop = false;
@@ -256,6 +315,7 @@ static void run_session(fc_view_link *link, link_state *state)
             if (send_view(link, &st, &r, &err) != FC_OK)
                 break;
             shown = r.generation;
+            preview = r.preview;
         }
         if (stop)
             return;
@@ -264,19 +324,18 @@ static void run_session(fc_view_link *link, link_state *state)
             break;
         if (img.ended) {
             fc_stream_image_free(&img);
-            give_up(link, FC_EXIT_OK, "session %s ended", link->config.session);
-            return;
-        }
-        fc_view_image out = {.generation = shown, .frame_number = img.frame_number, .preview = r.preview};
-        fc_code code = decode_stream_image(link, &st, &img, &out, &err);
-        fc_stream_image_free(&img);
-        if (code != FC_OK)
+            set_session_state(link, FC_VIEW_SESSION_ENDED);
+            if (follow_ended(link, &st, done, have_frame, &err))
+                return;
             break;
-        if (!out.rgba)
-            continue;
-        out.round_trip_ms = img.view_change ? now_ms() - st.sent_ms : -1.0;
-        fc_view_slots_put_image(link->slots, &out);
-        link->config.wake(link->config.wake_ctx);
+        }
+        if (!have_frame)
+            set_session_state(link, FC_VIEW_SESSION_LIVE);
+        have_frame = true;
+        bool ok = show_stream_image(link, &st, &img, shown, preview, &err);
+        fc_stream_image_free(&img);
+        if (!ok)
+            break;
     }
     give_up(link, client_exit(&err), "%s", err.message);
 }

@@ -8,6 +8,11 @@
  * A double-click's pick renders a quarter-size depth AOV first and returns
  * the point under the cursor with the next image.
  *
+ * Following a session, the worker tells the UI whether the session waits
+ * (no frame yet), is live, or ended (fc_view_slots_set_session_state); after
+ * the end it stays on the last frame, sending each view change at once and
+ * reading back its re-rendered image (PROTOCOL.md 10.1).
+ *
  * Images are asked for as RAW RGBA8 by default, so "decoding" is checking the
  * size and taking the rows; with --format jpeg or h264 they are decoded with
  * libavcodec on this thread (view_decode.h): a session's H.264 images as one

@@ -77,6 +77,14 @@ int fc_view_slots_failure(fc_view_slots *s, char *message, size_t size)
     return status;
 }
 
+fc_view_session_state fc_view_slots_session_state(fc_view_slots *s)
+{
+    pthread_mutex_lock(&s->lock);
+    fc_view_session_state state = s->session_state;
+    pthread_mutex_unlock(&s->lock);
+    return state;
+}
+
 static struct timespec deadline_after(int timeout_ms)
 {
     struct timespec t;
@@ -124,5 +132,12 @@ void fc_view_slots_fail(fc_view_slots *s, int exit_status, const char *message)
     pthread_mutex_lock(&s->lock);
     s->failure_exit = exit_status;
     snprintf(s->failure, sizeof s->failure, "%s", message);
+    pthread_mutex_unlock(&s->lock);
+}
+
+void fc_view_slots_set_session_state(fc_view_slots *s, fc_view_session_state state)
+{
+    pthread_mutex_lock(&s->lock);
+    s->session_state = state;
     pthread_mutex_unlock(&s->lock);
 }

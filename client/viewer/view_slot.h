@@ -40,6 +40,15 @@ typedef struct fc_view_image {
 
 void fc_view_image_free(fc_view_image *image);
 
+/* Where a followed session stands, as the worker last learnt it (the UI's
+ * title and HUD say it). A sequence of files stays FC_VIEW_SESSION_NONE. */
+typedef enum fc_view_session_state {
+    FC_VIEW_SESSION_NONE = 0,     /* playing files, or not subscribed yet */
+    FC_VIEW_SESSION_WAITING,      /* subscribed; the session has no frame yet (no producer, or none published) */
+    FC_VIEW_SESSION_LIVE,         /* its frames are coming */
+    FC_VIEW_SESSION_ENDED         /* its producers left: the last frame stays, the camera still works */
+} fc_view_session_state;
+
 typedef struct fc_view_slots {
     pthread_mutex_t lock;
     pthread_cond_t changed;       /* signalled when the request changes or stop is set */
@@ -48,6 +57,7 @@ typedef struct fc_view_slots {
     fc_view_image image;          /* rgba NULL: nothing new */
     char failure[FC_ERROR_MESSAGE_MAX]; /* set once by the worker when it gave up */
     int failure_exit;
+    fc_view_session_state session_state;
 } fc_view_slots;
 
 fc_code fc_view_slots_init(fc_view_slots *s, fc_error *err);
@@ -60,6 +70,7 @@ void fc_view_slots_stop(fc_view_slots *s);
 bool fc_view_slots_take_image(fc_view_slots *s, fc_view_image *out);
 /* The worker's failure, if it gave up: copies the message, returns its exit status (0: none). */
 int fc_view_slots_failure(fc_view_slots *s, char *message, size_t size);
+fc_view_session_state fc_view_slots_session_state(fc_view_slots *s);
 
 /* Worker side. Waits up to timeout_ms (< 0: forever) for a request newer than
  * `after`; false when none came or stop was set (*stop says which). */
@@ -68,5 +79,6 @@ bool fc_view_slots_wait_request(fc_view_slots *s, uint64_t after, int timeout_ms
 /* Replaces the image slot's contents (freeing an image the UI never took). */
 void fc_view_slots_put_image(fc_view_slots *s, fc_view_image *image);
 void fc_view_slots_fail(fc_view_slots *s, int exit_status, const char *message);
+void fc_view_slots_set_session_state(fc_view_slots *s, fc_view_session_state state);
 
 #endif

@@ -25,9 +25,15 @@
  *   h264        the slab published to a session (by this test, through
  *               libfluidcast); `view --session --format h264` decodes the
  *               daemon's H.264 stream and draws it as `draw` requires
+ *   session_end `view --session` before any producer: it says (stderr and
+ *               title) that it waits for the session; the slab is published
+ *               and drawn; the producer leaves: the viewer says the session
+ *               ended, and a drag after that still shows a new picture of the
+ *               last frame (PROTOCOL.md 10.1), the title saying so
  * Usage: test_viewer MODE FLUIDCAST_CLI TESTS_INPUT_DIR [GALLERY_PNG] */
 #include <fcntl.h>
 #include <math.h>
+#include <pthread.h>
 #include <spawn.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -528,6 +534,72 @@ static int test_wait_limit(int status, double took_ms, const char *log)
     return 0;
 }
 
+/* session_end's producer: publishes the slab once the viewer says it waits,
+ * and leaves once the viewer has shown it. */
+typedef struct ending_producer {
+    const char *server;
+    const char *out_path;          /* the viewer's log */
+    bool ok;
+} ending_producer;
+
+/* Waits (bounded: 60 s) until the viewer's log holds `text`. */
+static bool log_shows(const char *path, const char *text)
+{
+    for (int tries = 0; tries < 3000; tries++) {
+        char *log = read_text(path);
+        bool found = log && strstr(log, text);
+        free(log);
+        if (found)
+            return true;
+        nanosleep(&(struct timespec){0, 20000000L}, NULL);
+    }
+    fprintf(stderr, "producer: the viewer never logged \"%s\"\n", text);
+    return false;
+}
+
+static void *run_ending_producer(void *arg)
+{
+    ending_producer *p = arg;
+    if (!log_shows(p->out_path, "waiting for session view-end"))
+        return NULL;
+    fc_client *c = publish_slab(p->server, "view-end");
+    fc_error err;
+    p->ok = c && log_shows(p->out_path, "shown ") && fc_client_leave_session(c, &err) == FC_OK;
+    fc_client_close(c);
+    return NULL;
+}
+
+/* The order of the viewer's words: waiting, the slab, the end, then the drag's picture, which differs. */
+static int test_session_end(const char *log, const char *before, const char *after)
+{
+    const char *waiting = strstr(log, "fluidcast: waiting for session view-end");
+    const char *waiting_title = strstr(log, "title: fluidcast view | waiting for session view-end");
+    const char *first = strstr(log, "shown ");
+    const char *ended = strstr(log, "fluidcast: session view-end ended; drag to look around, q quits");
+    const char *ended_title = strstr(log, "session view-end ended, frame 1: drag to look around, q quits");
+    REQUIRE_MSG(waiting && waiting_title && first && waiting < first && waiting_title < first,
+                "no waiting message before the first image:\n%s", log);
+    REQUIRE_MSG(ended && ended > first && ended_title, "no word of the end after the first image:\n%s", log);
+    const char *second_shot = strstr(log, "shot: ");
+    second_shot = second_shot ? strstr(second_shot + 1, "shot: ") : NULL;
+    REQUIRE_MSG(second_shot && second_shot > ended, "no screenshot after the end:\n%s", log);
+    /* The picture after the end answers the drag (a camera request newer than the first). */
+    const char *last_shown = NULL;
+    for (const char *p = strstr(ended, "shown "); p && p < second_shot; p = strstr(p + 1, "shown "))
+        last_shown = p;
+    REQUIRE_MSG(last_shown != NULL, "no image shown after the end:\n%s", log);
+    unsigned long long generation = strtoull(last_shown + 6, NULL, 10);
+    CHECK_MSG(generation > 1, "the image after the end answers request %llu", generation);
+    fc_decoded_image a = {0}, b = {0};
+    REQUIRE(decode_bmp(before, &a) && decode_bmp(after, &b));
+    double diff = mean_abs_difference(&a, &b);
+    printf("session_end: mean absolute difference of the pictures before and after the drag %.1f\n", diff);
+    CHECK(diff > 5.0);
+    fc_decoded_image_free(&a);
+    fc_decoded_image_free(&b);
+    return 0;
+}
+
 static int run_viewer(const scene *s, const char *mode, char **log)
 {
     char script[512], a[128], b[128], out[128];
@@ -562,6 +634,9 @@ static int run_viewer(const scene *s, const char *mode, char **log)
                  s->dir, s->dir, s->dir);
     } else if (strcmp(mode, "wait_limit") == 0) {
         snprintf(script, sizeof script, "wait 2; quit");
+    } else if (strcmp(mode, "session_end") == 0) {
+        /* The drag's picture can only come after the end: no frame follows the first. */
+        snprintf(script, sizeof script, "wait; shot %s; sleep 500; drag %d 0; wait; shot %s; quit", a, DRAG_PX, b);
     } else if (strcmp(mode, "draw") == 0 || strcmp(mode, "h264") == 0) {
         snprintf(script, sizeof script, "wait; shot %s; quit", a);
     } else {
@@ -585,6 +660,13 @@ static int run_viewer(const scene *s, const char *mode, char **log)
     }
     if (strcmp(mode, "wait_limit") == 0)
         argv[2] = "--session=nobody-publishes";   /* a session no producer ever fills: no image comes */
+    ending_producer ending = {.server = s->server, .out_path = out};
+    pthread_t ending_thread;
+    bool session_end = strcmp(mode, "session_end") == 0;
+    if (session_end) {
+        argv[2] = "--session=view-end";
+        REQUIRE(pthread_create(&ending_thread, NULL, run_ending_producer, &ending) == 0);
+    }
     if (strcmp(mode, "playback") == 0)
         for (int i = 1; i < FILES; i++)
             argv[n++] = s->more[i - 1];
@@ -595,6 +677,8 @@ static int run_viewer(const scene *s, const char *mode, char **log)
     int status = run(argv, out);
     double took = now_ms() - started;
     fc_client_close(producer);
+    if (session_end)
+        pthread_join(ending_thread, NULL);
     *log = read_text(out);
     if (strcmp(mode, "wait_limit") == 0)
         return test_wait_limit(status, took, *log);
@@ -611,13 +695,17 @@ static int run_viewer(const scene *s, const char *mode, char **log)
         return test_resize(*log);
     if (strcmp(mode, "playback") == 0)
         return test_playback(s, *log);
+    if (session_end) {
+        CHECK_MSG(ending.ok, "the producer did not publish and leave");
+        return test_session_end(*log, a, b);
+    }
     return test_spacemouse(*log);
 }
 
 int main(int argc, char **argv)
 {
     if (argc < 4) {
-        fprintf(stderr, "usage: test_viewer draw|drag|pick|spacemouse|h264|quality|resize|playback|wait_limit FLUIDCAST_CLI TESTS_INPUT_DIR [GALLERY_PNG]\n");
+        fprintf(stderr, "usage: test_viewer draw|drag|pick|spacemouse|h264|quality|resize|playback|wait_limit|session_end FLUIDCAST_CLI TESTS_INPUT_DIR [GALLERY_PNG]\n");
         return 2;
     }
     const char *mode = argv[1];
