@@ -20,7 +20,8 @@ typedef struct fc_session {
     char name[FC_SESSION_NAME_MAX + 1];
     uint32_t producers;
     bool had_producer;            /* losing the last producer ends the session only once there was one */
-    bool ended;                   /* producers gone: it lives on only until its viewers have been told */
+    bool ended;                   /* producers gone: it lives on, with its last frame, while it has viewers
+                                     (they can still turn their cameras on it; PROTOCOL.md 10.1) */
     fc_session_member **viewers;  /* told of new frames and of the end (session_member.h) */
     size_t viewer_count;
     size_t viewer_capacity;
@@ -38,12 +39,14 @@ fc_code fc_session_create(const char *name, struct fc_frame_pool *pool, fc_sessi
 void fc_session_destroy(fc_session *s);
 
 void fc_session_describe(const fc_session *s, fc_session_info *out);
-/* No producer and no viewer: nothing can reach it any more. */
+/* No producer and no viewer: nothing can reach it any more (an ended
+ * session with viewers is still used: it keeps its last frame for them). */
 bool fc_session_unused(const fc_session *s);
 
 void fc_session_add_producer(fc_session *s);
 /* The producer leaves; its pending chunks stay but it will not hear about them.
- * The last producer leaving ends the session: every viewer is told. */
+ * The last producer leaving ends the session: every viewer is told, and stays
+ * on the last frame until it leaves. */
 void fc_session_remove_producer(fc_session *s, const fc_session_member *producer);
 
 fc_code fc_session_add_viewer(fc_session *s, fc_session_member *viewer, fc_error *err);

@@ -22,7 +22,7 @@ typedef struct fc_session_member_ops {
     /* To a viewer: its session published a new frame. */
     void (*new_frame)(fc_session_member *viewer);
     /* To a viewer: its session lost its last producer; the viewer gets what
-     * is pending, then SESSION_END. */
+     * is pending, then SESSION_END, and stays in the ended session. */
     void (*session_ended)(fc_session_member *viewer);
     /* To a producer: a multi-rank frame it sent a chunk of (request
      * `request_id`) failed with `err` (FC_ERR_INCOMPLETE). */

@@ -22,8 +22,9 @@ fc_code fc_registry_create(uint32_t max_sessions, struct fc_frame_pool *pool, fc
 /* Frees every session. The connections in them must be gone already. */
 void fc_registry_destroy(fc_session_registry *reg);
 
-/* The live (not ended) session called `name`, created when there is none.
- * FC_ERR_LIMIT when max_sessions exist already. */
+/* The live (not ended) session called `name`, created when there is none
+ * (an ended one of that name stays apart, for its viewers). FC_ERR_LIMIT when
+ * max_sessions exist already, ended ones with viewers counted. */
 fc_code fc_registry_open(fc_session_registry *reg, const char *name, fc_session **out, fc_error *err);
 /* Frees every session that has neither producers nor viewers any more. Called
  * by the event loop between events, never from inside a session's callbacks,
