@@ -237,16 +237,20 @@ static void set_session_state(fc_view_link *link, fc_view_session_state state)
     link->config.wake(link->config.wake_ctx);
 }
 
-/* Decodes a session's image and hands it to the UI; false on an error (in *err). */
+/* Decodes a session's image and hands it to the UI; false on an error (in
+ * *err). *drawn: whether it gave a picture (an H.264 unit whose reference was
+ * lost gives none; its key frame follows). */
 static bool show_stream_image(fc_view_link *link, link_state *st, fc_stream_image *img, uint64_t generation,
-                              bool preview, fc_error *err)
+                              bool preview, bool *drawn, fc_error *err)
 {
     fc_view_image out = {.generation = generation, .frame_number = img->frame_number, .preview = preview};
+    *drawn = false;
     fc_code code = decode_stream_image(link, st, img, &out, err);
     if (code != FC_OK)
         return false;
     if (!out.rgba)
         return true;
+    *drawn = true;
     out.round_trip_ms = img->view_change ? now_ms() - st->sent_ms : -1.0;
     fc_view_slots_put_image(link->slots, &out);
     link->config.wake(link->config.wake_ctx);
@@ -257,7 +261,8 @@ static bool show_stream_image(fc_view_link *link, link_state *st, fc_stream_imag
  * (PROTOCOL.md 10.1), and nothing comes unasked any more. Each change of the
  * view goes out at once and its image (flag view_change) is read back, after
  * any refresh of the one before. Without a frame there is nothing to turn:
- * the worker waits for the UI to stop it. */
+ * the worker waits for the UI to stop it. An H.264 view image that cannot be
+ * decoded (its reference was lost) is answered by the key frame asked for. */
 static bool follow_ended(fc_view_link *link, link_state *st, uint64_t done, bool have_frame, fc_error *err)
 {
     for (;;) {
@@ -275,10 +280,11 @@ static bool follow_ended(fc_view_link *link, link_state *st, uint64_t done, bool
             fc_stream_image img;
             if (fc_client_next_image(link->client, &img, err) != FC_OK)
                 return false;
-            answered = img.view_change != 0;
-            bool shown = show_stream_image(link, st, &img, r.generation, r.preview, err);
+            bool drawn;
+            bool ok = show_stream_image(link, st, &img, r.generation, r.preview, &drawn, err);
+            answered = img.view_change && drawn;
             fc_stream_image_free(&img);
-            if (!shown)
+            if (!ok)
                 return false;
         }
     }
@@ -332,7 +338,8 @@ static void run_session(fc_view_link *link, link_state *state)
         if (!have_frame)
             set_session_state(link, FC_VIEW_SESSION_LIVE);
         have_frame = true;
-        bool ok = show_stream_image(link, &st, &img, shown, preview, &err);
+        bool drawn;
+        bool ok = show_stream_image(link, &st, &img, shown, preview, &drawn, &err);
         fc_stream_image_free(&img);
         if (!ok)
             break;

@@ -56,6 +56,16 @@ def test_publish_subscribe_round_trip(connect):
     assert "py-round-trip" not in {s.name for s in producer.list_sessions()}
 
 
+def test_viewer_waits_for_its_producer(connect):
+    viewer, producer = connect(), connect()
+    status = viewer.subscribe("py-waiting", format="png", size=SIZE)
+    assert status.producers == 0 and status.last_frame == 0 and not viewer.session_ended
+    producer.publish("py-waiting")
+    producer.send_frame(ball())
+    image = next_frame_image(viewer, 1)
+    assert png_size(image.data) == SIZE and not viewer.session_ended
+
+
 def _nal_types(data):
     """The NAL unit types of an Annex B access unit."""
     return {data[i + 3] & 0x1F for i in range(len(data) - 3) if data[i:i + 3] == b"\x00\x00\x01"}
