@@ -27,8 +27,10 @@ void fc_registry_destroy(fc_session_registry *reg);
  * max_sessions exist already, ended ones with viewers counted. */
 fc_code fc_registry_open(fc_session_registry *reg, const char *name, fc_session **out, fc_error *err);
 /* Frees every session that has neither producers nor viewers any more. Called
- * by the event loop between events, never from inside a session's callbacks,
- * so no session disappears under code still using it. */
+ * by the event loop between events, or by a conversation's message handler
+ * that just left an ended session (so its place counts for the next), never
+ * from inside a session's callbacks, so no session disappears under code
+ * still using it. */
 void fc_registry_collect(fc_session_registry *reg);
 
 /* The live sessions, oldest first, in a malloc'd array (free() it). */
