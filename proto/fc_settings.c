@@ -50,7 +50,7 @@ static const fc_setting_spec table[] = {
     {FIELD(4, fluid_color, FC_SETTING_FLOAT, 3), .initial = {0.02f, 0.15f, 0.28f}, .min = 0, .max = 1,
      .separator = ',', .group = FC_GROUP_SHADING, .option = "--color", .metavar = "R,G,B",
      .help = "linear colour of a thick layer"},
-    {FIELD(5, absorption, FC_SETTING_FLOAT, 3), .initial = {0.2f, 0.07f, 0.035f}, .min = 0, .max = 1e6,
+    {FIELD(5, absorption, FC_SETTING_FLOAT, 3), .initial = {0.02f, 0.007f, 0.0035f}, .min = 0, .max = 1e6,
      .separator = ',', .group = FC_GROUP_SHADING, .option = "--absorption", .metavar = "R,G,B",
      .help = "Beer-Lambert absorption per particle radius of thickness, per channel"},
     {FIELD(6, ior, FC_SETTING_FLOAT, 1), .initial = {1.33f}, .min = 1, .max = 3, .group = FC_GROUP_SHADING,

@@ -61,9 +61,11 @@ layout(location = 44) uniform vec2 background_texture_size;
 layout(location = 45) uniform vec2 thickness_per_pixel;        // thickness texels per viewport pixel
 layout(location = 46) uniform vec2 thickness_size;             // texels of the thickness image in use
 
-// Refraction may shift the background by at most this fraction of the image,
-// so very thick fluid cannot sample far-away, unrelated parts of the scene.
-const float max_shift_fraction = 0.05;
+// Refraction shifts the background by less than this fraction of the
+// image's height, so that very thick fluid cannot sample far-away, unrelated
+// parts of the scene, and approaches it smoothly (no clamp whose kink would
+// show as a crease where the thickness or the slope grows).
+const float max_shift_fraction = 0.02;
 const vec3 foam_color = vec3(0.90, 0.92, 0.94);
 // The sun's highlight at specular 1, linear HDR: bright enough that the
 // filmic shoulder shows it near white, as the sun's glint on water is.
@@ -134,8 +136,9 @@ vec3 shade_fluid(ivec2 p, float z, vec3 behind_here)
     // droplet bends the floor as much at any image size or scene unit, and
     // attenuated per channel by Beer-Lambert towards the fluid colour.
     float thickness_pixels = t * 0.5 * viewport.y * focal.y / z;
-    vec2 max_shift = max_shift_fraction * viewport;
-    vec2 shift = clamp(refraction * thickness_pixels * n.xy, -max_shift, max_shift);
+    vec2 free_shift = refraction * thickness_pixels * n.xy;
+    float max_shift = max_shift_fraction * viewport.y;
+    vec2 shift = free_shift * max_shift * inversesqrt(max_shift * max_shift + dot(free_shift, free_shift));
     // Clamped to the last texel centres of the image in use: beyond them the
     // texture holds stale pixels where an edge texel used to be repeated.
     vec2 shifted = clamp(gl_FragCoord.xy + shift, vec2(0.5), viewport - 0.5);

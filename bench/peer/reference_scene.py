@@ -58,7 +58,7 @@ CHECKER_DARK = (0.36, 0.37, 0.40)
 FOG_DISTANCE_IN_CHECKERS = 60.0
 # fluidcast's default IOR (proto/fc_settings.c)
 IOR = 1.33
-# Weak absorption: a tenth of fluidcast's default (0.2, 0.07, 0.035 per radius).
+# Weak absorption: fluidcast's default (proto/fc_settings.c).
 DEFAULT_ABSORPTION_PER_RADIUS = (0.02, 0.007, 0.0035)
 
 

@@ -1,9 +1,13 @@
 /* test_shading_clarity.c — the water's outline and its clarity over a
  * striped client background (issue 26, items 3 and 4):
- * the outline of a sphere and of a sheet's edge is at most 2 pixels wide:
- * made opaque and black (huge absorption, black fluid colour, a black
- * environment, no highlight), the fluid must go from the background's
- * stripe to black within that, whatever its thickness near the rim. */
+ * - the outline of a sphere and of a sheet's edge is at most 2 pixels wide:
+ *   made opaque and black (huge absorption, black fluid colour, a black
+ *   environment, no highlight), the fluid must go from the background's
+ *   stripe to black within that, whatever its thickness near the rim;
+ * - a layer 10 particle radii deep, with the default look, lets at least
+ *   half of the background's stripe contrast through, in every channel. */
+#include <math.h>
+#include <stdlib.h>
 
 #include "fc_settings.h"
 #include "shading_fixture.h"
@@ -128,6 +132,57 @@ static void test_sheet_outline(render_fixture *f)
     check_outline(f, &frame, 0.1f, "sheet");
 }
 
+/* Max minus min of channel c along row `row` between columns x0 and x1. */
+static double contrast(const fc_image *img, uint32_t row, uint32_t x0, uint32_t x1, uint32_t c)
+{
+    double lo = INFINITY, hi = -INFINITY;
+    for (uint32_t x = x0; x < x1; x++) {
+        double v = channel_f32(img, x, row, c);
+        lo = v < lo ? v : lo;
+        hi = v > hi ? v : hi;
+    }
+    return hi - lo;
+}
+
+/* LAYERS sheets one behind the other, spaced so that the spheres span 10
+ * radii front to back, about 0.9 of the spacing in radius (the radius
+ * fluidcast estimates for such a lattice): the fluid's thickness is several
+ * times the depth there, the most absorbing case of a layer that deep. */
+static void test_deep_layer_transmits(render_fixture *f)
+{
+    enum { SIDE = 28, LAYERS = 8 };
+    const float radius = 0.1f, spacing = 8.0f * radius / (float)(LAYERS - 1);
+    static float positions[SIDE * SIDE * LAYERS * 3];
+    for (int k = 0; k < LAYERS; k++) {
+        float *layer = positions + 3 * SIDE * SIDE * k;
+        make_sheet(layer, SIDE, spacing);
+        for (int i = 0; i < SIDE * SIDE; i++)
+            layer[3 * i + 2] = -spacing * (float)k;
+    }
+    fc_frame frame = {.count = SIDE * SIDE * LAYERS, .positions = positions};
+    fc_scene_textures *scene = striped_scene(f, 0);
+    if (!scene)
+        return;
+    fc_camera cam = axis_camera(5.0, SIZE, SIZE);
+    fc_settings settings;
+    fc_settings_default(&settings);
+    settings.radius = radius;
+    fc_image img = {0};
+    CHECK_CODE(render_frame(f, &frame, &cam, &settings, scene, FC_AOV_COLOR, 0, &img), FC_OK);
+    /* The layer covers the view's middle (its sides are 3.1 units at a
+     * distance of 5, a view of 3.6): compare its middle with the view's top. */
+    const uint32_t x0 = SIZE / 4, x1 = 3 * SIZE / 4;
+    for (uint32_t c = 0; c < 3; c++) {
+        double open = contrast(&img, 1, x0, x1, c);
+        double through = contrast(&img, SIZE / 2, x0, x1, c);
+        CHECK_MSG(open > 0.1, "channel %u: background contrast %g", c, open);
+        CHECK_MSG(through >= 0.5 * open, "channel %u: the layer lets %g of the contrast through", c,
+                  through / open);
+    }
+    fc_image_free(&img);
+    fc_scene_textures_destroy(scene);
+}
+
 int main(void)
 {
     render_fixture f;
@@ -135,6 +190,7 @@ int main(void)
         return 1;
     test_sphere_outline(&f);
     test_sheet_outline(&f);
+    test_deep_layer_transmits(&f);
     fixture_close(&f);
     return test_result();
 }
