@@ -53,9 +53,9 @@ GROUND = (0.16, 0.14, 0.12)
 SUN_COLOR = (1.00, 0.93, 0.82)
 SUN_DISC_COS = 0.99985
 SUN_IRRADIANCE = 1.4
-CHECKER_LIGHT = (0.78, 0.76, 0.70)
-CHECKER_DARK = (0.36, 0.37, 0.40)
-FOG_DISTANCE_IN_CHECKERS = 60.0
+CHECKER_LIGHT = (0.62, 0.60, 0.56)
+CHECKER_DARK = (0.20, 0.21, 0.23)
+FOG_DISTANCE_IN_CHECKERS = 200.0
 # fluidcast's default IOR (proto/fc_settings.c)
 IOR = 1.33
 # Weak absorption: fluidcast's default (proto/fc_settings.c).
