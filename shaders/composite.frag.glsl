@@ -39,7 +39,7 @@ layout(location = 8) uniform vec3 absorption;            // per world unit of th
 layout(location = 9) uniform float fresnel_f0;
 layout(location = 10) uniform float refraction;          // γ of eq. 15: pixels per pixel of projected thickness
 layout(location = 11) uniform float specular_strength;   // k_s of eq. 13
-layout(location = 12) uniform float particle_radius;     // world units; thinner fluid fades out
+layout(location = 12) uniform float particle_radius;     // world units
 layout(location = 13) uniform float shininess;           // α of eq. 13
 layout(location = 14) uniform float foam;                // settings.foam: how fast foam turns opaque
 layout(location = 18) uniform vec2 foam_noise_range;     // mean |N| where foam starts and where it is complete
@@ -61,11 +61,12 @@ layout(location = 44) uniform vec2 background_texture_size;
 layout(location = 45) uniform vec2 thickness_per_pixel;        // thickness texels per viewport pixel
 layout(location = 46) uniform vec2 thickness_size;             // texels of the thickness image in use
 
-// Refraction may shift the background by at most this fraction of the image,
-// so very thick fluid cannot sample far-away, unrelated parts of the scene.
-const float max_shift_fraction = 0.05;
+// Refraction shifts the background by less than this fraction of the
+// image's height, so that very thick fluid cannot sample far-away, unrelated
+// parts of the scene, and approaches it smoothly (no clamp whose kink would
+// show as a crease where the thickness or the slope grows).
+const float max_shift_fraction = 0.02;
 const vec3 foam_color = vec3(0.90, 0.92, 0.94);
-const float min_coverage = 0.8;
 // The sun's highlight at specular 1, linear HDR: bright enough that the
 // filmic shoulder shows it near white, as the sun's glint on water is.
 const vec3 highlight_radiance = 4.0 * vec3(1.00, 0.93, 0.82);
@@ -91,6 +92,22 @@ float noise_magnitude(ivec2 p, float z)
         sum += abs(noise_at(q));
     }
     return sum / 9.0;
+}
+
+// The share of pixel p the fluid covers: 1 inside, and on the outline (a
+// fluid pixel with a background neighbour) the share of its 3x3 block that
+// is fluid, which is about the area an edge through the block leaves on the
+// fluid's side. So the outline comes from the smoothed depth alone and is one
+// anti-aliased pixel wide, whatever the thickness: thin fluid is clear
+// (refraction and Fresnel show it), not faded into a halo.
+float outline_coverage(ivec2 p)
+{
+    int fluid_pixels = 1;
+    for (int dy = -1; dy <= 1; dy++)
+        for (int dx = -1; dx <= 1; dx++)
+            if (dx != 0 || dy != 0)
+                fluid_pixels += depth_at(p + ivec2(dx, dy)) > 0.0 ? 1 : 0;
+    return float(fluid_pixels) / 9.0;
 }
 
 vec3 shade_fluid(ivec2 p, float z, vec3 behind_here)
@@ -119,8 +136,9 @@ vec3 shade_fluid(ivec2 p, float z, vec3 behind_here)
     // droplet bends the floor as much at any image size or scene unit, and
     // attenuated per channel by Beer-Lambert towards the fluid colour.
     float thickness_pixels = t * 0.5 * viewport.y * focal.y / z;
-    vec2 max_shift = max_shift_fraction * viewport;
-    vec2 shift = clamp(refraction * thickness_pixels * n.xy, -max_shift, max_shift);
+    vec2 free_shift = refraction * thickness_pixels * n.xy;
+    float max_shift = max_shift_fraction * viewport.y;
+    vec2 shift = free_shift * max_shift * inversesqrt(max_shift * max_shift + dot(free_shift, free_shift));
     // Clamped to the last texel centres of the image in use: beyond them the
     // texture holds stale pixels where an edge texel used to be repeated.
     vec2 shifted = clamp(gl_FragCoord.xy + shift, vec2(0.5), viewport - 0.5);
@@ -143,14 +161,7 @@ vec3 shade_fluid(ivec2 p, float z, vec3 behind_here)
         vec3 foam_lit = foam_color * (0.6 + 0.4 * max(dot(n, light_view), 0.0));
         fluid = mix(fluid, foam_lit, foam_amount);
     }
-    // Silhouettes are the rims of single sprites, jagged and seen at grazing
-    // angles; letting a fifth of the background through where the fluid is
-    // thinner than a particle (the thickness falls smoothly to 0 there)
-    // softens them (cf. the silhouette map of Instant Liquids) without
-    // fading thin sheets and droplets, whose outline and Fresnel rim are
-    // what shows them, into haze.
-    float coverage = max(smoothstep(0.0, particle_radius, t), min_coverage);
-    return mix(behind_here, fluid, coverage);
+    return mix(behind_here, fluid, outline_coverage(p));
 }
 
 void main()

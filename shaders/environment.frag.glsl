@@ -1,6 +1,6 @@
 #version 450 core
 // The scene around the fluid as a function of world-space rays: a sky with a
-// horizon, a sun and the ground below it, over a checkered floor lit by that
+// horizon, clouds, a sun and the ground below it, over a checkered floor lit by that
 // sun and sky (sky alone when a client background replaces the floor). The
 // background (what refraction sees) and the reflections both come from
 // scene_radiance, so one light and one sky shape the whole image: a surface
@@ -53,9 +53,49 @@ const vec3 sun_color = vec3(1.00, 0.93, 0.82);
 const float sun_disc_radiance = 60.0;
 const float sun_disc_cos = 0.99985;                  // about 1 degree across
 const float sun_irradiance = 1.4;                    // on a surface facing the sun
-const vec3 checker_light = vec3(0.78, 0.76, 0.70);
-const vec3 checker_dark = vec3(0.36, 0.37, 0.40);
-const float fog_distance_in_checkers = 60.0;
+// A mid-grey floor with contrast: water refracting it and white spray over
+// it both show, where a near-white floor washed them out.
+const vec3 checker_light = vec3(0.62, 0.60, 0.56);
+const vec3 checker_dark = vec3(0.20, 0.21, 0.23);
+// Haze only far away: near the fluid the floor keeps its contrast.
+const float fog_distance_in_checkers = 200.0;
+const vec3 cloud_color = vec3(1.25, 1.25, 1.28);
+const vec3 cloud_shade = vec3(0.62, 0.66, 0.74);
+
+// Value noise on a lattice, hashed without tables (Dave Hoskins' hash).
+float lattice_value(vec2 cell)
+{
+    vec3 h = fract(vec3(cell.xyx) * 0.1031);
+    h += dot(h, h.yzx + 33.33);
+    return fract((h.x + h.y) * h.z);
+}
+
+float value_noise(vec2 x)
+{
+    vec2 cell = floor(x), f = fract(x);
+    vec2 w = f * f * (3.0 - 2.0 * f);
+    return mix(mix(lattice_value(cell), lattice_value(cell + vec2(1, 0)), w.x),
+               mix(lattice_value(cell + vec2(0, 1)), lattice_value(cell + vec2(1, 1)), w.x), w.y);
+}
+
+// Cumulus over a plane above the scene: four octaves of value noise where
+// the ray meets the plane, thresholded into separate clouds, denser towards
+// their middles. A fixed pattern (no randomness between renders); clouds
+// give the sky the structure that reflections on water show along waves.
+// Returns (coverage, thickness) in [0, 1].
+vec2 clouds(vec3 dir, float elevation)
+{
+    vec2 across = vec2(dot(dir, floor_axis_u), dot(dir, floor_axis_v)) / (elevation + 0.08);
+    vec2 x = 1.3 * across + vec2(17.0, 3.0);
+    float sum = 0.0, amplitude = 0.5;
+    for (int octave = 0; octave < 4; octave++) {
+        sum += amplitude * value_noise(x);
+        x = mat2(1.6, 1.2, -1.2, 1.6) * x;
+        amplitude *= 0.5;
+    }
+    float coverage = smoothstep(0.48, 0.62, sum) * smoothstep(0.0, 0.12, elevation);
+    return vec2(coverage, smoothstep(0.55, 0.85, sum));
+}
 
 // Sky above the horizon, ground below it, the horizon itself a sharp bright
 // line: in reflections it draws the surface's shape as a contour.
@@ -63,9 +103,11 @@ vec3 sky_radiance(vec3 dir)
 {
     float elevation = dot(dir, world_up);
     vec3 sky;
-    if (elevation >= 0.0)
+    if (elevation >= 0.0) {
         sky = mix(horizon_color, zenith_color, pow(elevation, 0.45));
-    else
+        vec2 cloud = clouds(dir, elevation);
+        sky = mix(sky, mix(cloud_color, cloud_shade, cloud.y), cloud.x);
+    } else
         sky = mix(ground_near_horizon, ground_color, pow(min(-elevation * 4.0, 1.0), 0.6));
     float sun = max(dot(dir, sun_direction), 0.0);
     vec3 glow = sun_color * (0.35 * pow(sun, 12.0) + 1.5 * pow(sun, 300.0));

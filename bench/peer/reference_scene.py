@@ -53,12 +53,12 @@ GROUND = (0.16, 0.14, 0.12)
 SUN_COLOR = (1.00, 0.93, 0.82)
 SUN_DISC_COS = 0.99985
 SUN_IRRADIANCE = 1.4
-CHECKER_LIGHT = (0.78, 0.76, 0.70)
-CHECKER_DARK = (0.36, 0.37, 0.40)
-FOG_DISTANCE_IN_CHECKERS = 60.0
+CHECKER_LIGHT = (0.62, 0.60, 0.56)
+CHECKER_DARK = (0.20, 0.21, 0.23)
+FOG_DISTANCE_IN_CHECKERS = 200.0
 # fluidcast's default IOR (proto/fc_settings.c)
 IOR = 1.33
-# Weak absorption: a tenth of fluidcast's default (0.2, 0.07, 0.035 per radius).
+# Weak absorption: fluidcast's default (proto/fc_settings.c).
 DEFAULT_ABSORPTION_PER_RADIUS = (0.02, 0.007, 0.0035)
 
 

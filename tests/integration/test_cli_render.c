@@ -29,6 +29,7 @@
 #include "fc_error.h"
 #include "fc_frame.h"
 #include "support/daemon_process.h"
+#include "support/tinted_look.h"
 #include "test_ball.h"
 #include "test_util.h"
 #include "video_frames.h"
@@ -106,7 +107,7 @@ static void render(const test_env *env, const char *const *inputs, const char *o
     for (int i = 0; inputs[i] && n < 20; i++)
         args[n++] = inputs[i];
     const char *common[] = {"-o", out, "--server", env->server, "--size", "160x120", "--up", "z", "--radius",
-                            "0.04", NULL};
+                            "0.04", "--absorption", TINTED_LOOK_ABSORPTION, NULL};
     for (int i = 0; common[i]; i++)
         args[n++] = common[i];
     for (int i = 0; extra && extra[i] && n < 30; i++)

@@ -25,6 +25,7 @@
 #include "fc_error.h"
 #include "render_pictures.h"
 #include "support/daemon_process.h"
+#include "support/tinted_look.h"
 #include "test_util.h"
 #include "video_frames.h"
 
@@ -144,11 +145,11 @@ static bool write_sequence(const test_env *env)
 static void render(const test_env *env, const char *out, const char *const *extra, cli_result *r)
 {
     char in[PATH_CAP], o[PATH_CAP];
-    const char *args[20] = {"render", path_in(env, "output/partio/ParticleData_Fluid_{}.bgeo", in), "-o",
+    const char *args[22] = {"render", path_in(env, "output/partio/ParticleData_Fluid_{}.bgeo", in), "-o",
                             path_in(env, out, o), "--server", env->server, "--size", "160x120", "--up", "z",
-                            "--radius", "0.04"};
-    int n = 12;
-    for (int i = 0; extra && extra[i] && n < 19; i++)
+                            "--radius", "0.04", "--absorption", TINTED_LOOK_ABSORPTION};
+    int n = 14;
+    for (int i = 0; extra && extra[i] && n < 21; i++)
         args[n++] = extra[i];
     args[n] = NULL;
     cli_run(FLUIDCAST_CLI_PATH, env->dir, args, r);

@@ -17,6 +17,7 @@
 #include "fc_error.h"
 #include "support/daemon_process.h"
 #include "support/image_decode.h"
+#include "support/tinted_look.h"
 #include "test_util.h"
 
 #define FLUID_SIDE 10   /* 10^3 fluid particles */
@@ -82,7 +83,7 @@ static void snapshot(const test_env *env, const char *select, const char *png, c
     char csv[128];
     const char *args[] = { "snapshot", path_in(env, "case.csv", csv, sizeof csv), "-o", png, "--server", env->server,
                            "--size", "160x120", "--eye", "0,-5,0", "--target", "0,0,0", "--up", "z", "--radius",
-                           "0.07", select ? "--select" : NULL, select, NULL };
+                           "0.07", "--absorption", TINTED_LOOK_ABSORPTION, select ? "--select" : NULL, select, NULL };
     cli_run(FLUIDCAST_CLI_PATH, env->dir, args, r);
 }
 

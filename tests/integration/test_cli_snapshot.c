@@ -15,6 +15,7 @@
 #include "fc_frame.h"
 #include "support/daemon_process.h"
 #include "support/image_decode.h"
+#include "support/tinted_look.h"
 #include "test_ball.h"
 #include "test_util.h"
 
@@ -145,10 +146,10 @@ static void test_help_and_version(test_env *env)
 static void test_png_shows_ball_over_background(test_env *env)
 {
     const char *common[] = { "--server", env->server, "--size", "160x120", "--eye", "0,-4,0", "--target", "0,0,0",
-                             "--radius", "0.05" };
+                             "--radius", "0.05", "--absorption", TINTED_LOOK_ABSORPTION };
     cli_result r;
-    const char *ball_args[16] = { "snapshot", scratch(env, "ball.f32"), "-o", scratch(env, "ball.png") };
-    const char *empty_args[16] = { "snapshot", scratch(env, "corners.f32"), "-o", scratch(env, "empty.png") };
+    const char *ball_args[18] = { "snapshot", scratch(env, "ball.f32"), "-o", scratch(env, "ball.png") };
+    const char *empty_args[18] = { "snapshot", scratch(env, "corners.f32"), "-o", scratch(env, "empty.png") };
     memcpy(ball_args + 4, common, sizeof common);
     memcpy(empty_args + 4, common, sizeof common);
     run(env, &r, ball_args);

@@ -64,7 +64,7 @@ static void test_defaults(void)
     CHECK_CODE(fc_settings_validate(&s, &err), FC_OK);
     CHECK(s.radius == 0.0f && s.smoothing == FC_SMOOTHING_NARROW && s.iterations == fc_smoothing_default_iterations(FC_SMOOTHING_NARROW));
     CHECK(s.filter_radius == 0 && s.smooth_scale == 1.0f);
-    CHECK(s.ior == 1.33f && s.refraction == 0.25f && s.specular == 0.6f && s.shininess == 60.0f);
+    CHECK(s.ior == 1.33f && s.refraction == 0.25f && s.specular == 1.5f && s.shininess == 400.0f);
     CHECK(s.thickness_scale == 0.5f && s.thickness_blur == 2);
     CHECK(s.noise == 0.0f && s.foam == 0.0f && s.foam_tau == 0.5f && s.foam_decay == 0.85f);
     CHECK(s.density_threshold == 0.0f);

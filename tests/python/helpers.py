@@ -82,6 +82,12 @@ def ball(count=2000, radius=0.5, centre=(0.0, 0.0, 0.0), seed=1):
     return (points + np.asarray(centre)).astype(np.float32)
 
 
+# Water that absorbs enough to show a small ball plainly blue, for the tests
+# that find the fluid by its colour: the default look's shallow water is
+# nearly clear (tests/support/tinted_look.h holds the same for the C tests).
+TINTED_LOOK_ABSORPTION = (0.2, 0.07, 0.035)
+
+
 def look_at_ball(client, size=SIZE):
     """A camera that sees ball() in the middle of the image, with room around it."""
     client.set_camera(eye=(0, -4, 0), target=(0, 0, 0), up=(0, 0, 1), fov=40, size=size)

@@ -8,7 +8,7 @@ import pytest
 
 import fluidcast
 from fluidcast import _capi
-from helpers import SIZE, ball, look_at_ball, png_size
+from helpers import SIZE, TINTED_LOOK_ABSORPTION, ball, look_at_ball, png_size
 
 
 def test_connect_and_server_info(client):
@@ -58,6 +58,7 @@ def test_render_png_has_the_camera_size(client):
 def test_render_image_colour_shows_the_fluid_where_the_particles_are(client):
     client.send_frame(ball())
     look_at_ball(client)
+    client.set_settings(absorption=TINTED_LOOK_ABSORPTION)
     image = client.render_image()
     w, h = SIZE
     assert image.shape == (h, w, 4) and image.dtype == np.uint8

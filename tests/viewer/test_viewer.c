@@ -47,6 +47,7 @@
 #include "fluidcast.h"
 #include "support/daemon_process.h"
 #include "support/image_decode.h"
+#include "support/tinted_look.h"
 #include "test_util.h"
 
 /* A check the rest of the test depends on: failing, it ends the test. */
@@ -646,7 +647,7 @@ static int run_viewer(const scene *s, const char *mode, char **log)
     snprintf(size, sizeof size, "%dx%d", WIDTH, HEIGHT);
     bool h264 = strcmp(mode, "h264") == 0;
     const char *rest[] = {s->cli, "view", s->slab, "--server", s->server, "--size", size, "--log-camera",
-                          "--test-script", script};
+                          "--absorption", TINTED_LOOK_ABSORPTION, "--test-script", script};
     for (size_t i = 0; i < sizeof rest / sizeof rest[0]; i++)
         argv[n++] = rest[i];
     fc_client *producer = NULL;
