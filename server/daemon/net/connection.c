@@ -479,7 +479,11 @@ static void advance_handshake(fc_connection *c, fc_daemon_context *ctx, double n
     } else if (result == FC_HANDSHAKE_FAILED) {
         fc_log_write(ctx->log, FC_LOG_WARN, "%s: %s", c->peer, why.message);
         fc_metrics_add(ctx->metrics, FC_METRIC_TLS_HANDSHAKE_FAILURES, 1);
-        c->phase = FC_CONN_DONE;
+        /* Linger like any closing connection: a TLS 1.3 client may already
+         * have sent its HELLO, and closing on it would reset the alert away. */
+        c->phase = FC_CONN_FLUSHING;
+        c->peer_closed = why.code == FC_ERR_CLOSED;
+        finish_flushing(c);
     } else if (now_ms >= c->handshake_deadline_ms) {
         fc_log_write(ctx->log, FC_LOG_INFO, "%s: TLS handshake not complete within %.0f ms: dropped", c->peer,
                      ctx->tls_handshake_timeout_ms);

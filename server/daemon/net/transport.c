@@ -98,6 +98,10 @@ fc_handshake_result fc_transport_handshake(fc_transport *t, fc_error *why)
     if (SSL_get_error(t->ssl, ret) == SSL_ERROR_SYSCALL)
         snprintf(reason, sizeof reason, "%s", saved ? strerror(saved) : "the client closed the connection");
     fc_error_set(why, FC_ERR_PROTOCOL, "TLS handshake failed: %s", reason);
+    /* OpenSSL has sent its alert; after a fatal error the session is good for nothing else. */
+    SSL_free(t->ssl);
+    t->ssl = NULL;
+    t->blocked_on = 0;
     return FC_HANDSHAKE_FAILED;
 }
 

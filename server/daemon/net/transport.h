@@ -32,7 +32,7 @@ typedef enum fc_handshake_result {
     FC_HANDSHAKE_DONE = 0,
     FC_HANDSHAKE_WAITING,           /* call again when blocked_on is ready */
     FC_HANDSHAKE_PLAINTEXT_PEER,    /* the client spoke without TLS; the transport is plaintext now */
-    FC_HANDSHAKE_FAILED             /* *why says why; the connection is to be closed */
+    FC_HANDSHAKE_FAILED             /* *why says why; the alert is sent, the session dropped: close */
 } fc_handshake_result;
 
 void fc_transport_plain(fc_transport *t, int fd);
