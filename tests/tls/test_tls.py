@@ -264,6 +264,15 @@ def new_connection_serial(port):
 def test_reload(a):
     import numpy
     import fluidcast
+    for kwargs, expected in (({}, fluidcast.Code.TLS_UNKNOWN_CA), ({"tls_ca": path("ca.pem"), "tls": False},
+                                                                 fluidcast.Code.TLS_REQUIRED)):
+        address = ("tls://localhost:%d" if "tls" not in kwargs else "127.0.0.1:%d") % a.port
+        try:
+            fluidcast.connect(address, token=TOKEN, connect_timeout=60, **kwargs).close()
+            code = fluidcast.Code.OK
+        except fluidcast.Error as e:
+            code = e.code
+        check(code == expected, "the binding reports %s as %s" % (address, code))
     first = serial_of(path("server.pem"))
     check(new_connection_serial(a.port) == first, "before SIGHUP the daemon shows the first certificate")
     client = fluidcast.connect("tls://localhost:%d" % a.port, token=TOKEN, tls_ca=path("ca.pem"), connect_timeout=60)
