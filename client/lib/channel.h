@@ -11,12 +11,16 @@
 #include <stdint.h>
 #include <sys/uio.h>
 
-#include "fluidcast_types.h"
+#include "fluidcast.h"
 
 typedef struct fc_channel {
     int fd;      /* -1: none */
     SSL *ssl;    /* NULL: in clear */
 } fc_channel;
+
+/* The TLS handshake on the connected socket (fc_tls_client_start); on success
+ * the channel speaks TLS. */
+fc_code fc_channel_start_tls(fc_channel *ch, const char *host, const fc_connect_options *opt, fc_error *err);
 
 /* As fc_socket_send_all, fc_socket_send_parts and fc_socket_recv_exact (socket_io.h). */
 fc_code fc_channel_send_all(fc_channel *ch, const uint8_t *data, size_t n, fc_error *err);

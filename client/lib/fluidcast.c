@@ -96,7 +96,7 @@ static fc_code handshake(fc_client *c, const char *host, const fc_connect_option
     const char *name = opt->client_name ? opt->client_name : DEFAULT_CLIENT_NAME;
     fc_code code = fc_socket_set_timeout(c->channel.fd, connect_timeout, err);
     if (code == FC_OK && opt->tls)
-        code = fc_tls_client_start(c->channel.fd, host, opt, &c->channel.ssl, err);
+        code = fc_channel_start_tls(&c->channel, host, opt, err);
     if (code == FC_OK)
         code = send_hello(c, name, opt->token, err);
     if (code == FC_OK)

@@ -231,9 +231,19 @@ def test_failures(a, b, c):
         status, stderr = cli("info", *options, server=server)
         check(status == expected, "%s: exit status %d (expected %d): %s" % (what, status, expected, stderr))
         check(served(a), "after '%s' the TLS daemon still serves" % what)
-    status, stderr = cli("info", "--tls-ca", path("ca.pem"), "--tls-cert", path("client.pem"), "--tls-key",
-                         path("client.key"), server="tls://localhost:%d" % c.port)
+    mutual = ["--tls-ca", path("ca.pem"), "--tls-cert", path("client.pem"), "--tls-key", path("client.key")]
+    status, stderr = cli("info", *mutual, server="tls://localhost:%d" % c.port)
     check(status == 0, "mutual TLS with the client certificate is served: %s" % stderr)
+    # c admits 2 connections: with 2 held open a third is refused with ERROR LIMIT, told inside TLS.
+    context = ssl.create_default_context(cafile=path("ca.pem"))
+    context.load_cert_chain(path("client.pem"), path("client.key"))
+    held = [context.wrap_socket(socket.create_connection(("127.0.0.1", c.port)), server_hostname="localhost")
+            for _ in range(2)]
+    status, stderr = cli("info", *mutual, server="tls://localhost:%d" % c.port)
+    check(status == 5 and "maximum of 2 connections" in stderr,
+          "beyond --max-connections a TLS client gets ERROR LIMIT: exit %d: %s" % (status, stderr))
+    for s in held:
+        s.close()
 
 
 def test_proxy_sees_nothing(a, b, particles):
@@ -350,7 +360,7 @@ def main():
                "--tls-handshake-timeout-ms", "600000")
     b = Daemon("b")
     c = Daemon("c", "--tls-cert", path("server.pem"), "--tls-key", path("server.key"), "--tls-client-ca",
-               path("ca.pem"), "--tls-handshake-timeout-ms", "300")
+               path("ca.pem"), "--tls-handshake-timeout-ms", "300", "--max-connections", "2")
     try:
         for d in (a, b, c):
             d.wait_ready()

@@ -101,7 +101,9 @@ short fc_connection_wanted_events(const fc_connection *c)
 {
     short events = own_events(c);
     /* A TLS read may have to write first, and a write to read (a key update). */
-    return events ? (short)(events | c->transport.blocked_on) : 0;
+    if (events && (c->phase == FC_CONN_OPEN || c->phase == FC_CONN_FLUSHING))
+        events |= c->transport.blocked_on;
+    return events;
 }
 
 /* Decrypted bytes wait inside the TLS session, where poll() cannot see them. */
@@ -252,6 +254,10 @@ static void close_with_error(fc_connection *c, fc_daemon_context *ctx, uint32_t 
 
 void fc_connection_refuse(fc_connection *c, fc_daemon_context *ctx)
 {
+    if (c->phase == FC_CONN_HANDSHAKE) {
+        c->refuse_when_open = true;   /* the ERROR can only travel inside TLS */
+        return;
+    }
     fc_error err;
     fc_error_set(&err, FC_ERR_LIMIT, "the server has its maximum of %u connections", (unsigned)ctx->max_connections);
     apply_verdict(c, fc_conversation_reply_error(ctx, c->peer, 0, &err, FC_CONV_CLOSE, &c->out));
@@ -473,7 +479,10 @@ static void advance_handshake(fc_connection *c, fc_daemon_context *ctx, double n
         fc_metrics_add(ctx->metrics, FC_METRIC_TLS_HANDSHAKES, 1);
         fc_log_write(ctx->log, FC_LOG_DEBUG, "%s: TLS %s, %s", c->peer, SSL_get_version(c->transport.ssl),
                      SSL_get_cipher_name(c->transport.ssl));
-        read_messages(c, ctx);   /* the HELLO may have come with the handshake's last flight */
+        if (c->refuse_when_open)
+            fc_connection_refuse(c, ctx);
+        else
+            read_messages(c, ctx);   /* the HELLO may have come with the handshake's last flight */
     } else if (result == FC_HANDSHAKE_PLAINTEXT_PEER) {
         refuse_plaintext(c, ctx);
     } else if (result == FC_HANDSHAKE_FAILED) {

@@ -27,6 +27,7 @@ typedef struct fc_connection {
     uint64_t id;                            /* process-unique: render jobs find their connection by it */
     fc_transport transport;                 /* the socket, and its TLS session if any */
     double handshake_deadline_ms;           /* FC_CONN_HANDSHAKE: when it is dropped as stalled */
+    bool refuse_when_open;                  /* beyond --max-connections: refused once the handshake is done */
     char peer[80];                          /* "ADDR:PORT", for logs */
     fc_connection_phase phase;
     bool peer_closed;                       /* EOF seen: nothing to linger for */
