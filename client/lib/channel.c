@@ -127,8 +127,15 @@ bool fc_channel_input_waiting(const fc_channel *ch)
     return poll(&pfd, 1, 0) > 0;
 }
 
-void fc_channel_close(fc_channel *ch)
+void fc_channel_close(fc_channel *ch, bool orderly)
 {
+    if (ch->ssl && orderly) {
+        /* close_notify, best effort; a socket already dead fails it quietly. */
+        sigpipe_guard guard;
+        sigpipe_block(&guard);
+        SSL_shutdown(ch->ssl);
+        sigpipe_restore(&guard);
+    }
     SSL_free(ch->ssl);
     ch->ssl = NULL;
     if (ch->fd >= 0)

@@ -30,7 +30,8 @@ fc_code fc_channel_recv_exact(fc_channel *ch, uint8_t *data, size_t n, fc_error 
 /* True when bytes can be read now without waiting (decrypted ones included). */
 bool fc_channel_input_waiting(const fc_channel *ch);
 
-/* Frees the TLS session and closes the socket. */
-void fc_channel_close(fc_channel *ch);
+/* Frees the TLS session and closes the socket; orderly (the stream is in
+ * step, the server reading): after a TLS close_notify, best effort. */
+void fc_channel_close(fc_channel *ch, bool orderly);
 
 #endif

@@ -118,9 +118,10 @@ static fc_client *client_new(void)
     return c;
 }
 
-static void client_free(fc_client *c)
+/* orderly: the connection is in step and said GOODBYE (TLS then ends with close_notify). */
+static void client_free(fc_client *c, bool orderly)
 {
-    fc_channel_close(&c->channel);
+    fc_channel_close(&c->channel, orderly);
     fc_buf_free(&c->tx);
     fc_buf_free(&c->rx);
     free(c);
@@ -161,7 +162,7 @@ static fc_code connect_address(const char *address, const fc_connect_options *op
     if (code == FC_OK)
         code = handshake(c, host, opt, connect_timeout, err);
     if (code != FC_OK) {
-        client_free(c);
+        client_free(c, false);
         return code;
     }
     *out = c;
@@ -244,5 +245,5 @@ void fc_client_close(fc_client *client)
         if (fc_wire_write_goodbye(&client->tx, fc_client_next_request_id(client), NULL) == FC_OK)
             fc_client_send_tx(client, NULL);
     }
-    client_free(client);
+    client_free(client, !client->broken);   /* a failed GOODBYE marked it broken */
 }

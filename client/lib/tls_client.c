@@ -42,6 +42,7 @@ static fc_code make_context(const fc_connect_options *opt, SSL_CTX **out, fc_err
     SSL_CTX_set_min_proto_version(ctx, TLS1_2_VERSION);
     SSL_CTX_set_verify(ctx, SSL_VERIFY_PEER, NULL);
     SSL_CTX_set_mode(ctx, SSL_MODE_AUTO_RETRY);
+    SSL_CTX_set_options(ctx, SSL_OP_IGNORE_UNEXPECTED_EOF);   /* a server's EOF is FC_ERR_CLOSED, as in clear */
     fc_code code = FC_OK;
     if (opt->tls_ca_file ? SSL_CTX_load_verify_locations(ctx, opt->tls_ca_file, NULL) != 1
                          : SSL_CTX_set_default_verify_paths(ctx) != 1)
