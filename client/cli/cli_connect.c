@@ -11,6 +11,7 @@
 #include "cli_args.h"
 #include "cli_token.h"
 #include "fc_error.h"
+#include "fc_options.h"
 
 static const char TIMEOUT_OPTION[] = "--connect-timeout";
 static const char TIMEOUT_VARIABLE[] = "FLUIDCAST_CONNECT_TIMEOUT";
@@ -112,10 +113,10 @@ fc_code fc_cli_tls_take(int *argc, char **argv, fc_error *err)
 void fc_cli_tls_print_help(FILE *to)
 {
     for (int i = 0; i < TLS_OPTIONS; i++) {
-        char left[32];
-        snprintf(left, sizeof left, "%s%s%s", tls_options[i].flag, tls_options[i].value ? " " : "",
-                 tls_options[i].value ? tls_options[i].value : "");
-        fprintf(to, "  %-22s  %s (or %s)\n", left, tls_options[i].help, tls_options[i].variable);
+        char help[256];
+        snprintf(help, sizeof help, "%s (or %s)", tls_options[i].help, tls_options[i].variable);
+        const fc_option row = {tls_options[i].flag, tls_options[i].value, NULL, help, NULL};
+        fc_options_print_option(to, &row);   /* wrapped like every other option's help */
     }
 }
 
