@@ -49,7 +49,7 @@ if(EXISTS ${PROJECT_SOURCE_DIR}/python/fluidcast/__init__.py)
   # The Python package (ctypes over libfluidcast.so.0) and its arrays.
   string(APPEND CPACK_DEBIAN_PACKAGE_RECOMMENDS ", python3, python3-numpy")
 endif()
-set(CPACK_DEBIAN_PACKAGE_SUGGESTS "libzstd-dev")
+set(CPACK_DEBIAN_PACKAGE_SUGGESTS "libzstd-dev, libssl-dev")
 if(NOT CMAKE_INSTALL_PREFIX STREQUAL "/usr")
   message(STATUS "cpack -G DEB packs under /usr with the library in /usr/${CMAKE_INSTALL_LIBDIR}: configure "
                  "with -DCMAKE_INSTALL_PREFIX=/usr for Debian's multiarch library directory")

@@ -14,6 +14,8 @@ PACKAGES=(
   libopenimageio-dev
   # compressed frame uploads
   libzstd-dev
+  # TLS on TCP connections (OpenSSL 3), and the openssl tool tests/tls makes its certificates with
+  libssl-dev openssl
   # particle readers: gzip'd .bgeo and compressed .vtu (zlib), VTK XML (expat)
   zlib1g-dev libexpat1-dev
   # HDF5 particle files (libhdf5), and h5py to write the reader tests' files with the real tool

@@ -46,6 +46,7 @@ const char *fc_code_name(fc_code code)
     case FC_ERR_DUPLICATE: return "duplicate";
     case FC_ERR_INCONSISTENT: return "inconsistent";
     case FC_ERR_INCOMPLETE: return "incomplete";
+    case FC_ERR_TLS_REQUIRED: return "tls_required";
     case FC_ERR_IO: return "io";
     case FC_ERR_CONNECT: return "connect";
     case FC_ERR_CLOSED: return "closed";
@@ -54,6 +55,12 @@ const char *fc_code_name(fc_code code)
     case FC_ERR_GL: return "gl";
     case FC_ERR_NOMEM: return "nomem";
     case FC_ERR_USAGE: return "usage";
+    case FC_ERR_TLS_UNKNOWN_CA: return "tls_unknown_ca";
+    case FC_ERR_TLS_NAME_MISMATCH: return "tls_name_mismatch";
+    case FC_ERR_TLS_EXPIRED: return "tls_expired";
+    case FC_ERR_TLS_PLAINTEXT_PEER: return "tls_plaintext_peer";
+    case FC_ERR_TLS_CLIENT_CERT: return "tls_client_cert";
+    case FC_ERR_TLS: return "tls";
     }
     return "unknown";
 }

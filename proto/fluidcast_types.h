@@ -35,6 +35,7 @@ typedef enum fc_code {
     FC_ERR_DUPLICATE = 13,       /* a chunk of this frame with this index already arrived */
     FC_ERR_INCONSISTENT = 14,    /* a chunk disagrees with its frame's other chunks (count K, attributes) */
     FC_ERR_INCOMPLETE = 15,      /* a multi-rank frame still lacked chunks when its timeout passed */
+    FC_ERR_TLS_REQUIRED = 16,    /* a client without TLS reached a TLS port (PROTOCOL.md 1.2); connection closed */
     /* local codes */
     FC_ERR_IO = 100,             /* file or socket I/O failed (see message) */
     FC_ERR_CONNECT = 101,        /* could not reach the server */
@@ -43,7 +44,14 @@ typedef enum fc_code {
     FC_ERR_PARSE = 104,          /* a particle file is malformed */
     FC_ERR_GL = 105,             /* EGL/GL setup or execution failed */
     FC_ERR_NOMEM = 106,          /* allocation failed */
-    FC_ERR_USAGE = 107           /* a caller passed an invalid argument */
+    FC_ERR_USAGE = 107,          /* a caller passed an invalid argument */
+    /* why a TLS connection failed (PROTOCOL.md 1.2) */
+    FC_ERR_TLS_UNKNOWN_CA = 108,     /* the server's certificate does not chain to a trusted CA */
+    FC_ERR_TLS_NAME_MISMATCH = 109,  /* the server's certificate does not name the host connected to */
+    FC_ERR_TLS_EXPIRED = 110,        /* the server's certificate has expired or is not valid yet */
+    FC_ERR_TLS_PLAINTEXT_PEER = 111, /* TLS asked for, but the server answered in clear (a plaintext port) */
+    FC_ERR_TLS_CLIENT_CERT = 112,    /* the server wants a client certificate, or refused the one sent */
+    FC_ERR_TLS = 113                 /* any other TLS failure: unreadable certificate files, a failed handshake */
 } fc_code;
 
 #define FC_ERROR_MESSAGE_MAX 256

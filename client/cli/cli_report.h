@@ -15,7 +15,15 @@ enum fc_cli_exit {
     FC_EXIT_CONNECT = 4,      /* the server cannot be reached */
     FC_EXIT_SERVER = 5,       /* the server answered with an error */
     FC_EXIT_OUTPUT = 6,       /* the output file cannot be written */
-    FC_EXIT_CONNECTION = 7    /* protocol or connection failure after connecting */
+    FC_EXIT_CONNECTION = 7,   /* protocol or connection failure after connecting */
+    /* TLS failures, one status per cause (the table in cli_report.c says which fc_code) */
+    FC_EXIT_TLS_UNKNOWN_CA = 8,
+    FC_EXIT_TLS_NAME_MISMATCH = 9,
+    FC_EXIT_TLS_EXPIRED = 10,
+    FC_EXIT_TLS_REQUIRED = 11,
+    FC_EXIT_TLS_PLAINTEXT_PEER = 12,
+    FC_EXIT_TLS_CLIENT_CERT = 13,
+    FC_EXIT_TLS = 14
 };
 
 /* Prints the table of exit statuses, for the help texts. */

@@ -41,9 +41,10 @@ static void print_help(FILE *to)
           "                          that requires one; without it FLUIDCAST_TOKEN, if set\n"
           "  --connect-timeout S     wait at most S seconds to reach the server and for\n"
           "                          its answer to the handshake (default 10; without it\n"
-          "                          FLUIDCAST_CONNECT_TIMEOUT, if set)\n"
-          "\n",
+          "                          FLUIDCAST_CONNECT_TIMEOUT, if set)\n",
           to);
+    fc_cli_tls_print_help(to);
+    fputc('\n', to);
     fc_cli_print_exit_codes(to);
 }
 
@@ -52,7 +53,7 @@ int main(int argc, char **argv)
     fc_error err;
     if (fc_cli_token_take(&argc, argv, &err) != FC_OK)
         return fc_cli_fail(err.code == FC_ERR_USAGE ? FC_EXIT_USAGE : FC_EXIT_INPUT, "%s", err.message);
-    if (fc_cli_connect_timeout_take(&argc, argv, &err) != FC_OK)
+    if (fc_cli_connect_timeout_take(&argc, argv, &err) != FC_OK || fc_cli_tls_take(&argc, argv, &err) != FC_OK)
         return fc_cli_fail(FC_EXIT_USAGE, "%s", err.message);
     if (argc < 2) {
         print_help(stderr);

@@ -3,7 +3,6 @@
 
 #include "fc_error.h"
 #include "message_io.h"
-#include "socket_io.h"
 
 fc_code fc_client_check_usable(const fc_client *c, fc_error *err)
 {
@@ -38,7 +37,7 @@ fc_code fc_client_check_message_size(const fc_client *c, const char *what, fc_er
 
 fc_code fc_client_send_tx(fc_client *c, fc_error *err)
 {
-    fc_code code = fc_socket_send_all(c->fd, c->tx.data, c->tx.len, err);
+    fc_code code = fc_channel_send_all(&c->channel, c->tx.data, c->tx.len, err);
     if (code != FC_OK)
         c->broken = true;
     return code;
@@ -61,7 +60,7 @@ fc_code fc_client_send_frame_message(fc_client *c, const fc_frame *frame, uint64
     code = check_payload_size(c, total - FC_WIRE_HEADER_SIZE, "the frame", err);
     if (code != FC_OK)
         return code;
-    code = fc_socket_send_parts(c->fd, parts, 1 + count, err);
+    code = fc_channel_send_parts(&c->channel, parts, 1 + count, err);
     if (code != FC_OK)
         c->broken = true;
     else if (wire_bytes)
@@ -71,7 +70,7 @@ fc_code fc_client_send_frame_message(fc_client *c, const fc_frame *frame, uint64
 
 fc_code fc_client_receive(fc_client *c, fc_msg_header *header, fc_error *err)
 {
-    fc_code code = fc_message_receive(c->fd, c->max_reply, header, &c->rx, err);
+    fc_code code = fc_message_receive(&c->channel, c->max_reply, header, &c->rx, err);
     if (code != FC_OK)
         c->broken = true;
     return code;

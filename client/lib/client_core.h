@@ -7,12 +7,13 @@
 #include <stdbool.h>
 #include <stdint.h>
 
+#include "channel.h"
 #include "fluidcast.h"
 #include "fc_host_port.h"
 #include "wire.h"
 
 struct fc_client {
-    int fd;
+    fc_channel channel;        /* the socket, and its TLS session when TLS was asked for */
     char address[FC_HOST_MAX + 8];   /* the daemon connected to, "HOST:PORT" or "unix:PATH" (fc_client_address) */
     uint32_t last_request_id;
     uint32_t max_reply;        /* largest payload accepted from the server */

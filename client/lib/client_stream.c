@@ -2,7 +2,6 @@
  * between requests (fc_client_poll_errors). */
 #include "fluidcast.h"
 
-#include <poll.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -120,16 +119,10 @@ void fc_stream_image_free(fc_stream_image *image)
     memset(image, 0, sizeof *image);
 }
 
-static bool input_waiting(int fd)
-{
-    struct pollfd pfd = {.fd = fd, .events = POLLIN};
-    return poll(&pfd, 1, 0) > 0;
-}
-
 fc_code fc_client_poll_errors(fc_client *client, fc_error *err)
 {
     fc_code code = fc_client_check_usable(client, err);
-    while (code == FC_OK && input_waiting(client->fd)) {
+    while (code == FC_OK && fc_channel_input_waiting(&client->channel)) {
         fc_msg_header header;
         code = fc_client_receive(client, &header, err);
         if (code != FC_OK || fc_client_absorb_stream(client, &header))

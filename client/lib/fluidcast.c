@@ -4,13 +4,13 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <unistd.h>
 
 #include "client_core.h"
 #include "fc_error.h"
 #include "fc_host_port.h"
 #include "socket_io.h"
 #include "srv_candidates.h"
+#include "tls_client.h"
 #include "wire_session.h"
 
 #define DEFAULT_CLIENT_NAME "libfluidcast"
@@ -87,19 +87,22 @@ static fc_code receive_welcome(fc_client *c, fc_error *err)
     return FC_OK;
 }
 
-/* The handshake runs under the connect timeout: a server that accepts but never
- * answers counts as unreachable in time, not as a render that takes long. */
-static fc_code handshake(fc_client *c, const fc_connect_options *opt, uint32_t connect_timeout,
+/* The handshakes (TLS, then HELLO/WELCOME) run under the connect timeout: a
+ * server that accepts but never answers counts as unreachable in time, not as
+ * a render that takes long. */
+static fc_code handshake(fc_client *c, const char *host, const fc_connect_options *opt, uint32_t connect_timeout,
                          fc_error *err)
 {
     const char *name = opt->client_name ? opt->client_name : DEFAULT_CLIENT_NAME;
-    fc_code code = fc_socket_set_timeout(c->fd, connect_timeout, err);
+    fc_code code = fc_socket_set_timeout(c->channel.fd, connect_timeout, err);
+    if (code == FC_OK && opt->tls)
+        code = fc_channel_start_tls(&c->channel, host, opt, err);
     if (code == FC_OK)
         code = send_hello(c, name, opt->token, err);
     if (code == FC_OK)
         code = receive_welcome(c, err);
     if (code == FC_OK)
-        code = fc_socket_set_timeout(c->fd, opt->reply_timeout_ms, err);
+        code = fc_socket_set_timeout(c->channel.fd, opt->reply_timeout_ms, err);
     return code;
 }
 
@@ -108,28 +111,35 @@ static fc_client *client_new(void)
     fc_client *c = calloc(1, sizeof *c);
     if (!c)
         return NULL;
-    c->fd = -1;
+    c->channel.fd = -1;
     c->max_reply = HANDSHAKE_MAX_REPLY;
     fc_buf_init(&c->tx);
     fc_buf_init(&c->rx);
     return c;
 }
 
-static void client_free(fc_client *c)
+/* orderly: the connection is in step and said GOODBYE (TLS then ends with close_notify). */
+static void client_free(fc_client *c, bool orderly)
 {
-    if (c->fd >= 0)
-        close(c->fd);
+    fc_channel_close(&c->channel, orderly);
     fc_buf_free(&c->tx);
     fc_buf_free(&c->rx);
     free(c);
 }
 
-/* "unix:PATH" is a Unix-domain socket; anything else a TCP "HOST:PORT". */
-static fc_code open_socket(const char *address, uint32_t timeout_ms, int *fd, fc_error *err)
+static bool is_unix_address(const char *address)
 {
-    if (address && strncmp(address, FC_UNIX_PREFIX, strlen(FC_UNIX_PREFIX)) == 0)
+    return address && strncmp(address, FC_UNIX_PREFIX, strlen(FC_UNIX_PREFIX)) == 0;
+}
+
+/* "unix:PATH" is a Unix-domain socket; anything else a TCP "HOST:PORT".
+ * host: the host name connected to ("" for Unix), which TLS checks. */
+static fc_code open_socket(const char *address, uint32_t timeout_ms, int *fd, char host[FC_HOST_MAX],
+                           fc_error *err)
+{
+    host[0] = '\0';
+    if (is_unix_address(address))
         return fc_socket_connect_unix(address + strlen(FC_UNIX_PREFIX), fd, err);
-    char host[FC_HOST_MAX];
     char port[FC_PORT_MAX];
     fc_code code = fc_host_port_parse(address, &fc_server_address_rules, host, port, err);
     return code != FC_OK ? code : fc_socket_connect(host, port, timeout_ms, fd, err);
@@ -140,16 +150,19 @@ static fc_code open_socket(const char *address, uint32_t timeout_ms, int *fd, fc
 static fc_code connect_address(const char *address, const fc_connect_options *opt, fc_client **out,
                                fc_error *err)
 {
+    if (opt->tls && is_unix_address(address))
+        return fc_error_set(err, FC_ERR_USAGE, "%s: TLS is for TCP addresses; a Unix socket stays in clear", address);
     fc_client *c = client_new();
     if (!c)
         return fc_error_set(err, FC_ERR_NOMEM, "no memory for a client");
     snprintf(c->address, sizeof c->address, "%s", address ? address : "");
     uint32_t connect_timeout = opt->connect_timeout_ms ? opt->connect_timeout_ms : DEFAULT_CONNECT_TIMEOUT_MS;
-    fc_code code = open_socket(address, connect_timeout, &c->fd, err);
+    char host[FC_HOST_MAX];
+    fc_code code = open_socket(address, connect_timeout, &c->channel.fd, host, err);
     if (code == FC_OK)
-        code = handshake(c, opt, connect_timeout, err);
+        code = handshake(c, host, opt, connect_timeout, err);
     if (code != FC_OK) {
-        client_free(c);
+        client_free(c, false);
         return code;
     }
     *out = c;
@@ -192,9 +205,15 @@ fc_code fc_client_connect_session(const char *address, const char *session, cons
     if (!out)
         return fc_error_set(err, FC_ERR_USAGE, "fc_client_connect needs somewhere to store the client");
     *out = NULL;
-    fc_connect_options defaults;
-    memset(&defaults, 0, sizeof defaults);
-    const fc_connect_options *opt = options ? options : &defaults;
+    fc_connect_options chosen;
+    memset(&chosen, 0, sizeof chosen);
+    if (options)
+        chosen = *options;
+    const fc_connect_options *opt = &chosen;
+    if (address && strncmp(address, FC_TLS_PREFIX, strlen(FC_TLS_PREFIX)) == 0) {
+        address += strlen(FC_TLS_PREFIX);
+        chosen.tls = 1;
+    }
     if (fc_srv_is_address(address))
         return connect_srv(address, session, opt, out, err);
     return connect_address(address, opt, out, err);
@@ -226,5 +245,5 @@ void fc_client_close(fc_client *client)
         if (fc_wire_write_goodbye(&client->tx, fc_client_next_request_id(client), NULL) == FC_OK)
             fc_client_send_tx(client, NULL);
     }
-    client_free(client);
+    client_free(client, !client->broken);   /* a failed GOODBYE marked it broken */
 }

@@ -57,6 +57,13 @@ typedef struct fc_connect_options {
                                      sent in HELLO; NULL or "": none. At most 256 bytes, else FC_ERR_USAGE.
                                      A daemon that wants a token refuses a missing or wrong one with
                                      FC_ERR_UNAUTHORIZED from fc_client_connect. */
+    /* TLS (proto/PROTOCOL.md 1.2): the connection is encrypted and the server
+     * authenticated before HELLO. Asked for by `tls` or by an address
+     * "tls://HOST:PORT" / "tls://srv:NAME"; all zero: in clear, as before. */
+    int tls;                      /* nonzero: TLS on TCP addresses ("unix:" with TLS is FC_ERR_USAGE) */
+    const char *tls_ca_file;      /* PEM CAs the server's certificate must chain to; NULL: the system's store */
+    const char *tls_cert_file;    /* PEM client certificate, for a daemon that wants one (mutual TLS); NULL: none */
+    const char *tls_key_file;     /* its private key (PEM); NULL: in tls_cert_file */
 } fc_connect_options;
 
 /* What the server announced in its WELCOME. Plain data, copied out of the client. */
@@ -90,13 +97,21 @@ typedef struct fc_image_result {
 /* Connects to `host_port` — "HOST:PORT", "HOST" (port FC_DEFAULT_PORT), "[IPV6]:PORT",
  * "[IPV6]" (a bare IPv6 literal is refused: brackets, proto/PROTOCOL.md 1.1),
  * "unix:PATH" for a Unix-domain socket, or "srv:NAME" for one of the
- * daemons of a DNS SRV name (see fc_client_connect_session) — sends HELLO (asking for
+ * daemons of a DNS SRV name (see fc_client_connect_session), each of the TCP
+ * ones prefixed "tls://" for TLS (as options->tls) — sends HELLO (asking for
  * every capability this library has) and checks the WELCOME (protocol version 1). On success
  * *out is a new client the caller owns (fc_client_close releases it); on failure
  * *out is NULL. Errors: FC_ERR_USAGE for a malformed address, FC_ERR_CONNECT when
  * no address of the host accepts the connection in time, a server code (e.g.
  * FC_ERR_VERSION, FC_ERR_UNAUTHORIZED) when the server refuses the HELLO, FC_ERR_CLOSED /
- * FC_ERR_PROTOCOL / FC_ERR_IO when the handshake breaks. */
+ * FC_ERR_PROTOCOL / FC_ERR_IO when the handshake breaks. With TLS the server's
+ * certificate must chain to options->tls_ca_file's CAs (or the system's) and
+ * name the host connected to (sent as SNI; for "srv:" each target's name):
+ * FC_ERR_TLS_UNKNOWN_CA, FC_ERR_TLS_NAME_MISMATCH, FC_ERR_TLS_EXPIRED otherwise;
+ * FC_ERR_TLS_PLAINTEXT_PEER when the server answers in clear, FC_ERR_TLS_CLIENT_CERT
+ * when it wants a client certificate it trusts, FC_ERR_TLS for anything else
+ * (files that do not load). Without TLS, a daemon that wants it answers
+ * FC_ERR_TLS_REQUIRED. */
 FC_API fc_code fc_client_connect(const char *host_port, const fc_connect_options *options,
                                  fc_client **out, fc_error *err);
 

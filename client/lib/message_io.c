@@ -2,13 +2,12 @@
 #include "message_io.h"
 
 #include "fc_error.h"
-#include "socket_io.h"
 
-fc_code fc_message_receive(int fd, uint32_t max_payload, fc_msg_header *header, fc_buf *payload,
+fc_code fc_message_receive(fc_channel *ch, uint32_t max_payload, fc_msg_header *header, fc_buf *payload,
                            fc_error *err)
 {
     uint8_t raw[FC_WIRE_HEADER_SIZE];
-    fc_code code = fc_socket_recv_exact(fd, raw, sizeof raw, err);
+    fc_code code = fc_channel_recv_exact(ch, raw, sizeof raw, err);
     if (code != FC_OK)
         return code;
     fc_error why;
@@ -18,7 +17,7 @@ fc_code fc_message_receive(int fd, uint32_t max_payload, fc_msg_header *header, 
     if (!fc_buf_reserve(payload, header->length))
         return fc_error_set(err, FC_ERR_NOMEM, "no memory for a %u-byte message (type %u) from the server",
                             (unsigned)header->length, (unsigned)header->type);
-    code = fc_socket_recv_exact(fd, payload->data, header->length, err);
+    code = fc_channel_recv_exact(ch, payload->data, header->length, err);
     if (code != FC_OK)
         return code;
     payload->len = header->length;

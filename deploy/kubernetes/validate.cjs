@@ -2,8 +2,8 @@
 // document against the Kubernetes JSON schemas (the npm package
 // kubernetes-models, whose validators are generated from the Kubernetes OpenAPI
 // schemas), then what fluidcastd needs of them (the GPU limit, probes on the
-// metrics port's /healthz and /readyz, the token Secret mounted as a file and
-// passed with --token-file, a volume for the compiled shaders, a grace period longer than the daemon's drain, the
+// metrics port's /healthz and /readyz, the token and the TLS certificate and key Secrets mounted as files and
+// passed with --token-file, --tls-cert and --tls-key, a volume for the compiled shaders, a grace period longer than the daemon's drain, the
 // headless Service's port named "fluidcast" for the SRV records of srv:
 // addresses, selectors that match the pods).
 //
@@ -116,19 +116,26 @@ function checkWorkload({ where, object }, docs, drainMs) {
   // that a container restarted in the pod does not compile every shader again.
   if (!(container.volumeMounts || []).some((m) => m.mountPath === SHADER_CACHE_DIR))
     fail(where, `no volume at ${SHADER_CACHE_DIR}: a restarted container compiles every shader again`);
-  // The token: a Secret volume, mounted, and the file under it given to --token-file.
-  const tokenFile = argAfter(args, '--token-file');
-  if (!tokenFile) return fail(where, 'no --token-file: anyone reaching the pod could render');
-  const mount = (container.volumeMounts || []).find((m) => tokenFile.startsWith(`${m.mountPath}/`));
-  if (!mount) return fail(where, `--token-file ${tokenFile} lies under no volume mount`);
+  // The token, and TLS's certificate and key: each a file of a Secret volume, mounted, given to its option.
+  checkSecretFile(where, docs, pod, container, '--token-file', 'anyone reaching the pod could render');
+  checkSecretFile(where, docs, pod, container, '--tls-cert', 'the token, particles and images would cross the network in clear');
+  checkSecretFile(where, docs, pod, container, '--tls-key', '--tls-cert needs its key');
+}
+
+// The file `option` names lies in a mounted Secret volume whose Secret, among the manifests, has that key.
+function checkSecretFile(where, docs, pod, container, option, missing) {
+  const file = argAfter(container.args || [], option);
+  if (!file) return fail(where, `no ${option}: ${missing}`);
+  const mount = (container.volumeMounts || []).find((m) => file.startsWith(`${m.mountPath}/`));
+  if (!mount) return fail(where, `${option} ${file} lies under no volume mount`);
   const volume = (pod.volumes || []).find((v) => v.name === mount.name);
   const secretName = volume && volume.secret && volume.secret.secretName;
   if (!secretName) return fail(where, `the volume at ${mount.mountPath} is not a Secret`);
   const secret = byKind(docs, 'Secret').find((s) => s.object.metadata.name === secretName);
-  const key = path.basename(tokenFile);
+  const key = path.basename(file);
   const data = secret && { ...(secret.object.data || {}), ...(secret.object.stringData || {}) };
   if (!secret) fail(where, `Secret ${secretName} is not among the manifests`);
-  else if (!(key in data)) fail(where, `Secret ${secretName} has no key "${key}" for ${tokenFile}`);
+  else if (!(key in data)) fail(where, `Secret ${secretName} has no key "${key}" for ${file}`);
 }
 
 function checkServices(docs, workload) {

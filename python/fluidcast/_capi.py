@@ -112,13 +112,17 @@ class FcRenderRequest(Structure):
 
 
 class FcConnectOptions(Structure):
-    """fc_connect_options: client name, timeouts, token."""
+    """fc_connect_options: client name, timeouts, token, TLS."""
     _c_name_ = "fc_connect_options"
     _fields_ = [
         ("client_name", c_char_p),
         ("connect_timeout_ms", c_uint32),
         ("reply_timeout_ms", c_uint32),
         ("token", c_char_p),
+        ("tls", c_int),
+        ("tls_ca_file", c_char_p),
+        ("tls_cert_file", c_char_p),
+        ("tls_key_file", c_char_p),
     ]
 
 

@@ -240,7 +240,8 @@ def default_settings():
 
 # ---- the client -----------------------------------------------------------
 
-def connect(address, token=None, name="fluidcast-python", connect_timeout=None, reply_timeout=None, session=None):
+def connect(address, token=None, name="fluidcast-python", connect_timeout=None, reply_timeout=None, session=None,
+            tls=False, tls_ca=None, tls_cert=None, tls_key=None):
     """Connects to a fluidcastd and returns a :class:`Client` (fc_client_connect_session).
 
     Arguments:
@@ -262,6 +263,13 @@ def connect(address, token=None, name="fluidcast-python", connect_timeout=None, 
             priorities and weights (RFC 2782). Other addresses ignore it.
             The records are looked up at each connect, from the DNS servers of
             /etc/resolv.conf or the one $FLUIDCAST_DNS_SERVER ("ADDR[:PORT]") names.
+        tls: True for TLS, as an address "tls://HOST:PORT" or "tls://srv:NAME"
+            asks for it too (not for "unix:" addresses). The server's
+            certificate must chain to tls_ca's CAs (or the system's) and name
+            the host connected to.
+        tls_ca: a PEM file of the CAs to trust instead of the system's.
+        tls_cert, tls_key: a client certificate and its key (PEM; the key may
+            be in tls_cert's file), for a daemon that wants one (mutual TLS).
 
     :attr:`Client.daemon` says which daemon was reached.
 
@@ -270,10 +278,13 @@ def connect(address, token=None, name="fluidcast-python", connect_timeout=None, 
     the server cannot be reached in time (for "srv:": no SRV records, no DNS
     answer, or no target reachable), ``Code.UNAUTHORIZED`` for a missing or
     wrong token, ``Code.VERSION`` and the connection errors when the handshake
-    fails, ``Code.PROTOCOL`` for a DNS answer that does not parse.
+    fails, ``Code.PROTOCOL`` for a DNS answer that does not parse; with TLS
+    ``Code.TLS_UNKNOWN_CA``, ``TLS_NAME_MISMATCH``, ``TLS_EXPIRED``,
+    ``TLS_PLAINTEXT_PEER``, ``TLS_CLIENT_CERT`` or ``TLS`` naming the cause, and
+    without it ``Code.TLS_REQUIRED`` from a daemon that wants TLS.
     """
     return Client(address, token=token, name=name, connect_timeout=connect_timeout, reply_timeout=reply_timeout,
-                  session=session)
+                  session=session, tls=tls, tls_ca=tls_ca, tls_cert=tls_cert, tls_key=tls_key)
 
 
 class Client:
@@ -293,14 +304,16 @@ class Client:
     """
 
     def __init__(self, address, token=None, name="fluidcast-python", connect_timeout=None, reply_timeout=None,
-                 session=None):
+                 session=None, tls=False, tls_ca=None, tls_cert=None, tls_key=None):
         self._handle = None
         self._lock = threading.Lock()
         options = FcConnectOptions(
             name.encode() if name is not None else None,
             _ms("connect_timeout", connect_timeout),
             _ms("reply_timeout", reply_timeout),
-            token.encode() if token else None)
+            token.encode() if token else None,
+            1 if tls else 0,
+            *(os.fsencode(path) if path is not None else None for path in (tls_ca, tls_cert, tls_key)))
         handle = _capi.c_client_p()
         err = FcError()
         code = _capi.fc_client_connect_session(os.fsencode(address), session.encode() if session else None,

@@ -28,6 +28,7 @@ class Code(enum.IntEnum):
     DUPLICATE = 13           #: a chunk of this frame with this index already arrived
     INCONSISTENT = 14        #: a chunk disagrees with its frame's other chunks
     INCOMPLETE = 15          #: a multi-rank frame still lacked chunks when its timeout passed
+    TLS_REQUIRED = 16        #: the port speaks TLS and this client did not (connect with tls:// or tls=True)
     # local codes
     IO = 100                 #: file or socket I/O failed, or a wait for the server timed out
     CONNECT = 101            #: could not reach the server
@@ -37,6 +38,12 @@ class Code(enum.IntEnum):
     GL = 105                 #: EGL/GL setup or execution failed
     NOMEM = 106              #: an allocation failed
     USAGE = 107              #: an invalid argument (malformed address, capability not granted, ...)
+    TLS_UNKNOWN_CA = 108     #: the server's certificate does not chain to a trusted CA (tls_ca)
+    TLS_NAME_MISMATCH = 109  #: the server's certificate does not name the host connected to
+    TLS_EXPIRED = 110        #: the server's certificate has expired or is not valid yet
+    TLS_PLAINTEXT_PEER = 111 #: TLS asked for, but the server answered in clear
+    TLS_CLIENT_CERT = 112    #: the server wants a client certificate it trusts (tls_cert, tls_key)
+    TLS = 113                #: another TLS failure: certificate files that do not load, a failed handshake
 
 
 class Format(enum.IntEnum):

@@ -26,6 +26,7 @@ typedef struct fc_daemon_context {
     uint32_t max_connections;      /* connections at once; more are refused with LIMIT */
     double idle_timeout_ms;        /* no complete message for this long closes a connection; 0 = never */
     double read_timeout_ms;        /* a started message must complete within this; 0 = never */
+    double tls_handshake_timeout_ms; /* a TLS handshake must complete within this, or the connection is dropped */
     uint64_t max_session_memory;   /* bytes one connection may hold (conversations/conversation_memory.h) */
     fc_metrics *metrics;           /* counted by every layer, read by the metrics endpoint's thread */
 } fc_daemon_context;

@@ -2,7 +2,7 @@
  * service (GL thread and encoders), the named sessions, the listeners and the
  * event loop, in that order, telling a service manager (systemd) how far it
  * got (service_manager.h); exit 0 on SIGINT/SIGTERM, 1 when it cannot start,
- * 2 on a bad command line. The folders below (net/, conversations/, sessions/, gpu/,
+ * 2 on a bad command line; SIGHUP reloads the TLS certificate and key. The folders below (net/, conversations/, sessions/, gpu/,
  * uploads/) are the daemon's layers: README.md maps them. */
 #include <arpa/inet.h>
 #include <errno.h>
@@ -19,6 +19,7 @@
 #include "gpu/encoder_pool.h"
 #include "net/event_loop.h"
 #include "net/listener.h"
+#include "net/tls_server.h"
 #include "metrics/metrics.h"
 #include "metrics/metrics_http.h"
 #include "options.h"
@@ -39,21 +40,23 @@ enum { EXIT_BAD_USAGE = 2, MAX_LISTENERS = 8 };
 #define FRAME_POOL_BLOCKS 8
 #define FRAME_POOL_BYTES ((size_t)256 << 20)
 
-/* SIGINT/SIGTERM are blocked and read from a signalfd the event loop polls:
- * no handler, no global flag. Blocked before any thread exists (llvmpipe and
- * OpenImageIO start their own), since threads inherit the mask and a thread
- * without it would let the signal kill the process. */
-static int open_stop_signals(fc_error *err)
+/* SIGINT/SIGTERM (stop) and SIGHUP (reload the TLS files) are blocked and
+ * read from signalfds the event loop polls: no handler, no global flag.
+ * Blocked before any thread exists (llvmpipe and OpenImageIO start their
+ * own), since threads inherit the mask and a thread without it would let the
+ * signal kill the process. */
+static int open_signals(int first, int second, fc_error *err)
 {
-    sigset_t stop;
-    sigemptyset(&stop);
-    sigaddset(&stop, SIGINT);
-    sigaddset(&stop, SIGTERM);
-    if (sigprocmask(SIG_BLOCK, &stop, NULL) != 0) {
+    sigset_t set;
+    sigemptyset(&set);
+    sigaddset(&set, first);
+    if (second)
+        sigaddset(&set, second);
+    if (sigprocmask(SIG_BLOCK, &set, NULL) != 0) {
         fc_error_set(err, FC_ERR_IO, "sigprocmask: %s", strerror(errno));
         return -1;
     }
-    int fd = signalfd(-1, &stop, SFD_NONBLOCK | SFD_CLOEXEC);
+    int fd = signalfd(-1, &set, SFD_NONBLOCK | SFD_CLOEXEC);
     if (fd < 0)
         fc_error_set(err, FC_ERR_IO, "signalfd: %s", strerror(errno));
     return fd;
@@ -118,6 +121,20 @@ static void warn_if_open(const fc_daemon_options *options, const fc_auth_token *
                  options->listen_host);
 }
 
+/* Without TLS the token, the particles and the images cross the network in
+ * clear: loud, since an operator may not know. A warning, not a refusal:
+ * clusters with their own encrypted fabric or tunnels run this way on purpose
+ * (docs/security.md). */
+static void warn_if_clear(const fc_daemon_options *options, const fc_log *log)
+{
+    if (options->tls_cert || !fc_daemon_options_serve_tcp(options) || is_loopback_host(options->listen_host))
+        return;
+    fc_log_write(log, FC_LOG_WARN,
+                 "listening on %s WITHOUT TLS: the token, the particle data and the images travel in clear "
+                 "(use --tls-cert and --tls-key, docs/security.md)",
+                 options->listen_host);
+}
+
 /* Opens the TCP and/or Unix listeners the options ask for; *count of them. */
 static fc_code open_own_listeners(const fc_daemon_options *options, fc_listener *listeners, size_t *count,
                                   fc_error *err)
@@ -154,6 +171,8 @@ typedef struct daemon_sockets {
     bool inherited;            /* the listeners came from socket activation */
     int metrics_fd;            /* an inherited metrics socket until the endpoint takes it; -1 */
     fc_metrics_http *http;     /* the metrics endpoint; NULL when not asked for */
+    fc_tls_server *tls;        /* every TCP listener's TLS (--tls-cert); NULL: in clear */
+    int reload_fd;             /* SIGHUP's signalfd: reload the TLS files */
 } daemon_sockets;
 
 /* What systemd passed, if anything: taken first, before the slow GL start,
@@ -203,10 +222,13 @@ static void close_sockets(daemon_sockets *s)
     s->count = 0;
 }
 
-/* The listeners the options ask for, unless systemd passed some; then the port file. */
+/* The listeners the options ask for, unless systemd passed some; TLS on the
+ * TCP ones when asked for; then the port file. */
 static fc_code open_listeners(const fc_daemon_options *options, daemon_sockets *s, fc_error *err)
 {
     fc_code code = s->inherited ? FC_OK : open_own_listeners(options, s->listeners, &s->count, err);
+    for (size_t i = 0; i < s->count; i++)
+        s->listeners[i].tls = s->listeners[i].is_unix ? NULL : s->tls;
     if (code == FC_OK && options->port_file)
         code = write_port_file(options->port_file, first_tcp_port(s->listeners, s->count), err);
     return code;
@@ -228,7 +250,8 @@ static void announce_ready(const fc_daemon_context *ctx, const fc_listener *list
 {
     char where[512];
     for (size_t i = 0; i < count; i++)
-        fc_log_write(ctx->log, FC_LOG_INFO, "listening on %s", listeners[i].address);
+        fc_log_write(ctx->log, FC_LOG_INFO, "listening on %s%s", listeners[i].address,
+                     listeners[i].tls ? " (TLS)" : "");
     describe_listeners(listeners, count, where, sizeof where);
     fc_service_notify(ctx->log, "READY=1\nSTATUS=serving on %s; renderer %s", where, ctx->welcome.renderer);
 }
@@ -241,7 +264,7 @@ static int serve(const fc_daemon_options *options, fc_daemon_context *ctx, daemo
     fc_event_loop *loop = NULL;
     fc_code code = open_listeners(options, s, &err);
     if (code == FC_OK)
-        code = fc_event_loop_create(s->listeners, s->count, stop_fd, ctx, &loop, &err);
+        code = fc_event_loop_create(s->listeners, s->count, stop_fd, s->reload_fd, ctx, &loop, &err);
     if (code == FC_OK) {
         announce_ready(ctx, s->listeners, s->count);
         fc_metrics_set_phase(ctx->metrics, FC_PHASE_SERVING);
@@ -337,6 +360,7 @@ static int run_render_service(const fc_daemon_options *options, const fc_auth_to
         .max_connections = options->max_connections,
         .idle_timeout_ms = options->idle_timeout_ms,
         .read_timeout_ms = options->read_timeout_ms,
+        .tls_handshake_timeout_ms = options->tls_handshake_timeout_ms,
         .max_session_memory = options->max_session_memory,
         .metrics = metrics,
     };
@@ -361,11 +385,11 @@ static int run_render_service(const fc_daemon_options *options, const fc_auth_to
 /* The metrics and the sockets, which exist before the GL context, around the
  * render service and the event loop. */
 static int run(const fc_daemon_options *options, const fc_auth_token *token, const fc_log *log,
-               uint64_t lose_context_at_render, int stop_fd)
+               uint64_t lose_context_at_render, fc_tls_server *tls, int stop_fd, int reload_fd)
 {
     fc_error err;
     fc_metrics *metrics = NULL;
-    daemon_sockets sockets = {.metrics_fd = -1};
+    daemon_sockets sockets = {.metrics_fd = -1, .tls = tls, .reload_fd = reload_fd};
     int status = EXIT_FAILURE;
     if (fc_metrics_create(&metrics, &err) == FC_OK && inherit_sockets(options, log, &sockets, &err) == FC_OK &&
         start_metrics(options, log, metrics, &sockets, &err) == FC_OK)
@@ -401,15 +425,27 @@ int main(int argc, char **argv)
         fprintf(stderr, "fluidcastd: %s\n", err.message);
         return EXIT_BAD_USAGE;
     }
+    fc_tls_server *tls = NULL;
+    fc_tls_server_files tls_files = {options.tls_cert, options.tls_key, options.tls_client_ca};
+    if (options.tls_cert && fc_tls_server_create(&tls_files, &tls, &err) != FC_OK) {
+        fprintf(stderr, "fluidcastd: %s\n", err.message);
+        return err.code == FC_ERR_USAGE ? EXIT_BAD_USAGE : EXIT_FAILURE;
+    }
     warn_if_open(&options, &token, &log);
+    warn_if_clear(&options, &log);
     /* A client that disconnects mid-reply must cost an EPIPE, not the process. */
     signal(SIGPIPE, SIG_IGN);
-    int stop_fd = open_stop_signals(&err);
-    if (stop_fd < 0) {
+    int stop_fd = open_signals(SIGINT, SIGTERM, &err);
+    int reload_fd = stop_fd < 0 ? -1 : open_signals(SIGHUP, 0, &err);
+    int status = EXIT_FAILURE;
+    if (reload_fd >= 0)
+        status = run(&options, &token, &log, lose_context_at_render, tls, stop_fd, reload_fd);
+    else
         fc_log_write(&log, FC_LOG_ERROR, "%s", err.message);
-        return EXIT_FAILURE;
-    }
-    int status = run(&options, &token, &log, lose_context_at_render, stop_fd);
-    close(stop_fd);
+    if (stop_fd >= 0)
+        close(stop_fd);
+    if (reload_fd >= 0)
+        close(reload_fd);
+    fc_tls_server_destroy(tls);
     return status;
 }

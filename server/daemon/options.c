@@ -88,6 +88,32 @@ static fc_code set_token_file(void *o, const char *name, const char *value, fc_e
     return FC_OK;
 }
 
+static fc_code set_tls_cert(void *o, const char *name, const char *value, fc_error *err)
+{
+    (void)name, (void)err;
+    as_options(o)->tls_cert = value;
+    return FC_OK;
+}
+
+static fc_code set_tls_key(void *o, const char *name, const char *value, fc_error *err)
+{
+    (void)name, (void)err;
+    as_options(o)->tls_key = value;
+    return FC_OK;
+}
+
+static fc_code set_tls_client_ca(void *o, const char *name, const char *value, fc_error *err)
+{
+    (void)name, (void)err;
+    as_options(o)->tls_client_ca = value;
+    return FC_OK;
+}
+
+static fc_code set_tls_handshake_timeout(void *o, const char *name, const char *value, fc_error *err)
+{
+    return parse_u32(name, value, 1, UINT32_MAX, &as_options(o)->tls_handshake_timeout_ms, err);
+}
+
 static fc_code set_metrics_listen(void *o, const char *name, const char *value, fc_error *err)
 {
     (void)name;
@@ -207,6 +233,14 @@ static const fc_option options[] = {
     {"--token-file", "PATH", set_token_file,
      "require clients to send the token in PATH (one line) in HELLO; without it the FLUIDCAST_TOKEN "
      "environment variable, if set, is the token", NULL},
+    {"--tls-cert", "PATH", set_tls_cert,
+     "serve TLS (1.3, 1.2 at least) on every TCP listener with this PEM certificate chain; SIGHUP reloads it "
+     "and the key for new connections; Unix sockets stay in clear", NULL},
+    {"--tls-key", "PATH", set_tls_key, "the PEM private key of --tls-cert", NULL},
+    {"--tls-client-ca", "PATH", set_tls_client_ca,
+     "mutual TLS: clients must present a certificate issued by a CA in this PEM file", NULL},
+    {"--tls-handshake-timeout-ms", "MS", set_tls_handshake_timeout,
+     "a TLS handshake not complete within this is dropped (counted in /metrics)", "10000"},
 };
 
 static const fc_option_table table = {"fluidcastd", options, sizeof options / sizeof options[0], NULL, NULL};
@@ -217,6 +251,15 @@ fc_code fc_daemon_options_default(fc_daemon_options *o, fc_error *err)
     fc_code code = fc_options_set_defaults(&table, o, err);
     o->listen_given = false;   /* the default address is not a --listen given */
     return code;
+}
+
+fc_code fc_daemon_options_check_tls(const fc_daemon_options *o, fc_error *err)
+{
+    if (!o->tls_cert != !o->tls_key)
+        return fc_error_set(err, FC_ERR_USAGE, "--tls-cert and --tls-key go together");
+    if (o->tls_client_ca && !o->tls_cert)
+        return fc_error_set(err, FC_ERR_USAGE, "--tls-client-ca needs --tls-cert and --tls-key");
+    return FC_OK;
 }
 
 bool fc_daemon_options_serve_tcp(const fc_daemon_options *o)
@@ -237,7 +280,9 @@ void fc_daemon_options_print_help(FILE *out, const char *program)
     fprintf(out,
             "\n"
             "Without a token anyone who can reach the port can use the daemon: listening\n"
-            "beyond loopback without one prints a warning.\n"
+            "beyond loopback without one prints a warning. Without --tls-cert everything,\n"
+            "the token included, travels in clear: listening beyond loopback without TLS\n"
+            "prints a warning too.\n"
             "A render that fails on the GPU (out of memory, a GL error, a lost context) is\n"
             "answered with ERROR RENDER; the daemon then rebuilds its pipeline or recreates\n"
             "its GL context, and keeps serving.\n"
@@ -268,5 +313,6 @@ fc_code fc_daemon_options_parse_metrics_listen(const char *text, fc_daemon_optio
 
 fc_code fc_daemon_options_parse(int argc, char **argv, fc_daemon_options *o, fc_error *err)
 {
-    return fc_options_parse(&table, argc - 1, argv + 1, o, &o->help, err);
+    fc_code code = fc_options_parse(&table, argc - 1, argv + 1, o, &o->help, err);
+    return code == FC_OK ? fc_daemon_options_check_tls(o, err) : code;
 }

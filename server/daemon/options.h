@@ -32,6 +32,10 @@ typedef struct fc_daemon_options {
     char metrics_host[FC_HOST_MAX];  /* --metrics-listen: "" = no metrics endpoint */
     char metrics_port[FC_PORT_MAX];
     const char *token_file;    /* --token-file: NULL for none (then FLUIDCAST_TOKEN); points into argv */
+    const char *tls_cert;      /* --tls-cert: NULL = TCP in clear; points into argv */
+    const char *tls_key;       /* --tls-key: the certificate's private key */
+    const char *tls_client_ca; /* --tls-client-ca: mutual TLS, clients need a certificate from these CAs */
+    uint32_t tls_handshake_timeout_ms;  /* a TLS handshake not complete within this is dropped */
     bool help;                 /* -h/--help: print usage and exit */
 } fc_daemon_options;
 
@@ -43,6 +47,10 @@ fc_code fc_daemon_options_default(fc_daemon_options *o, fc_error *err);
  * fc_options_parse: "--name value" and "--name=value"; FC_ERR_USAGE naming
  * the offending argument. */
 fc_code fc_daemon_options_parse(int argc, char **argv, fc_daemon_options *o, fc_error *err);
+
+/* FC_ERR_USAGE when the TLS options do not go together: --tls-cert and
+ * --tls-key are given both or neither, --tls-client-ca only with them. */
+fc_code fc_daemon_options_check_tls(const fc_daemon_options *o, fc_error *err);
 
 /* TCP is served unless only --unix was given. */
 bool fc_daemon_options_serve_tcp(const fc_daemon_options *o);

@@ -18,8 +18,8 @@ dpkg-query -W -f='${Package} ${Version} ${Status}\n' fluidcast | grep -q "instal
 command -v fluidcastd fluidcast
 fluidcast --version
 
-step "a compiler, pkg-config, CMake (and libzstd-dev for the static library)"
-apt-get install -y -q --no-install-recommends gcc libc6-dev make pkg-config cmake libzstd-dev > /out/apt-tools.log 2>&1 ||
+step "a compiler, pkg-config, CMake (and libzstd-dev, libssl-dev for the static library)"
+apt-get install -y -q --no-install-recommends gcc libc6-dev make pkg-config cmake libzstd-dev libssl-dev > /out/apt-tools.log 2>&1 ||
     { tail -30 /out/apt-tools.log; fail "apt-get install of the tools"; }
 
 B=/tmp/build

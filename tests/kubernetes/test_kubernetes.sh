@@ -35,7 +35,7 @@ validate() { node "$validator" "$modules" "$drain_ms" "$@"; }
 out=$(validate "$manifests"/*.yaml 2>&1) || fail "the manifests do not validate:"$'\n'"$out"
 echo "$out"
 [[ $out == *"StatefulSet fluidcastd (schema apps/v1)"* && $out == *"Service fluidcastd-headless"* &&
-   $out == *"Secret fluidcast-token"* ]] || fail "not every manifest was checked"
+   $out == *"Secret fluidcast-token"* && $out == *"Secret fluidcast-tls"* ]] || fail "not every manifest was checked"
 
 # broken NAME SED_EXPRESSION FILE EXPECTED: a copy with one change must be refused, saying EXPECTED.
 broken() {
@@ -78,6 +78,8 @@ broken metrics-on-loopback 's/- 0.0.0.0:9090/- 127.0.0.1:9090/' statefulset.yaml
 broken token-not-mounted 's#- /run/secrets/fluidcast/token#- /etc/fluidcast/token#' statefulset.yaml \
     "lies under no volume mount"
 broken secret-key 's/^  token: /  secret: /' secret.yaml 'has no key "token"'
+broken no-tls '/- --tls-cert$/,/- \/run\/secrets\/fluidcast-tls\/tls.crt$/d' statefulset.yaml "no --tls-cert"
+broken tls-secret-key 's/^  tls.key: /  key: /' tls-secret.yaml 'has no key "tls.key"'
 broken no-token '/- --token-file/,+1d' statefulset.yaml "no --token-file"
 broken srv-port-name '/name: fluidcastd-headless/,$s/- name: fluidcast$/- name: render/' service.yaml \
     'no TCP port named "fluidcast"'

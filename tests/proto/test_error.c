@@ -53,7 +53,9 @@ static void test_code_names(void)
                              FC_ERR_MALFORMED, FC_ERR_BAD_STATE, FC_ERR_INVALID_VALUE, FC_ERR_LIMIT,
                              FC_ERR_RENDER, FC_ERR_ENCODE, FC_ERR_INTERNAL, FC_ERR_UNAUTHORIZED,
                              FC_ERR_DUPLICATE, FC_ERR_INCONSISTENT, FC_ERR_INCOMPLETE, FC_ERR_IO, FC_ERR_CONNECT, FC_ERR_CLOSED, FC_ERR_PROTOCOL,
-                             FC_ERR_PARSE, FC_ERR_GL, FC_ERR_NOMEM, FC_ERR_USAGE};
+                             FC_ERR_PARSE, FC_ERR_GL, FC_ERR_NOMEM, FC_ERR_USAGE, FC_ERR_TLS_REQUIRED,
+                             FC_ERR_TLS_UNKNOWN_CA, FC_ERR_TLS_NAME_MISMATCH, FC_ERR_TLS_EXPIRED,
+                             FC_ERR_TLS_PLAINTEXT_PEER, FC_ERR_TLS_CLIENT_CERT, FC_ERR_TLS};
     size_t n = sizeof codes / sizeof codes[0];
     for (size_t i = 0; i < n; i++) {
         CHECK_MSG(strcmp(fc_code_name(codes[i]), "unknown") != 0, "code %d has no name", (int)codes[i]);

@@ -5,10 +5,12 @@
 # gres with `sbatch --gres=none` and render with llvmpipe.
 #
 #   1. fluidcastd.sbatch: the address file appears (mode 600: umask 077) with
-#      127.0.0.1:PORT; the real fluidcast client renders through it with the
-#      job's token (and is refused without); `scancel` ends it: its log says
-#      it drained ("SIGTERM received: stopping", status 0), the job is
-#      CANCELLED and the address file is gone.
+#      tls://127.0.0.1:PORT and the job's certificate next to it; the real
+#      fluidcast client renders through it with the job's token and
+#      certificate (and is refused without either, each with its exit status);
+#      `scancel` ends it: its log says it drained ("SIGTERM received:
+#      stopping", status 0), the job is CANCELLED and the address and
+#      certificate files are gone.
 #   2. The same script, stopped as --signal=B:TERM@60 does it (`scancel --batch
 #      --signal=TERM`: the batch shell only): the script passes SIGTERM on, the
 #      daemon drains and the job COMPLETES with exit code 0.
@@ -81,6 +83,7 @@ check_drained() {   # DIR WHAT
     grep -q "SIGTERM received: stopping" "$1/job.log" || fail "$2: the daemon's log has no drain ('SIGTERM received: stopping')"
     grep -q "fluidcastd exited with status 0" "$1/job.log" || fail "$2: the daemon did not exit 0"
     [[ ! -e $1/address ]] || fail "$2: the address file outlived the daemon"
+    [[ ! -e $1/address.pem ]] || fail "$2: the certificate file outlived the daemon"
 }
 
 grep -q '^#SBATCH --signal=B:TERM@60$' "$source/deploy/slurm/fluidcastd.sbatch" || fail "fluidcastd.sbatch lacks --signal=B:TERM@60"
@@ -93,15 +96,19 @@ echo "jobs $one (scancel) and $two (--signal=B:TERM) submitted"
 
 if wait_for_file "$work/one/address" 120; then
     address=$(cat "$work/one/address")
-    [[ $address =~ ^127\.0\.0\.1:[0-9]+$ ]] || fail "address file holds '$address'"
+    [[ $address =~ ^tls://127\.0\.0\.1:[0-9]+$ ]] || fail "address file holds '$address'"
     [[ $(stat -c %a "$work/one/address") == 600 ]] || fail "address file mode $(stat -c %a "$work/one/address"), not 600"
+    [[ -s $work/one/address.pem ]] || fail "the job handed back no certificate (address.pem)"
     out=$("$client" snapshot "$work/ball.f32" -o "$work/one.png" --size 64x48 --server "$address" \
-        --token-file "$work/token" 2>&1) || fail "render through $address: $out"
+        --tls-ca "$work/one/address.pem" --token-file "$work/token" 2>&1) || fail "render through $address: $out"
     [[ $out == *"64x48 PNG"* ]] || fail "render said: $out"
     [[ $(head -c 8 "$work/one.png" | od -An -tx1 | tr -d ' \n') == 89504e470d0a1a0a ]] || fail "one.png is no PNG"
-    "$client" info --server "$address" > "$work/no-token.txt" 2>&1
+    "$client" info --server "$address" --tls-ca "$work/one/address.pem" > "$work/no-token.txt" 2>&1
     status=$?
     [[ $status -eq 5 ]] || fail "without the token: exit $status, expected 5 (refused): $(cat "$work/no-token.txt")"
+    "$client" info --server "$address" --token-file "$work/token" > "$work/no-ca.txt" 2>&1
+    status=$?
+    [[ $status -eq 8 ]] || fail "without the job's certificate: exit $status, expected 8 (unknown CA): $(cat "$work/no-ca.txt")"
     echo "job $one: rendered through $address"
 else
     fail "job $one never wrote its address: $(cat "$work/one/job.log" 2>/dev/null)"

@@ -60,6 +60,7 @@ typedef struct fc_conversation {
     struct fc_session *session;    /* the named session published or subscribed to; NULL when none */
     fc_session_member member;      /* how that session tells this conversation (conversation_sessions.c) */
     fc_viewer viewer;              /* role == FC_ROLE_VIEWER */
+    uint64_t transport_bytes;      /* set by the connection: what its TLS session holds (0 in clear) */
 } fc_conversation;
 
 /* What the connection does after a message has been handled. */

@@ -61,7 +61,7 @@ uint64_t fc_conversation_memory_held(const fc_conversation *c)
 {
     uint64_t bytes = memory_of_shared(c->frame) + fc_memory_of_scene_part(c->scene.background) +
                      fc_memory_of_scene_part(c->scene.environment) + fc_mesh_set_bytes(&c->meshes) + c->out->len +
-                     memory_of_viewer(c);
+                     memory_of_viewer(c) + c->transport_bytes;
     if (c->role == FC_ROLE_PRODUCER)
         bytes += memory_of_shared(c->session->latest) + memory_of_assembly(&c->session->chunks) +
                  fc_mesh_set_bytes(&c->session->meshes);

@@ -6,6 +6,7 @@
  *   - its own frame (the last FRAME of a connection outside named sessions);
  *   - its scene images (background, cube-map faces), decoded;
  *   - the replies queued for it that the socket has not taken yet;
+ *   - its TLS session, a fixed estimate (FC_TLS_SESSION_BYTES, net/transport.h);
  *   - for an H.264 viewer, its stream's encoder, estimated for its image size
  *     (fc_h264_stream_memory);
  *   - for a producer, its named session's latest frame and every chunk of the

@@ -22,6 +22,9 @@ typedef enum fc_metric_counter {
     FC_METRIC_DROPPED_RENDER_FAILED,   /* renders that failed on the GPU or in the encoder */
     FC_METRIC_DROPPED_CLIENT_GONE,     /* images finished for a connection that had closed */
     FC_METRIC_LIMIT_REJECTIONS,        /* ERROR LIMIT replies: a limit of the server refused a request */
+    FC_METRIC_TLS_HANDSHAKES,          /* TLS handshakes completed */
+    FC_METRIC_TLS_HANDSHAKE_FAILURES,  /* TLS handshakes failed, and clients without TLS on a TLS port */
+    FC_METRIC_TLS_HANDSHAKE_TIMEOUTS,  /* TLS handshakes dropped as stalled (--tls-handshake-timeout-ms) */
     FC_METRIC_COUNTER_COUNT
 } fc_metric_counter;
 

@@ -150,6 +150,11 @@ static void counters(text *t, fc_metrics *m)
     frames_dropped(t, m);
     counter(t, m, "fluidcast_limit_rejections_total", FC_METRIC_LIMIT_REJECTIONS,
             "Requests refused with ERROR LIMIT (connections, sizes, memory, sessions, timeouts).");
+    counter(t, m, "fluidcast_tls_handshakes_total", FC_METRIC_TLS_HANDSHAKES, "TLS handshakes completed.");
+    counter(t, m, "fluidcast_tls_handshake_failures_total", FC_METRIC_TLS_HANDSHAKE_FAILURES,
+            "TLS handshakes that failed, and clients without TLS refused on a TLS port.");
+    counter(t, m, "fluidcast_tls_handshake_timeouts_total", FC_METRIC_TLS_HANDSHAKE_TIMEOUTS,
+            "TLS handshakes dropped because they did not complete within the handshake timeout.");
 }
 
 char *fc_metrics_text(fc_metrics *m, size_t *length)

@@ -29,8 +29,8 @@ enum {
     BACKLOG_POLL_MS = 10
 };
 
-fc_code fc_connection_create(int fd, const char *peer, uint64_t id, fc_daemon_context *ctx, fc_connection **out,
-                             fc_error *err)
+fc_code fc_connection_create(int fd, const char *peer, uint64_t id, fc_tls_server *tls, fc_daemon_context *ctx,
+                             fc_connection **out, fc_error *err)
 {
     fc_connection *c = calloc(1, sizeof *c);
     if (!c) {
@@ -38,11 +38,21 @@ fc_code fc_connection_create(int fd, const char *peer, uint64_t id, fc_daemon_co
         return fc_error_set(err, FC_ERR_NOMEM, "connection from %s: out of memory", peer);
     }
     c->id = id;
-    c->fd = fd;
+    fc_transport_plain(&c->transport, fd);
     snprintf(c->peer, sizeof c->peer, "%s", peer);
+    if (tls && fc_transport_tls(&c->transport, fd, tls, err) != FC_OK) {
+        fc_transport_close(&c->transport);
+        free(c);
+        return err ? err->code : FC_ERR_NOMEM;
+    }
     fc_buf_init(&c->out);
     fc_conversation_init(&c->conversation, c->peer, ctx, id, &c->out);
     c->last_message_ms = fc_monotonic_ms();
+    if (tls) {
+        c->phase = FC_CONN_HANDSHAKE;
+        c->handshake_deadline_ms = c->last_message_ms + ctx->tls_handshake_timeout_ms;
+        c->conversation.transport_bytes = FC_TLS_SESSION_BYTES;
+    }
     *out = c;
     return FC_OK;
 }
@@ -51,7 +61,7 @@ void fc_connection_destroy(fc_connection *c)
 {
     if (!c)
         return;
-    close(c->fd);
+    fc_transport_close(&c->transport);
     fc_conversation_free(&c->conversation);
     free(c->payload);
     fc_buf_free(&c->out);
@@ -63,9 +73,12 @@ static bool has_pending_output(const fc_connection *c)
     return c->out_sent < c->out.len;
 }
 
-short fc_connection_wanted_events(const fc_connection *c)
+/* What the connection itself waits for, before any TLS needs of the other direction. */
+static short own_events(const fc_connection *c)
 {
     switch (c->phase) {
+    case FC_CONN_HANDSHAKE:
+        return c->transport.blocked_on;
     case FC_CONN_OPEN:
         /* While replies wait, the client is not read: that is the back-pressure
          * that keeps a client who never reads from growing our queue. While a
@@ -82,6 +95,21 @@ short fc_connection_wanted_events(const fc_connection *c)
         break;
     }
     return 0;
+}
+
+short fc_connection_wanted_events(const fc_connection *c)
+{
+    short events = own_events(c);
+    /* A TLS read may have to write first, and a write to read (a key update). */
+    if (events && (c->phase == FC_CONN_OPEN || c->phase == FC_CONN_FLUSHING))
+        events |= c->transport.blocked_on;
+    return events;
+}
+
+/* Decrypted bytes wait inside the TLS session, where poll() cannot see them. */
+static bool input_buffered(const fc_connection *c)
+{
+    return (own_events(c) & POLLIN) && c->phase == FC_CONN_OPEN && fc_transport_pending(&c->transport);
 }
 
 static bool message_in_progress(const fc_connection *c)
@@ -114,7 +142,11 @@ static double earliest(double a, double b)
 int fc_connection_timeout_ms(const fc_connection *c, double now_ms)
 {
     double deadline = -1.0;
-    if (c->phase == FC_CONN_LINGERING)
+    if (input_buffered(c))
+        return 0;
+    if (c->phase == FC_CONN_HANDSHAKE)
+        deadline = c->handshake_deadline_ms;
+    else if (c->phase == FC_CONN_LINGERING)
         deadline = c->linger_deadline_ms;
     else if (c->phase == FC_CONN_OPEN && c->backlog_check_ms > 0.0)
         deadline = c->backlog_check_ms;
@@ -132,7 +164,7 @@ int fc_connection_timeout_ms(const fc_connection *c, double now_ms)
  * sends a reset that can destroy the ERROR the peer has not read yet. */
 static void finish_flushing(fc_connection *c)
 {
-    if (c->peer_closed || shutdown(c->fd, SHUT_WR) != 0) {
+    if (c->peer_closed || fc_transport_shutdown_write(&c->transport) != 0) {
         c->phase = FC_CONN_DONE;
         return;
     }
@@ -153,7 +185,7 @@ static size_t kernel_backlog(int fd)
 static void report_drained(fc_connection *c)
 {
     size_t allowance = fc_conversation_backlog_allowance(&c->conversation);
-    if (allowance != SIZE_MAX && kernel_backlog(c->fd) > allowance) {
+    if (allowance != SIZE_MAX && kernel_backlog(c->transport.fd) > allowance) {
         c->backlog_check_ms = fc_monotonic_ms() + BACKLOG_POLL_MS;
         return;
     }
@@ -164,7 +196,7 @@ static void report_drained(fc_connection *c)
 static void flush(fc_connection *c)
 {
     while (has_pending_output(c)) {
-        ssize_t n = send(c->fd, c->out.data + c->out_sent, c->out.len - c->out_sent, MSG_NOSIGNAL);
+        ssize_t n = fc_transport_send(&c->transport, c->out.data + c->out_sent, c->out.len - c->out_sent);
         if (n > 0) {
             c->out_sent += (size_t)n;
             fc_metrics_add(c->conversation.ctx->metrics, FC_METRIC_BYTES_SENT, (uint64_t)n);
@@ -222,6 +254,10 @@ static void close_with_error(fc_connection *c, fc_daemon_context *ctx, uint32_t 
 
 void fc_connection_refuse(fc_connection *c, fc_daemon_context *ctx)
 {
+    if (c->phase == FC_CONN_HANDSHAKE) {
+        c->refuse_when_open = true;   /* the ERROR can only travel inside TLS */
+        return;
+    }
     fc_error err;
     fc_error_set(&err, FC_ERR_LIMIT, "the server has its maximum of %u connections", (unsigned)ctx->max_connections);
     apply_verdict(c, fc_conversation_reply_error(ctx, c->peer, 0, &err, FC_CONV_CLOSE, &c->out));
@@ -360,7 +396,7 @@ static read_result classify_recv(ssize_t n)
 
 static read_result receive_header(fc_connection *c, fc_daemon_context *ctx)
 {
-    ssize_t n = recv(c->fd, c->header_bytes + c->header_got, FC_WIRE_HEADER_SIZE - c->header_got, 0);
+    ssize_t n = fc_transport_recv(&c->transport, c->header_bytes + c->header_got, FC_WIRE_HEADER_SIZE - c->header_got);
     if (n > 0)
         fc_metrics_add(ctx->metrics, FC_METRIC_BYTES_RECEIVED, (uint64_t)n);
     if (n > 0 && c->header_got == 0)
@@ -380,7 +416,7 @@ static read_result receive_payload(fc_connection *c, fc_daemon_context *ctx)
     }
     size_t room = c->payload_cap - c->payload_got;
     size_t wanted = c->header.length - c->payload_got;
-    ssize_t n = recv(c->fd, c->payload + c->payload_got, room < wanted ? room : wanted, 0);
+    ssize_t n = fc_transport_recv(&c->transport, c->payload + c->payload_got, room < wanted ? room : wanted);
     if (n > 0)
         fc_metrics_add(ctx->metrics, FC_METRIC_BYTES_RECEIVED, (uint64_t)n);
     if (n > 0 && (c->payload_got += (size_t)n) == c->header.length)
@@ -412,13 +448,71 @@ static void drain_input(fc_connection *c)
     read_result result = READ_PROGRESS;
     /* Bounded, so a peer that keeps sending cannot hold the loop here. */
     for (int reads = 0; reads < DRAIN_READS_PER_WAKE && result == READ_PROGRESS; reads++)
-        result = classify_recv(recv(c->fd, scratch, sizeof scratch, 0));
+        result = classify_recv(recv(c->transport.fd, scratch, sizeof scratch, 0));
     if (result == READ_EOF || result == READ_FAILED || fc_monotonic_ms() >= c->linger_deadline_ms)
         c->phase = FC_CONN_DONE;
 }
 
+/* A client that speaks in clear to a TLS port learns so in clear, the one
+ * answer it can read, and is closed. Not ERROR UNAUTHORIZED even when a
+ * token is set: this says nothing about the daemon but that it wants TLS. */
+static void refuse_plaintext(fc_connection *c, fc_daemon_context *ctx)
+{
+    fc_error err;
+    fc_error_set(&err, FC_ERR_TLS_REQUIRED, "this port speaks TLS: connect with tls://HOST:PORT (or --tls)");
+    fc_log_write(ctx->log, FC_LOG_WARN, "%s: a client without TLS on a TLS port: refused", c->peer);
+    fc_metrics_add(ctx->metrics, FC_METRIC_TLS_HANDSHAKE_FAILURES, 1);
+    c->conversation.transport_bytes = 0;
+    c->phase = FC_CONN_OPEN;
+    apply_verdict(c, fc_conversation_reply_error(ctx, c->peer, 0, &err, FC_CONV_CLOSE, &c->out));
+}
+
+/* One step of the TLS handshake, or its end: stalled past the handshake
+ * timeout, failed, or done (then the conversation starts). */
+static void advance_handshake(fc_connection *c, fc_daemon_context *ctx, double now_ms)
+{
+    fc_error why;
+    fc_handshake_result result = fc_transport_handshake(&c->transport, &why);
+    if (result == FC_HANDSHAKE_DONE) {
+        c->phase = FC_CONN_OPEN;
+        c->last_message_ms = now_ms;
+        fc_metrics_add(ctx->metrics, FC_METRIC_TLS_HANDSHAKES, 1);
+        fc_log_write(ctx->log, FC_LOG_DEBUG, "%s: TLS %s, %s", c->peer, SSL_get_version(c->transport.ssl),
+                     SSL_get_cipher_name(c->transport.ssl));
+        if (c->refuse_when_open)
+            fc_connection_refuse(c, ctx);
+        else
+            read_messages(c, ctx);   /* the HELLO may have come with the handshake's last flight */
+    } else if (result == FC_HANDSHAKE_PLAINTEXT_PEER) {
+        refuse_plaintext(c, ctx);
+    } else if (result == FC_HANDSHAKE_FAILED) {
+        fc_log_write(ctx->log, FC_LOG_WARN, "%s: %s", c->peer, why.message);
+        fc_metrics_add(ctx->metrics, FC_METRIC_TLS_HANDSHAKE_FAILURES, 1);
+        /* Linger like any closing connection: a TLS 1.3 client may already
+         * have sent its HELLO, and closing on it would reset the alert away. */
+        c->phase = FC_CONN_FLUSHING;
+        c->peer_closed = why.code == FC_ERR_CLOSED;
+        finish_flushing(c);
+    } else if (now_ms >= c->handshake_deadline_ms) {
+        fc_log_write(ctx->log, FC_LOG_INFO, "%s: TLS handshake not complete within %.0f ms: dropped", c->peer,
+                     ctx->tls_handshake_timeout_ms);
+        fc_metrics_add(ctx->metrics, FC_METRIC_TLS_HANDSHAKE_TIMEOUTS, 1);
+        c->phase = FC_CONN_DONE;
+    }
+}
+
 void fc_connection_on_events(fc_connection *c, short revents, fc_daemon_context *ctx)
 {
+    if (c->phase == FC_CONN_HANDSHAKE) {
+        advance_handshake(c, ctx, fc_monotonic_ms());
+        return;
+    }
+    if (input_buffered(c))
+        revents |= POLLIN;
+    /* A TLS read that had to wait for a write, or a write for a read, goes on
+     * when the socket allows that. */
+    if (c->transport.blocked_on & revents)
+        revents |= c->transport.blocked_on == POLLIN ? POLLOUT : POLLIN;
     /* A socket error surfaces from send() or recv(), whichever comes first. */
     if (revents & (POLLOUT | POLLHUP | POLLERR))
         flush(c);

@@ -2,8 +2,10 @@
  * payload), hands them to its conversation (conversations/conversation.h),
  * queues the replies (and a viewer's stream images) and flushes them as the
  * socket accepts them. All I/O is
- * non-blocking; the event loop calls in when poll() reports the socket ready,
- * when a timer is due, or when a render job of this connection finished. */
+ * non-blocking and goes through the connection's transport (transport.h):
+ * in clear, or TLS after a handshake run step by step in this same loop. The
+ * event loop calls in when poll() reports the socket ready, when a timer is
+ * due, or when a render job of this connection finished. */
 #ifndef FC_DAEMON_CONNECTION_H
 #define FC_DAEMON_CONNECTION_H
 
@@ -11,17 +13,21 @@
 #include <stddef.h>
 
 #include "conversations/conversation.h"
+#include "net/transport.h"
 
 typedef enum fc_connection_phase {
     FC_CONN_OPEN = 0,      /* reading and answering messages */
     FC_CONN_FLUSHING,      /* reading stopped: send what is queued, then close */
     FC_CONN_LINGERING,     /* all sent and writing shut down: discard input until the peer closes */
-    FC_CONN_DONE           /* to be destroyed */
+    FC_CONN_DONE,          /* to be destroyed */
+    FC_CONN_HANDSHAKE      /* TLS handshake under way: no message read yet */
 } fc_connection_phase;
 
 typedef struct fc_connection {
     uint64_t id;                            /* process-unique: render jobs find their connection by it */
-    int fd;
+    fc_transport transport;                 /* the socket, and its TLS session if any */
+    double handshake_deadline_ms;           /* FC_CONN_HANDSHAKE: when it is dropped as stalled */
+    bool refuse_when_open;                  /* beyond --max-connections: refused once the handshake is done */
     char peer[80];                          /* "ADDR:PORT", for logs */
     fc_connection_phase phase;
     bool peer_closed;                       /* EOF seen: nothing to linger for */
@@ -45,9 +51,11 @@ typedef struct fc_connection {
     fc_conversation conversation;
 } fc_connection;
 
-/* Takes ownership of the connected, non-blocking socket fd. */
-fc_code fc_connection_create(int fd, const char *peer, uint64_t id, fc_daemon_context *ctx, fc_connection **out,
-                             fc_error *err);
+/* Takes ownership of the connected, non-blocking socket fd; with tls (not
+ * NULL) the connection starts with a TLS handshake under the daemon's
+ * handshake timeout. */
+fc_code fc_connection_create(int fd, const char *peer, uint64_t id, fc_tls_server *tls, fc_daemon_context *ctx,
+                             fc_connection **out, fc_error *err);
 /* Closes the socket, leaves any named session and frees everything. */
 void fc_connection_destroy(fc_connection *c);
 

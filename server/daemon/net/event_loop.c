@@ -1,5 +1,5 @@
-/* event_loop.c — poll() over the stop fd, the render results, the listeners
- * and the connections. */
+/* event_loop.c — poll() over the stop fd, the reload fd, the render results,
+ * the listeners and the connections. */
 #include "net/event_loop.h"
 
 #include <errno.h>
@@ -10,6 +10,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/signalfd.h>
 #include <sys/socket.h>
 #include <unistd.h>
 
@@ -20,7 +21,8 @@
 enum {
     STOP_SLOT = 0,
     RESULTS_SLOT = 1,
-    FIRST_LISTENER_SLOT = 2,
+    RELOAD_SLOT = 2,
+    FIRST_LISTENER_SLOT = 3,
     ACCEPTS_PER_WAKE = 16,
     /* After running out of descriptors, accepting is retried this much later
      * instead of spinning on a listener that stays readable. */
@@ -34,6 +36,7 @@ struct fc_event_loop {
     const fc_listener *listeners;
     size_t listener_count;
     int stop_fd;
+    int reload_fd;
     fc_daemon_context *ctx;
     fc_connection **connections;
     size_t count;
@@ -44,8 +47,8 @@ struct fc_event_loop {
     uint64_t last_connection_id;
 };
 
-fc_code fc_event_loop_create(const fc_listener *listeners, size_t count, int stop_fd, fc_daemon_context *ctx,
-                             fc_event_loop **out, fc_error *err)
+fc_code fc_event_loop_create(const fc_listener *listeners, size_t count, int stop_fd, int reload_fd,
+                             fc_daemon_context *ctx, fc_event_loop **out, fc_error *err)
 {
     fc_event_loop *loop = calloc(1, sizeof *loop);
     if (!loop)
@@ -53,6 +56,7 @@ fc_code fc_event_loop_create(const fc_listener *listeners, size_t count, int sto
     loop->listeners = listeners;
     loop->listener_count = count;
     loop->stop_fd = stop_fd;
+    loop->reload_fd = reload_fd;
     loop->ctx = ctx;
     loop->first_connection_slot = FIRST_LISTENER_SLOT + count;
     loop->fds = calloc(loop->first_connection_slot, sizeof *loop->fds);
@@ -121,7 +125,7 @@ static void add_client(fc_event_loop *loop, const fc_listener *listener, int fd,
         close(fd);
         return;
     }
-    if (fc_connection_create(fd, peer, id, loop->ctx, &c, &err) != FC_OK) {
+    if (fc_connection_create(fd, peer, id, listener->tls, loop->ctx, &c, &err) != FC_OK) {
         fc_log_write(loop->ctx->log, FC_LOG_WARN, "%s", err.message);
         return;
     }
@@ -177,6 +181,7 @@ static int prepare_poll(fc_event_loop *loop, double now_ms)
     int timeout = ms_until(fc_registry_next_deadline(loop->ctx->sessions), now_ms);
     loop->fds[STOP_SLOT] = (struct pollfd){.fd = loop->stop_fd, .events = POLLIN};
     loop->fds[RESULTS_SLOT] = (struct pollfd){.fd = fc_render_service_wake_fd(loop->ctx->render), .events = POLLIN};
+    loop->fds[RELOAD_SLOT] = (struct pollfd){.fd = loop->reload_fd, .events = POLLIN};
     bool accepting = now_ms >= loop->accept_resume_ms;
     if (!accepting)
         timeout = min_timeout(timeout, ms_until(loop->accept_resume_ms, now_ms));
@@ -187,7 +192,7 @@ static int prepare_poll(fc_event_loop *loop, double now_ms)
     for (size_t i = 0; i < loop->count; i++) {
         const fc_connection *c = loop->connections[i];
         loop->fds[loop->first_connection_slot + i] =
-            (struct pollfd){.fd = c->fd, .events = fc_connection_wanted_events(c)};
+            (struct pollfd){.fd = c->transport.fd, .events = fc_connection_wanted_events(c)};
         timeout = min_timeout(timeout, fc_connection_timeout_ms(c, now_ms));
     }
     return timeout;
@@ -267,6 +272,27 @@ static void accept_ready(fc_event_loop *loop)
             accept_clients(loop, &loop->listeners[i]);
 }
 
+/* SIGHUP: every TLS listener reads its certificate and key again. New
+ * connections get the new ones; open connections keep the session they have.
+ * A file that does not load leaves that listener as it was. */
+static void reload_certificates(fc_event_loop *loop)
+{
+    struct signalfd_siginfo info;
+    while (read(loop->reload_fd, &info, sizeof info) == (ssize_t)sizeof info)
+        ;   /* several SIGHUPs at once are one reload */
+    for (size_t i = 0; i < loop->listener_count; i++) {
+        const fc_listener *l = &loop->listeners[i];
+        fc_error err;
+        if (!l->tls)
+            continue;
+        if (fc_tls_server_reload(l->tls, &err) == FC_OK)
+            fc_log_write(loop->ctx->log, FC_LOG_INFO, "%s: TLS certificate and key reloaded", l->address);
+        else
+            fc_log_write(loop->ctx->log, FC_LOG_ERROR, "%s: TLS reload failed, keeping the previous certificate: %s",
+                         l->address, err.message);
+    }
+}
+
 /* The loop's state the metrics endpoint's thread cannot read itself. */
 static void publish_gauges(fc_event_loop *loop)
 {
@@ -287,6 +313,7 @@ static size_t prepare_drain_poll(fc_event_loop *loop)
 {
     size_t busy = 0;
     loop->fds[STOP_SLOT] = (struct pollfd){.fd = -1};
+    loop->fds[RELOAD_SLOT] = (struct pollfd){.fd = -1};
     loop->fds[RESULTS_SLOT] = (struct pollfd){.fd = fc_render_service_wake_fd(loop->ctx->render), .events = POLLIN};
     for (size_t i = 0; i < loop->listener_count; i++)
         loop->fds[FIRST_LISTENER_SLOT + i] = (struct pollfd){.fd = -1};
@@ -295,7 +322,7 @@ static size_t prepare_drain_poll(fc_event_loop *loop)
         bool waiting = connection_busy(c);
         busy += waiting;
         loop->fds[loop->first_connection_slot + i] =
-            (struct pollfd){.fd = waiting ? c->fd : -1, .events = fc_connection_wanted_events(c)};
+            (struct pollfd){.fd = waiting ? c->transport.fd : -1, .events = fc_connection_wanted_events(c)};
     }
     return busy;
 }
@@ -331,6 +358,8 @@ fc_code fc_event_loop_run(fc_event_loop *loop, fc_error *err)
         }
         if (loop->fds[STOP_SLOT].revents)
             return FC_OK;
+        if (loop->fds[RELOAD_SLOT].revents)
+            reload_certificates(loop);
         if (loop->fds[RESULTS_SLOT].revents)
             deliver_results(loop);
         fc_registry_expire(loop->ctx->sessions, fc_monotonic_ms());

@@ -12,10 +12,11 @@
 typedef struct fc_event_loop fc_event_loop;
 
 /* listeners: `count` open listening sockets (TCP and/or Unix); stop_fd becomes
- * readable when the daemon must stop (a signalfd). Neither is owned by the
- * loop; the listener array must outlive it. */
-fc_code fc_event_loop_create(const fc_listener *listeners, size_t count, int stop_fd, fc_daemon_context *ctx,
-                             fc_event_loop **out, fc_error *err);
+ * readable when the daemon must stop, reload_fd when the listeners' TLS
+ * certificates and keys are to be read again (signalfds; reload_fd -1 for
+ * none). None is owned by the loop; the listener array must outlive it. */
+fc_code fc_event_loop_create(const fc_listener *listeners, size_t count, int stop_fd, int reload_fd,
+                             fc_daemon_context *ctx, fc_event_loop **out, fc_error *err);
 
 /* Serves clients until stop_fd is readable (FC_OK) or poll() fails (FC_ERR_IO). */
 fc_code fc_event_loop_run(fc_event_loop *loop, fc_error *err);

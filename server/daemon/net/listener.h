@@ -7,6 +7,7 @@
 #include <stdint.h>
 
 #include "fluidcast_types.h"
+#include "net/tls_server.h"
 
 typedef struct fc_listener {
     int fd;                /* non-blocking, close-on-exec; -1 when closed */
@@ -15,6 +16,7 @@ typedef struct fc_listener {
     bool is_unix;
     bool adopted;          /* handed over by the service manager: its socket file is not ours to remove */
     char unix_path[108];   /* the socket file, removed again on close (unless adopted) */
+    fc_tls_server *tls;    /* TCP with --tls-cert: its connections speak TLS; NULL: in clear. Not owned */
 } fc_listener;
 
 /* Resolves host/port with getaddrinfo and listens on the first address that
