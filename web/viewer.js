@@ -18,7 +18,8 @@ const state = {
   connected: false, welcome: null, requestId: 0, subscribeId: 0, format: null,
   camera: null,            // the page's own camera; null while the server frames the view
   cameraSentAt: 0, cameraInFlight: false, cameraQueued: false, moving: false, restTimer: 0,
-  imagesShown: 0, shownByFormat: {}, imagesDecoding: 0, lastImage: null, lastRttMs: null, fpsTimes: [], ended: false, unauthorized: false,
+  imagesShown: 0, shownByFormat: {}, imagesDecoding: 0, lastImage: null, lastRttMs: null, fpsTimes: [],
+  ended: false, unauthorized: false, refusals: 0,
   reconnects: 0, errors: [], pending: new Map(), decoder: null, decoderReady: false, colormaps: null,
 };
 window.fluidcastViewer = { state, setCamera: (c) => applyCamera(c, false), requestKeyFrame, viewSize };
@@ -97,6 +98,7 @@ function onWelcome(welcome) {
 function onError(requestId, error) {
   if (error.code === fc.ERR_UNAUTHORIZED) {
     state.unauthorized = true;
+    state.refusals++;
     say('this daemon needs a token, and the one given was not accepted: enter it below', 'error');
     $('token-form').classList.remove('hidden');
     return;
@@ -173,13 +175,14 @@ function onSessionEnd(requestId, name) {
 
 // ---- images ---------------------------------------------------------------------------------------------
 
-function drawBitmap(bitmap) {
+// An ImageBitmap or a decoded VideoFrame, at its own size.
+function drawPicture(picture, width, height) {
   const canvas = $('view');
-  if (canvas.width !== bitmap.width || canvas.height !== bitmap.height) {
-    canvas.width = bitmap.width;
-    canvas.height = bitmap.height;
+  if (canvas.width !== width || canvas.height !== height) {
+    canvas.width = width;
+    canvas.height = height;
   }
-  canvas.getContext('2d').drawImage(bitmap, 0, 0);
+  canvas.getContext('2d').drawImage(picture, 0, 0, width, height);
 }
 
 function countShown(image) {
@@ -204,7 +207,7 @@ function onStreamImage(image) {
   const type = image.format === fc.FORMAT.PNG ? 'image/png' : 'image/jpeg';
   state.imagesDecoding++;
   createImageBitmap(new Blob([image.data], { type })).then((bitmap) => {
-    drawBitmap(bitmap);
+    drawPicture(bitmap, bitmap.width, bitmap.height);
     bitmap.close();
     countShown(image);
   }, (e) => say(`cannot decode an image: ${e.message}`, 'error')).finally(() => { state.imagesDecoding--; });
@@ -218,7 +221,7 @@ function openDecoder() {
   state.decoderReady = false;
   state.decoder = new VideoDecoder({
     output: (frame) => {
-      drawBitmap(frame);
+      drawPicture(frame, frame.displayWidth, frame.displayHeight);
       frame.close();
       const image = state.decoding.shift();
       state.imagesDecoding--;

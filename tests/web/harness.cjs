@@ -53,24 +53,30 @@ async function stopDaemon(daemon) {
   await until(() => daemon.proc.exitCode !== null, 'the daemon to stop', 20);
 }
 
-// `fluidcast stream` publishing the scene `frames` times, then waiting on a FIFO that release() fills:
-// the session stays live, with its frames, until the test lets the producer end.
-function startProducer(server, session, frames = 1) {
-  const hold = path.join(WORK, `hold-${session}-${Date.now()}.f32`);
-  spawnSync('mkfifo', [hold]);
-  const files = Array(frames).fill(SCENE);
-  const proc = spawn(CLI, ['stream', ...files, hold, '--server', server, '--session', session],
-    { stdio: ['ignore', 'pipe', 'pipe'] });
+// `fluidcast stream` publishing the scene once, waiting on a FIFO, publishing it `frames` more times at full
+// speed, then waiting on a second FIFO: the session stays live, with its frames, until the test lets the
+// producer go on (proceed()) and end (release()).
+function startProducer(server, session, frames = 0, env = {}) {
+  const fifo = (n) => {
+    const p = path.join(WORK, `hold-${session}-${n}-${process.hrtime.bigint()}.f32`);
+    spawnSync('mkfifo', [p]);
+    return p;
+  };
+  const first = fifo(1), last = fifo(2);
+  const files = [SCENE, ...(frames ? [first, ...Array(frames).fill(SCENE)] : []), last];
+  const proc = spawn(CLI, ['stream', ...files, '--server', server, '--session', session],
+    { stdio: ['ignore', 'pipe', 'pipe'], env: { ...process.env, ...env } });
   children.push(proc);
   let output = '';
   proc.stdout.on('data', (d) => { output += d; });
   proc.stderr.on('data', (d) => { output += d; });
+  const proceed = () => fs.promises.writeFile(first, fs.readFileSync(SCENE));
   const release = async () => {
-    fs.writeFileSync(hold, fs.readFileSync(SCENE));
-    await until(() => proc.exitCode !== null, 'the producer to end', 60);
+    await fs.promises.writeFile(last, fs.readFileSync(SCENE));
+    await until(() => proc.exitCode !== null, 'the producer to end', 120);
     return { status: proc.exitCode, output };
   };
-  return { proc, release, output: () => output };
+  return { proc, proceed, release, output: () => output };
 }
 
 // A snapshot of the scene at the page's camera and size, as base64 PNG.
@@ -90,9 +96,9 @@ async function launchBrowser() {
 }
 
 // A page of the viewer; page.consoleErrors collects what the page logs as errors and throws.
-async function openPage(browser, web, query = '') {
+async function openPage(browser, web, query = '', viewport = { width: 640, height: 480 }) {
   const page = await browser.newPage();
-  await page.setViewport({ width: 640, height: 480 });
+  await page.setViewport(viewport);
   page.consoleErrors = [];
   page.on('console', (m) => { if (m.type() === 'error') page.consoleErrors.push(m.text()); });
   page.on('pageerror', (e) => page.consoleErrors.push(e.message));
@@ -104,7 +110,7 @@ const viewerState = (page) => page.evaluate(() => {
   const s = window.fluidcastViewer.state;
   return { imagesShown: s.imagesShown, lastImage: s.lastImage, camera: s.camera, format: s.format,
     cameraInFlight: s.cameraInFlight, cameraQueued: s.cameraQueued, moving: s.moving, connected: s.connected,
-    reconnects: s.reconnects, shownByFormat: s.shownByFormat, decoding: s.imagesDecoding,
+    reconnects: s.reconnects, refusals: s.refusals, shownByFormat: s.shownByFormat, decoding: s.imagesDecoding,
     full: window.fluidcastViewer.viewSize(false), message: document.getElementById('message').textContent };
 });
 
