@@ -19,7 +19,7 @@ const state = {
   camera: null,            // the page's own camera; null while the server frames the view
   cameraSentAt: 0, cameraInFlight: false, cameraQueued: false, moving: false, restTimer: 0,
   imagesShown: 0, shownByFormat: {}, imagesDecoding: 0, lastImage: null, lastRttMs: null, fpsTimes: [],
-  ended: false, unauthorized: false, refusals: 0,
+  ended: false, resetting: false, unauthorized: false, refusals: 0,
   reconnects: 0, errors: [], pending: new Map(), decoder: null, decoderReady: false, colormaps: null,
 };
 window.fluidcastViewer = { state, setCamera: (c) => applyCamera(c, false), requestKeyFrame, viewSize };
@@ -59,6 +59,11 @@ function connect() {
     clearInterval(listTimer);
     closeDecoder();
     if (state.unauthorized) return;
+    if (state.resetting) {
+      state.resetting = false;
+      connect();
+      return;
+    }
     const delay = RECONNECT_MS[Math.min(state.reconnects, RECONNECT_MS.length - 1)];
     state.reconnects++;
     say(`the daemon at ${location.host} went away; reconnecting in ${(delay / 1000).toFixed(1)} s…`, 'error');
@@ -353,8 +358,11 @@ function installControls() {
   }, { passive: false });
   canvas.addEventListener('dblclick', (e) => pickPivot(e));
   $('reset').addEventListener('click', () => {
+    // A connection keeps its camera across subscriptions: a new one is framed by the server again.
     state.camera = null;
-    send(fc.message(fc.MSG.SESSION_END, nextId()));   // rejoining hands the framing back to the server
+    state.cameraInFlight = state.cameraQueued = false;
+    state.resetting = true;
+    ws.close();
   });
   $('save').addEventListener('click', savePng);
   for (const id of ['color-by', 'colormap', 'range-min', 'range-max']) $(id).addEventListener('change', sendColorSettings);

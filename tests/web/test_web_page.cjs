@@ -67,6 +67,16 @@ h.run(async () => {
   h.check(cmp.meanDiff < 4, `after the drag the daemon rendered the page's camera (mean difference ${cmp.meanDiff})`);
   h.check(/fps · round trip \d+ ms/.test(await page.$eval('#hud', (e) => e.textContent)),
     'the HUD shows the frame rate and the round trip');
+  const beforeReset = await h.canvasPixels(page);
+  await page.click('#reset');
+  const reset = await h.until(async () => {
+    const state = await h.viewerState(page);
+    // the first image of the new subscription: a new-frame image, not a VIEW of the old camera
+    return state.imagesShown > moved.imagesShown && state.lastImage.flags === 0 ? state : null;
+  }, 'the picture after Reset view');
+  const resetDiff = h.pixelDifference(beforeReset, await h.canvasPixels(page));
+  h.check(reset.camera === null && resetDiff > 5,
+    `Reset view rejoins the session framed by the daemon (camera ${JSON.stringify(reset.camera)}, difference ${resetDiff})`);
   h.check(page.consoleErrors.length === 0, `the viewer page logged no error (${page.consoleErrors})`);
 
   const ended = await producer.release();
