@@ -25,7 +25,8 @@ struct fc_client {
     uint32_t subscribe_id;     /* request id of the SUBSCRIBE: its images and end echo it */
     uint32_t stream_skipped;   /* images dropped while waiting for other replies, not yet reported */
     bool stream_lost_unit;     /* an H.264 image was among them: a key frame is due (client_stream.c) */
-    bool stream_ended;         /* the session's end arrived while waiting for something else */
+    bool stream_ended;         /* the session's end arrived while waiting for something else, not yet reported */
+    bool session_over;         /* the session's end was reported: still subscribed, only to its last frame */
 };
 
 /* FC_ERR_CLOSED once the connection is broken, FC_ERR_USAGE for a NULL client. */

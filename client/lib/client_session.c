@@ -105,7 +105,16 @@ fc_code fc_client_subscribe(fc_client *client, const char *name, const fc_render
     client->subscribe_id = id;
     client->stream_skipped = 0;
     client->stream_ended = false;
+    client->session_over = false;
     return take_state(client, status, err);
+}
+
+/* A server before PROTOCOL.md 10.1's "viewers stay on the last frame" had
+ * dropped the viewer with its SESSION_END and refuses the leave as BAD_STATE:
+ * the viewer is out either way. */
+static bool ended_before_leave(const fc_client *c, fc_code code)
+{
+    return code == FC_ERR_BAD_STATE && c->subscribed && (c->stream_ended || c->session_over);
 }
 
 fc_code fc_client_leave_session(fc_client *client, fc_error *err)
@@ -113,28 +122,27 @@ fc_code fc_client_leave_session(fc_client *client, fc_error *err)
     fc_code code = check_streaming(client, err);
     if (code != FC_OK)
         return code;
-    if (client->subscribed && client->stream_ended) {
-        /* The server ended the session already: there is nothing left to leave. */
-        client->subscribed = false;
-        client->stream_ended = false;
-        return FC_OK;
-    }
     uint32_t id = fc_client_next_request_id(client);
     fc_buf_reset(&client->tx);
     code = fc_wire_write_session_leave(&client->tx, id, err);
     if (code == FC_OK)
         code = exchange(client, id, FC_MSG_SESSION_END, err);
-    if (code == FC_ERR_BAD_STATE && client->subscribed && client->stream_ended) {
-        /* The session ended while the leave was on its way: the server's SESSION_END came
-         * first, so it no longer counts us a member and refuses the leave. We are out either way. */
-        client->stream_ended = false;
+    if (ended_before_leave(client, code)) {
         if (err)
             fc_error_clear(err);
         code = FC_OK;
     }
-    if (code == FC_OK || !client->broken)
+    if (code == FC_OK || !client->broken) {
         client->subscribed = false;
+        client->stream_ended = false;
+        client->session_over = false;
+    }
     return code;
+}
+
+int fc_client_session_ended(const fc_client *client)
+{
+    return client && client->subscribed && (client->stream_ended || client->session_over);
 }
 
 fc_code fc_client_list_sessions(fc_client *client, fc_session_status **sessions, uint32_t *count, fc_error *err)

@@ -63,12 +63,13 @@ static fc_code recover_lost_unit(fc_client *c, const fc_stream_image *image, fc_
     return image->keyframe ? FC_OK : fc_client_request_keyframe(c, err);
 }
 
+/* The session ended; the viewer stays subscribed to its last frame (PROTOCOL.md 10.1). */
 static void end_of_stream(fc_client *c, fc_stream_image *out)
 {
     out->ended = 1;
     out->missed = c->stream_skipped;
-    c->subscribed = false;
     c->stream_ended = false;
+    c->session_over = true;
     c->stream_skipped = 0;
 }
 

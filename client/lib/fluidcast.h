@@ -277,6 +277,16 @@ FC_API void fc_client_close(fc_client *client);
  *     fc_client_leave_session(c, &e);               if (img.ended) break;  ... fc_stream_image_free(&img);
  *                                               }
  *
+ * A viewer may subscribe before any producer publishes: its SESSION_STATE
+ * (fc_session_status) then says producers 0 and last_frame 0, and its first
+ * image comes with the first frame. When the last producer leaves, the session
+ * ends: the viewer gets an image with `ended` set, and stays on the session's
+ * last frame until it leaves (PROTOCOL.md 10.1): fc_client_set_camera and
+ * fc_client_set_settings still re-render that frame for it (`view_change`
+ * images read with fc_client_next_image), so a finished run can be looked at
+ * from every side. A new run published under the same name is a new session;
+ * subscribing again (which leaves the ended one) watches it.
+ *
  * A simulation split over K MPI ranks sends each frame as K chunks, one per
  * rank and connection (each rank publishes to the same session); the server
  * renders once all K chunks of a frame are in, concatenated in index order.
@@ -345,7 +355,9 @@ typedef struct fc_stream_image {
     uint32_t missed;             /* frames published since this viewer's previous image that it never got */
     int refresh;                 /* nonzero: a lossless copy of a frame already shown lossy */
     int view_change;             /* nonzero: the same frame again, after this viewer's camera/settings changed */
-    int ended;                   /* nonzero: the session is over (its producers left); no image, no more follow */
+    int ended;                   /* nonzero: the session is over (its producers left); no image in this one.
+                                    The viewer stays on the last frame: after it only view_change images
+                                    (and their refresh) follow, made by its own camera/settings changes */
     int keyframe;                /* H.264: nonzero when the access unit is an IDR frame (a decoder may start) */
 } fc_stream_image;
 
@@ -368,12 +380,17 @@ FC_API fc_code fc_client_request_keyframe(fc_client *client, fc_error *err);
 
 /* Leaves the session: a producer stops publishing (the session ends for its
  * viewers once its last producer has left or disconnected), a viewer stops
- * receiving images. Waits until the server confirms, so no image of the session
- * arrives after it. A viewer whose session ended before its leave reached the
- * server has left too: FC_OK. FC_ERR_BAD_STATE when the connection is in no session; an
+ * receiving images, also a viewer of a session that ended (which the server
+ * frees once its last viewer has left). Waits until the server confirms, so no
+ * image of the session arrives after it. FC_ERR_BAD_STATE when the connection is in no session; an
  * error the server reported for an earlier request of this client (e.g. a
  * chunk) is returned like fc_client_render does, after the confirmation. */
 FC_API fc_code fc_client_leave_session(fc_client *client, fc_error *err);
+
+/* Nonzero when this client is a viewer whose session ended (its `ended` image
+ * was read, or arrived while waiting for another reply): it still watches the
+ * session's last frame. 0 otherwise, also for NULL. */
+FC_API int fc_client_session_ended(const fc_client *client);
 
 /* The server's live sessions, oldest first: *sessions (free it with
  * fc_session_list_free) gets *count entries. */

@@ -280,6 +280,7 @@ _PROTOTYPES = {
     "fc_client_next_image": (c_enum, [c_client_p, POINTER(FcStreamImage), _E]),
     "fc_stream_image_free": (None, [POINTER(FcStreamImage)]),
     "fc_client_leave_session": (c_enum, [c_client_p, _E]),
+    "fc_client_session_ended": (c_int, [c_client_p]),
     "fc_client_request_keyframe": (c_enum, [c_client_p, _E]),
     "fc_client_list_sessions": (c_enum, [c_client_p, POINTER(POINTER(FcSessionStatus)), POINTER(c_uint32), _E]),
     "fc_session_list_free": (None, [POINTER(FcSessionStatus)]),

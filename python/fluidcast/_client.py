@@ -117,7 +117,8 @@ class StreamImage(Image):
     a frame already shown lossy), ``view_change`` (the same frame again after
     this viewer's camera or settings changed), ``keyframe`` (H.264: the access
     unit is an IDR frame, where a decoder may start) and ``ended`` (the session
-    is over: no image, and none follow).
+    is over: no image in this one; the viewer stays on the last frame, and only
+    its own camera or settings changes make further images, ``view_change``).
     """
 
     def __init__(self, stream):
@@ -620,7 +621,9 @@ class Client:
         """Waits for the next image of the subscribed session, or its end (fc_client_next_image).
 
         Returns a :class:`StreamImage`; its ``ended`` is True (and it holds no
-        image) once the session's producers have all left. A RAW stream image
+        image) once the session's producers have all left. The viewer then
+        stays on the session's last frame until it leaves: :meth:`set_camera`
+        and settings changes still re-render it (``view_change`` images). A RAW stream image
         converts with ``to_array()``. The connect's ``reply_timeout`` bounds the
         wait (``Code.IO`` when it passes). Raises ``Code.USAGE`` when not
         subscribed, the server's code when it rejected an earlier request of
@@ -647,11 +650,17 @@ class Client:
         """Leaves the session (fc_client_leave_session) and waits for the server's confirmation.
 
         A producer stops publishing (the session ends for its viewers once its
-        last producer has left), a viewer stops receiving images: none arrives
-        after this returns. Raises ``Code.BAD_STATE`` when in no session, or an
+        last producer has left), a viewer stops receiving images, also one of a
+        session that ended (which the server frees once its last viewer has
+        left): none arrives after this returns. Raises ``Code.BAD_STATE`` when in no session, or an
         error the server reported for an earlier request (e.g. a chunk).
         """
         self._call(_capi.fc_client_leave_session)
+
+    @property
+    def session_ended(self):
+        """True when this viewer's session ended (fc_client_session_ended): it still watches the last frame."""
+        return bool(_capi.fc_client_session_ended(self._handle))
 
     def list_sessions(self):
         """The server's live sessions, oldest first, as a list of :class:`SessionStatus` (fc_client_list_sessions)."""

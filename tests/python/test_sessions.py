@@ -41,10 +41,19 @@ def test_publish_subscribe_round_trip(connect):
 
     producer.leave_session()
     ended = viewer.next_image()
-    assert ended.ended and ended.data == b""
+    assert ended.ended and ended.data == b"" and viewer.session_ended
     with pytest.raises(fluidcast.Error) as e:
         producer.leave_session()
     assert e.value.code is fluidcast.Code.BAD_STATE
+
+    # The ended session keeps its last frame for the viewer: its camera still re-renders it.
+    viewer.set_camera(eye=(0, -6, 0), target=(0, 0, 0), up=(0, 0, 1), fov=40, size=(120, 90))
+    again = viewer.next_image()
+    assert again.view_change and again.frame_number == 1 and png_size(again.data) == (120, 90)
+    assert again.data != image.data
+    viewer.leave_session()
+    assert not viewer.session_ended
+    assert "py-round-trip" not in {s.name for s in producer.list_sessions()}
 
 
 def _nal_types(data):

@@ -5,7 +5,8 @@
  * the current frame, the lossless refresh after JPEG images, RENDER on a
  * viewer, per-image telemetry; leaving, and a producer's disconnect ending the
  * session (after which the name starts a new one); a viewer leaving a session
- * that ended while its leave was on the way is out, not in error. */
+ * that ended while its leave was on the way is out, not in error. What a
+ * viewer can do in an ended session: test_service_session_end.c. */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -249,12 +250,13 @@ static void test_viewer_views_and_refresh(const fc_test_daemon *d)
     CHECK(img.frame_number == 2 && img.sequence == 2 && !img.view_change);
     fc_stream_image_free(&img);
 
-    /* The producer vanishes: the session ends for the viewer. */
+    /* The producer vanishes: the session ends for the viewer, which stays on
+     * the last frame (test_service_session_end.c goes on from there). */
     fc_client_close(p);
     CHECK(next_non_refresh(v, &img));
     CHECK(img.ended && img.image.data == NULL);
     fc_stream_image_free(&img);
-    CHECK_CODE(fc_client_next_image(v, &img, &err), FC_ERR_USAGE);
+    CHECK(fc_client_session_ended(v));
 
     /* The name is free again: a new session, with no frames yet. */
     fc_session_status status;
@@ -286,8 +288,9 @@ static void test_viewer_leaves(const fc_test_daemon *d)
 
 /* The producer ends the session (its leave answered, so the daemon has sent the
  * viewer SESSION_END) before the viewer, which has not read it, leaves: the
- * daemon refuses the leave as BAD_STATE, but the viewer is out either way, so
- * libfluidcast reports success (fluidcast watch --count exited 5 on this race). */
+ * viewer is still in the ended session (PROTOCOL.md 10.1), so the daemon answers
+ * the leave, and no image follows it (fluidcast watch --count exited 5 on this
+ * race when the daemon dropped the viewer with its SESSION_END). */
 static void test_leave_after_the_end(const fc_test_daemon *d)
 {
     fc_client *p = publisher(d, "ending");

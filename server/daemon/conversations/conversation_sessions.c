@@ -35,8 +35,15 @@ static fc_conversation_verdict reply_state(fc_conversation *c, const fc_msg_head
     return FC_CONV_CONTINUE;
 }
 
-static fc_code check_no_role(const fc_conversation *c, fc_error *err)
+/* A viewer of a session that ended (and told it so) is out of it for a new
+ * PUBLISH or SUBSCRIBE, which leave that session first (PROTOCOL.md 10.1). */
+static fc_code check_no_role(fc_conversation *c, fc_error *err)
 {
+    if (fc_viewer_in_ended_session(c)) {
+        fc_viewer_detach(c);
+        /* Freed now if that was its last viewer, so its place counts for the new session. */
+        fc_registry_collect(c->ctx->sessions);
+    }
     if (c->role == FC_ROLE_NONE)
         return FC_OK;
     return fc_error_set(err, FC_ERR_BAD_STATE, "this connection already %s session '%s'",
@@ -141,7 +148,7 @@ static fc_conversation_verdict handle_session_end(fc_conversation *c, const fc_m
         fc_error_set(&err, FC_ERR_BAD_STATE, "SESSION_END outside a session");
         return reply_error(c, h, &err, out);
     }
-    if (c->role == FC_ROLE_VIEWER && c->viewer.ending && !c->viewer.deliver_last) {
+    if (c->role == FC_ROLE_VIEWER && c->viewer.leaving) {
         fc_error_set(&err, FC_ERR_BAD_STATE, "SESSION_END was sent already");
         return reply_error(c, h, &err, out);
     }

@@ -73,7 +73,8 @@ static void dispatch(struct fc_conversation *c, image_reason reason, double now_
     v->refresh_due_ms = lossy && refresh_ms > 0.0 ? now_ms + refresh_ms : 0.0;
 }
 
-static void send_end(struct fc_conversation *c)
+/* Answers the client's SESSION_END and leaves the session. */
+static void send_leave_answer(struct fc_conversation *c)
 {
     fc_error err;
     fc_session *session = c->session;
@@ -83,7 +84,20 @@ static void send_end(struct fc_conversation *c)
     fc_viewer_detach(c);
 }
 
-/* Starts the next image this viewer is due, or ends its subscription. */
+/* Tells the viewer that its session ended; it stays on the last frame. The
+ * refresh of an image made before the end is dropped: after SESSION_END only
+ * the viewer's own view changes make images (PROTOCOL.md 10.1). */
+static void send_ended_notice(struct fc_conversation *c)
+{
+    fc_error err;
+    fc_viewer *v = &c->viewer;
+    if (fc_wire_write_session_end(c->out, v->subscribe_id, c->session->name, &err) != FC_OK)
+        fc_log_write(c->ctx->log, FC_LOG_ERROR, "%s: cannot queue SESSION_END: %s", c->peer, err.message);
+    v->told_ended = true;
+    v->refresh_due_ms = 0.0;
+}
+
+/* Starts the next image this viewer is due, or answers its leaving, or tells it the session ended. */
 static void pump(struct fc_conversation *c, double now_ms)
 {
     fc_viewer *v = &c->viewer;
@@ -91,13 +105,15 @@ static void pump(struct fc_conversation *c, double now_ms)
         return;
     const fc_session *session = c->session;
     bool new_frame = session->latest && session->sequence > v->last_sequence;
-    if (v->ending && !(v->deliver_last && new_frame))
-        send_end(c);
+    if (v->leaving)
+        send_leave_answer(c);
     else if (new_frame)
         dispatch(c, REASON_NEW_FRAME, now_ms);
-    else if (session->latest && v->view_changed && !v->ending)
+    else if (session->ended && !v->told_ended)
+        send_ended_notice(c);
+    else if (session->latest && v->view_changed)
         dispatch(c, REASON_VIEW, now_ms);
-    else if (session->latest && v->refresh_due_ms > 0.0 && now_ms >= v->refresh_due_ms && !v->ending)
+    else if (session->latest && v->refresh_due_ms > 0.0 && now_ms >= v->refresh_due_ms)
         dispatch(c, REASON_REFRESH, now_ms);
 }
 
@@ -138,15 +154,15 @@ void fc_viewer_keyframe_requested(struct fc_conversation *c, double now_ms)
 
 void fc_viewer_leave(struct fc_conversation *c, uint32_t request_id)
 {
-    c->viewer.ending = true;
-    c->viewer.deliver_last = false;
+    c->viewer.leaving = true;
     c->viewer.end_request_id = request_id;
     pump(c, fc_monotonic_ms());
 }
 
 void fc_viewer_job_done(struct fc_conversation *c, const fc_render_job *job)
 {
-    if (!is_viewer(c))
+    /* An image of an earlier subscription (left while it was made, PROTOCOL.md 10.1) is dropped. */
+    if (!is_viewer(c) || job->request_id != c->viewer.subscribe_id)
         return;
     c->viewer.queued = true;
     fc_error err;
@@ -214,11 +230,10 @@ void fc_viewer_on_new_frame(struct fc_conversation *viewer)
 
 void fc_viewer_on_session_ended(struct fc_conversation *viewer)
 {
-    fc_viewer *v = &viewer->viewer;
-    if (v->ending)
-        return;
-    v->ending = true;
-    v->deliver_last = true;
-    v->end_request_id = v->subscribe_id;
     pump(viewer, fc_monotonic_ms());
+}
+
+bool fc_viewer_in_ended_session(const struct fc_conversation *c)
+{
+    return is_viewer(c) && c->viewer.told_ended;
 }

@@ -31,9 +31,10 @@ typedef struct fc_viewer {
     bool view_changed;             /* CAMERA or SETTINGS since the last image */
     double view_changed_ms;
     double refresh_due_ms;         /* when a lossless refresh of the shown frame is due; 0 = none */
-    bool ending;                   /* SESSION_END goes out once nothing more is due */
-    bool deliver_last;             /* ...after the newest frame (the session ended), not when the viewer left */
-    uint32_t end_request_id;
+    bool leaving;                  /* the client sent SESSION_END: the answer goes out once nothing is in flight */
+    uint32_t end_request_id;       /* ...that SESSION_END's request id */
+    bool told_ended;               /* the session ended and this viewer got its SESSION_END: it stays, and
+                                      only its own CAMERA/SETTINGS (and their REFRESH) make images */
 } fc_viewer;
 
 /* Subscribes the conversation (already added to c->session as a viewer) with
@@ -66,7 +67,11 @@ void fc_viewer_detach(struct fc_conversation *c);
 /* What the named session tells a viewer, through the conversation's member
  * (conversation_sessions.c): the session published a new frame; */
 void fc_viewer_on_new_frame(struct fc_conversation *c);
-/* the session lost its last producer: the viewer gets what is pending, then SESSION_END. */
+/* the session lost its last producer: the viewer gets what is pending, then
+ * SESSION_END, and stays on the last frame (PROTOCOL.md 10.1). */
 void fc_viewer_on_session_ended(struct fc_conversation *c);
+/* The viewer is in a session that ended and has been told so: a SUBSCRIBE or
+ * PUBLISH leaves that session first, without a word (it had its SESSION_END). */
+bool fc_viewer_in_ended_session(const struct fc_conversation *c);
 
 #endif
