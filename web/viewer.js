@@ -172,8 +172,15 @@ function onSessionState(s) {
 
 function onSessionEnd(requestId, name) {
   if (requestId !== state.subscribeId) return;
+  // The viewer stays on the ended session's last frame (PROTOCOL.md 10.1): the camera still turns it. A
+  // new run under the same name is a new session, joined when asked.
   state.ended = true;
-  say(`session ${name} ended; waiting for it to start again`);
+  say(`session ${name} ended: its last frame stays, and the view still turns it`);
+  $('rejoin').classList.remove('hidden');
+}
+
+function rejoin() {
+  $('rejoin').classList.add('hidden');
   closeDecoder();
   subscribe();
 }
@@ -365,6 +372,7 @@ function installControls() {
     ws.close();
   });
   $('save').addEventListener('click', savePng);
+  $('rejoin').addEventListener('click', rejoin);
   for (const id of ['color-by', 'colormap', 'range-min', 'range-max']) $(id).addEventListener('change', sendColorSettings);
   window.addEventListener('resize', () => { if (state.camera) applyCamera(state.camera, true); });
 }
