@@ -7,7 +7,7 @@ const fs = require('node:fs');
 const path = require('node:path');
 
 const [, , DAEMON, CLI, SCENE, NODE_MODULES, WORK] = process.argv;
-const puppeteer = require(path.join(NODE_MODULES, 'puppeteer-core'));
+const puppeteer = require(path.resolve(NODE_MODULES, 'puppeteer-core'));
 
 let failures = 0;
 function check(ok, what) {
