@@ -24,6 +24,7 @@ function upgradeStatus(web, origin) {
 
 h.run(async () => {
   const daemon = await h.startDaemon();
+  const browser = await h.launchBrowser();
   const index = await fetch(`http://${daemon.web}/`);
   const csp = index.headers.get('content-security-policy') || '';
   h.check(index.status === 200 && /script-src 'self'/.test(csp) && /default-src 'none'/.test(csp),
@@ -35,8 +36,40 @@ h.run(async () => {
   h.check(!/ 101 /.test(await upgradeStatus(daemon.web, 'http://elsewhere.example')),
     'a WebSocket from another origin is refused');
 
+  // The mapping (PROTOCOL.md 13) from a page: one protocol message per binary WebSocket message.
+  const listPage = await h.openPage(browser, daemon.web);
+  const mapping = await listPage.evaluate(async () => {
+    const fc = await import('/protocol.js');
+    // Sends each message on a fresh WebSocket; resolves with the types received and the close code.
+    const exchange = (...messages) => new Promise((resolve) => {
+      const ws = new WebSocket(`ws://${location.host}/ws`, 'fluidcast.v1');
+      ws.binaryType = 'arraybuffer';
+      const types = [];
+      ws.onopen = () => messages.forEach((m) => ws.send(m));
+      ws.onmessage = (e) => types.push(fc.parse(e.data).type);
+      ws.onclose = (e) => resolve({ types, code: e.code });
+    });
+    const hello = fc.hello(1, 'web-test', '');
+    const short = hello.slice(0, hello.length - 1);   // its header names one byte more than follows
+    const badMagic = fc.message(fc.MSG.GOODBYE, 2);
+    badMagic[0] = 0x58;
+    return {
+      hello: await exchange(hello, fc.goodbye()),
+      text: await exchange('hello'),
+      short: await exchange(short),
+      badMagic: await exchange(badMagic),
+    };
+  });
+  h.check(JSON.stringify(mapping.hello.types) === '[2]' && mapping.hello.code === 1000,
+    `HELLO then GOODBYE: WELCOME, then the daemon closes (${JSON.stringify(mapping.hello)})`);
+  h.check(mapping.text.types.length === 0 && mapping.text.code === 1002, 'a text message closes the WebSocket (1002)');
+  h.check(mapping.short.types.length === 0 && mapping.short.code === 1002,
+    'a message shorter than its header says closes the WebSocket (1002)');
+  h.check(JSON.stringify(mapping.badMagic.types) === '[8]' && mapping.badMagic.code === 1000,
+    `a bad magic is the daemon's to answer: ERROR, then closed (${JSON.stringify(mapping.badMagic)})`);
+  await listPage.close();
+
   const producer = h.startProducer(daemon.server, 'tank');
-  const browser = await h.launchBrowser();
   const list = await h.openPage(browser, daemon.web);
   await h.until(() => list.$('#session-list a'), 'the session list');
   const href = await list.$eval('#session-list a', (a) => a.getAttribute('href'));
