@@ -404,9 +404,15 @@ function savePng() {
 
 // ---- colour by attribute and the legend ------------------------------------------------------------------
 
+function colorControls() {
+  return { by: Number($('color-by').value), map: Number($('colormap').value), lo: Number($('range-min').value),
+    hi: Number($('range-max').value) };
+}
+
+// Sent before SUBSCRIBE and when a control changes, never on its own: on a viewer each SETTINGS brings a VIEW
+// image, which the one-camera-in-flight accounting would take for the camera's.
 function sendColorSettings() {
-  const by = Number($('color-by').value), map = Number($('colormap').value);
-  const lo = Number($('range-min').value), hi = Number($('range-max').value);
+  const { by, map, lo, hi } = colorControls();
   const entries = [[fc.SETTING.COLOR_BY, [by], 'u32'], [fc.SETTING.COLORMAP, [map], 'u32']];
   if (Number.isFinite(lo) && Number.isFinite(hi) && lo < hi) entries.push([fc.SETTING.COLOR_RANGE, [lo, hi], 'f32']);
   if (state.connected) send(fc.settings(nextId(), entries));
@@ -457,5 +463,8 @@ $('token-form').addEventListener('submit', (e) => {
 });
 if (sessionName) document.title = `${sessionName} — fluidcast`;
 installControls();
-loadColormaps().then(() => sendColorSettings(), (e) => say(`cannot load the colormaps: ${e.message}`, 'error'));
+loadColormaps().then(() => {
+  const { by, map, lo, hi } = colorControls();
+  drawLegend(by, map, lo, hi);
+}, (e) => say(`cannot load the colormaps: ${e.message}`, 'error'));
 connect();
