@@ -17,7 +17,7 @@ const sessionName = params.get('session');
 const state = {
   connected: false, welcome: null, requestId: 0, subscribeId: 0, format: null,
   camera: null,            // the page's own camera; null while the server frames the view
-  cameraSentAt: 0, cameraInFlight: false, cameraQueued: false, moving: false, restTimer: 0,
+  cameraSentAt: 0, cameraRequestId: 0, cameraInFlight: false, cameraQueued: false, moving: false, restTimer: 0,
   imagesShown: 0, shownByFormat: {}, imagesDecoding: 0, lastImage: null, lastRttMs: null, fpsTimes: [],
   ended: false, resetting: false, unauthorized: false, refusals: 0,
   reconnects: 0, errors: [], pending: new Map(), decoder: null, decoderReady: false, colormaps: null,
@@ -109,6 +109,7 @@ function onError(requestId, error) {
     return;
   }
   state.errors.push(error);
+  if (requestId === state.cameraRequestId) cameraAnswered();   // a refused CAMERA brings no image
   const pick = state.pending.get(requestId);
   state.pending.delete(requestId);
   say(`${pick ? pick.what : 'the daemon'}: ${error.name}: ${error.message}`, 'error');
@@ -213,7 +214,9 @@ function countShown(image) {
 }
 
 function onStreamImage(image) {
-  if (image.flags & fc.FLAG.VIEW) cameraAnswered();
+  // Any image frees the camera slot: a VIEW answers it, and a new frame's image (a session that had no frame
+  // when the camera went out sends no VIEW) is rendered with the newest camera the daemon has.
+  cameraAnswered();
   if ($('message').textContent.startsWith('waiting for session')) say('');
   if (image.format === fc.FORMAT.H264) return decodeAccessUnit(image);
   const type = image.format === fc.FORMAT.PNG ? 'image/png' : 'image/jpeg';
@@ -309,7 +312,8 @@ function sendCamera() {
   state.cameraInFlight = true;
   state.cameraQueued = false;
   state.cameraSentAt = performance.now();
-  send(fc.camera(nextId(), { ...state.camera, ...viewSize(state.moving) }));
+  state.cameraRequestId = nextId();
+  send(fc.camera(state.cameraRequestId, { ...state.camera, ...viewSize(state.moving) }));
 }
 
 function cameraAnswered() {
