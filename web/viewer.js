@@ -377,7 +377,8 @@ function installControls() {
   });
   $('save').addEventListener('click', savePng);
   $('rejoin').addEventListener('click', rejoin);
-  for (const id of ['color-by', 'colormap', 'range-min', 'range-max']) $(id).addEventListener('change', sendColorSettings);
+  for (const id of ['color-by', 'colormap', 'range-min', 'range-max'])
+    $(id).addEventListener('change', sendColorSettings);
   window.addEventListener('resize', () => { if (state.camera) applyCamera(state.camera, true); });
 }
 

@@ -211,7 +211,7 @@ static const fc_option options[] = {
      "serve /metrics (Prometheus), /healthz and /readyz over HTTP on ADDR: HOST:PORT, [ADDR]:PORT or PORT "
      "alone (then on " FC_DEFAULT_HOST "); never on a render port; none by default", NULL},
     {"--web-listen", "ADDR", set_web_listen,
-     "serve the web viewer (a page, and a WebSocket speaking this protocol, docs/web.md) over HTTP on ADDR: "
+     "serve the web viewer (a page, and a WebSocket speaking the fluidcast protocol, docs/web.md) over HTTP on ADDR: "
      "HOST:PORT, [ADDR]:PORT or PORT alone (then on " FC_DEFAULT_HOST "); none by default", NULL},
     {"--token-file", "PATH", set_token_file,
      "require clients to send the token in PATH (one line) in HELLO; without it the FLUIDCAST_TOKEN "

@@ -16,7 +16,13 @@ function upgradeStatus(web, origin) {
         `Sec-WebSocket-Protocol: fluidcast.v1\r\nOrigin: ${origin}\r\n\r\n`);
     });
     let reply = '';
-    socket.on('data', (d) => { reply += d; if (reply.includes('\r\n')) { socket.destroy(); resolve(reply.split('\r\n')[0]); } });
+    socket.on('data', (d) => {
+      reply += d;
+      if (reply.includes('\r\n')) {
+        socket.destroy();
+        resolve(reply.split('\r\n')[0]);
+      }
+    });
     socket.on('close', () => resolve(reply.split('\r\n')[0] || 'closed'));
     socket.on('error', () => resolve('error'));
   });
@@ -85,7 +91,8 @@ h.run(async () => {
   s = await h.waitImage(page, s.imagesShown, { rest: true });
   let cmp = await h.compareCanvas(page, h.snapshot(daemon.server, s.camera, s.lastImage.width, s.lastImage.height));
   h.check(cmp.spread > 10 && cmp.meanDiff < 4,
-    `the canvas shows the snapshot of the same frame and camera (mean difference ${cmp.meanDiff}, spread ${cmp.spread})`);
+    `the canvas shows the snapshot of the same frame and camera (mean difference ${cmp.meanDiff}, ` +
+    `spread ${cmp.spread})`);
 
   const before = await h.canvasPixels(page);
   const box = await (await page.$('#view')).boundingBox();
@@ -96,7 +103,8 @@ h.run(async () => {
   const moved = await h.waitImage(page, s.imagesShown, { rest: true });
   h.check(JSON.stringify(moved.camera.eye) !== JSON.stringify(s.camera.eye), 'the drag moved the page\'s camera');
   h.check(h.pixelDifference(before, await h.canvasPixels(page)) > 5, 'the drag changed the picture');
-  cmp = await h.compareCanvas(page, h.snapshot(daemon.server, moved.camera, moved.lastImage.width, moved.lastImage.height));
+  cmp = await h.compareCanvas(page,
+    h.snapshot(daemon.server, moved.camera, moved.lastImage.width, moved.lastImage.height));
   h.check(cmp.meanDiff < 4, `after the drag the daemon rendered the page's camera (mean difference ${cmp.meanDiff})`);
   h.check(/fps · round trip \d+ ms/.test(await page.$eval('#hud', (e) => e.textContent)),
     'the HUD shows the frame rate and the round trip');
@@ -109,7 +117,8 @@ h.run(async () => {
   }, 'the picture after Reset view');
   const resetDiff = h.pixelDifference(beforeReset, await h.canvasPixels(page));
   h.check(reset.camera === null && resetDiff > 5,
-    `Reset view rejoins the session framed by the daemon (camera ${JSON.stringify(reset.camera)}, difference ${resetDiff})`);
+    `Reset view rejoins the session framed by the daemon (camera ${JSON.stringify(reset.camera)}, ` +
+    `difference ${resetDiff})`);
   h.check(page.consoleErrors.length === 0, `the viewer page logged no error (${page.consoleErrors})`);
 
   const ended = await producer.release();

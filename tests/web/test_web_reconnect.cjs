@@ -16,7 +16,8 @@ h.run(async () => {
   const { server, web } = daemon;
   await h.stopDaemon(daemon);
   await producer.proc.kill('SIGKILL');
-  await h.until(async () => (await h.viewerState(page)).message.includes('went away'), 'the page to say the daemon went away');
+  await h.until(async () => (await h.viewerState(page)).message.includes('went away'),
+    'the page to say the daemon went away');
   daemon = await h.startDaemon({ name: 'second', listen: server, web: web.split(':')[1] });
   producer = h.startProducer(daemon.server, 'later');
   s = await h.waitImage(page, s.imagesShown);
