@@ -56,11 +56,12 @@ export function dolly(cam, clicks) {
   return { ...cam, eye: add(cam.target, offset) };
 }
 
-// The world point at linear view depth `depth` under (u, v) in [0, 1], v down.
-export function unproject(cam, u, v, depth) {
+// The world point at linear view depth `depth` under (u, v) in [0, 1], v down, in an image of this aspect
+// ratio (width / height).
+export function unproject(cam, u, v, depth, aspect) {
   const { forward, right, up } = basis(cam);
   const tanY = Math.tan((cam.fov * Math.PI) / 360);
-  const tanX = tanY * (cam.width / cam.height);
+  const tanX = tanY * aspect;
   const x = (2 * u - 1) * tanX * depth, y = (1 - 2 * v) * tanY * depth;
   return add(add(add(cam.eye, scale(forward, depth)), scale(right, x)), scale(up, y));
 }

@@ -393,12 +393,14 @@ function pickPivot(e) {
     const y = Math.min(image.height - 1, Math.floor(v * image.height));
     const depth = new DataView(image.data.buffer, image.data.byteOffset).getFloat32((y * image.width + x) * 4, true);
     if (!(depth > 0)) { say('no fluid under the cursor'); return; }
-    applyCamera(cam.setPivot(state.camera, cam.unproject(state.camera, u, v, depth)), false);
+    state.picked = cam.unproject(state.camera, u, v, depth, image.width / image.height);
+    applyCamera(cam.setPivot(state.camera, state.picked), false);
   });
 }
 
 function savePng() {
   renderOnce(fc.FORMAT.PNG, fc.AOV.COLOR, 'saving the PNG', (image) => {
+    state.saved = { width: image.width, height: image.height, signature: Array.from(image.data.subarray(0, 8)) };
     const link = document.createElement('a');
     link.href = URL.createObjectURL(new Blob([image.data], { type: 'image/png' }));
     link.download = `fluidcast-${sessionName}-${state.lastImage ? state.lastImage.frame : 0}.png`;

@@ -108,6 +108,25 @@ h.run(async () => {
   h.check(cmp.meanDiff < 4, `after the drag the daemon rendered the page's camera (mean difference ${cmp.meanDiff})`);
   h.check(/fps · round trip \d+ ms/.test(await page.$eval('#hud', (e) => e.textContent)),
     'the HUD shows the frame rate and the round trip');
+  // Save PNG: a full-size lossless render of the current view.
+  await page.click('#save');
+  const saved = await h.until(() => page.evaluate(() => window.fluidcastViewer.state.saved), 'the saved PNG');
+  h.check(saved.width === moved.lastImage.width && saved.height === moved.lastImage.height &&
+    saved.signature.join(',') === '137,80,78,71,13,10,26,10',
+  `Save PNG renders the view full size as PNG (${JSON.stringify(saved)})`);
+  // A double-click on the fluid makes the point under it the pivot: the camera's new target.
+  await page.mouse.click(box.x + box.width / 2, box.y + box.height / 2, { count: 2 });
+  const picked = await h.until(async () => {
+    const state = await page.evaluate(() => window.fluidcastViewer.state);
+    return state.picked && JSON.stringify(state.camera.target) === JSON.stringify(state.picked) ? state : null;
+  }, 'the pivot picked', 30).catch(async (e) => {
+    console.log(JSON.stringify(await h.viewerState(page)), await page.evaluate(() =>
+      JSON.stringify({ picked: window.fluidcastViewer.state.picked, errors: window.fluidcastViewer.state.errors })));
+    throw e;
+  });
+  const shift = Math.hypot(...picked.picked.map((x, i) => x - moved.camera.target[i]));
+  h.check(shift > 1e-3, `a double-click on the fluid recentres on the point under it (moved ${shift})`);
+  await h.waitImage(page, (await h.viewerState(page)).imagesShown - 1, { rest: true });
   const beforeReset = await h.canvasPixels(page);
   await page.click('#reset');
   const reset = await h.until(async () => {
