@@ -37,6 +37,8 @@ PACKAGES=(
   # fluidcastd under systemd (sd_notify, socket activation; systemd-analyze checks the units)
   # and its /metrics endpoint (libmicrohttpd; promtool checks the output)
   libsystemd-dev systemd libmicrohttpd-dev prometheus
+  # its web viewer (--web-listen: libwebsockets), tested in Debian's headless chromium (tests/web)
+  libwebsockets-dev chromium
   # the Python binding (python/fluidcast) and its tests under Debian's python3
   python3-numpy python3-pytest
   # "srv:" addresses: a real DNS server (dnsmasq, its binary alone) serves SRV records in tests/srv
@@ -86,4 +88,15 @@ if [ ! -f "$npm_dir/node_modules/kubernetes-models/package.json" ] ||
   cp "$root/deploy/kubernetes/package.json" "$root/deploy/kubernetes/package-lock.json" "$npm_dir/"
   echo "setup: npm ci in build/npm (kubernetes-models, yaml)"
   (cd "$npm_dir" && npm ci --no-audit --no-fund --loglevel=error)
+fi
+
+# The web viewer's browser tests (tests/web) drive chromium with puppeteer-core from npm, pinned by
+# tests/web/package-lock.json, installed into build/npm-web (git-ignored).
+web_npm_dir=$root/build/npm-web
+if [ ! -f "$web_npm_dir/node_modules/puppeteer-core/package.json" ] ||
+   ! cmp -s "$root/tests/web/package-lock.json" "$web_npm_dir/package-lock.json"; then
+  mkdir -p "$web_npm_dir"
+  cp "$root/tests/web/package.json" "$root/tests/web/package-lock.json" "$web_npm_dir/"
+  echo "setup: npm ci in build/npm-web (puppeteer-core)"
+  (cd "$web_npm_dir" && npm ci --no-audit --no-fund --loglevel=error)
 fi

@@ -69,4 +69,7 @@ if [ -d "$splash" ]; then
 else
   echo "gallery: no $splash, splash rows not regenerated" >&2
 fi
+# The web viewer in headless chromium (puppeteer-core in build/npm-web, deploy/setup.sh), on a daemon of its own.
+node docs/gallery/web_viewer.cjs $bin/fluidcastd $bin/fluidcast deploy/demo/dambreak_16k.f32 build/npm-web/node_modules \
+  "$(mktemp -d)" "$out/web.png"
 echo "gallery: $(ls "$out"/*.png | wc -l) images in $out"

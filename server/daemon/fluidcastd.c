@@ -24,6 +24,7 @@
 #include "metrics/metrics_http.h"
 #include "options.h"
 #include "service_manager.h"
+#include "web/web_server.h"
 #include "uploads/frame_pool.h"
 
 #define FLUIDCASTD_VERSION "0.1.0"
@@ -173,6 +174,9 @@ typedef struct daemon_sockets {
     fc_metrics_http *http;     /* the metrics endpoint; NULL when not asked for */
     fc_tls_server *tls;        /* every TCP listener's TLS (--tls-cert); NULL: in clear */
     int reload_fd;             /* SIGHUP's signalfd: reload the TLS files */
+    fc_web_server *web;        /* the web viewer (--web-listen); NULL when not asked for */
+    fc_listener served[MAX_LISTENERS + 1];   /* what the event loop accepts from: listeners, then the web relay */
+    size_t served_count;
 } daemon_sockets;
 
 /* What systemd passed, if anything: taken first, before the slow GL start,
@@ -212,6 +216,8 @@ static fc_code start_metrics(const fc_daemon_options *options, const fc_log *log
 
 static void close_sockets(daemon_sockets *s)
 {
+    fc_web_server_stop(s->web);
+    s->web = NULL;
     fc_metrics_http_stop(s->http);
     s->http = NULL;
     if (s->metrics_fd >= 0)
@@ -222,15 +228,32 @@ static void close_sockets(daemon_sockets *s)
     s->count = 0;
 }
 
+/* The web viewer, when asked for: its relay listener joins those the event
+ * loop serves, so that a browser's connection is a connection like any other. */
+static fc_code start_web(const fc_daemon_options *options, const fc_log *log, daemon_sockets *s, fc_error *err)
+{
+    memcpy(s->served, s->listeners, s->count * sizeof s->listeners[0]);
+    s->served_count = s->count;
+    if (!options->web_host[0])
+        return FC_OK;
+    fc_code code = fc_web_server_start(options->web_host, options->web_port, log, &s->web, err);
+    if (code == FC_OK)
+        s->served[s->served_count++] = *fc_web_server_relay(s->web);
+    return code;
+}
+
 /* The listeners the options ask for, unless systemd passed some; TLS on the
- * TCP ones when asked for; then the port file. */
-static fc_code open_listeners(const fc_daemon_options *options, daemon_sockets *s, fc_error *err)
+ * TCP ones when asked for; then the port file and the web viewer. */
+static fc_code open_listeners(const fc_daemon_options *options, const fc_log *log, daemon_sockets *s,
+                              fc_error *err)
 {
     fc_code code = s->inherited ? FC_OK : open_own_listeners(options, s->listeners, &s->count, err);
     for (size_t i = 0; i < s->count; i++)
         s->listeners[i].tls = s->listeners[i].is_unix ? NULL : s->tls;
     if (code == FC_OK && options->port_file)
         code = write_port_file(options->port_file, first_tcp_port(s->listeners, s->count), err);
+    if (code == FC_OK)
+        code = start_web(options, log, s, err);
     return code;
 }
 
@@ -246,12 +269,16 @@ static void describe_listeners(const fc_listener *listeners, size_t count, char 
 /* Tells the service manager the daemon is ready: only once the GL context
  * exists and every listener accepts, so a client started after it (After=)
  * finds the daemon answering. */
-static void announce_ready(const fc_daemon_context *ctx, const fc_listener *listeners, size_t count)
+static void announce_ready(const fc_daemon_context *ctx, const fc_listener *listeners, size_t count,
+                           const fc_web_server *web)
 {
     char where[512];
     for (size_t i = 0; i < count; i++)
         fc_log_write(ctx->log, FC_LOG_INFO, "listening on %s%s", listeners[i].address,
                      listeners[i].tls ? " (TLS)" : "");
+    if (web)
+        /* Tests read this line for the web port. */
+        fc_log_write(ctx->log, FC_LOG_INFO, "web viewer on http://%s/", fc_web_server_address(web));
     describe_listeners(listeners, count, where, sizeof where);
     fc_service_notify(ctx->log, "READY=1\nSTATUS=serving on %s; renderer %s", where, ctx->welcome.renderer);
 }
@@ -262,11 +289,11 @@ static int serve(const fc_daemon_options *options, fc_daemon_context *ctx, daemo
 {
     fc_error err;
     fc_event_loop *loop = NULL;
-    fc_code code = open_listeners(options, s, &err);
+    fc_code code = open_listeners(options, ctx->log, s, &err);
     if (code == FC_OK)
-        code = fc_event_loop_create(s->listeners, s->count, stop_fd, s->reload_fd, ctx, &loop, &err);
+        code = fc_event_loop_create(s->served, s->served_count, stop_fd, s->reload_fd, ctx, &loop, &err);
     if (code == FC_OK) {
-        announce_ready(ctx, s->listeners, s->count);
+        announce_ready(ctx, s->listeners, s->count, s->web);
         fc_metrics_set_phase(ctx->metrics, FC_PHASE_SERVING);
         code = fc_event_loop_run(loop, &err);
     }

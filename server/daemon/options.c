@@ -120,6 +120,12 @@ static fc_code set_metrics_listen(void *o, const char *name, const char *value, 
     return fc_daemon_options_parse_metrics_listen(value, o, err);
 }
 
+static fc_code set_web_listen(void *o, const char *name, const char *value, fc_error *err)
+{
+    (void)name;
+    return fc_daemon_options_parse_web_listen(value, o, err);
+}
+
 static fc_code set_max_particles(void *o, const char *name, const char *value, fc_error *err)
 {
     return parse_number(name, value, 1, UINT64_MAX, &as_options(o)->limits.max_particles, err);
@@ -230,6 +236,9 @@ static const fc_option options[] = {
     {"--metrics-listen", "ADDR", set_metrics_listen,
      "serve /metrics (Prometheus), /healthz and /readyz over HTTP on ADDR: HOST:PORT, [ADDR]:PORT or PORT "
      "alone (then on " FC_DEFAULT_HOST "); never on a render port; none by default", NULL},
+    {"--web-listen", "ADDR", set_web_listen,
+     "serve the web viewer (a page, and a WebSocket speaking the fluidcast protocol, docs/web.md) over HTTP on ADDR: "
+     "HOST:PORT, [ADDR]:PORT or PORT alone (then on " FC_DEFAULT_HOST "); none by default", NULL},
     {"--token-file", "PATH", set_token_file,
      "require clients to send the token in PATH (one line) in HELLO; without it the FLUIDCAST_TOKEN "
      "environment variable, if set, is the token", NULL},
@@ -298,17 +307,30 @@ fc_code fc_daemon_options_parse_listen(const char *text, fc_daemon_options *o, f
     return fc_host_port_parse(text, &rules, o->listen_host, o->listen_port, err);
 }
 
-/* A port alone is one on FC_DEFAULT_HOST; any other address needs its port:
- * the default port is the render port, which the metrics must never share. */
-fc_code fc_daemon_options_parse_metrics_listen(const char *text, fc_daemon_options *o, fc_error *err)
+/* A side listener's ADDR (--metrics-listen, --web-listen): PORT alone is that
+ * port on FC_DEFAULT_HOST; any other address needs its port: the default port
+ * is the render port, which a side listener must never share. */
+static fc_code parse_side_listen(const fc_host_port_rules *rules, const char *text, char *host, char *port,
+                                 fc_error *err)
 {
-    static const fc_host_port_rules rules = {"--metrics-listen", 0, true};
     char address[FC_HOST_MAX + FC_PORT_MAX + 8];
     if (text[0] != '\0' && strspn(text, "0123456789") == strlen(text) && strlen(text) < FC_PORT_MAX + 2) {
         snprintf(address, sizeof address, "%s:%s", FC_DEFAULT_HOST, text);
         text = address;
     }
-    return fc_host_port_parse(text, &rules, o->metrics_host, o->metrics_port, err);
+    return fc_host_port_parse(text, rules, host, port, err);
+}
+
+fc_code fc_daemon_options_parse_metrics_listen(const char *text, fc_daemon_options *o, fc_error *err)
+{
+    static const fc_host_port_rules rules = {"--metrics-listen", 0, true};
+    return parse_side_listen(&rules, text, o->metrics_host, o->metrics_port, err);
+}
+
+fc_code fc_daemon_options_parse_web_listen(const char *text, fc_daemon_options *o, fc_error *err)
+{
+    static const fc_host_port_rules rules = {"--web-listen", 0, true};
+    return parse_side_listen(&rules, text, o->web_host, o->web_port, err);
 }
 
 fc_code fc_daemon_options_parse(int argc, char **argv, fc_daemon_options *o, fc_error *err)

@@ -31,6 +31,8 @@ typedef struct fc_daemon_options {
     uint64_t max_session_memory;   /* bytes one connection (with the named session it produces) may hold */
     char metrics_host[FC_HOST_MAX];  /* --metrics-listen: "" = no metrics endpoint */
     char metrics_port[FC_PORT_MAX];
+    char web_host[FC_HOST_MAX];      /* --web-listen: "" = no web viewer */
+    char web_port[FC_PORT_MAX];
     const char *token_file;    /* --token-file: NULL for none (then FLUIDCAST_TOKEN); points into argv */
     const char *tls_cert;      /* --tls-cert: NULL = TCP in clear; points into argv */
     const char *tls_key;       /* --tls-key: the certificate's private key */
@@ -60,6 +62,9 @@ fc_code fc_daemon_options_parse_listen(const char *text, fc_daemon_options *o, f
 /* Parses --metrics-listen's "HOST:PORT", "[IPV6]:PORT" or "PORT" (then on
  * FC_DEFAULT_HOST: the metrics are for the operator, not the world). */
 fc_code fc_daemon_options_parse_metrics_listen(const char *text, fc_daemon_options *o, fc_error *err);
+
+/* Parses --web-listen's address, by the rules of --metrics-listen. */
+fc_code fc_daemon_options_parse_web_listen(const char *text, fc_daemon_options *o, fc_error *err);
 
 void fc_daemon_options_print_help(FILE *out, const char *program);
 

@@ -50,7 +50,8 @@ DAEMON_FORBIDDEN="sessions:conversations sessions:net sessions:gpu
 conversations:net
 gpu:conversations gpu:sessions gpu:net
 uploads:conversations uploads:sessions uploads:net uploads:gpu
-metrics:conversations metrics:sessions metrics:net metrics:gpu metrics:uploads"
+metrics:conversations metrics:sessions metrics:net metrics:gpu metrics:uploads
+web:conversations web:sessions web:gpu web:uploads"
 
 status=0
 work=$(mktemp -d)
