@@ -791,6 +791,16 @@ const fc_anisotropy *fc_pipeline_anisotropy(const fc_pipeline *p)
     return &p->anisotropy;
 }
 
+fc_code fc_pipeline_frame_ellipsoids(fc_pipeline *p, const fc_frame *frame, fc_ellipsoid *out, fc_error *err)
+{
+    fc_code code = fc_pipeline_upload(p, frame, NULL, err);
+    if (code == FC_OK)
+        code = fc_anisotropy_update(&p->anisotropy, &p->particles, &p->frame, err);
+    if (code == FC_OK)
+        code = fc_anisotropy_read(&p->anisotropy, frame->count, out, err);
+    return code;
+}
+
 fc_code fc_pipeline_surface_passes(fc_pipeline *p, const fc_surface_passes **out, fc_error *err)
 {
     if (!p->surface_built) {

@@ -17,6 +17,11 @@ fc_particle_attributes *fc_pipeline_particle_attributes(fc_pipeline *p);
  * with fc_anisotropy_read; tests). */
 const fc_anisotropy *fc_pipeline_anisotropy(const fc_pipeline *p);
 
+/* Uploads `frame` (as fc_pipeline_upload: it becomes the pipeline's frame,
+ * in its own order) and reads its particles' ellipsoids into out (count of
+ * them, frame order): the surface mesh's anisotropic kernel. */
+fc_code fc_pipeline_frame_ellipsoids(fc_pipeline *p, const fc_frame *frame, fc_ellipsoid *out, fc_error *err);
+
 /* The surface mesh passes (surface_extract.c), built on their first use. */
 fc_code fc_pipeline_surface_passes(fc_pipeline *p, const fc_surface_passes **out, fc_error *err);
 

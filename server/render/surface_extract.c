@@ -61,19 +61,24 @@ static fc_code make_buffer(GLuint *buffer, uint64_t bytes, const void *data, fc_
     return fc_gl_check("allocating the surface mesh buffers", err);
 }
 
-/* The particles as the field pass reads them: centre and radius, velocity
- * and density, id (the index where the frame has none). */
-static fc_code upload_particles(extraction *x, const fc_frame *frame, const float *radius, float uniform_radius,
+/* The particles as the field pass reads them: centre (the ellipsoid's
+ * smoothed one with the anisotropic kernel) and radius, velocity and density,
+ * id (the index where the frame has none); and the ellipsoids' G as two vec4
+ * (xx xy xz yy, yz zz), or one unused vec4 for the other kernels. */
+static fc_code upload_particles(extraction *x, const fc_frame *frame, const float *centres,
+                                const fc_ellipsoid *ellipsoids, const float *radius, float uniform_radius,
                                 fc_error *err)
 {
-    size_t n = (size_t)frame->count;
-    float *particles = malloc(n * 16), *attributes = calloc(n, 16);
+    size_t n = (size_t)frame->count, shapes_n = ellipsoids ? 2 * n : 1;
+    float *particles = malloc(n * 16), *attributes = calloc(n, 16), *shapes = calloc(shapes_n, 16);
     uint32_t *ids = malloc(n * 4);
     fc_code code = FC_OK;
-    if (!particles || !attributes || !ids)
+    if (!particles || !attributes || !ids || !shapes)
         code = fc_error_set(err, FC_ERR_NOMEM, "cannot stage %zu particles for the surface mesh", n);
+    for (size_t i = 0; code == FC_OK && ellipsoids && i < n; i++)
+        memcpy(shapes + 8 * i, ellipsoids[i].inverse, 6 * sizeof(float));
     for (size_t i = 0; code == FC_OK && i < n; i++) {
-        memcpy(particles + 4 * i, frame->positions + 3 * i, 12);
+        memcpy(particles + 4 * i, centres + 3 * i, 12);
         particles[4 * i + 3] = radius ? radius[i] : uniform_radius;
         if (frame->velocity)
             memcpy(attributes + 4 * i, frame->velocity + 3 * i, 12);
@@ -87,6 +92,9 @@ static fc_code upload_particles(extraction *x, const fc_frame *frame, const floa
         code = make_buffer(&x->buffers[BIND_ATTRIBUTES], n * 16, attributes, err);
     if (code == FC_OK)
         code = make_buffer(&x->buffers[BIND_IDS], n * 4, ids, err);
+    if (code == FC_OK)
+        code = make_buffer(&x->buffers[BIND_SHAPES], shapes_n * 16, shapes, err);
+    free(shapes);
     free(particles);
     free(attributes);
     free(ids);
@@ -325,20 +333,47 @@ static void release(extraction *x)
     fc_surface_grid_free(&x->grid);
 }
 
-static fc_code extract(const fc_surface_passes *s, const fc_frame *frame, const fc_settings *settings,
-                       fc_surface_mesh *out, extraction *x, fc_error *err)
+/* The anisotropic kernel's ellipsoids (the renderer's, pipeline_internal.h),
+ * their centres packed for the grid, and the longest stretch of any. */
+static fc_code anisotropic_shapes(fc_pipeline *pipeline, const fc_frame *frame, fc_ellipsoid **ellipsoids,
+                                  float **centres, float *stretch, fc_error *err)
+{
+    size_t n = (size_t)frame->count;
+    *ellipsoids = malloc(n * sizeof **ellipsoids);
+    *centres = malloc(n * 12);
+    if (!*ellipsoids || !*centres)
+        return fc_error_set(err, FC_ERR_NOMEM, "cannot allocate %zu ellipsoids", n);
+    fc_code code = fc_pipeline_frame_ellipsoids(pipeline, frame, *ellipsoids, err);
+    *stretch = 1.0f;
+    for (size_t i = 0; code == FC_OK && i < n; i++) {
+        memcpy(*centres + 3 * i, (*ellipsoids)[i].centre, 12);
+        *stretch = fmaxf(*stretch, (*ellipsoids)[i].stretch_max);
+    }
+    return code;
+}
+
+static fc_code extract(fc_pipeline *pipeline, const fc_surface_passes *s, const fc_frame *frame,
+                       const fc_settings *settings, fc_surface_mesh *out, extraction *x, fc_error *err)
 {
     float radius;
     const float *per_particle;
     fc_code code = resolve_radius(frame, settings, &radius, &per_particle, err);
     if (code != FC_OK)
         return code;
-    float reach = KERNEL_REACH_RADII * largest(per_particle, frame->count, radius);
+    fc_ellipsoid *ellipsoids = NULL;
+    float *centres = NULL, stretch = 1.0f;
+    if (settings->surface_kernel == FC_SURFACE_KERNEL_ANISOTROPIC)
+        code = anisotropic_shapes(pipeline, frame, &ellipsoids, &centres, &stretch, err);
+    const float *positions = centres ? centres : frame->positions;
+    float reach = KERNEL_REACH_RADII * stretch * largest(per_particle, frame->count, radius);
     x->iso = iso_of(settings->surface_kernel);
     x->kernel = (int)settings->surface_kernel;
-    code = fc_surface_grid_build(frame->positions, frame->count, reach, settings->surface_cell * radius, &x->grid, err);
     if (code == FC_OK)
-        code = upload_particles(x, frame, per_particle, radius, err);
+        code = fc_surface_grid_build(positions, frame->count, reach, settings->surface_cell * radius, &x->grid, err);
+    if (code == FC_OK)
+        code = upload_particles(x, frame, positions, ellipsoids, per_particle, radius, err);
+    free(ellipsoids);
+    free(centres);
     if (code == FC_OK)
         code = allocate_grid(x, err);
     if (code == FC_OK)
@@ -374,15 +409,13 @@ fc_code fc_surface_extract(fc_pipeline *pipeline, const fc_frame *frame, const f
         code = fc_frame_validate(frame, error);
     if (code != FC_OK || frame->count == 0)
         return code;
-    if (settings->surface_kernel == FC_SURFACE_KERNEL_ANISOTROPIC)
-        return fc_error_set(error, FC_ERR_INVALID_VALUE, "the anisotropic surface kernel is not available");
     const fc_surface_passes *s;
     code = fc_pipeline_surface_passes(pipeline, &s, error);
     if (code != FC_OK)
         return code;
     set_tet_tables(s);
     extraction x = {0};
-    code = extract(s, frame, settings, out, &x, error);
+    code = extract(pipeline, s, frame, settings, out, &x, error);
     release(&x);
     if (code != FC_OK)
         fc_surface_mesh_free(out);

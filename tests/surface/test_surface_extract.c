@@ -180,6 +180,31 @@ static void check_ball(render_fixture *f, fc_surface_kernel kernel, float radius
     free(p.xyz);
 }
 
+/* The anisotropic kernel (metaballs on the renderer's ellipsoids): a ball is
+ * still one closed surface, near the spheres' (its inside particles keep
+ * their shape, its surface ones flatten along it). */
+static void test_anisotropic_ball(render_fixture *f)
+{
+    points p = {0};
+    add_ball(&p, (float[3]){0, 0, 0}, BALL_RADIUS);
+    fc_frame frame = frame_of(&p);
+    fc_settings s = mesh_settings(FC_SURFACE_KERNEL_ANISOTROPIC, 1.0f, 4);
+    fc_surface_mesh m;
+    fc_error err;
+    fc_code code = fc_surface_extract(f->pipeline, &frame, &s, &m, &err);
+    CHECK_MSG(code == FC_OK, "%s", err.message);
+    if (code == FC_OK) {
+        mesh_topology t = mesh_check_topology(&m);
+        double c[3] = {0, 0, 0}, r = mesh_mean_distance(&m, c);
+        CHECK_MSG(t.closed_manifold && t.euler == 2 && t.components == 1 && fabs(r / BALL_RADIUS - 1.0) < 0.1,
+                  "anisotropic: closed %d euler %lld components %u mean radius %.3f", t.closed_manifold,
+                  (long long)t.euler, t.components, r);
+        printf("anisotropic ball: %u vertices, mean radius %.4f\n", m.vertex_count, r);
+        fc_surface_mesh_free(&m);
+    }
+    free(p.xyz);
+}
+
 static void test_two_blobs(render_fixture *f)
 {
     points p = {0};
@@ -338,6 +363,7 @@ int main(void)
     check_ball(&f, FC_SURFACE_KERNEL_METABALL, RADIUS, 1.0f, 0);
     check_ball(&f, FC_SURFACE_KERNEL_METABALL, RADIUS, 0.5f, 4);
     check_ball(&f, FC_SURFACE_KERNEL_SPH, SPACING, 0.5f, 4);
+    test_anisotropic_ball(&f);
     test_two_blobs(&f);
     test_sheet(&f);
     test_deterministic(&f);
