@@ -27,11 +27,11 @@ uint this_block();
 uvec3 block_coordinates(uint key);
 
 // The weight of a particle of radius r at offset d from it, and the weight's
-// derivative by |d|^2 (both kernels reach 2 r).
+// derivative by |d|^2 (both kernels reach REACH_RADII r: the spline's 2 h).
 float weight(vec3 d, float r, out float slope)
 {
     float d2 = dot(d, d);
-    float reach2 = 4.0 * r * r;
+    float reach2 = REACH_RADII * REACH_RADII * r * r;
     slope = 0.0;
     if (d2 >= reach2)
         return 0.0;

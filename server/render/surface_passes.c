@@ -8,6 +8,7 @@
 #include "gl_util.h"
 #include "shader_program.h"
 #include "surface_grid.h"
+#include "surface_mesher.h"
 
 /* Uniform locations of anisotropy_scan.comp.glsl. */
 enum { LOC_SCAN_COUNT = 0, LOC_SCAN_OFFSET = 8, LOC_SCAN_SUMS = 9, LOC_SCAN_ADD = 10 };
@@ -75,15 +76,15 @@ static void grid_defines(char *out, size_t size)
 {
     snprintf(out, size,
              "#define BLOCK %uu\n#define BLOCK_SAMPLES %uu\n#define BLOCK_CELLS %uu\n#define EDGE_DIRECTIONS 7u\n"
-             "#define BLOCK_EDGES %uu\n#define KEY_BITS %uu\n#define MISSING 0xFFFFFFFFu\n",
+             "#define BLOCK_EDGES %uu\n#define KEY_BITS %uu\n#define MISSING 0xFFFFFFFFu\n#define REACH_RADII %.9f\n",
              FC_SURFACE_BLOCK, FC_SURFACE_BLOCK_SAMPLES, FC_SURFACE_BLOCK_CELLS, FC_SURFACE_BLOCK_EDGES,
-             FC_SURFACE_KEY_BITS);
+             FC_SURFACE_KEY_BITS, (double)FC_SURFACE_KERNEL_REACH_RADII);
 }
 
 fc_code fc_surface_passes_create(const char *shader_dir, fc_surface_passes *s, fc_error *err)
 {
     memset(s, 0, sizeof *s);
-    char defines[256];
+    char defines[320];
     grid_defines(defines, sizeof defines);
     const char *field[] = {"surface_common.glsl", "surface_field.comp.glsl"};
     const char *edges[] = {"surface_common.glsl", "surface_edges.comp.glsl"};
