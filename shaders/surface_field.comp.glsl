@@ -68,9 +68,11 @@ void main()
     if (block >= block_count)
         return;
     uvec3 base = block_coordinates(block_keys[block]) * BLOCK;
-    uint first = list_starts[block], last = list_starts[block + 1u];
     for (uint s = gl_LocalInvocationID.x; s < BLOCK_SAMPLES; s += gl_WorkGroupSize.x) {
         uvec3 local = uvec3(s % (BLOCK + 1u), (s / (BLOCK + 1u)) % (BLOCK + 1u), s / ((BLOCK + 1u) * (BLOCK + 1u)));
+        uvec3 upper = uvec3(greaterThanEqual(local, uvec3(HALF)));
+        uint octant = block * 8u + upper.x + 2u * upper.y + 4u * upper.z;
+        uint first = list_starts[octant], last = list_starts[octant + 1u];
         vec3 x = origin + vec3(base + local) * cell;
         float f = 0.0, speed = 0.0, nearest = 1.0 / 0.0;
         vec3 gradient = vec3(0.0);

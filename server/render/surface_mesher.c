@@ -107,9 +107,10 @@ static fc_code allocate_grid(extraction *x, fc_error *err)
     uint64_t samples = blocks * FC_SURFACE_BLOCK_SAMPLES;
     fc_code code = make_buffer(&x->buffers[BIND_KEYS], blocks * 4, g->block_keys, err);
     if (code == FC_OK)
-        code = make_buffer(&x->buffers[BIND_STARTS], (blocks + 1) * 4, g->list_starts, err);
+        code = make_buffer(&x->buffers[BIND_STARTS], (blocks * FC_SURFACE_OCTANTS + 1) * 4, g->list_starts, err);
     if (code == FC_OK)
-        code = make_buffer(&x->buffers[BIND_LISTS], (uint64_t)g->list_starts[blocks] * 4, g->list, err);
+        code = make_buffer(&x->buffers[BIND_LISTS], (uint64_t)g->list_starts[blocks * FC_SURFACE_OCTANTS] * 4,
+                           g->list, err);
     if (code == FC_OK)
         code = make_buffer(&x->buffers[BIND_FIELD], samples * 16, NULL, err);
     if (code == FC_OK)
