@@ -4,6 +4,7 @@
 // vertices divide by the field: weighted means) and the nearest particle's id. Each sample sums over its block's list of
 // particles in list order, so equal input gives equal bits, and a sample
 // shared by two blocks gets the same value in both (surface_grid.h).
+// The grid's sizes come as #defines (FC_SURFACE_GRID, surface_passes.c).
 
 layout(local_size_x = 64) in;
 

@@ -180,12 +180,12 @@ typedef struct depth_extras {
 /* Depth, and the thickness splat where splats_thickness or fuses_thickness,
  * with the shadow map's thickness where that fuses too (*extras says which):
  * all are timed as the depth stage. */
-static fc_code mesh_depth_stage(fc_pipeline *p, const render_job *job, fc_error *err);
+static fc_code mesh_depth_stage(fc_pipeline *p, const render_job *job, depth_extras *extras, fc_error *err);
 
 static fc_code depth_stage(fc_pipeline *p, const render_job *job, fc_aov aov, depth_extras *extras, fc_error *err)
 {
     if (job->settings->surface == FC_SURFACE_MODE_MESH)
-        return mesh_depth_stage(p, job, err);
+        return mesh_depth_stage(p, job, extras, err);
     bool together = splats_thickness(job, aov), fused = !together && fuses_thickness(p, job, aov);
     float radius = job->settings->radius;
     fc_view sun_view = {0};
@@ -219,15 +219,24 @@ static fc_code depth_stage(fc_pipeline *p, const render_job *job, fc_aov aov, de
     return code;
 }
 
-/* --surface mesh: the frame's surface mesh rasterised into the depth the
- * splats would have made (the thickness and the sun's are splatted by their
- * own stages), then cut by the opaque meshes like the splats' depth. */
-static fc_code mesh_depth_stage(fc_pipeline *p, const render_job *job, fc_error *err)
+/* --surface mesh: the frame's surface mesh rasterised into the depth and
+ * (at the thickness pass's scale) the thickness the splats would have made,
+ * then cut by the opaque meshes like the splats' depth. The thickness of a
+ * colour by attribute, which carries the particles' colours, and the sun's
+ * are splatted from the particles by their own stages. */
+static fc_code mesh_depth_stage(fc_pipeline *p, const render_job *job, depth_extras *extras, fc_error *err)
 {
     fc_stage_timer_begin(&p->timer, FC_STAGE_DEPTH);
     fc_pass_profile_begin(&p->profile, "surface mesh depth");
     fc_code code = fc_surface_raster_depth(&p->raster, job->view, &p->depth.target, err);
     fc_pass_profile_end(&p->profile);
+    extras->thickness = !job->colored;
+    if (code == FC_OK && extras->thickness) {
+        fc_view reduced = fc_thickness_view(job->view, job->settings->thickness_scale);
+        fc_pass_profile_begin(&p->profile, "surface mesh thickness");
+        code = fc_surface_raster_thickness(&p->raster, &reduced, &p->depth.thickness, err);
+        fc_pass_profile_end(&p->profile);
+    }
     if (code == FC_OK && job->mesh_count > 0) {
         fc_pass_profile_begin(&p->profile, "mesh occlusion");
         code = fc_mesh_pass_occlude(&p->mesh, job->meshes, job->mesh_count, job->view, &p->depth.target, err);
@@ -412,7 +421,8 @@ static fc_code render_stages(fc_pipeline *p, const render_job *job, fc_aov aov, 
 {
     depth_extras splatted = {false, false};
     if (aov == FC_AOV_THICKNESS) {
-        fc_code code = splats_thickness(job, aov) ? depth_stage(p, job, aov, &splatted, err) : FC_OK;
+        bool depth_first = splats_thickness(job, aov) || job->settings->surface == FC_SURFACE_MODE_MESH;
+        fc_code code = depth_first ? depth_stage(p, job, aov, &splatted, err) : FC_OK;
         return code == FC_OK ? thickness_stage(p, job, aov, splatted.thickness, result, err) : code;
     }
     fc_code code = depth_stage(p, job, aov, &splatted, err);

@@ -17,7 +17,9 @@ fc_code fc_surface_raster_create(const char *shader_dir, fc_surface_raster *r, f
     memset(r, 0, sizeof *r);
     r->target = fc_render_target_init(GL_R32F, true, false);
     const char *depth[] = {"mesh.vert.glsl", "mesh_depth.frag.glsl"};
-    return fc_program_build(shader_dir, depth, 2, &r->depth_program, err);
+    const char *thickness[] = {"mesh.vert.glsl", "surface_thickness.frag.glsl"};
+    fc_code code = fc_program_build(shader_dir, depth, 2, &r->depth_program, err);
+    return code == FC_OK ? fc_program_build(shader_dir, thickness, 2, &r->thickness_program, err) : code;
 }
 
 static void drop_mesh(fc_surface_raster *r)
@@ -33,6 +35,7 @@ void fc_surface_raster_destroy(fc_surface_raster *r)
     drop_mesh(r);
     fc_render_target_release(&r->target);
     glDeleteProgram(r->depth_program);
+    glDeleteProgram(r->thickness_program);
     memset(r, 0, sizeof *r);
 }
 
@@ -63,6 +66,38 @@ fc_code fc_surface_raster_keep(fc_surface_raster *r, fc_pipeline *p, const fc_su
     return FC_OK;
 }
 
+static void draw(GLuint program, const fc_surface_raster *r, const fc_view *view)
+{
+    glUseProgram(program);
+    glProgramUniform4f(program, LOC_PROJECTION, view->fx, view->fy, view->p22, view->p32);
+    glProgramUniformMatrix4fv(program, LOC_MESH_TO_VIEW, 1, GL_FALSE, view->view);
+    glBindVertexArray(r->buffers->vertex_array);
+    glDrawElements(GL_TRIANGLES, r->buffers->index_count, GL_UNSIGNED_INT, NULL);
+    glBindVertexArray(0);
+}
+
+fc_code fc_surface_raster_thickness(fc_surface_raster *r, const fc_view *view, fc_render_target *thickness,
+                                    fc_error *err)
+{
+    fc_code code = fc_render_target_resize(thickness, view->width, view->height, err);
+    if (code != FC_OK)
+        return code;
+    const float none = 0.0f;
+    fc_render_target_bind(thickness);
+    glClearNamedFramebufferfv(thickness->framebuffer, GL_COLOR, 0, &none);
+    if (r->buffers) {
+        glDisable(GL_DEPTH_TEST);
+        glDisable(GL_CULL_FACE);
+        glDisable(GL_FRAMEBUFFER_SRGB);
+        glEnable(GL_BLEND);
+        glBlendEquation(GL_FUNC_ADD);
+        glBlendFunc(GL_ONE, GL_ONE);
+        draw(r->thickness_program, r, view);
+        glDisable(GL_BLEND);
+    }
+    return fc_gl_check("surface mesh thickness", err);
+}
+
 fc_code fc_surface_raster_depth(fc_surface_raster *r, const fc_view *view, fc_render_target *depth, fc_error *err)
 {
     fc_code code = fc_render_target_resize(&r->target, view->width, view->height, err);
@@ -81,12 +116,7 @@ fc_code fc_surface_raster_depth(fc_surface_raster *r, const fc_view *view, fc_re
         glDisable(GL_BLEND);
         glDisable(GL_CULL_FACE);
         glDisable(GL_FRAMEBUFFER_SRGB);
-        glUseProgram(r->depth_program);
-        glProgramUniform4f(r->depth_program, LOC_PROJECTION, view->fx, view->fy, view->p22, view->p32);
-        glProgramUniformMatrix4fv(r->depth_program, LOC_MESH_TO_VIEW, 1, GL_FALSE, view->view);
-        glBindVertexArray(r->buffers->vertex_array);
-        glDrawElements(GL_TRIANGLES, r->buffers->index_count, GL_UNSIGNED_INT, NULL);
-        glBindVertexArray(0);
+        draw(r->depth_program, r, view);
         glDisable(GL_DEPTH_TEST);
     }
     glCopyImageSubData(r->target.color, GL_TEXTURE_2D, 0, 0, 0, 0, depth->color, GL_TEXTURE_2D, 0, 0, 0, 0,

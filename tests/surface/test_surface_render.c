@@ -1,7 +1,8 @@
 /* test_surface_render.c — `--surface mesh` renders (surface_raster.h)
  * through real GL: a lone particle's mesh is its sphere, so the depth image
  * matches the analytic sphere's depth pixel for pixel (as the splats' depth
- * does in test_sphere_depth), 0 off the sphere; the colour image renders and
+ * does in test_sphere_depth), 0 off the sphere, and the thickness image its
+ * chords; the colour image renders and
  * shows the fluid where the screen-space path does; and a new upload gives a
  * new mesh (the cache follows the frame). */
 #include <math.h>
@@ -65,6 +66,36 @@ static void check_sphere_depth(render_fixture *f, const double centre[3])
     fc_image_free(&depth);
 }
 
+/* The thickness image is the mesh's chord: 2 sqrt(r^2 - b^2) for a ray
+ * passing b from the centre, up to the facets and the difference between a
+ * view ray's length and its depth span (under 1.5% at this image's corners). */
+static void check_thickness(render_fixture *f)
+{
+    double centre[3] = {0, 0, 0};
+    float position[3] = {0, 0, 0};
+    fc_camera cam = axis_camera(3.0, SIZE, SIZE);
+    fc_settings s = mesh_settings();
+    fc_image thickness = {0};
+    CHECK_CODE(render_positions(f, position, 1, &cam, &s, FC_AOV_THICKNESS, 0, &thickness), FC_OK);
+    if (!thickness.pixels)
+        return;
+    double worst = 0.0;
+    uint32_t counted = 0;
+    for (uint32_t row = 0; row < SIZE; row++)
+        for (uint32_t x = 0; x < SIZE; x++) {
+            double edge;
+            double depth = analytic_sphere_depth(&cam, centre, RADIUS, x, row, &edge);
+            if (!(depth > 0.0) || edge < FACING)
+                continue;
+            counted++;
+            worst = fmax(worst, fabs(pixel_f32(&thickness, x, row) - 2.0 * RADIUS * sqrt(edge)) / RADIUS);
+        }
+    CHECK_MSG(counted > 500 && worst < 2.0 * DEPTH_TOLERANCE_RADII, "%u pixels, thickness off by up to %.4f radii",
+              counted, worst);
+    printf("thickness: %u pixels within %.5f radii of the chord\n", counted, worst);
+    fc_image_free(&thickness);
+}
+
 /* The colour image renders through the whole pipeline (thickness, shading,
  * floor, shadow) and covers the fluid where the screen path's does. */
 static void check_colour(render_fixture *f)
@@ -95,6 +126,7 @@ int main(void)
         return 1;
     check_sphere_depth(&f, (double[3]){0, 0, 0});
     check_sphere_depth(&f, (double[3]){0.4, -0.3, 0.2});   /* a new upload: a new mesh */
+    check_thickness(&f);
     check_colour(&f);
     fixture_close(&f);
     return test_result();
