@@ -2,7 +2,8 @@
  * through real GL: a lone particle's mesh is its sphere, so the depth image
  * matches the analytic sphere's depth pixel for pixel (as the splats' depth
  * does in test_sphere_depth), 0 off the sphere, and the thickness image its
- * chords; the colour image renders and
+ * chords; a frame whose grid passes the budget is a LIMIT error after which
+ * the pipeline renders on; the colour image renders and
  * shows the fluid where the screen-space path does; and a new upload gives a
  * new mesh (the cache follows the frame). */
 #include <math.h>
@@ -119,6 +120,32 @@ static void check_colour(render_fixture *f)
     fc_image_free(&b);
 }
 
+/* A frame whose grid passes the budget fails its --surface mesh render with
+ * LIMIT, and the pipeline renders the next frame as before. */
+static void check_limit(render_fixture *f)
+{
+    enum { SIDE = 40 };
+    static float sparse[3 * SIDE * SIDE * SIDE];
+    for (int k = 0, n = 0; k < SIDE; k++)
+        for (int j = 0; j < SIDE; j++)
+            for (int i = 0; i < SIDE; i++, n++) {
+                sparse[3 * n] = i * 20.0f * (float)RADIUS;
+                sparse[3 * n + 1] = j * 20.0f * (float)RADIUS;
+                sparse[3 * n + 2] = k * 20.0f * (float)RADIUS;
+            }
+    fc_frame frame = {.count = SIDE * SIDE * SIDE, .positions = sparse};
+    fc_camera cam = axis_camera(3.0, SIZE, SIZE);
+    fc_settings s = mesh_settings();
+    s.surface_cell = 1.0f;
+    fc_image img = {0};
+    fc_error err;
+    CHECK_CODE(fc_pipeline_upload(f->pipeline, &frame, NULL, &err), FC_OK);
+    CHECK_CODE(fc_pipeline_render(f->pipeline, &cam, &s, FC_AOV_DEPTH, 0, &img, NULL, &err), FC_ERR_LIMIT);
+    printf("sparse droplets: %s\n", err.message);
+    fc_image_free(&img);
+    check_sphere_depth(f, (double[3]){0, 0, 0});
+}
+
 int main(void)
 {
     render_fixture f;
@@ -128,6 +155,7 @@ int main(void)
     check_sphere_depth(&f, (double[3]){0.4, -0.3, 0.2});   /* a new upload: a new mesh */
     check_thickness(&f);
     check_colour(&f);
+    check_limit(&f);
     fixture_close(&f);
     return test_result();
 }
