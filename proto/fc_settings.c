@@ -114,6 +114,12 @@ static const fc_setting_spec table[] = {
      .choices = subsampling_names, .group = FC_GROUP_IMAGE, .option = "--jpeg-subsampling",
      .help = "JPEG chroma: 444 keeps every pixel's colour, 420 shares one among 2x2 pixels (smaller files, a "
              "faster encode; .jpg/.jpeg only)"},
+    /* Keys 33-39 belong to the surface's look (issue 26). 2: the particles of a jet in a row keep 2 (its
+     * ends) to 4 neighbours within 2.2 spacings, a lone droplet none and a pair of droplets one. */
+    {FIELD(40, spray_neighbours, FC_SETTING_UINT, 1), .initial = {2}, .min = 0, .max = 64,
+     .group = FC_GROUP_SURFACE, .option = "--spray-neighbours", .metavar = "N",
+     .help = "particles with fewer than N others within 2.2 particle spacings are spray, drawn as small clear "
+             "droplets of varied size instead of surface (Ihmsen et al. 2012); 0 = off"},
 };
 
 #define TABLE_LENGTH (sizeof table / sizeof table[0])

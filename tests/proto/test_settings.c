@@ -107,6 +107,7 @@ static void expect_color_by(fc_settings *s) { s->color_by = FC_COLOR_BY_DENSITY;
 static void expect_colormap(fc_settings *s) { s->colormap = FC_COLORMAP_TURBO; }
 static void expect_color_range(fc_settings *s) { memcpy(s->color_range, (float[2]){-2.0f, 0.5f}, 8); }
 static void expect_jpeg_subsampling(fc_settings *s) { s->jpeg_subsampling = FC_JPEG_SUBSAMPLING_YUV420; }
+static void expect_spray_neighbours(fc_settings *s) { s->spray_neighbours = 5; }
 
 static const key_case key_cases[] = {
     {1, 1, {0x3E000000u}, expect_radius},                             /* 0.125f */
@@ -134,6 +135,7 @@ static const key_case key_cases[] = {
     {23, 1, {6}, expect_colormap},
     {24, 2, {0xC0000000u, 0x3F000000u}, expect_color_range},          /* -2, 0.5 */
     {32, 1, {1}, expect_jpeg_subsampling},                            /* 25-31 reserved */
+    {40, 1, {5}, expect_spray_neighbours},                            /* 33-39: the surface's look */
 };
 #define KEY_COUNT (sizeof key_cases / sizeof key_cases[0])
 
@@ -165,8 +167,8 @@ static void test_encoder_layout(void)
     fc_buf_init(&b);
     fc_error err;
     CHECK_CODE(fc_wire_write_settings(&b, 9, &s, &err), FC_OK);
-    /* 30 words: two colours of 3, twenty-two of 1, a range of 2 */
-    const size_t payload_size = 4 + KEY_COUNT * 4 + 4 * 30;
+    /* 31 words: two colours of 3, twenty-three of 1, a range of 2 */
+    const size_t payload_size = 4 + KEY_COUNT * 4 + 4 * 31;
     CHECK_MSG(b.len == FC_WIRE_HEADER_SIZE + payload_size, "%zu bytes", b.len);
     if (b.len != FC_WIRE_HEADER_SIZE + payload_size) {
         fc_buf_free(&b);
@@ -253,6 +255,7 @@ static const domain_case rejected[] = {
     {24, 0xFF800000u, "color_range"},        /* -inf, 0 */
     {32, 2, "jpeg_subsampling"},
     {32, 0xFFFFFFFFu, "jpeg_subsampling"},
+    {40, 65, "spray_neighbours"},
 };
 
 /* The entry for case c: colours carry the value in their first word. */
