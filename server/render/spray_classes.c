@@ -2,6 +2,7 @@
 #include "spray_classes.h"
 
 #include <float.h>
+#include <stdbool.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -82,7 +83,24 @@ static void bucket(fc_spray_classes *c, const fc_frame *frame, float per_cell, u
     c->cell_start[0] = 0;
 }
 
-/* How many other particles lie within `support` of particle i, counted up to `enough`. */
+/* Adds to *found the particles of hashed cell h other than i within `support`
+ * of p; true once there are `enough`. */
+static bool count_in_cell(const fc_spray_classes *c, const fc_frame *frame, uint64_t i, const float *p, uint32_t h,
+                          float support_sq, uint32_t enough, uint32_t *found)
+{
+    for (uint32_t s = c->cell_start[h]; s < c->cell_start[h + 1]; s++) {
+        uint32_t j = c->sorted[s];
+        const float *q = frame->positions + 3 * (size_t)j;
+        float d[3] = {q[0] - p[0], q[1] - p[1], q[2] - p[2]};
+        if (j != i && d[0] * d[0] + d[1] * d[1] + d[2] * d[2] < support_sq && ++*found >= enough)
+            return true;
+    }
+    return false;
+}
+
+/* How many other particles lie within `support` of particle i, counted up to
+ * `enough`: its own cell first, where a particle inside the fluid finds them
+ * all, so most particles read one cell, not 27. */
 static uint32_t neighbours_of(const fc_spray_classes *c, const fc_frame *frame, uint64_t i, float support,
                               float per_cell, uint64_t cells, uint32_t enough)
 {
@@ -90,18 +108,16 @@ static uint32_t neighbours_of(const fc_spray_classes *c, const fc_frame *frame, 
     float support_sq = support * support;
     int64_t home[3];
     cell_of(p, per_cell, home);
-    uint32_t found = 0;
+    uint32_t found = 0, own = cell_hash(home[0], home[1], home[2], cells);
+    if (count_in_cell(c, frame, i, p, own, support_sq, enough, &found))
+        return found;
     for (int dz = -1; dz <= 1; dz++)
         for (int dy = -1; dy <= 1; dy++)
             for (int dx = -1; dx <= 1; dx++) {
                 uint32_t h = cell_hash(home[0] + dx, home[1] + dy, home[2] + dz, cells);
-                for (uint32_t s = c->cell_start[h]; s < c->cell_start[h + 1]; s++) {
-                    uint32_t j = c->sorted[s];
-                    const float *q = frame->positions + 3 * (size_t)j;
-                    float d[3] = {q[0] - p[0], q[1] - p[1], q[2] - p[2]};
-                    if (j != i && d[0] * d[0] + d[1] * d[1] + d[2] * d[2] < support_sq && ++found >= enough)
-                        return found;
-                }
+                /* The own cell is counted; another cell hashed to its slot holds the same particles. */
+                if (h != own && count_in_cell(c, frame, i, p, h, support_sq, enough, &found))
+                    return found;
             }
     return found;
 }
