@@ -120,7 +120,13 @@ static const fc_setting_spec table[] = {
      .choices = subsampling_names, .group = FC_GROUP_IMAGE, .option = "--jpeg-subsampling",
      .help = "JPEG chroma: 444 keeps every pixel's colour, 420 shares one among 2x2 pixels (smaller files, a "
              "faster encode; .jpg/.jpeg only)"},
-    /* Keys 33-44 belong to other settings (PROTOCOL.md 7.5). */
+    /* Keys 33-39 are reserved (PROTOCOL.md 7.5). 2: the particles of a jet in a row keep 2 (its
+     * ends) to 4 neighbours within 2.2 spacings, a lone droplet none and a pair of droplets one. */
+    {FIELD(40, spray_neighbours, FC_SETTING_UINT, 1), .initial = {2}, .min = 0, .max = 64,
+     .group = FC_GROUP_SURFACE, .option = "--spray-neighbours", .metavar = "N",
+     .help = "particles with fewer than N others within 2.2 particle spacings are spray, drawn as small clear "
+             "droplets of varied size instead of surface (Ihmsen et al. 2012); 0 = off"},
+    /* Keys 41-44 are reserved (PROTOCOL.md 7.5). */
     {FIELD(45, surface, FC_SETTING_CHOICE, 1), .initial = {FC_SURFACE_MODE_SCREEN}, .choices = surface_names,
      .group = FC_GROUP_SURFACE, .option = "--surface",
      .help = "the fluid's surface: splatted and smoothed in screen space, or a mesh extracted from the "

@@ -193,6 +193,8 @@ typedef struct fc_settings {
     float color_range[2];      /* attribute values mapped to the colormap's ends: finite, min < max when
                                   color_by is set; values outside take the end colours, so runs compare */
     fc_jpeg_subsampling jpeg_subsampling; /* chroma subsampling of JPEG images; other formats ignore it */
+    uint32_t spray_neighbours; /* particles with fewer neighbours than this within 2.2 particle spacings are
+                                  spray (Ihmsen et al. 2012), drawn as small clear droplets; 0 = off */
     fc_surface_mode surface;   /* screen-space splats, or an extracted isosurface mesh */
     float surface_cell;        /* the mesh's grid cell edge in particle radii, (0.25, 4] */
     fc_surface_kernel surface_kernel; /* the field the mesh is an isosurface of */

@@ -1,9 +1,9 @@
 #version 450 core
 // The pinhole fill's second step (compute_splat.c): the tiles where
 // filled_depth (pinhole_fill.glsl) may fill a pixel. It fills only where
-// its walks find fluid on both sides along x and along y within fill_steps
-// texels; from any pixel of tile t those texels lie in the tiles t .. t +-
-// reach_tiles (reach_tiles = ceil(fill_steps / 4)) along the axis, so a
+// its walks find fluid on both sides along x and along y within the reach
+// fc_pinhole_fill_apply returns (in texels); from any pixel of tile t those texels lie in the tiles t .. t +-
+// reach_tiles (reach_tiles = ceil(reach / 4)) along the axis, so a
 // tile without an occupied tile on each of its four sides within that reach
 // (its own counting for all four) holds no pixel to fill. The others that
 // hold an empty pixel are listed for pinhole_fill.comp.glsl's indirect

@@ -11,7 +11,11 @@
 // define splat_depth_at. The compute splat calls filled_depth only in the
 // tiles fill_candidates.comp.glsl lists, which relies on this: no pixel is
 // filled unless the walks along +x, -x, +y and -y all find fluid within
-// fill_steps texels; a change here must keep that, or change the marking.
+// the texels of fill_steps steps; a change here must keep that, or change
+// the marking. Large sprites leave gaps wider than dense_steps texels: a
+// walk's steps past the first dense_steps then stride over fill_stride
+// texels each, so a walk reaches as far as the gaps of any sprite size with
+// at most max_reach steps.
 
 float splat_depth_at(ivec2 p);   // +inf where no particle is, and outside the image
 
@@ -19,16 +23,19 @@ layout(location = 50) uniform float fill_reach_depth;   // reach in pixels times
 layout(location = 51) uniform float fill_max_step;      // depths across a gap differ by less
 layout(location = 53) uniform int fill_steps;           // the walks' length, at most max_reach: no depth in
                                                         // front of the near plane lets a farther find count
+layout(location = 55) uniform int fill_stride;          // texels per step past dense_steps, >= 1
 
-const int max_reach = 6;
+const int max_reach = 12;
+const int dense_steps = 6;   // steps of one texel first: small sprites' gaps are walked texel by texel
 
 // The nearest fluid from p along d within reach: its depth and distance (0 if none).
 vec2 fluid_along(ivec2 p, ivec2 d)
 {
     for (int k = 1; k <= min(fill_steps, max_reach); k++) {
-        float z = splat_depth_at(p + k * d);
+        int texels = k <= dense_steps ? k : dense_steps + (k - dense_steps) * fill_stride;
+        float z = splat_depth_at(p + texels * d);
         if (!isinf(z))
-            return float(k) <= fill_reach_depth / z ? vec2(z, float(k)) : vec2(0.0);
+            return float(texels) <= fill_reach_depth / z ? vec2(z, float(texels)) : vec2(0.0);
     }
     return vec2(0.0);
 }

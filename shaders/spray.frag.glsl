@@ -1,12 +1,20 @@
 #version 450 core
-// Spray: the particles below the density threshold, drawn as small shaded
-// droplets over the composited fluid and whitened by their speed (Cords &
-// Staadt, Instant Liquids, §4: the velocity map shifts the colour to white).
+// Spray: the isolated particles (spray_classes.h, or below the density
+// threshold), drawn as small clear droplets over the composited fluid, each
+// of its own size (a hash of its id, so the same droplet keeps its size from
+// frame to frame and no two runs differ). A droplet is a tiny lens: through
+// its body it shows the world upside down (the bright sky in its lower half,
+// the darker ground in its upper half), its rim reflects the sky (Fresnel,
+// Schlick, IOR 1.33) and it catches the sun as one sharp highlight; so it
+// reads as water, not as a white bead. Speed whitens it towards foam when
+// `whitening` (settings.foam) asks for it (Cords & Staadt, Instant Liquids,
+// §4: the velocity map shifts the colour to white).
 
 // The particle's shape, sphere or ellipsoid: sphere_shape.frag.glsl, ellipsoid_shape.frag.glsl.
 bool cast_particle_ray(vec2 pixel, vec3 centre, out float depth, out float chord);
 vec3 particle_normal(vec3 hit, vec3 centre);
 float particle_speed();
+uint particle_id();
 
 layout(location = 1) uniform vec4 projection;        // P[0][0], P[1][1], P[2][2], P[3][2]
 layout(location = 2) uniform vec2 viewport;
@@ -18,10 +26,24 @@ layout(location = 13) uniform float speed_reference; // a droplet this fast is h
 layout(location = 0) flat in vec3 sphere_centre;
 layout(location = 0) out vec4 color;
 
-// Droplets are mostly white, as sunlit spray is: the fluid's tint only
-// shows faintly in them, and their shaded side stays bright.
-const float tint = 0.15;
-const float opacity = 0.85;
+// Droplets span this fraction of the sprite's radius and more, up to all of it.
+const float smallest = 0.45;
+const float tint = 0.1;          // how much of the fluid's colour a droplet this small holds
+const float body_opacity = 0.55; // what shows through a droplet's body is mostly the image it inverts
+const vec3 sky = vec3(0.80, 0.88, 1.0);
+const vec3 ground = vec3(0.32, 0.30, 0.28);
+const float schlick_r0 = 0.02;   // ((1.33 - 1) / (1.33 + 1))^2
+
+// A droplet's size from its id: an integer hash (Wang), uniform in [smallest, 1).
+float droplet_size(uint id)
+{
+    id = (id ^ 61u) ^ (id >> 16);
+    id *= 9u;
+    id ^= id >> 4;
+    id *= 0x27d4eb2du;
+    id ^= id >> 15;
+    return smallest + (1.0 - smallest) * float(id >> 8) / 16777216.0;
+}
 
 void main()
 {
@@ -29,11 +51,23 @@ void main()
     if (!cast_particle_ray(gl_FragCoord.xy, sphere_centre, depth, chord))
         discard;
     vec3 dir = vec3((gl_FragCoord.xy / viewport * 2.0 - 1.0) / projection.xy, -1.0);
-    vec3 n = particle_normal(depth * dir, sphere_centre);
+    vec3 outer = particle_normal(depth * dir, sphere_centre);
+    // The droplet: a sphere of its own size inside the particle's, centred on it.
+    vec2 q = outer.xy / droplet_size(particle_id());
+    float q2 = dot(q, q);
+    if (q2 >= 1.0)
+        discard;
+    vec3 n = vec3(q, sqrt(1.0 - q2));
+    float fresnel = schlick_r0 + (1.0 - schlick_r0) * pow(1.0 - n.z, 5.0);
+    vec3 inverted = mix(sky, ground, 0.5 + 0.5 * n.y);
+    vec3 body = mix(inverted, inverted * fluid_color / max(max(fluid_color.r, fluid_color.g), fluid_color.b), tint);
+    vec3 reflected = mix(sky, ground, 0.5 - 0.5 * reflect(vec3(0.0, 0.0, -1.0), n).y);
+    float highlight = pow(max(dot(reflect(-light_view, n), vec3(0.0, 0.0, 1.0)), 0.0), 80.0);
+    vec3 water = mix(body, reflected, fresnel) + vec3(highlight);
+    float alpha = clamp(mix(body_opacity, 1.0, fresnel) + highlight, 0.0, 1.0);
     float speed = particle_speed();
     float white = clamp(whitening * speed / (speed + speed_reference), 0.0, 1.0);
-    vec3 albedo = mix(mix(vec3(1.0), fluid_color, tint), vec3(1.0), white);
-    float light = 0.8 + 0.3 * max(dot(n, light_view), 0.0);
-    // Fading towards the rim (n.z -> 0) keeps tiny droplets from aliasing.
-    color = vec4(albedo * light, opacity * clamp(2.0 * n.z, 0.0, 1.0));
+    // Fading towards the rim keeps tiny droplets from aliasing.
+    float edge = clamp(4.0 * n.z, 0.0, 1.0);
+    color = vec4(mix(water, vec3(1.0), white), mix(alpha, 1.0, white) * edge);
 }

@@ -125,7 +125,7 @@ fc_code fc_particle_attributes_upload(fc_particle_attributes *a, const fc_frame 
 {
     a->count = 0;
     a->by_density = false;
-    a->reorderable = frame->density != NULL && frame->count > 0;
+    a->reorderable = frame->count > 0;
     a->frame_amplitudes_set = false;
     if (frame->count > a->gpu_capacity) {
         fc_code code = grow_gpu(a, frame->count, err);
@@ -149,17 +149,21 @@ static void write_amplitudes(fc_particle_attributes *a, const float *amplitude)
     a->calm_amplitudes = 0;
 }
 
-fc_code fc_particle_attributes_order_by_density(fc_particle_attributes *a, const fc_frame *frame, fc_error *err)
+fc_code fc_particle_attributes_order_by_density(fc_particle_attributes *a, const fc_frame *frame, const float *keys,
+                                                uint32_t classes, fc_error *err)
 {
-    if (!a->reorderable || a->by_density)
+    if (!a->reorderable || (a->by_density && a->ordered_classes == classes))
         return FC_OK;
-    fc_code code = fc_density_order_sort(&a->order, frame->density, frame->count, err);
+    fc_code code = fc_density_order_sort(&a->order, keys, frame->count, err);
     if (code == FC_OK)
         code = fc_gl_wait_until_done("waiting for the draws reading the particles in frame order", err);
-    if (code != FC_OK)
+    if (code != FC_OK) {
+        a->by_density = false;   /* the order's arrays were rewritten */
         return code;
+    }
     a->density_sorts++;
     a->by_density = true;
+    a->ordered_classes = classes;
     write_records(a, frame);
     /* Calm amplitudes (all 1, or still to be settled) read the same in any order. */
     if (a->frame_amplitudes_set)
@@ -180,11 +184,11 @@ uint64_t fc_particle_attributes_surface_count(const fc_particle_attributes *a, f
 }
 
 /* Keeps a frame-order copy of the amplitudes of a frame a render may still
- * put in density order. */
+ * put in density order, or in another (a render asking for other classes). */
 static fc_code keep_for_reorder(fc_particle_attributes *a, const float *amplitude, fc_error *err)
 {
     a->frame_amplitudes_set = false;
-    if (!a->reorderable || a->by_density)
+    if (!a->reorderable)
         return FC_OK;
     if (a->count > a->frame_amplitude_capacity) {
         float *grown = realloc(a->frame_amplitudes, a->count * sizeof *grown);

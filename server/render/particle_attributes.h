@@ -11,8 +11,9 @@
  *
  * An upload keeps the frame's order: sorting by density (and gathering every
  * attribute into that order) costs about ten times the upload of a
- * 1M-particle frame, and only renders with a density threshold need it. Such
- * a render reorders the uploaded frame once (fc_particle_attributes_order_by_density). */
+ * 1M-particle frame, and only renders with spray need it (a density
+ * threshold or neighbour classes, spray_classes.h). Such a render reorders
+ * the uploaded frame once per classification (fc_particle_attributes_order_by_density). */
 #ifndef FC_PARTICLE_ATTRIBUTES_H
 #define FC_PARTICLE_ATTRIBUTES_H
 
@@ -49,8 +50,9 @@ typedef struct fc_particle_attributes {
     uint64_t calm_amplitudes;
     bool amplitudes_set;                /* the uploaded frame's amplitudes were given */
     uint64_t count;
-    bool reorderable;                   /* the uploaded frame has densities: it may be sorted later */
+    bool reorderable;                   /* the uploaded frame has particles: it may be sorted later */
     bool by_density;                    /* draw order is order.order (densest first), else the frame's */
+    uint32_t ordered_classes;           /* the spray_neighbours the order's keys were classified with */
     fc_density_order order;
     /* The amplitudes set while a reorderable frame is in its own order, kept
      * in frame order so a reorder can gather them (the mapped buffer is
@@ -70,12 +72,15 @@ void fc_particle_attributes_destroy(fc_particle_attributes *a);
 fc_code fc_particle_attributes_upload(fc_particle_attributes *a, const fc_frame *frame, fc_error *err);
 
 /* Puts the uploaded frame (the same `frame`, unchanged since the upload) in
- * density order, densest first, amplitudes included, once the GPU is done
- * with every draw issued so far — so the caller may then rewrite the
- * positions in the new order too. Does nothing when the frame has no
- * densities or is in density order already. On failure the frame stays in
- * its own order. */
-fc_code fc_particle_attributes_order_by_density(fc_particle_attributes *a, const fc_frame *frame, fc_error *err);
+ * the descending order of `keys` (frame order; spray_classes.h: the density,
+ * 0 for spray), amplitudes included, once the GPU is done with every draw
+ * issued so far — so the caller may then rewrite the positions in the new
+ * order too. `classes` (the spray_neighbours the keys were classified with)
+ * is the order's cache key: does nothing when the frame is in the order of
+ * those classes already or has no particles. On failure the frame is in its
+ * own order. */
+fc_code fc_particle_attributes_order_by_density(fc_particle_attributes *a, const fc_frame *frame, const float *keys,
+                                                uint32_t classes, fc_error *err);
 
 /* Draw slot -> frame index of the uploaded frame; NULL when the draw order is the frame's. */
 const uint32_t *fc_particle_attributes_draw_order(const fc_particle_attributes *a);

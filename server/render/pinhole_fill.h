@@ -9,8 +9,8 @@
 #include "view.h"
 
 /* Sets them on `program` for particles of `radius` seen through `view`.
- * Returns the walks' length in texels (fill_steps): no pixel farther than
- * that from fluid along x and y is filled, 0: none is. */
+ * Returns the walks' reach in texels (the texels of fill_steps steps): no pixel
+ * farther than that from fluid along x and y is filled, 0: none is. */
 int fc_pinhole_fill_apply(GLuint program, const fc_view *view, float radius);
 
 #endif

@@ -29,6 +29,7 @@
 #include "scene_textures.h"
 #include "shadow_pass.h"
 #include "smoothing.h"
+#include "spray_classes.h"
 #include "spray_pass.h"
 #include "stage_timer.h"
 #include "surface_mesher.h"
@@ -45,6 +46,7 @@
 struct fc_pipeline {
     fc_particle_buffer particles;         /* in draw order: the frame's, or surface particles first, then spray */
     fc_particle_attributes attributes;
+    fc_spray_classes spray_classes;       /* the sort keys that split the spray off (spray_classes.h) */
     fc_color_values color_values;         /* the attribute colour_by names, for renders that colour */
     uint64_t uploads;                     /* frames uploaded so far: what the colour values were filled for */
     fc_anisotropy anisotropy;             /* the particles' ellipsoids, for FC_KERNEL_ANISOTROPIC */
@@ -463,7 +465,7 @@ static void plan_job(const fc_pipeline *p, const fc_view *view, const fc_camera 
                         .mesh_count = scene->meshes ? scene->mesh_count : 0, .surface = p->particles,
                         .want_u8 = want_u8,
                         .colored = aov == FC_AOV_COLOR && settings->color_by != FC_COLOR_BY_NONE};
-    job->surface.count = fc_particle_attributes_surface_count(&p->attributes, settings->density_threshold);
+    job->surface.count = fc_particle_attributes_surface_count(&p->attributes, fc_spray_classes_threshold(settings));
     scene_bounds(p, scene, job->lo, job->hi);
     bool has_floor = !(scene->textures && scene->textures->background);
     fc_environment_for_view(view, camera, job->lo, job->hi, settings, has_floor, want_u8, &job->env);
@@ -487,19 +489,27 @@ static fc_code upload_frame(fc_pipeline *p, const fc_frame *frame, fc_error *err
     return code;
 }
 
-/* A density threshold splits the surface from the spray at a prefix of the
- * density order: the uploaded frame is put in that order at the first render
- * that asks for one, and stays in it: without a threshold the order changes
- * an image only by the rounding of the thickness sums (depth is a minimum,
- * and ids and amplitudes travel with their particles). */
+/* A density threshold or the neighbour classes (spray_classes.h) split the
+ * surface from the spray at a prefix of the density order: the uploaded
+ * frame is put in that order at the first render that asks for spray, and
+ * stays in it until a render asks for other classes: without spray the
+ * order changes an image only by the rounding of the thickness sums (depth
+ * is a minimum, and ids and amplitudes travel with their particles). */
 static fc_code order_for(fc_pipeline *p, const fc_settings *settings, fc_error *err)
 {
-    if (!(settings->density_threshold > 0.0f) || !p->attributes.reorderable || p->attributes.by_density)
+    fc_particle_attributes *a = &p->attributes;
+    if (!(fc_spray_classes_threshold(settings) > 0.0f) || !a->reorderable ||
+        (a->by_density && a->ordered_classes == settings->spray_neighbours))
         return FC_OK;
+    fc_pass_profile_begin(&p->profile, "spray classes");
+    fc_code code = fc_spray_classes_compute(&p->spray_classes, &p->frame, settings->spray_neighbours, err);
+    fc_pass_profile_end(&p->profile);
     /* Waits for the draws still reading the positions, as well as the records. */
-    fc_code code = fc_particle_attributes_order_by_density(&p->attributes, &p->frame, err);
     if (code == FC_OK)
-        fc_particle_buffer_fill(&p->particles, &p->frame, fc_particle_attributes_draw_order(&p->attributes));
+        code = fc_particle_attributes_order_by_density(a, &p->frame, p->spray_classes.keys,
+                                                       settings->spray_neighbours, err);
+    if (code == FC_OK)
+        fc_particle_buffer_fill(&p->particles, &p->frame, fc_particle_attributes_draw_order(a));
     return code;
 }
 
@@ -640,6 +650,7 @@ void fc_pipeline_destroy(fc_pipeline *p)
     fc_pass_profile_destroy(&p->profile);
     fc_stage_timer_destroy(&p->timer);
     fc_spray_pass_destroy(&p->spray);
+    fc_spray_classes_free(&p->spray_classes);
     fc_composite_pass_destroy(&p->composite);
     fc_background_pass_destroy(&p->background);
     fc_mesh_pass_destroy(&p->mesh);

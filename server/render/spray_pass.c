@@ -10,9 +10,10 @@ enum {
     LOC_WHITENING = 12,
     LOC_SPEED_REFERENCE = 13
 };
-/* Droplets are smaller than the fluid's particles: spray is fine mist and
- * separate drops, not blobs. */
-#define DROPLET_RADIUS_FRACTION 0.5f
+/* Droplets are smaller than the fluid's particles: spray is separate drops,
+ * not blobs. The sprites span this fraction of the radius; spray.frag.glsl
+ * draws each droplet between 0.45 and 1 of its sprite. */
+#define DROPLET_RADIUS_FRACTION 0.7f
 
 fc_code fc_spray_pass_create(const char *shader_dir, fc_spray_pass *pass, fc_error *err)
 {

@@ -1,6 +1,8 @@
-/* spray_pass.h — the particles below the density threshold, drawn as small
- * droplets over the composited image, depth-tested against the fluid and the
- * floor and whitened by speed (Cords & Staadt, Instant Liquids, §4). */
+/* spray_pass.h — the spray (spray_classes.h: isolated particles, or those
+ * below the density threshold), drawn as small clear droplets of varied size
+ * over the composited image (spray.frag.glsl), depth-tested against the
+ * fluid and the floor, and whitened by speed when settings.foam asks for it
+ * (Cords & Staadt, Instant Liquids, §4). */
 #ifndef FC_SPRAY_PASS_H
 #define FC_SPRAY_PASS_H
 

@@ -2,13 +2,16 @@
  * from spray for any threshold; particles below density_threshold are absent
  * from the depth and thickness images, appear in the colour image as
  * light droplets, whiter the faster they move, and are hidden behind fluid;
- * the order is sorted only when a render asks for a threshold. */
+ * the order is sorted only when a render asks for a threshold. Classified by
+ * neighbours (spray_classes.h), isolated particles are spray and a block and
+ * a jet are not, and the droplets differ in size and are shaded within. */
 #include <math.h>
 #include <stdbool.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "density_order.h"
+#include "spray_classes.h"
 #include "pipeline_internal.h"
 #include "shading_fixture.h"
 #include "test_util.h"
@@ -246,9 +249,116 @@ static void test_isolated_droplet_keeps_its_sphere(render_fixture *f)
     fc_image_free(&shaped);
 }
 
+/* The neighbour classes (spray_classes.h) on a frame without densities: a
+ * 5x5x5 block, a jet of 10 particles in a row (4 neighbours each within 2.2
+ * spacings, 2 at its ends) and 5 isolated particles, each far from every
+ * other particle; at the default 2 only the isolated ones are spray. */
+enum { CLASS_BLOCK = 125, CLASS_ROW = 10, CLASS_ISOLATED = 5, CLASS_COUNT = CLASS_BLOCK + CLASS_ROW + CLASS_ISOLATED };
+#define CLASS_SPACING 0.1f
+
+static void make_classes_frame(float *x, bool isolated_in_view)
+{
+    int n = 0;
+    for (int k = 0; k < 5; k++)
+        for (int j = 0; j < 5; j++)
+            for (int i = 0; i < 5; i++, n++) {
+                x[3 * n] = ((float)i - 2.0f) * CLASS_SPACING;
+                x[3 * n + 1] = ((float)j - 2.0f) * CLASS_SPACING - 0.35f;
+                x[3 * n + 2] = ((float)k - 4.0f) * CLASS_SPACING;
+            }
+    for (int i = 0; i < CLASS_ROW; i++, n++) {
+        x[3 * n] = ((float)i - 4.5f) * CLASS_SPACING;
+        x[3 * n + 1] = 0.1f;
+        x[3 * n + 2] = 0.0f;
+    }
+    for (int i = 0; i < CLASS_ISOLATED; i++, n++) {
+        x[3 * n] = ((float)i - 2.0f) * 0.3f + (isolated_in_view ? 0.0f : 40.0f);
+        x[3 * n + 1] = 0.4f;
+        x[3 * n + 2] = 0.0f;
+    }
+}
+
+static void test_neighbour_classes(void)
+{
+    float x[3 * CLASS_COUNT];
+    make_classes_frame(x, true);
+    fc_frame frame = {.count = CLASS_COUNT, .positions = x};
+    fc_spray_classes classes = {0};
+    CHECK_CODE(fc_spray_classes_compute(&classes, &frame, 2, NULL), FC_OK);
+    int wrong = 0;
+    for (int i = 0; i < CLASS_COUNT; i++)
+        wrong += (classes.keys[i] == 0.0f) != (i >= CLASS_BLOCK + CLASS_ROW);
+    CHECK_MSG(wrong == 0, "%d particles in the wrong class", wrong);
+    /* Two isolated particles alone (one neighbour each at their own
+     * spacing) are no body of fluid: neither is spray. */
+    fc_frame pair = {.count = 2, .positions = x + 3 * (CLASS_BLOCK + CLASS_ROW)};
+    CHECK_CODE(fc_spray_classes_compute(&classes, &pair, 2, NULL), FC_OK);
+    CHECK(classes.keys[0] > 0.0f && classes.keys[1] > 0.0f);
+    /* Off: nobody is spray. */
+    CHECK_CODE(fc_spray_classes_compute(&classes, &frame, 0, NULL), FC_OK);
+    for (int i = 0; i < CLASS_COUNT; i++)
+        CHECK(classes.keys[i] > 0.0f);
+    fc_spray_classes_free(&classes);
+}
+
+#define CLASS_WIDTH 200
+#define CLASS_HEIGHT 120
+#define CLASS_WINDOW 8
+
+/* Through the pipeline: isolated particles leave the surface (depth) while
+ * the block and the jet stay, and in colour they are droplets that are not
+ * identical white beads: of different sizes, shaded within. */
+static void test_isolated_particles_are_droplets(render_fixture *f)
+{
+    static float in_view[3 * CLASS_COUNT], away[3 * CLASS_COUNT];
+    make_classes_frame(in_view, true);
+    make_classes_frame(away, false);
+    fc_frame frame = {.count = CLASS_COUNT, .positions = in_view}, without = {.count = CLASS_COUNT, .positions = away};
+    fc_camera cam = axis_camera(2.0, CLASS_WIDTH, CLASS_HEIGHT);
+    fc_settings settings = test_settings(0.6f * CLASS_SPACING, FC_SMOOTHING_NONE, 0);
+    settings.spray_neighbours = 2;
+    fc_image depth = {0}, color = {0}, reference = {0};
+    CHECK_CODE(render_frame(f, &frame, &cam, &settings, NULL, FC_AOV_DEPTH, 0, &depth), FC_OK);
+    uint32_t px[CLASS_ISOLATED], row[CLASS_ISOLATED], block_x, block_row, jet_x, jet_row;
+    for (int i = 0; i < CLASS_ISOLATED; i++) {
+        pixel_of(&cam, in_view + 3 * (CLASS_BLOCK + CLASS_ROW + i), &px[i], &row[i]);
+        CHECK_MSG(pixel_f32(&depth, px[i], row[i]) == 0.0f, "isolated particle %d in the surface", i);
+    }
+    pixel_of(&cam, in_view + 3 * (CLASS_BLOCK / 2), &block_x, &block_row);
+    pixel_of(&cam, in_view + 3 * (CLASS_BLOCK + CLASS_ROW / 2), &jet_x, &jet_row);
+    CHECK(pixel_f32(&depth, block_x, block_row) > 0.0f);
+    CHECK_MSG(pixel_f32(&depth, jet_x, jet_row) > 0.0f, "the jet left the surface");
+    CHECK_CODE(render_frame(f, &frame, &cam, &settings, NULL, FC_AOV_COLOR, 0, &color), FC_OK);
+    CHECK_CODE(render_frame(f, &without, &cam, &settings, NULL, FC_AOV_COLOR, 0, &reference), FC_OK);
+    int smallest = CLASS_WINDOW * CLASS_WINDOW * 4, largest = 0;
+    for (int i = 0; i < CLASS_ISOLATED; i++) {
+        int covered = 0;
+        float darkest = 1e9f, brightest = -1e9f;
+        for (uint32_t r = row[i] - CLASS_WINDOW; r <= row[i] + CLASS_WINDOW; r++)
+            for (uint32_t c = px[i] - CLASS_WINDOW; c <= px[i] + CLASS_WINDOW; c++) {
+                if (luminance(&color, c, r) == luminance(&reference, c, r))
+                    continue;
+                covered++;
+                darkest = fminf(darkest, luminance(&color, c, r));
+                brightest = fmaxf(brightest, luminance(&color, c, r));
+            }
+        printf("droplet %d: %d pixels, luminance %.3f .. %.3f\n", i, covered, darkest, brightest);
+        CHECK_MSG(covered > 0, "droplet %d not drawn", i);
+        CHECK_MSG(brightest - darkest > 0.1f, "droplet %d is a flat bead: luminance %g .. %g", i, darkest,
+                  brightest);
+        smallest = covered < smallest ? covered : smallest;
+        largest = covered > largest ? covered : largest;
+    }
+    CHECK_MSG(largest >= smallest + smallest / 2, "droplets all of one size: %d .. %d pixels", smallest, largest);
+    fc_image_free(&depth);
+    fc_image_free(&color);
+    fc_image_free(&reference);
+}
+
 int main(void)
 {
     test_density_order();
+    test_neighbour_classes();
     render_fixture f;
     if (!fixture_open(&f))
         return 1;
@@ -257,6 +367,7 @@ int main(void)
     test_spray_hidden_behind_fluid(&f);
     test_sorted_only_for_a_threshold(&f);
     test_isolated_droplet_keeps_its_sphere(&f);
+    test_isolated_particles_are_droplets(&f);
     fixture_close(&f);
     return test_result();
 }
