@@ -47,7 +47,8 @@ def main():
         frame["fraction_outside_view_4x3"] = look_at_fraction_outside(x, camera, 4.0 / 3.0)
     lo = [min(f["data_bbox"]["min"][a] for f in chosen) for a in range(3)]
     hi = [max(f["data_bbox"]["max"][a] for f in chosen) for a in range(3)]
-    meta["parameters"].update(camera=params["camera"], verdict_frames=wanted)
+    meta["parameters"].update(camera=params["camera"], verdict_frames=wanted, wall_height=params["wall_height"])
+    meta["tank_bbox"]["max"][2] = params["wall_height"]
     meta.update(scene="verdict_dambreak", camera=camera, frame_count=len(chosen), frames=chosen,
                 bbox={"min": lo, "max": hi, "note": "union of particle-centre bounding boxes over these frames"})
     with open(os.path.join(args.out, "frames.json"), "w") as fh:
