@@ -45,6 +45,18 @@ SKY_BOTTOM = (0.86, 0.90, 0.95)
 SKY_TOP = (0.30, 0.50, 0.78)
 CHECKER_LIGHT = (214, 206, 190)
 CHECKER_DARK = (92, 100, 112)
+# The floor's texture, by name: its two colours. "checker" is the default;
+# over it VTK's bumpy surface refracts the squares into moire. "soft" keeps
+# the squares (something to see refracted) at a quarter of the contrast,
+# "plain" is their mean colour and gives a refraction nothing to alias on.
+CHECKER_MEAN = tuple(round((a + b) / 2) for a, b in zip(CHECKER_LIGHT, CHECKER_DARK))
+FLOORS = {
+    "checker": (CHECKER_LIGHT, CHECKER_DARK),
+    "soft": tuple(tuple(round(m + 0.25 * (c - m)) for c, m in zip(colour, CHECKER_MEAN))
+                  for colour in (CHECKER_LIGHT, CHECKER_DARK)),
+    "plain": (CHECKER_MEAN, CHECKER_MEAN),
+}
+DEFAULT_FLOOR = "checker"
 # The direction from the target to the eye when the camera frames the
 # particles: the splash data set's elevated 3/4 view from -x, -y.
 FRAMING_DIRECTION = (-0.8664, -1.5005, 1.2129)
@@ -156,7 +168,8 @@ def make_scene(args):
         # A square floor 5x the data's footprint: it ends within the view of
         # the default cameras, so the sky shows above its far edge.
         "floor": {"z": floor_z, "center": [float(lo[0] + hi[0]) / 2, float(lo[1] + hi[1]) / 2],
-                  "half": 2.5 * extent, "checker": checker},
+                  "half": 2.5 * extent, "checker": checker,
+                  "pattern": getattr(args, "floor", None) or DEFAULT_FLOOR},
         "data_bounds": [float(lo[0]), float(hi[0]), float(lo[1]), float(hi[1]),
                         float(lo[2]), float(hi[2])],
         "frames": [{"tag": t, "path": p} for t, p in zip(frame_tags(paths, splash), paths)],
@@ -164,13 +177,14 @@ def make_scene(args):
     return scene
 
 
-def checker_texture():
+def checker_texture(pattern):
     from vtkmodules.vtkRenderingCore import vtkTexture
+    light, dark = FLOORS[pattern]
     n = 32  # pixels per square: room for mipmaps, so the far floor does not alias
     img = np.empty((2 * n, 2 * n, 3), np.uint8)
-    img[:, :] = CHECKER_LIGHT
-    img[:n, :n] = CHECKER_DARK
-    img[n:, n:] = CHECKER_DARK
+    img[:, :] = light
+    img[:n, :n] = dark
+    img[n:, n:] = dark
     texture = vtkTexture()
     texture.SetInputData(vtk_scene.array_to_image(img))
     texture.RepeatOn()
@@ -200,7 +214,7 @@ def floor_actor(floor):
     mapper.SetInputData(poly)
     actor = vtkActor()
     actor.SetMapper(mapper)
-    actor.SetTexture(checker_texture())
+    actor.SetTexture(checker_texture(floor.get("pattern", DEFAULT_FLOOR)))
     prop = actor.GetProperty()
     prop.SetAmbient(0.15)
     prop.SetDiffuse(0.85)

@@ -52,6 +52,12 @@ options:
   --eye X,Y,Z --target X,Y,Z --up X,Y,Z --fov DEG
                      camera (default: the splash camera for splash frames, else
                      a 3/4 view framing the particles, as compare_images.sh)
+  --floor checker|soft|plain
+                     VTK's floor texture, which fc_floor gets as its background
+                     (default checker: the high-contrast squares, over which
+                     VTK's bumpy surface refracts into moire; soft: the same
+                     squares at a quarter of the contrast; plain: their mean
+                     colour; bench/LOOK.md says which floor a verdict uses)
   --vtk-scale S --vtk-filter narrow|bilateral
                      override vtk_best.tsv for every data set
   --server HOST:PORT a running fluidcastd (default: start build/bin/fluidcastd)
@@ -86,7 +92,7 @@ while [ $# -gt 0 ]; do
         --seed) need_value "$@"; SEED=$2; shift 2 ;;
         --server) need_value "$@"; SERVER=$2; shift 2 ;;
         --bin-dir) need_value "$@"; BIN_DIR=$2; shift 2 ;;
-        --size|--radius|--eye|--target|--up|--fov)
+        --size|--radius|--eye|--target|--up|--fov|--floor)
             need_value "$@"; PANEL_ARGS+=("$1" "$2"); SWEEP_ARGS+=("$1" "$2"); shift 2 ;;
         --comparisons|--vtk-scale|--vtk-filter)
             need_value "$@"; PANEL_ARGS+=("$1" "$2"); shift 2 ;;

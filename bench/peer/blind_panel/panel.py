@@ -67,8 +67,8 @@ def data_set(path):
     vtk_best.tsv; the base radius is the data's own suggested render radius
     (None: fluidcast estimates one)."""
     splash = vtk_fluid_image.splash_metadata(path)
-    if splash is not None:
-        return "splash", float(splash[0]["particle_radius"])
+    if splash is not None:   # a set with a frames.json like the splash's names its kind there
+        return str(splash[0].get("scene", "splash")), float(splash[0]["particle_radius"])
     meta = sidecar(path)
     if meta is not None and "scene" in meta:
         radius = meta.get("suggested_render_radius", meta.get("particle_radius"))
@@ -109,9 +109,9 @@ def group_files(files):
 
 # --- VTK -------------------------------------------------------------------
 
-def make_vtk_scene(group, size, out, camera):
+def make_vtk_scene(group, size, out, camera, floor):
     """vtk_fluid_image's scene for a group (camera, floor), and its floor image."""
-    args = SimpleNamespace(files=group["files"], size=size, radius=group["radius"], **camera)
+    args = SimpleNamespace(files=group["files"], size=size, radius=group["radius"], floor=floor, **camera)
     scene = vtk_fluid_image.make_scene(args)
     os.makedirs(out, exist_ok=True)
     renderer = vtk_fluid_image.make_renderer(scene)
@@ -231,7 +231,7 @@ def render_all(args, groups, presets, renders):
     """Every image the pairs need; returns one record per frame."""
     frames = []
     for group in groups:
-        scene = make_vtk_scene(group, args.size, renders, camera_options(args))
+        scene = make_vtk_scene(group, args.size, renders, camera_options(args), args.floor)
         scale, filter_name = presets.get(group["kind"], presets["other"])
         scale = args.vtk_scale or scale
         filter_name = args.vtk_filter or filter_name
@@ -272,6 +272,7 @@ def write_pairs(args, frames, comparisons):
         "# fc_builtin = fluidcast in its own built-in scene. Scorer: bench/peer/blind_panel/score.py",
         f"seed\t{args.seed}",
         f"reference\t{'yes' if args.reference else 'no'}",
+        f"floor\t{args.floor}",
         "pair\tA\tB\tframe\tvtk_settings\tfluidcast_radius",
     ]
     for i, (frame, sides) in enumerate(pairs, 1):
@@ -321,7 +322,7 @@ def cmd_sweep(args):
         radius = args.radius or group["radius"]
         if radius is None:
             die(f"{group['files'][0]}: no suggested radius in the data set: give --radius")
-        scene = make_vtk_scene(group, args.size, out, camera_options(args))
+        scene = make_vtk_scene(group, args.size, out, camera_options(args), args.floor)
         vtk = VtkRenderer(scene)
         for frame in scene["frames"]:
             for scale in scales:
@@ -345,6 +346,8 @@ def parse_args(argv):
         s.add_argument("--target", type=vtk_fluid_image.vec3)
         s.add_argument("--up", type=vtk_fluid_image.vec3)
         s.add_argument("--fov", type=vtk_fluid_image.positive)
+        s.add_argument("--floor", choices=sorted(vtk_fluid_image.FLOORS), default=vtk_fluid_image.DEFAULT_FLOOR,
+                       help="VTK's floor texture, also fc_floor's background (default checker)")
         s.add_argument("files", nargs="+", help=".ply or .f32 particle files")
 
     s = sub.add_parser("pairs", help="render and compose blind pairs")
