@@ -4,7 +4,7 @@
 // Laplacian-smoothed centre x + lambda (mean - x), and from the covariance's
 // principal axes an ellipsoid of the sphere's volume: axes proportional to the
 // eigenvalues, none shorter than the longest / k_r; a sphere at the particle's
-// own position with fewer than N_eps neighbours. Runs over the particles in cell order (neighbouring
+// own position with fewer than N_eps neighbours, its smoothing faded out. Runs over the particles in cell order (neighbouring
 // invocations read the same cells) and writes each one's ellipsoid at its
 // draw slot. Parameters: anisotropy.h.
 
@@ -106,10 +106,12 @@ void main()
     vec3 diagonal = m.diagonal / m.weight - mean * mean;
     vec3 mixed = m.mixed / m.weight - vec3(mean.x * mean.y, mean.x * mean.z, mean.y * mean.z);
     mat3 covariance = mat3(diagonal.x, mixed.x, mixed.y, mixed.x, diagonal.y, mixed.z, mixed.y, mixed.z, diagonal.z);
-    // Fewer than N_eps neighbours keep the sphere and its position, bit for
-    // bit: pulled towards a mean of a few neighbours, the particles of a jet
-    // or a thin sheet move apart as often as together and their spheres
-    // part (a jittered row of particles fell into 4 pieces).
-    vec3 centre = m.count < min_neighbours ? me.xyz : me.xyz + lambda * mean;
+    // The smoothing fades out below N_eps neighbours: pulled fully towards a
+    // mean of a few neighbours, the particles of a jet or a thin sheet move
+    // apart as often as together and their spheres part (a jittered row fell
+    // into 4 pieces); not pulled at all, a ball's edge particles stand out of
+    // their flattened neighbours as separate beads.
+    float pull = lambda * min(1.0, float(m.count) / float(min_neighbours));
+    vec3 centre = me.xyz + pull * mean;
     ellipsoids[floatBitsToUint(me.w)] = shape(centre, covariance, m.count);
 }

@@ -18,9 +18,12 @@
  *   w(d) = 1 - (d / r_s)^3 for d < r_s;
  *   lambda = FC_ANISOTROPY_LAMBDA (0.9, the paper's) for the smoothed centres;
  *   N_eps = FC_ANISOTROPY_MIN_NEIGHBOURS (the paper's 25 counts neighbours of
- *         a larger support): fewer neighbours keep the sphere and the
- *         particle's own centre (unsmoothed), so droplets and small clusters
- *         stay round and a jet's or thin sheet's spheres stay touching; 6 made the sparse crown of the splash data
+ *         a larger support): fewer neighbours keep the sphere, and their
+ *         centre's smoothing fades out (lambda x count / N_eps), so droplets
+ *         and small clusters stay round and a jet's or thin sheet's spheres
+ *         stay touching, while a ball's edge particles still follow their
+ *         flattened neighbours (unsmoothed, they stood out as beads: the
+ *         surface mesh of a ball fell into 4 pieces); 6 made the sparse crown of the splash data
  *         spiky (needles from few-sample covariances), 12 keeps it beads;
  *   k_r = FC_ANISOTROPY_MAX_RATIO (4, the paper's): no axis is shorter than the
  *         longest / k_r, each axis proportional to its covariance eigenvalue;

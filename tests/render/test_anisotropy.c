@@ -116,8 +116,8 @@ static reference reference_ellipsoid(const float *x, int count, int i, double su
         }
     }
     double mean[3], covariance[3][3];
-    /* Fewer than N_eps neighbours keep the particle's own centre. */
-    double lambda = r.neighbours >= (int)FC_ANISOTROPY_MIN_NEIGHBOURS ? FC_ANISOTROPY_LAMBDA : 0.0;
+    /* The smoothing fades out below N_eps neighbours (none: the particle's own centre). */
+    double lambda = FC_ANISOTROPY_LAMBDA * fmin(1.0, (double)r.neighbours / FC_ANISOTROPY_MIN_NEIGHBOURS);
     for (int k = 0; k < 3; k++) {
         mean[k] = first[k] / weight;
         r.centre[k] = x[3 * i + k] + lambda * mean[k];
