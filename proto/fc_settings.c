@@ -14,7 +14,8 @@
 /* Every value of every field is 4 bytes, so a field is `count` words. */
 _Static_assert(sizeof(float) == 4 && sizeof(uint32_t) == 4, "settings values are 4-byte words");
 _Static_assert(sizeof(fc_smoothing) == 4 && sizeof(fc_kernel) == 4 && sizeof(fc_color_by) == 4 &&
-                   sizeof(fc_colormap) == 4 && sizeof(fc_jpeg_subsampling) == 4,
+                   sizeof(fc_colormap) == 4 && sizeof(fc_jpeg_subsampling) == 4 &&
+                   sizeof(fc_surface_mode) == 4 && sizeof(fc_surface_kernel) == 4,
                "CHOICE fields that are enums are stored in 4 bytes, like a uint32_t");
 
 static const char *const smoothing_names[] = {"none", "curvature", "bilateral", "binomial", "narrow", NULL};
@@ -22,6 +23,8 @@ static const char *const kernel_names[] = {"sphere", "anisotropic", NULL};
 static const char *const switch_names[] = {"off", "on", NULL};
 static const char *const color_by_names[] = {"none", "speed", "density", NULL};
 static const char *const subsampling_names[] = {"444", "420", NULL};
+static const char *const surface_names[] = {"screen", "mesh", NULL};
+static const char *const surface_kernel_names[] = {"metaball", "sph", "anisotropic", NULL};
 
 /* The enums' last values, so that a new enum value without a name fails to compile. */
 _Static_assert(sizeof smoothing_names / sizeof *smoothing_names == FC_SMOOTHING_NARROW + 2, "smoothing names");
@@ -29,6 +32,9 @@ _Static_assert(sizeof kernel_names / sizeof *kernel_names == FC_KERNEL_ANISOTROP
 _Static_assert(sizeof color_by_names / sizeof *color_by_names == FC_COLOR_BY_DENSITY + 2, "color_by names");
 _Static_assert(sizeof subsampling_names / sizeof *subsampling_names == FC_JPEG_SUBSAMPLING_YUV420 + 2,
                "jpeg_subsampling names");
+_Static_assert(sizeof surface_names / sizeof *surface_names == FC_SURFACE_MODE_MESH + 2, "surface names");
+_Static_assert(sizeof surface_kernel_names / sizeof *surface_kernel_names == FC_SURFACE_KERNEL_ANISOTROPIC + 2,
+               "surface_kernel names");
 
 /* The entry's first fields: key, name, type, count, offset (the name is the field's). */
 #define FIELD(k, field, t, n) .key = (k), .name = #field, .type = (t), .count = (n), \
@@ -114,6 +120,21 @@ static const fc_setting_spec table[] = {
      .choices = subsampling_names, .group = FC_GROUP_IMAGE, .option = "--jpeg-subsampling",
      .help = "JPEG chroma: 444 keeps every pixel's colour, 420 shares one among 2x2 pixels (smaller files, a "
              "faster encode; .jpg/.jpeg only)"},
+    /* Keys 33-44 belong to other settings (PROTOCOL.md 7.5). */
+    {FIELD(45, surface, FC_SETTING_CHOICE, 1), .initial = {FC_SURFACE_MODE_SCREEN}, .choices = surface_names,
+     .group = FC_GROUP_SURFACE, .option = "--surface",
+     .help = "the fluid's surface: splatted and smoothed in screen space, or a mesh extracted from the "
+             "particles' field (marching tetrahedra on the GPU) and drawn with the same shading"},
+    {FIELD(46, surface_cell, FC_SETTING_FLOAT, 1), .initial = {1.0f}, .min = 0.25, .max = 4,
+     .flags = FC_SETTING_MIN_OPEN, .group = FC_GROUP_SURFACE, .option = "--surface-cell", .metavar = "C",
+     .help = "the surface mesh's grid cell edge in particle radii (smaller: finer and slower)"},
+    {FIELD(47, surface_kernel, FC_SETTING_CHOICE, 1), .initial = {FC_SURFACE_KERNEL_METABALL},
+     .choices = surface_kernel_names, .group = FC_GROUP_SURFACE, .option = "--surface-kernel",
+     .help = "the field the surface mesh follows: metaballs (Janisz), the cubic SPH kernel, or metaballs "
+             "stretched along the anisotropic ellipsoids"},
+    {FIELD(48, surface_smoothing, FC_SETTING_UINT, 1), .initial = {4}, .min = 0, .max = 100,
+     .group = FC_GROUP_SURFACE, .option = "--surface-smoothing", .metavar = "N",
+     .help = "Taubin smoothing steps of the surface mesh (volume kept); 0 = off"},
 };
 
 #define TABLE_LENGTH (sizeof table / sizeof table[0])

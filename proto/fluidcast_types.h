@@ -107,6 +107,20 @@ typedef enum fc_kernel {
                                     sheets and surfaces, long on jets, a sphere where it has few neighbours */
 } fc_kernel;
 
+/* How the fluid's surface is made (fc_settings.surface). */
+typedef enum fc_surface_mode {
+    FC_SURFACE_MODE_SCREEN = 0,  /* splatted and smoothed in screen space (van der Laan et al. 2009) */
+    FC_SURFACE_MODE_MESH = 1     /* an isosurface extracted from the particles' field and rasterised (Janisz
+                                    section 4.2; docs/rendering.md, surface meshes) */
+} fc_surface_mode;
+
+/* The field whose isosurface a surface mesh is (fc_settings.surface_kernel). */
+typedef enum fc_surface_kernel {
+    FC_SURFACE_KERNEL_METABALL = 0,     /* Wyvill's soft-object metaballs of radius of influence 2 radii (Janisz) */
+    FC_SURFACE_KERNEL_SPH = 1,          /* the cubic-spline SPH kernel of support 2 radii */
+    FC_SURFACE_KERNEL_ANISOTROPIC = 2   /* metaballs on the renderer's anisotropic ellipsoids (Yu & Turk 2013) */
+} fc_surface_kernel;
+
 /* What the fluid is coloured by (fc_settings.color_by): a per-particle
  * attribute of the frame, mapped through a colormap. */
 typedef enum fc_color_by {
@@ -171,6 +185,10 @@ typedef struct fc_settings {
     float color_range[2];      /* attribute values mapped to the colormap's ends: finite, min < max when
                                   color_by is set; values outside take the end colours, so runs compare */
     fc_jpeg_subsampling jpeg_subsampling; /* chroma subsampling of JPEG images; other formats ignore it */
+    fc_surface_mode surface;   /* screen-space splats, or an extracted isosurface mesh */
+    float surface_cell;        /* the mesh's grid cell edge in particle radii, (0.25, 4] */
+    fc_surface_kernel surface_kernel; /* the field the mesh is an isosurface of */
+    uint32_t surface_smoothing;/* Taubin smoothing steps of the mesh (each a shrink and an inflate); 0 = off */
 } fc_settings;
 
 /* ---- Meshes ---------------------------------------------------------------

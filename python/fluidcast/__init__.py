@@ -17,7 +17,8 @@ libfluidcast: see :mod:`fluidcast._library` for where it is looked for
 """
 
 from ._enums import (Aov, Code, ColorBy, Colormap, Format, JpegSubsampling, Kernel, MESH_HIDE_NEAR,
-                     SERVER_CAN_DEVICE, SERVER_CAN_QUANTIZE16, SERVER_CAN_STREAM, SERVER_CAN_ZSTD, Smoothing, Stage)
+                     SERVER_CAN_DEVICE, SERVER_CAN_QUANTIZE16, SERVER_CAN_STREAM, SERVER_CAN_ZSTD, Smoothing, Stage,
+                     SurfaceKernel, SurfaceMode)
 from ._errors import Error
 from ._frame import Frame
 from ._mesh import Mesh
@@ -28,6 +29,7 @@ from ._client import (Client, Image, SETTING_NAMES, ServerInfo, SessionStatus, S
 __all__ = [
     "connect", "Client", "Error", "Code", "Frame", "Mesh", "Image", "StreamImage", "ServerInfo", "SessionStatus",
     "UploadStats", "Format", "Aov", "Smoothing", "Kernel", "ColorBy", "Colormap", "JpegSubsampling", "Stage",
+    "SurfaceMode", "SurfaceKernel",
     "SETTING_NAMES", "default_settings", "SERVER_CAN_STREAM", "SERVER_CAN_ZSTD", "SERVER_CAN_QUANTIZE16",
     "SERVER_CAN_DEVICE", "MESH_HIDE_NEAR",
     "library_path",

@@ -11,7 +11,8 @@ import numpy as np
 from . import _capi
 from ._capi import (FcCamera, FcConnectOptions, FcError, FcImageResult, FcRenderRequest, FcServerInfo, FcSessionStatus,
                     FcSettings, FcStreamImage, FcUploadOptions, FcUploadStats)
-from ._enums import (Aov, Code, ColorBy, Colormap, Format, JpegSubsampling, Kernel, Smoothing, Stage, UPLOAD_QUANTIZE16, UPLOAD_ZSTD,
+from ._enums import (Aov, Code, ColorBy, Colormap, Format, JpegSubsampling, Kernel, Smoothing, Stage, SurfaceKernel,
+                     SurfaceMode, UPLOAD_QUANTIZE16, UPLOAD_ZSTD,
                      parse)
 from ._errors import Error, raise_for
 from ._frame import as_frame
@@ -186,7 +187,7 @@ def _request(format, quality, aov):
 # ---- settings -------------------------------------------------------------
 
 _SETTING_ENUMS = {"smoothing": Smoothing, "kernel": Kernel, "color_by": ColorBy, "colormap": Colormap,
-                  "jpeg_subsampling": JpegSubsampling}
+                  "jpeg_subsampling": JpegSubsampling, "surface": SurfaceMode, "surface_kernel": SurfaceKernel}
 #: fc_settings' field names, in the header's order.
 SETTING_NAMES = tuple(name for name, _ in FcSettings._fields_)
 def _default_c_settings():
@@ -407,11 +408,12 @@ class Client:
         absorption, ior, refraction, specular, shininess, thickness_scale,
         thickness_blur, noise, foam, foam_tau, foam_decay, density_threshold,
         kernel, shadow, exposure, color_by, colormap, color_range,
-        jpeg_subsampling (see
+        jpeg_subsampling, surface, surface_cell, surface_kernel, surface_smoothing (see
         fluidcast_types.h for each one's meaning and domain). ``smoothing``,
-        ``kernel``, ``color_by``, ``colormap`` and ``jpeg_subsampling`` take a :class:`Smoothing`,
-        :class:`Kernel`, :class:`ColorBy`, :class:`Colormap`, :class:`JpegSubsampling` or its name
-        ("narrow", "anisotropic", "speed", "turbo", "yuv420"); ``fluid_color`` and
+        ``kernel``, ``color_by``, ``colormap``, ``jpeg_subsampling``, ``surface`` and ``surface_kernel`` take a :class:`Smoothing`,
+        :class:`Kernel`, :class:`ColorBy`, :class:`Colormap`, :class:`JpegSubsampling`, :class:`SurfaceMode`,
+        :class:`SurfaceKernel` or its name
+        ("narrow", "anisotropic", "speed", "turbo", "yuv420", "mesh", "sph"); ``fluid_color`` and
         ``absorption`` three numbers, ``color_range`` two (min, max). An unknown name raises
         TypeError (and nothing is sent).
 

@@ -97,6 +97,19 @@ class JpegSubsampling(enum.IntEnum):
     YUV420 = 1
 
 
+class SurfaceMode(enum.IntEnum):
+    """fc_surface_mode: how the fluid's surface is made (fc_settings.surface)."""
+    SCREEN = 0  #: splatted and smoothed in screen space
+    MESH = 1    #: an isosurface mesh extracted from the particles' field
+
+
+class SurfaceKernel(enum.IntEnum):
+    """fc_surface_kernel: the field a surface mesh is an isosurface of (fc_settings.surface_kernel)."""
+    METABALL = 0     #: Wyvill's metaballs, radius of influence 2 radii
+    SPH = 1          #: the cubic-spline SPH kernel, support 2 radii
+    ANISOTROPIC = 2  #: metaballs on the anisotropic ellipsoids
+
+
 class SettingType(enum.IntEnum):
     """fc_setting_type: how a setting of the table (fc_settings.h) is stored and what it may be."""
     FLOAT = 1    #: ``count`` floats in [min, max]
@@ -171,6 +184,8 @@ _PREFIX = {
     ColorBy: "FC_COLOR_BY_",
     Colormap: "FC_COLORMAP_",
     JpegSubsampling: "FC_JPEG_SUBSAMPLING_",
+    SurfaceMode: "FC_SURFACE_MODE_",
+    SurfaceKernel: "FC_SURFACE_KERNEL_",
     Stage: "FC_STAGE_",
 }
 
@@ -187,6 +202,8 @@ C_TYPES = {
     ColorBy: "fc_color_by",
     Colormap: "fc_colormap",
     JpegSubsampling: "fc_jpeg_subsampling",
+    SurfaceMode: "fc_surface_mode",
+    SurfaceKernel: "fc_surface_kernel",
     Stage: "fc_stage",
 }
 

@@ -107,6 +107,10 @@ static void expect_color_by(fc_settings *s) { s->color_by = FC_COLOR_BY_DENSITY;
 static void expect_colormap(fc_settings *s) { s->colormap = FC_COLORMAP_TURBO; }
 static void expect_color_range(fc_settings *s) { memcpy(s->color_range, (float[2]){-2.0f, 0.5f}, 8); }
 static void expect_jpeg_subsampling(fc_settings *s) { s->jpeg_subsampling = FC_JPEG_SUBSAMPLING_YUV420; }
+static void expect_surface(fc_settings *s) { s->surface = FC_SURFACE_MODE_MESH; }
+static void expect_surface_cell(fc_settings *s) { s->surface_cell = 1.5f; }
+static void expect_surface_kernel(fc_settings *s) { s->surface_kernel = FC_SURFACE_KERNEL_SPH; }
+static void expect_surface_smoothing(fc_settings *s) { s->surface_smoothing = 10; }
 
 static const key_case key_cases[] = {
     {1, 1, {0x3E000000u}, expect_radius},                             /* 0.125f */
@@ -134,6 +138,10 @@ static const key_case key_cases[] = {
     {23, 1, {6}, expect_colormap},
     {24, 2, {0xC0000000u, 0x3F000000u}, expect_color_range},          /* -2, 0.5 */
     {32, 1, {1}, expect_jpeg_subsampling},                            /* 25-31 reserved */
+    {45, 1, {1}, expect_surface},                                     /* 33-44: other settings */
+    {46, 1, {0x3FC00000u}, expect_surface_cell},                      /* 1.5f */
+    {47, 1, {1}, expect_surface_kernel},
+    {48, 1, {10}, expect_surface_smoothing},
 };
 #define KEY_COUNT (sizeof key_cases / sizeof key_cases[0])
 
@@ -165,8 +173,8 @@ static void test_encoder_layout(void)
     fc_buf_init(&b);
     fc_error err;
     CHECK_CODE(fc_wire_write_settings(&b, 9, &s, &err), FC_OK);
-    /* 30 words: two colours of 3, twenty-two of 1, a range of 2 */
-    const size_t payload_size = 4 + KEY_COUNT * 4 + 4 * 30;
+    /* 34 words: two colours of 3, twenty-six of 1, a range of 2 */
+    const size_t payload_size = 4 + KEY_COUNT * 4 + 4 * 34;
     CHECK_MSG(b.len == FC_WIRE_HEADER_SIZE + payload_size, "%zu bytes", b.len);
     if (b.len != FC_WIRE_HEADER_SIZE + payload_size) {
         fc_buf_free(&b);

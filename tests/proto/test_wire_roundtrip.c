@@ -348,7 +348,9 @@ static void test_settings_roundtrip(void)
                       .foam_tau = 1e-3f, .foam_decay = 0, .density_threshold = 1e30f,
                       .kernel = FC_KERNEL_ANISOTROPIC, .shadow = 0, .exposure = -16,
                       .color_by = FC_COLOR_BY_SPEED, .colormap = FC_COLORMAP_COOLWARM,
-                      .color_range = {-1e30f, 2.5f}, .jpeg_subsampling = FC_JPEG_SUBSAMPLING_YUV420};
+                      .color_range = {-1e30f, 2.5f}, .jpeg_subsampling = FC_JPEG_SUBSAMPLING_YUV420,
+                      .surface = FC_SURFACE_MODE_MESH, .surface_cell = 4.0f,
+                      .surface_kernel = FC_SURFACE_KERNEL_ANISOTROPIC, .surface_smoothing = 100};
     fc_settings out;
     fc_settings_default(&out);
     fc_buf b;
@@ -357,7 +359,7 @@ static void test_settings_roundtrip(void)
     CHECK_CODE(fc_wire_write_settings(&b, 4, &in, &err), FC_OK);
     size_t n;
     const uint8_t *p = single_payload(&b, FC_MSG_SETTINGS, 4, &n);
-    CHECK(n == 4 + 25 * 4 + 30 * 4);
+    CHECK(n == 4 + 29 * 4 + 34 * 4);
     CHECK_CODE(fc_wire_read_settings(p, n, &out, &err), FC_OK);
     CHECK(memcmp(&in, &out, sizeof in) == 0);
     fc_buf_free(&b);
