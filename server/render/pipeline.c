@@ -5,6 +5,7 @@
 #include <epoxy/gl.h>
 #include <stdbool.h>
 #include <stdlib.h>
+#include <string.h>
 #include <time.h>
 
 #include "anisotropy.h"
@@ -30,6 +31,7 @@
 #include "smoothing.h"
 #include "spray_pass.h"
 #include "stage_timer.h"
+#include "surface_passes.h"
 #include "thickness_pass.h"
 #include "view.h"
 
@@ -60,6 +62,9 @@ struct fc_pipeline {
     fc_pass_profile profile;
     fc_readback readback;
     GLint max_image_size;   /* largest width or height the GPU renders */
+    char *shader_dir;       /* fc_pipeline_config.shader_dir (NULL: built in), for the passes built on first use */
+    fc_surface_passes surface;   /* surface mesh extraction (surface_extract.h), built by its first use */
+    bool surface_built;
 };
 
 /* One request as the stages see it. */
@@ -574,7 +579,12 @@ fc_code fc_pipeline_create(const fc_pipeline_config *config, fc_pipeline **out, 
     fc_pipeline *p = calloc(1, sizeof *p);
     if (!p)
         return fc_error_set(err, FC_ERR_NOMEM, "out of memory for the pipeline");
-    fc_code code = create_passes(p, config ? config->shader_dir : NULL, uses_flat_constants(config), err);
+    const char *dir = config ? config->shader_dir : NULL;
+    if (dir && !(p->shader_dir = strdup(dir))) {
+        free(p);
+        return fc_error_set(err, FC_ERR_NOMEM, "out of memory for the pipeline");
+    }
+    fc_code code = create_passes(p, dir, uses_flat_constants(config), err);
     if (code == FC_OK)
         code = warm_up(p, err);
     if (code != FC_OK) {
@@ -604,9 +614,11 @@ void fc_pipeline_destroy(fc_pipeline *p)
     fc_shadow_pass_destroy(&p->shadow);
     fc_depth_pass_destroy(&p->depth);
     fc_anisotropy_destroy(&p->anisotropy);
+    fc_surface_passes_destroy(&p->surface);
     fc_color_values_release(&p->color_values);
     fc_particle_attributes_destroy(&p->attributes);
     fc_particle_buffer_destroy(&p->particles);
+    free(p->shader_dir);
     free(p);
 }
 
@@ -777,6 +789,28 @@ fc_particle_attributes *fc_pipeline_particle_attributes(fc_pipeline *p)
 const fc_anisotropy *fc_pipeline_anisotropy(const fc_pipeline *p)
 {
     return &p->anisotropy;
+}
+
+fc_code fc_pipeline_frame_ellipsoids(fc_pipeline *p, const fc_frame *frame, fc_ellipsoid *out, fc_error *err)
+{
+    fc_code code = fc_pipeline_upload(p, frame, NULL, err);
+    if (code == FC_OK)
+        code = fc_anisotropy_update(&p->anisotropy, &p->particles, &p->frame, err);
+    if (code == FC_OK)
+        code = fc_anisotropy_read(&p->anisotropy, frame->count, out, err);
+    return code;
+}
+
+fc_code fc_pipeline_surface_passes(fc_pipeline *p, const fc_surface_passes **out, fc_error *err)
+{
+    if (!p->surface_built) {
+        fc_code code = fc_surface_passes_create(p->shader_dir, &p->surface, err);
+        if (code != FC_OK)
+            return code;
+        p->surface_built = true;
+    }
+    *out = &p->surface;
+    return FC_OK;
 }
 
 void fc_pipeline_set_profiling(fc_pipeline *p, int on)

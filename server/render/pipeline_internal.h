@@ -8,6 +8,7 @@
 #include "particle_attributes.h"
 #include "pipeline.h"
 #include "shadow_pass.h"
+#include "surface_passes.h"
 
 /* The per-particle records of the uploaded frame. */
 fc_particle_attributes *fc_pipeline_particle_attributes(fc_pipeline *p);
@@ -15,6 +16,14 @@ fc_particle_attributes *fc_pipeline_particle_attributes(fc_pipeline *p);
 /* The ellipsoids of the last render with the anisotropic kernel (read them
  * with fc_anisotropy_read; tests). */
 const fc_anisotropy *fc_pipeline_anisotropy(const fc_pipeline *p);
+
+/* Uploads `frame` (as fc_pipeline_upload: it becomes the pipeline's frame,
+ * in its own order) and reads its particles' ellipsoids into out (count of
+ * them, frame order): the surface mesh's anisotropic kernel. */
+fc_code fc_pipeline_frame_ellipsoids(fc_pipeline *p, const fc_frame *frame, fc_ellipsoid *out, fc_error *err);
+
+/* The surface mesh passes (surface_extract.c), built on their first use. */
+fc_code fc_pipeline_surface_passes(fc_pipeline *p, const fc_surface_passes **out, fc_error *err);
 
 /* Forces the surface splat of every render from now on (FC_SPLAT_AUTO
  * restores the choice by sprite size); for tests and the benchmark. */

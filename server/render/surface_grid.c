@@ -1,0 +1,176 @@
+/* surface_grid.c — the blocks of surface_grid.h and their particle lists. */
+#include "surface_grid.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "fc_error.h"
+
+typedef struct block_range {
+    uint32_t lo[3], hi[3];   /* inclusive block coordinates a particle reaches */
+} block_range;
+
+/* The blocks whose cells meet the box [p - reach - cell, p + reach + cell]:
+ * one cell more than the field reaches, so that the block owning a crossing
+ * edge's lower end (and a cube's lower corner) is always among them. */
+static block_range blocks_reached(const fc_surface_grid *g, const float *p, float reach)
+{
+    block_range r;
+    float block = g->cell * (float)FC_SURFACE_BLOCK;
+    for (int a = 0; a < 3; a++) {
+        float lo = (p[a] - reach - g->cell - g->origin[a]) / block;
+        float hi = (p[a] + reach + g->cell - g->origin[a]) / block;
+        r.lo[a] = lo > 0 ? (uint32_t)lo : 0u;
+        r.hi[a] = (uint32_t)hi;
+    }
+    return r;
+}
+
+static uint64_t range_blocks(const block_range *r)
+{
+    return (uint64_t)(r->hi[0] - r->lo[0] + 1) * (r->hi[1] - r->lo[1] + 1) * (r->hi[2] - r->lo[2] + 1);
+}
+
+/* Places the origin two cells below the particles' box minus their reach, and
+ * checks the box fits the keys' coordinates. */
+static fc_code place_grid(const float *positions, uint64_t count, float reach, float cell, fc_surface_grid *g,
+                          fc_error *err)
+{
+    float lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
+    for (uint64_t i = 0; i < count; i++)
+        for (int a = 0; a < 3; a++) {
+            lo[a] = fminf(lo[a], positions[3 * i + a]);
+            hi[a] = fmaxf(hi[a], positions[3 * i + a]);
+        }
+    g->cell = cell;
+    for (int a = 0; a < 3; a++) {
+        g->origin[a] = lo[a] - reach - 2.0f * cell;
+        double blocks = ((double)hi[a] + reach + 2.0 * cell - g->origin[a]) / ((double)cell * FC_SURFACE_BLOCK);
+        if (!(blocks < FC_SURFACE_MAX_BLOCKS_PER_AXIS - 1))
+            return fc_error_set(err, FC_ERR_LIMIT,
+                                "the surface grid would span %.0f blocks of %u cells along %c, more than %u: "
+                                "raise surface_cell",
+                                blocks, FC_SURFACE_BLOCK, "xyz"[a], FC_SURFACE_MAX_BLOCKS_PER_AXIS - 1);
+    }
+    return FC_OK;
+}
+
+static uint32_t key_of(uint32_t x, uint32_t y, uint32_t z)
+{
+    return x | y << FC_SURFACE_KEY_BITS | z << (2 * FC_SURFACE_KEY_BITS);
+}
+
+/* Stable LSD radix sort of (key << 32 | particle) by the key, 8 bits a pass. */
+static fc_code sort_pairs(uint64_t *pairs, uint64_t n, fc_error *err)
+{
+    uint64_t *tmp = malloc(n * sizeof *tmp);
+    if (!tmp)
+        return fc_error_set(err, FC_ERR_NOMEM, "cannot allocate %llu surface grid pairs", (unsigned long long)n);
+    for (unsigned shift = 32; shift < 32 + 3 * FC_SURFACE_KEY_BITS; shift += 8) {
+        uint64_t counts[257] = {0};
+        for (uint64_t i = 0; i < n; i++)
+            counts[((pairs[i] >> shift) & 0xffu) + 1]++;
+        for (int d = 0; d < 256; d++)
+            counts[d + 1] += counts[d];
+        for (uint64_t i = 0; i < n; i++)
+            tmp[counts[(pairs[i] >> shift) & 0xffu]++] = pairs[i];
+        memcpy(pairs, tmp, n * sizeof *pairs);
+    }
+    free(tmp);
+    return FC_OK;
+}
+
+/* Counts the pairs and checks the budget before anything large is allocated. */
+static fc_code count_pairs(const fc_surface_grid *g, const float *positions, uint64_t count, float reach,
+                           uint64_t *pairs, fc_error *err)
+{
+    uint64_t n = 0;
+    for (uint64_t i = 0; i < count; i++) {
+        block_range r = blocks_reached(g, positions + 3 * i, reach);
+        n += range_blocks(&r);
+    }
+    if (n * 12u > FC_SURFACE_GRID_BUDGET || n > UINT32_MAX)
+        return fc_error_set(err, FC_ERR_LIMIT,
+                            "the surface grid's particle lists would hold %llu entries, over its budget of "
+                            "%llu MiB: raise surface_cell",
+                            (unsigned long long)n, (unsigned long long)(FC_SURFACE_GRID_BUDGET >> 20));
+    *pairs = n;
+    return FC_OK;
+}
+
+static void fill_pairs(const fc_surface_grid *g, const float *positions, uint64_t count, float reach,
+                       uint64_t *pairs)
+{
+    uint64_t n = 0;
+    for (uint64_t i = 0; i < count; i++) {
+        block_range r = blocks_reached(g, positions + 3 * i, reach);
+        for (uint32_t z = r.lo[2]; z <= r.hi[2]; z++)
+            for (uint32_t y = r.lo[1]; y <= r.hi[1]; y++)
+                for (uint32_t x = r.lo[0]; x <= r.hi[0]; x++)
+                    pairs[n++] = (uint64_t)key_of(x, y, z) << 32 | i;
+    }
+}
+
+/* The sorted pairs -> unique block keys, list starts and the lists. */
+static fc_code collect_blocks(const uint64_t *pairs, uint64_t n, fc_surface_grid *g, fc_error *err)
+{
+    uint64_t blocks = 0;
+    for (uint64_t i = 0; i < n; i++)
+        blocks += i == 0 || pairs[i] >> 32 != pairs[i - 1] >> 32;
+    if (blocks * FC_SURFACE_BLOCK_BYTES + n * 12u > FC_SURFACE_GRID_BUDGET)
+        return fc_error_set(err, FC_ERR_LIMIT,
+                            "the surface grid would need %llu blocks (%llu MiB), over its budget of %llu MiB: "
+                            "raise surface_cell",
+                            (unsigned long long)blocks,
+                            (unsigned long long)((blocks * FC_SURFACE_BLOCK_BYTES + n * 12u) >> 20),
+                            (unsigned long long)(FC_SURFACE_GRID_BUDGET >> 20));
+    g->block_keys = malloc((blocks ? blocks : 1) * sizeof *g->block_keys);
+    g->list_starts = malloc((blocks + 1) * sizeof *g->list_starts);
+    g->list = malloc((n ? n : 1) * sizeof *g->list);
+    if (!g->block_keys || !g->list_starts || !g->list)
+        return fc_error_set(err, FC_ERR_NOMEM, "cannot allocate the surface grid's %llu blocks",
+                            (unsigned long long)blocks);
+    uint32_t b = 0;
+    for (uint64_t i = 0; i < n; i++) {
+        if (i == 0 || pairs[i] >> 32 != pairs[i - 1] >> 32) {
+            g->block_keys[b] = (uint32_t)(pairs[i] >> 32);
+            g->list_starts[b++] = (uint32_t)i;
+        }
+        g->list[i] = (uint32_t)pairs[i];
+    }
+    g->list_starts[b] = (uint32_t)n;
+    g->block_count = b;
+    return FC_OK;
+}
+
+fc_code fc_surface_grid_build(const float *positions, uint64_t count, float reach, float cell,
+                              fc_surface_grid *out, fc_error *err)
+{
+    memset(out, 0, sizeof *out);
+    uint64_t n = 0;
+    fc_code code = place_grid(positions, count, reach, cell, out, err);
+    if (code == FC_OK)
+        code = count_pairs(out, positions, count, reach, &n, err);
+    if (code != FC_OK)
+        return code;
+    uint64_t *pairs = malloc((n ? n : 1) * sizeof *pairs);
+    if (!pairs)
+        return fc_error_set(err, FC_ERR_NOMEM, "cannot allocate %llu surface grid pairs", (unsigned long long)n);
+    fill_pairs(out, positions, count, reach, pairs);
+    code = sort_pairs(pairs, n, err);
+    if (code == FC_OK)
+        code = collect_blocks(pairs, n, out, err);
+    free(pairs);
+    if (code != FC_OK)
+        fc_surface_grid_free(out);
+    return code;
+}
+
+void fc_surface_grid_free(fc_surface_grid *grid)
+{
+    free(grid->block_keys);
+    free(grid->list_starts);
+    free(grid->list);
+    memset(grid, 0, sizeof *grid);
+}

@@ -1,0 +1,72 @@
+#version 450 core
+// The sparse grid of a surface mesh (surface_grid.h, surface_extract.c), a
+// library the passes link: blocks of BLOCK^3 cells with (BLOCK + 1)^3 samples
+// each, the upper faces included, keyed x | y << KEY_BITS | z << 2 KEY_BITS and
+// listed in ascending key order; and the seven directions of the lattice edges
+// marching tetrahedra put vertices on (surface_tets.h). BLOCK, KEY_BITS and
+// the other sizes come as #defines from surface_extract.c.
+
+layout(location = 0) uniform uint block_count;
+
+layout(std430, binding = 3) readonly buffer BlockKeys { uint block_keys[]; };
+
+// x, y, z, xy, xz, yz, xyz.
+uvec3 direction(uint d)
+{
+    const uvec3 directions[7] = uvec3[7](uvec3(1, 0, 0), uvec3(0, 1, 0), uvec3(0, 0, 1), uvec3(1, 1, 0),
+                                         uvec3(1, 0, 1), uvec3(0, 1, 1), uvec3(1, 1, 1));
+    return directions[d];
+}
+
+// The direction whose axes are the bits of m (x | y << 1 | z << 2), m in 1..7.
+uint direction_of_mask(uint m)
+{
+    const uint of_mask[8] = uint[8](MISSING, 0u, 1u, 3u, 2u, 4u, 5u, 6u);
+    return of_mask[m];
+}
+
+uvec3 block_coordinates(uint key)
+{
+    uint mask = (1u << KEY_BITS) - 1u;
+    return uvec3(key & mask, (key >> KEY_BITS) & mask, key >> (2u * KEY_BITS));
+}
+
+uint block_key(uvec3 coordinates)
+{
+    return coordinates.x | coordinates.y << KEY_BITS | coordinates.z << (2u * KEY_BITS);
+}
+
+// The block this workgroup works on; block_count or more past the last one.
+uint this_block()
+{
+    return gl_WorkGroupID.x + gl_WorkGroupID.y * gl_NumWorkGroups.x;
+}
+
+uint sample_index(uvec3 local)
+{
+    return local.x + (BLOCK + 1u) * (local.y + (BLOCK + 1u) * local.z);
+}
+
+uvec3 unpack_point(uint point)
+{
+    return uvec3(point % BLOCK, (point / BLOCK) % BLOCK, point / (BLOCK * BLOCK));
+}
+
+uint pack_point(uvec3 local)
+{
+    return local.x + BLOCK * (local.y + BLOCK * local.z);
+}
+
+// The index of the block with `key`, MISSING when it is not in the grid.
+uint find_block(uint key)
+{
+    uint lo = 0u, hi = block_count;
+    while (lo < hi) {
+        uint mid = (lo + hi) / 2u;
+        if (block_keys[mid] < key)
+            lo = mid + 1u;
+        else
+            hi = mid;
+    }
+    return lo < block_count && block_keys[lo] == key ? lo : MISSING;
+}
