@@ -51,10 +51,10 @@ PACKAGES=(
 )
 
 # The peer benchmark (bench/run_bench.sh, bench/peer/compare_images.sh) also needs VTK and a
-# virtual X server, and docs/gallery/make_gallery.sh oiiotool:
+# virtual X server, bench/peer/mesh_vs_openvdb.sh OpenVDB (libopenvdb-dev), and docs/gallery/make_gallery.sh oiiotool:
 # `deploy/setup.sh --bench` adds them.
 if [ "${1:-}" = "--bench" ]; then
-  PACKAGES+=(python3-vtk9 python3-numpy xvfb xauth openimageio-tools)
+  PACKAGES+=(python3-vtk9 python3-numpy xvfb xauth openimageio-tools libopenvdb-dev)
 fi
 
 missing=()
