@@ -9,6 +9,7 @@
 #include <unistd.h>
 
 #include "cli_connect.h"
+#include "cli_frames.h"
 #include "cli_report.h"
 #include "fc_error.h"
 #include "fc_frame.h"
@@ -128,6 +129,8 @@ static int mesh(mesh_job *job)
     int status = choose_frames(job);
     if (status != FC_EXIT_OK || job->todo_count == 0)
         return status;
+    if (fc_cli_ensure_parent_dir(job->o->output, &err) != FC_OK)
+        return fc_cli_fail(exit_for(err.code, FC_EXIT_OUTPUT), "%s", err.message);
     fc_client *client = NULL;
     fc_connect_options connect_options = fc_cli_connect_options("fluidcast mesh");
     if (fc_cli_connect(job->o->server, NULL, &connect_options, &client, &err) != FC_OK)
