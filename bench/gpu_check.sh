@@ -28,7 +28,7 @@ GPU=${GPU:-auto}
 TEST_BUDGET=${TEST_BUDGET:-240}
 TARGETS_BUDGET=${TARGETS_BUDGET:-200}
 TEST_JOBS=${TEST_JOBS:-4}
-BENCH_PROGRAMS=(fluidcast-bench fluidcast-e2e-bench fluidcastd fluidcast-png-bench)
+BENCH_PROGRAMS=(fluidcast-bench fluidcast-e2e-bench fluidcastd fluidcast-png-bench fluidcast-mesh-bench)
 
 log() { echo "gpu_check: $*" >&2; }
 
@@ -106,6 +106,15 @@ run_png_bench() {
     echo
 }
 
+# Surface mesh extraction (issue 27) on the GPU: particles meshed per second by cell size.
+run_mesh_bench() {
+    echo "## Surface mesh extraction (fluidcast-mesh-bench)"
+    echo
+    timeout 90 "$BUILD_DIR/bin/fluidcast-mesh-bench" --gpu "$GPU" --particles 65536,1048576 --cells 0.5,1,1.5 \
+        --repeat 3 2>&1 || echo "- fluidcast-mesh-bench exit $?"
+    echo
+}
+
 main() {
     if [ "${1:-}" = "--prepare" ]; then
         prepare
@@ -123,6 +132,7 @@ main() {
         echo
         run_tests "$scratch/tests.log"
         run_png_bench
+        run_mesh_bench
     } >"$report"
     [ -n "${OUT:-}" ] && cp "$scratch/tests.log" "$OUT/gpu-tests.log" 2>/dev/null
     log "tests done: $(grep -E 'tests passed|tests failed' "$scratch/tests.log" | tail -n 1)"

@@ -6,6 +6,7 @@
 // at their scanned place, each corner the vertex of the lattice edge it lies
 // on, found in the block that owns the edge (this one, or a neighbour above
 // for edges that start on the block's upper faces).
+// The grid's sizes come as #defines (FC_SURFACE_GRID, surface_passes.c).
 
 layout(local_size_x = 64) in;
 

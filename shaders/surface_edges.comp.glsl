@@ -7,6 +7,7 @@
 // the prefix sum; emitting writes each crossed edge's vertex at its scanned
 // place: position, outward normal (minus the field's gradient) and the
 // attributes, interpolated where the field meets the iso value.
+// The grid's sizes come as #defines (FC_SURFACE_GRID, surface_passes.c).
 
 layout(local_size_x = 64) in;
 

@@ -4,6 +4,7 @@
 // vertices divide by the field: weighted means) and the nearest particle's id. Each sample sums over its block's list of
 // particles in list order, so equal input gives equal bits, and a sample
 // shared by two blocks gets the same value in both (surface_grid.h).
+// The grid's sizes come as #defines (FC_SURFACE_GRID, surface_passes.c).
 
 layout(local_size_x = 64) in;
 
@@ -27,11 +28,11 @@ uint this_block();
 uvec3 block_coordinates(uint key);
 
 // The weight of a particle of radius r at offset d from it, and the weight's
-// derivative by |d|^2 (both kernels reach 2 r).
+// derivative by |d|^2 (both kernels reach REACH_RADII r: the spline's 2 h).
 float weight(vec3 d, float r, out float slope)
 {
     float d2 = dot(d, d);
-    float reach2 = 4.0 * r * r;
+    float reach2 = REACH_RADII * REACH_RADII * r * r;
     slope = 0.0;
     if (d2 >= reach2)
         return 0.0;
@@ -68,9 +69,11 @@ void main()
     if (block >= block_count)
         return;
     uvec3 base = block_coordinates(block_keys[block]) * BLOCK;
-    uint first = list_starts[block], last = list_starts[block + 1u];
     for (uint s = gl_LocalInvocationID.x; s < BLOCK_SAMPLES; s += gl_WorkGroupSize.x) {
         uvec3 local = uvec3(s % (BLOCK + 1u), (s / (BLOCK + 1u)) % (BLOCK + 1u), s / ((BLOCK + 1u) * (BLOCK + 1u)));
+        uvec3 upper = uvec3(greaterThanEqual(local, uvec3(HALF)));
+        uint octant = block * 8u + upper.x + 2u * upper.y + 4u * upper.z;
+        uint first = list_starts[octant], last = list_starts[octant + 1u];
         vec3 x = origin + vec3(base + local) * cell;
         float f = 0.0, speed = 0.0, nearest = 1.0 / 0.0;
         vec3 gradient = vec3(0.0);

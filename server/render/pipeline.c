@@ -31,7 +31,9 @@
 #include "smoothing.h"
 #include "spray_pass.h"
 #include "stage_timer.h"
+#include "surface_mesher.h"
 #include "surface_passes.h"
+#include "surface_raster.h"
 #include "thickness_pass.h"
 #include "view.h"
 
@@ -65,6 +67,8 @@ struct fc_pipeline {
     char *shader_dir;       /* fc_pipeline_config.shader_dir (NULL: built in), for the passes built on first use */
     fc_surface_passes surface;   /* surface mesh extraction (surface_extract.h), built by its first use */
     bool surface_built;
+    fc_surface_raster raster;    /* --surface mesh: the frame's mesh and its depth, built by its first use */
+    bool raster_built;
 };
 
 /* One request as the stages see it. */
@@ -176,8 +180,12 @@ typedef struct depth_extras {
 /* Depth, and the thickness splat where splats_thickness or fuses_thickness,
  * with the shadow map's thickness where that fuses too (*extras says which):
  * all are timed as the depth stage. */
+static fc_code mesh_depth_stage(fc_pipeline *p, const render_job *job, depth_extras *extras, fc_error *err);
+
 static fc_code depth_stage(fc_pipeline *p, const render_job *job, fc_aov aov, depth_extras *extras, fc_error *err)
 {
+    if (job->settings->surface == FC_SURFACE_MODE_MESH)
+        return mesh_depth_stage(p, job, extras, err);
     bool together = splats_thickness(job, aov), fused = !together && fuses_thickness(p, job, aov);
     float radius = job->settings->radius;
     fc_view sun_view = {0};
@@ -202,6 +210,33 @@ static fc_code depth_stage(fc_pipeline *p, const render_job *job, fc_aov aov, de
     }
     fc_pass_profile_end(&p->profile);
     /* Fluid behind an opaque mesh is not there for any later stage. */
+    if (code == FC_OK && job->mesh_count > 0) {
+        fc_pass_profile_begin(&p->profile, "mesh occlusion");
+        code = fc_mesh_pass_occlude(&p->mesh, job->meshes, job->mesh_count, job->view, &p->depth.target, err);
+        fc_pass_profile_end(&p->profile);
+    }
+    fc_stage_timer_end(&p->timer, FC_STAGE_DEPTH);
+    return code;
+}
+
+/* --surface mesh: the frame's surface mesh rasterised into the depth and
+ * (at the thickness pass's scale) the thickness the splats would have made,
+ * then cut by the opaque meshes like the splats' depth. The thickness of a
+ * colour by attribute, which carries the particles' colours, and the sun's
+ * are splatted from the particles by their own stages. */
+static fc_code mesh_depth_stage(fc_pipeline *p, const render_job *job, depth_extras *extras, fc_error *err)
+{
+    fc_stage_timer_begin(&p->timer, FC_STAGE_DEPTH);
+    fc_pass_profile_begin(&p->profile, "surface mesh depth");
+    fc_code code = fc_surface_raster_depth(&p->raster, job->view, &p->depth.target, err);
+    fc_pass_profile_end(&p->profile);
+    extras->thickness = !job->colored;
+    if (code == FC_OK && extras->thickness) {
+        fc_view reduced = fc_thickness_view(job->view, job->settings->thickness_scale);
+        fc_pass_profile_begin(&p->profile, "surface mesh thickness");
+        code = fc_surface_raster_thickness(&p->raster, &reduced, &p->depth.thickness, err);
+        fc_pass_profile_end(&p->profile);
+    }
     if (code == FC_OK && job->mesh_count > 0) {
         fc_pass_profile_begin(&p->profile, "mesh occlusion");
         code = fc_mesh_pass_occlude(&p->mesh, job->meshes, job->mesh_count, job->view, &p->depth.target, err);
@@ -386,7 +421,8 @@ static fc_code render_stages(fc_pipeline *p, const render_job *job, fc_aov aov, 
 {
     depth_extras splatted = {false, false};
     if (aov == FC_AOV_THICKNESS) {
-        fc_code code = splats_thickness(job, aov) ? depth_stage(p, job, aov, &splatted, err) : FC_OK;
+        bool depth_first = splats_thickness(job, aov) || job->settings->surface == FC_SURFACE_MODE_MESH;
+        fc_code code = depth_first ? depth_stage(p, job, aov, &splatted, err) : FC_OK;
         return code == FC_OK ? thickness_stage(p, job, aov, splatted.thickness, result, err) : code;
     }
     fc_code code = depth_stage(p, job, aov, &splatted, err);
@@ -615,6 +651,7 @@ void fc_pipeline_destroy(fc_pipeline *p)
     fc_depth_pass_destroy(&p->depth);
     fc_anisotropy_destroy(&p->anisotropy);
     fc_surface_passes_destroy(&p->surface);
+    fc_surface_raster_destroy(&p->raster);
     fc_color_values_release(&p->color_values);
     fc_particle_attributes_destroy(&p->attributes);
     fc_particle_buffer_destroy(&p->particles);
@@ -676,12 +713,50 @@ static uint32_t channels_of(fc_aov aov)
 /* The settings the stages see: a radius of 0 on a frame with radii sizes
  * each particle by its own (PROTOCOL.md 5), the median standing for them
  * where one size is needed; a radius > 0 overrides them. */
+/* --surface mesh: the uploaded frame's mesh, extracted unless the raster
+ * holds it already for this upload and these settings. The anisotropic
+ * kernel's ellipsoids upload the frame again (fc_pipeline_frame_ellipsoids),
+ * before any render step orders the particles. */
+static fc_code prepare_surface_mesh(fc_pipeline *p, const fc_settings *settings, fc_error *err)
+{
+    if (!p->raster_built) {
+        fc_code code = fc_surface_raster_create(p->shader_dir, &p->raster, err);
+        if (code != FC_OK) {
+            fc_surface_raster_destroy(&p->raster);
+            return code;
+        }
+        p->raster_built = true;
+    }
+    if (fc_surface_raster_holds(&p->raster, p->uploads, settings))
+        return FC_OK;
+    const fc_surface_passes *passes;
+    fc_code code = fc_surface_mesher_check(&p->frame, settings, err);
+    if (code == FC_OK)
+        code = fc_pipeline_surface_passes(p, &passes, err);
+    fc_ellipsoid *ellipsoids = NULL;
+    if (code == FC_OK && settings->surface_kernel == FC_SURFACE_KERNEL_ANISOTROPIC) {
+        ellipsoids = malloc((size_t)p->frame.count * sizeof *ellipsoids);
+        code = ellipsoids ? fc_pipeline_frame_ellipsoids(p, &p->frame, ellipsoids, err)
+                          : fc_error_set(err, FC_ERR_NOMEM, "cannot allocate the ellipsoids");
+    }
+    fc_surface_mesh mesh = {0};
+    if (code == FC_OK)
+        code = fc_surface_mesher_run(passes, &p->frame, ellipsoids, settings, &mesh, err);
+    if (code == FC_OK)
+        code = fc_surface_raster_keep(&p->raster, p, &mesh, p->uploads, settings, err);
+    fc_surface_mesh_free(&mesh);
+    free(ellipsoids);
+    return code;
+}
+
 static fc_settings resolve_radius(fc_pipeline *p, const fc_settings *settings)
 {
     fc_settings resolved = *settings;
     p->particles.sized = !(settings->radius > 0.0f) && p->particles.has_radii;
     if (p->particles.sized)
         resolved.radius = p->particles.radius_median;
+    if (settings->surface == FC_SURFACE_MODE_MESH)
+        resolved.smoothing = FC_SMOOTHING_NONE;   /* the mesh is smooth already: its depth goes on as it is */
     return resolved;
 }
 
@@ -696,6 +771,8 @@ fc_code fc_pipeline_render_with(fc_pipeline *p, const fc_camera *camera, const f
     fc_pass_profile_reset(&p->profile);
     report_stages(&p->timer, stage_ms);
     fc_code code = check_request(p, camera, requested, aov, err);
+    if (code == FC_OK && requested->surface == FC_SURFACE_MODE_MESH)
+        code = prepare_surface_mesh(p, requested, err);
     fc_settings resolved = resolve_radius(p, requested);
     const fc_settings *settings = &resolved;
     if (code == FC_OK)
@@ -713,7 +790,10 @@ fc_code fc_pipeline_render_with(fc_pipeline *p, const fc_camera *camera, const f
     float lo[3], hi[3];
     scene_bounds(p, &scene, lo, hi);
     fc_view view;
-    fc_view_from_camera(camera, lo, hi, fc_anisotropy_reach(&p->particles, settings->radius), &view);
+    float reach = fc_anisotropy_reach(&p->particles, settings->radius);
+    if (settings->surface == FC_SURFACE_MODE_MESH)
+        reach *= FC_SURFACE_KERNEL_REACH_RADII;   /* the mesh reaches as far as the field */
+    fc_view_from_camera(camera, lo, hi, reach, &view);
     render_job job;
     plan_job(p, &view, camera, settings, &scene, aov, want_u8 != 0, &job);
     const fc_render_target *result = NULL;
@@ -856,5 +936,6 @@ void fc_pipeline_gpu_memory(const fc_pipeline *p, fc_gpu_memory *out)
     fc_mesh_pass_tally(&p->mesh, out);
     fc_render_target_tally(&p->composite.srgb_target, out);
     fc_render_target_tally(&p->composite.float_target, out);
+    fc_render_target_tally(&p->raster.target, out);
     fc_readback_tally(&p->readback, out);
 }

@@ -1,8 +1,10 @@
 /* surface_grid.h — the sparse grid a surface mesh is extracted on
  * (surface_extract.h): blocks of FC_SURFACE_BLOCK^3 cells, only those near
- * particles, each with the list of the particles whose field reaches its
- * samples (Janisz's "particle lookup cache" per block, after Rosenberg &
- * Birdwell 2008). Built on the CPU by a stable radix sort of (block,
+ * particles, each octant of a block with the list of the particles whose
+ * field reaches its samples (Janisz's "particle lookup cache" per block,
+ * after Rosenberg & Birdwell 2008; octants, not whole blocks, so that a sample
+ * tests a few times the particles that reach it rather than dozens of times).
+ * Built on the CPU by stable radix sorts of (block, particle) and (octant,
  * particle) pairs, so that equal input gives equal lists in particle order.
  *
  * A block holds (FC_SURFACE_BLOCK + 1)^3 samples: its cells' corners, the
@@ -21,6 +23,10 @@
 #define FC_SURFACE_BLOCK_CELLS 512u               /* FC_SURFACE_BLOCK^3 */
 #define FC_SURFACE_BLOCK_EDGES 3584u              /* 7 lattice edges per cell corner it owns */
 #define FC_SURFACE_KEY_BITS 10u                   /* bits of a block coordinate in a key */
+/* A block's samples split in two halves per axis: samples [0, HALF) and
+ * [HALF, FC_SURFACE_BLOCK] (the upper face with the upper half). */
+#define FC_SURFACE_HALF 4u
+#define FC_SURFACE_OCTANTS 8u
 #define FC_SURFACE_MAX_BLOCKS_PER_AXIS (1u << FC_SURFACE_KEY_BITS)
 /* The most particles one extraction takes (their lists are indexed by 32 bits). */
 #define FC_SURFACE_MAX_PARTICLES (1u << 28)
@@ -38,8 +44,9 @@ typedef struct fc_surface_grid {
     float cell;               /* cell edge, world units */
     uint32_t block_count;
     uint32_t *block_keys;     /* ascending: x | y << 10 | z << 20, block coordinates */
-    uint32_t *list_starts;    /* block_count + 1: block b's particles are list[list_starts[b] .. [b + 1]) */
-    uint32_t *list;           /* particle indices, ascending within a block */
+    uint32_t *list_starts;    /* 8 block_count + 1: octant o (x | y << 1 | z << 2, the upper halves) of block b
+                                 reads list[list_starts[8 b + o] .. [8 b + o + 1]) */
+    uint32_t *list;           /* particle indices, ascending within an octant */
 } fc_surface_grid;
 
 /* Builds the grid of cells `cell` wide around `count` particles (xyz

@@ -8,6 +8,7 @@
 #include "gl_util.h"
 #include "shader_program.h"
 #include "surface_grid.h"
+#include "surface_mesher.h"
 
 /* Uniform locations of anisotropy_scan.comp.glsl. */
 enum { LOC_SCAN_COUNT = 0, LOC_SCAN_OFFSET = 8, LOC_SCAN_SUMS = 9, LOC_SCAN_ADD = 10 };
@@ -74,20 +75,21 @@ void fc_surface_dispatch_blocks(const fc_surface_passes *s, uint32_t blocks)
 static void grid_defines(char *out, size_t size)
 {
     snprintf(out, size,
-             "#define BLOCK %uu\n#define BLOCK_SAMPLES %uu\n#define BLOCK_CELLS %uu\n#define EDGE_DIRECTIONS 7u\n"
-             "#define BLOCK_EDGES %uu\n#define KEY_BITS %uu\n#define MISSING 0xFFFFFFFFu\n",
+             "#define FC_SURFACE_GRID 1\n#define BLOCK %uu\n#define BLOCK_SAMPLES %uu\n#define BLOCK_CELLS %uu\n#define EDGE_DIRECTIONS 7u\n"
+             "#define BLOCK_EDGES %uu\n#define KEY_BITS %uu\n#define MISSING 0xFFFFFFFFu\n#define REACH_RADII %.9f\n"
+             "#define HALF %uu\n",
              FC_SURFACE_BLOCK, FC_SURFACE_BLOCK_SAMPLES, FC_SURFACE_BLOCK_CELLS, FC_SURFACE_BLOCK_EDGES,
-             FC_SURFACE_KEY_BITS);
+             FC_SURFACE_KEY_BITS, (double)FC_SURFACE_KERNEL_REACH_RADII, FC_SURFACE_HALF);
 }
 
 fc_code fc_surface_passes_create(const char *shader_dir, fc_surface_passes *s, fc_error *err)
 {
     memset(s, 0, sizeof *s);
-    char defines[256];
+    char defines[352];
     grid_defines(defines, sizeof defines);
-    const char *field[] = {"surface_common.glsl", "surface_field.comp.glsl"};
-    const char *edges[] = {"surface_common.glsl", "surface_edges.comp.glsl"};
-    const char *cells[] = {"surface_common.glsl", "surface_cells.comp.glsl"};
+    const char *field[] = {"surface_grid.comp.glsl", "surface_field.comp.glsl"};
+    const char *edges[] = {"surface_grid.comp.glsl", "surface_edges.comp.glsl"};
+    const char *cells[] = {"surface_grid.comp.glsl", "surface_cells.comp.glsl"};
     const char *scan[] = {"anisotropy_scan.comp.glsl"};
     fc_code code = fc_program_build_defines(shader_dir, defines, field, 2, &s->field_program, err);
     if (code == FC_OK)

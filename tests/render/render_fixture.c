@@ -100,6 +100,7 @@ fc_settings test_settings(float radius, fc_smoothing smoothing, uint32_t iterati
         .thickness_scale = 1.0f,
         .shininess = 1.0f,
         .foam_tau = 1.0f,
+        .surface_cell = 1.0f,
     };
 }
 

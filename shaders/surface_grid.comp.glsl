@@ -1,10 +1,11 @@
 #version 450 core
-// The sparse grid of a surface mesh (surface_grid.h, surface_extract.c), a
-// library the passes link: blocks of BLOCK^3 cells with (BLOCK + 1)^3 samples
-// each, the upper faces included, keyed x | y << KEY_BITS | z << 2 KEY_BITS and
-// listed in ascending key order; and the seven directions of the lattice edges
-// marching tetrahedra put vertices on (surface_tets.h). BLOCK, KEY_BITS and
-// the other sizes come as #defines from surface_extract.c.
+// The sparse grid of a surface mesh (surface_grid.h): a compute library
+// without main, linked into each surface pass: blocks of BLOCK^3 cells with
+// (BLOCK + 1)^3 samples each, the upper faces included, keyed
+// x | y << KEY_BITS | z << 2 KEY_BITS and listed in ascending key order; and the
+// seven directions of the lattice edges marching tetrahedra put vertices on
+// (surface_tets.h). BLOCK, KEY_BITS and the other sizes come as #defines from
+// surface_passes.c (FC_SURFACE_GRID marks the files that read them).
 
 layout(location = 0) uniform uint block_count;
 

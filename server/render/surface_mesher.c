@@ -1,0 +1,419 @@
+/* surface_mesher.c — the surface mesh of a frame (surface_mesher.h): the grid and
+ * its particle lists on the CPU (surface_grid.c), then five compute passes:
+ * the field at the blocks' samples; the crossed lattice edges counted and
+ * prefix-summed into vertex numbers; the cells' triangles counted and
+ * prefix-summed; the vertices written; the triangles written (marching
+ * tetrahedra, surface_tets.h). No atomics anywhere: every output's place comes
+ * from a prefix sum over blocks in key order, so equal input gives the same
+ * arrays bit for bit. Then Taubin smoothing on the CPU (surface_smooth.c). */
+#include "surface_mesher.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "fc_error.h"
+#include "fc_frame.h"
+#include "fc_settings.h"
+#include "gl_util.h"
+#include "surface_grid.h"
+#include "surface_passes.h"
+#include "surface_smooth.h"
+#include "surface_tets.h"
+
+/* Uniform locations of surface_*.comp.glsl. */
+enum { LOC_BLOCKS = 0, LOC_ORIGIN = 1, LOC_CELL = 2, LOC_ISO = 3, LOC_KERNEL = 4, LOC_EMIT = 5,
+       LOC_TET_CORNERS = 10, LOC_TET_CASES = 20 };
+/* Shader storage bindings of surface_*.comp.glsl. */
+enum { BIND_PARTICLES = 0, BIND_ATTRIBUTES = 1, BIND_IDS = 2, BIND_KEYS = 3, BIND_STARTS = 4, BIND_LISTS = 5,
+       BIND_FIELD = 6, BIND_SAMPLE_ATTRIBUTES = 7, BIND_SAMPLE_EXTRAS = 8, BIND_SHAPES = 9, BIND_EDGES = 10,
+       BIND_CELLS = 11, BIND_POSITIONS = 12, BIND_NORMALS = 13, BIND_VERTEX_ATTRIBUTES = 14,
+       BIND_VERTEX_EXTRAS = 15, BIND_INDICES = 16 };
+enum { BUFFER_COUNT = 17 };
+
+/* Both kernels reach 2 radii from a particle; the iso value is the field of
+ * a lone particle at one radius, so a lone particle meshes as its sphere. */
+#define METABALL_ISO 0.421875f   /* (1 - (1/2)^2)^3 */
+#define SPH_ISO 0.25f            /* (2 - 1)^3 / 4 */
+/* Bytes of one output vertex on the GPU (position, normal, attributes, speed and id) and of one triangle. */
+#define VERTEX_BYTES 48u
+#define TRIANGLE_BYTES 12u
+
+typedef struct extraction {
+    fc_surface_grid grid;
+    float iso;
+    int kernel;
+    uint32_t vertices, triangles;
+    GLuint buffers[BUFFER_COUNT];
+} extraction;
+
+static float iso_of(fc_surface_kernel kernel)
+{
+    return kernel == FC_SURFACE_KERNEL_SPH ? SPH_ISO : METABALL_ISO;
+}
+
+static fc_code make_buffer(GLuint *buffer, uint64_t bytes, const void *data, fc_error *err)
+{
+    glCreateBuffers(1, buffer);
+    glNamedBufferStorage(*buffer, (GLsizeiptr)(bytes ? bytes : 16), bytes ? data : NULL, GL_DYNAMIC_STORAGE_BIT);
+    return fc_gl_check("allocating the surface mesh buffers", err);
+}
+
+/* The particles as the field pass reads them: centre (the ellipsoid's
+ * smoothed one with the anisotropic kernel) and radius, velocity and density,
+ * id (the index where the frame has none); and the ellipsoids' G as two vec4
+ * (xx xy xz yy, yz zz), or one unused vec4 for the other kernels. */
+static fc_code upload_particles(extraction *x, const fc_frame *frame, const float *centres,
+                                const fc_ellipsoid *ellipsoids, const float *radius, float uniform_radius,
+                                fc_error *err)
+{
+    size_t n = (size_t)frame->count, shapes_n = ellipsoids ? 2 * n : 1;
+    float *particles = malloc(n * 16), *attributes = calloc(n, 16), *shapes = calloc(shapes_n, 16);
+    uint32_t *ids = malloc(n * 4);
+    fc_code code = FC_OK;
+    if (!particles || !attributes || !ids || !shapes)
+        code = fc_error_set(err, FC_ERR_NOMEM, "cannot stage %zu particles for the surface mesh", n);
+    for (size_t i = 0; code == FC_OK && ellipsoids && i < n; i++)
+        memcpy(shapes + 8 * i, ellipsoids[i].inverse, 6 * sizeof(float));
+    for (size_t i = 0; code == FC_OK && i < n; i++) {
+        memcpy(particles + 4 * i, centres + 3 * i, 12);
+        particles[4 * i + 3] = radius ? radius[i] : uniform_radius;
+        if (frame->velocity)
+            memcpy(attributes + 4 * i, frame->velocity + 3 * i, 12);
+        if (frame->density)
+            attributes[4 * i + 3] = frame->density[i];
+        ids[i] = frame->ids ? frame->ids[i] : (uint32_t)i;
+    }
+    if (code == FC_OK)
+        code = make_buffer(&x->buffers[BIND_PARTICLES], n * 16, particles, err);
+    if (code == FC_OK)
+        code = make_buffer(&x->buffers[BIND_ATTRIBUTES], n * 16, attributes, err);
+    if (code == FC_OK)
+        code = make_buffer(&x->buffers[BIND_IDS], n * 4, ids, err);
+    if (code == FC_OK)
+        code = make_buffer(&x->buffers[BIND_SHAPES], shapes_n * 16, shapes, err);
+    free(shapes);
+    free(particles);
+    free(attributes);
+    free(ids);
+    return code;
+}
+
+/* The grid's lists and the passes' work buffers. */
+static fc_code allocate_grid(extraction *x, fc_error *err)
+{
+    const fc_surface_grid *g = &x->grid;
+    uint64_t blocks = g->block_count;
+    uint64_t samples = blocks * FC_SURFACE_BLOCK_SAMPLES;
+    fc_code code = make_buffer(&x->buffers[BIND_KEYS], blocks * 4, g->block_keys, err);
+    if (code == FC_OK)
+        code = make_buffer(&x->buffers[BIND_STARTS], (blocks * FC_SURFACE_OCTANTS + 1) * 4, g->list_starts, err);
+    if (code == FC_OK)
+        code = make_buffer(&x->buffers[BIND_LISTS], (uint64_t)g->list_starts[blocks * FC_SURFACE_OCTANTS] * 4,
+                           g->list, err);
+    if (code == FC_OK)
+        code = make_buffer(&x->buffers[BIND_FIELD], samples * 16, NULL, err);
+    if (code == FC_OK)
+        code = make_buffer(&x->buffers[BIND_SAMPLE_ATTRIBUTES], samples * 16, NULL, err);
+    if (code == FC_OK)
+        code = make_buffer(&x->buffers[BIND_SAMPLE_EXTRAS], samples * 8, NULL, err);
+    if (code == FC_OK)
+        code = make_buffer(&x->buffers[BIND_EDGES],
+                           fc_surface_scan_entries(blocks * FC_SURFACE_BLOCK_EDGES) * 4, NULL, err);
+    if (code == FC_OK)
+        code = make_buffer(&x->buffers[BIND_CELLS],
+                           fc_surface_scan_entries(blocks * FC_SURFACE_BLOCK_CELLS) * 4, NULL, err);
+    return code;
+}
+
+static void bind_all(const extraction *x)
+{
+    for (GLuint b = 0; b < BUFFER_COUNT; b++)
+        if (x->buffers[b])
+            glBindBufferBase(GL_SHADER_STORAGE_BUFFER, b, x->buffers[b]);
+}
+
+/* The uniforms each program declares (setting one a program lacks is an error). */
+enum { USES_PLACE = 1, USES_ISO = 2, USES_KERNEL = 4, USES_EMIT = 8 };
+
+static void set_grid_uniforms(GLuint program, unsigned uses, const extraction *x, int emit)
+{
+    glProgramUniform1ui(program, LOC_BLOCKS, x->grid.block_count);
+    if (uses & USES_PLACE) {
+        glProgramUniform3fv(program, LOC_ORIGIN, 1, x->grid.origin);
+        glProgramUniform1f(program, LOC_CELL, x->grid.cell);
+    }
+    if (uses & USES_ISO)
+        glProgramUniform1f(program, LOC_ISO, x->iso);
+    if (uses & USES_KERNEL)
+        glProgramUniform1i(program, LOC_KERNEL, x->kernel);
+    if (uses & USES_EMIT)
+        glProgramUniform1i(program, LOC_EMIT, emit);
+}
+
+static void run_program(const fc_surface_passes *s, GLuint program, unsigned uses, const extraction *x, int emit)
+{
+    set_grid_uniforms(program, uses, x, emit);
+    glUseProgram(program);
+    bind_all(x);
+    fc_surface_dispatch_blocks(s, x->grid.block_count);
+}
+
+static void run_field(const fc_surface_passes *s, const extraction *x)
+{
+    run_program(s, s->field_program, USES_PLACE | USES_KERNEL, x, 0);
+}
+
+static void run_edges(const fc_surface_passes *s, const extraction *x, int emit)
+{
+    run_program(s, s->edges_program, USES_PLACE | USES_ISO | USES_EMIT, x, emit);
+}
+
+static void run_cells(const fc_surface_passes *s, const extraction *x, int emit)
+{
+    run_program(s, s->cells_program, USES_ISO | USES_EMIT, x, emit);
+}
+
+static uint32_t read_uint(GLuint buffer, uint64_t index)
+{
+    uint32_t v = 0;
+    glGetNamedBufferSubData(buffer, (GLintptr)(index * 4), 4, &v);
+    return v;
+}
+
+/* Field, then the counts and their prefix sums: the mesh's size. */
+static fc_code count_mesh(const fc_surface_passes *s, extraction *x, fc_error *err)
+{
+    uint64_t blocks = x->grid.block_count;
+    run_field(s, x);
+    run_edges(s, x, 0);
+    fc_surface_scan(s, x->buffers[BIND_EDGES], blocks * FC_SURFACE_BLOCK_EDGES);
+    run_cells(s, x, 0);
+    fc_surface_scan(s, x->buffers[BIND_CELLS], blocks * FC_SURFACE_BLOCK_CELLS);
+    glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+    x->vertices = read_uint(x->buffers[BIND_EDGES], blocks * FC_SURFACE_BLOCK_EDGES);
+    x->triangles = read_uint(x->buffers[BIND_CELLS], blocks * FC_SURFACE_BLOCK_CELLS);
+    fc_code code = fc_gl_check("counting the surface mesh", err);
+    if (code != FC_OK)
+        return code;
+    uint64_t bytes = (uint64_t)x->vertices * VERTEX_BYTES + (uint64_t)x->triangles * TRIANGLE_BYTES;
+    if (bytes + blocks * FC_SURFACE_BLOCK_BYTES > FC_SURFACE_GRID_BUDGET)
+        return fc_error_set(err, FC_ERR_LIMIT,
+                            "the surface mesh has %u vertices and %u triangles, past its budget of %llu MiB: raise "
+                            "surface_cell",
+                            x->vertices, x->triangles, (unsigned long long)(FC_SURFACE_GRID_BUDGET >> 20));
+    return FC_OK;
+}
+
+static fc_code emit_mesh(const fc_surface_passes *s, extraction *x, fc_error *err)
+{
+    uint64_t v = x->vertices, t = x->triangles;
+    fc_code code = make_buffer(&x->buffers[BIND_POSITIONS], v * 12, NULL, err);
+    if (code == FC_OK)
+        code = make_buffer(&x->buffers[BIND_NORMALS], v * 12, NULL, err);
+    if (code == FC_OK)
+        code = make_buffer(&x->buffers[BIND_VERTEX_ATTRIBUTES], v * 16, NULL, err);
+    if (code == FC_OK)
+        code = make_buffer(&x->buffers[BIND_VERTEX_EXTRAS], v * 8, NULL, err);
+    if (code == FC_OK)
+        code = make_buffer(&x->buffers[BIND_INDICES], t * 12, NULL, err);
+    if (code != FC_OK)
+        return code;
+    run_edges(s, x, 1);
+    run_cells(s, x, 1);
+    glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+    return fc_gl_check("writing the surface mesh", err);
+}
+
+static fc_code allocate_mesh(fc_surface_mesh *m, uint32_t vertices, uint32_t triangles, uint32_t attributes,
+                             fc_error *err)
+{
+    size_t v = vertices, t = triangles;
+    m->vertex_count = vertices;
+    m->triangle_count = triangles;
+    m->attributes = attributes;
+    m->positions = malloc(v * 12 + 1);
+    m->normals = malloc(v * 12 + 1);
+    m->indices = malloc(t * 12 + 1);
+    bool ok = m->positions && m->normals && m->indices;
+    if (attributes & FC_SURFACE_SPEED)
+        ok = ok && (m->speed = malloc(v * 4 + 1));
+    if (attributes & FC_SURFACE_DENSITY)
+        ok = ok && (m->density = malloc(v * 4 + 1));
+    if (attributes & FC_SURFACE_VELOCITY)
+        ok = ok && (m->velocity = malloc(v * 12 + 1));
+    if (attributes & FC_SURFACE_ID)
+        ok = ok && (m->id = malloc(v * 4 + 1));
+    return ok ? FC_OK : fc_error_set(err, FC_ERR_NOMEM, "cannot allocate a mesh of %u vertices", vertices);
+}
+
+/* Reads the mesh back, the attributes split into their arrays, and checks
+ * every index names a vertex (an edge whose owner block is missing would be
+ * a bug of the grid, reported rather than passed on). */
+static fc_code read_mesh(const extraction *x, fc_surface_mesh *m, fc_error *err)
+{
+    size_t v = m->vertex_count;
+    glGetNamedBufferSubData(x->buffers[BIND_POSITIONS], 0, (GLsizeiptr)(v * 12), m->positions);
+    glGetNamedBufferSubData(x->buffers[BIND_NORMALS], 0, (GLsizeiptr)(v * 12), m->normals);
+    glGetNamedBufferSubData(x->buffers[BIND_INDICES], 0, (GLsizeiptr)((size_t)m->triangle_count * 12), m->indices);
+    float *attributes = malloc(v * 16 + 1);
+    uint32_t *extras = malloc(v * 8 + 1);
+    if (!attributes || !extras) {
+        free(attributes);
+        free(extras);
+        return fc_error_set(err, FC_ERR_NOMEM, "cannot read back %zu vertices", v);
+    }
+    glGetNamedBufferSubData(x->buffers[BIND_VERTEX_ATTRIBUTES], 0, (GLsizeiptr)(v * 16), attributes);
+    glGetNamedBufferSubData(x->buffers[BIND_VERTEX_EXTRAS], 0, (GLsizeiptr)(v * 8), extras);
+    for (size_t i = 0; i < v; i++) {
+        if (m->velocity)
+            memcpy(m->velocity + 3 * i, attributes + 4 * i, 12);
+        if (m->density)
+            m->density[i] = attributes[4 * i + 3];
+        if (m->speed)
+            memcpy(m->speed + i, extras + 2 * i, 4);
+        if (m->id)
+            m->id[i] = extras[2 * i + 1];
+    }
+    free(attributes);
+    free(extras);
+    fc_code code = fc_gl_check("reading the surface mesh back", err);
+    for (size_t i = 0; code == FC_OK && i < (size_t)m->triangle_count * 3; i++)
+        if (m->indices[i] >= m->vertex_count)
+            code = fc_error_set(err, FC_ERR_INTERNAL, "surface mesh triangle %zu names no vertex", i / 3);
+    return code;
+}
+
+static uint32_t mesh_attributes(const fc_frame *frame)
+{
+    uint32_t a = 0;
+    if (frame->velocity)
+        a |= FC_SURFACE_SPEED | FC_SURFACE_VELOCITY;
+    if (frame->density)
+        a |= FC_SURFACE_DENSITY;
+    if (frame->ids)
+        a |= FC_SURFACE_ID;
+    return a;
+}
+
+/* The radius the cell size is measured in, and per-particle radii where each
+ * particle keeps its own (fc_radius_source_of). */
+static fc_code resolve_radius(const fc_frame *frame, const fc_settings *settings, float *radius,
+                              const float **per_particle, fc_error *err)
+{
+    *per_particle = NULL;
+    switch (fc_radius_source_of(settings, frame->radius != NULL)) {
+    case FC_RADIUS_FROM_SETTINGS:
+        *radius = settings->radius;
+        return FC_OK;
+    case FC_RADIUS_PER_PARTICLE:
+        *per_particle = frame->radius;
+        return fc_frame_median_radius(frame, radius, err);
+    case FC_RADIUS_ESTIMATED:
+        *radius = fc_frame_estimate_radius(frame);
+        return FC_OK;
+    }
+    return fc_error_set(err, FC_ERR_INTERNAL, "unknown radius source");
+}
+
+static float largest(const float *values, uint64_t count, float fallback)
+{
+    if (!values)
+        return fallback;
+    float m = 0.0f;
+    for (uint64_t i = 0; i < count; i++)
+        m = fmaxf(m, values[i]);
+    return m;
+}
+
+static void release(extraction *x)
+{
+    glDeleteBuffers(BUFFER_COUNT, x->buffers);
+    fc_surface_grid_free(&x->grid);
+}
+
+/* The ellipsoids' centres packed for the grid, and the longest stretch of any. */
+static fc_code ellipsoid_centres(const fc_ellipsoid *ellipsoids, uint64_t count, float **centres, float *stretch,
+                                 fc_error *err)
+{
+    *centres = malloc((size_t)count * 12 + 1);
+    if (!*centres)
+        return fc_error_set(err, FC_ERR_NOMEM, "cannot allocate %llu ellipsoid centres", (unsigned long long)count);
+    *stretch = 1.0f;
+    for (uint64_t i = 0; i < count; i++) {
+        memcpy(*centres + 3 * i, ellipsoids[i].centre, 12);
+        *stretch = fmaxf(*stretch, ellipsoids[i].stretch_max);
+    }
+    return FC_OK;
+}
+
+static fc_code extract(const fc_surface_passes *s, const fc_frame *frame, const fc_ellipsoid *ellipsoids,
+                       const fc_settings *settings, fc_surface_mesh *out, extraction *x, fc_error *err)
+{
+    float radius;
+    const float *per_particle;
+    fc_code code = resolve_radius(frame, settings, &radius, &per_particle, err);
+    if (code != FC_OK)
+        return code;
+    float *centres = NULL, stretch = 1.0f;
+    if (settings->surface_kernel != FC_SURFACE_KERNEL_ANISOTROPIC)
+        ellipsoids = NULL;
+    else if (!ellipsoids)
+        return fc_error_set(err, FC_ERR_USAGE, "the anisotropic surface kernel needs the particles' ellipsoids");
+    else
+        code = ellipsoid_centres(ellipsoids, frame->count, &centres, &stretch, err);
+    const float *positions = centres ? centres : frame->positions;
+    float reach = FC_SURFACE_KERNEL_REACH_RADII * stretch * largest(per_particle, frame->count, radius);
+    x->iso = iso_of(settings->surface_kernel);
+    x->kernel = (int)settings->surface_kernel;
+    if (code == FC_OK)
+        code = fc_surface_grid_build(positions, frame->count, reach, settings->surface_cell * radius, &x->grid, err);
+    if (code == FC_OK)
+        code = upload_particles(x, frame, positions, ellipsoids, per_particle, radius, err);
+    free(centres);
+    if (code == FC_OK)
+        code = allocate_grid(x, err);
+    if (code == FC_OK)
+        code = count_mesh(s, x, err);
+    if (code == FC_OK)
+        code = emit_mesh(s, x, err);
+    if (code == FC_OK)
+        code = allocate_mesh(out, x->vertices, x->triangles, mesh_attributes(frame), err);
+    if (code == FC_OK)
+        code = read_mesh(x, out, err);
+    if (code == FC_OK)
+        code = fc_surface_smooth(out, settings->surface_smoothing, err);
+    return code;
+}
+
+static void set_tet_tables(const fc_surface_passes *s)
+{
+    uint32_t corners[FC_SURFACE_TETS], cases[FC_SURFACE_TETS * FC_SURFACE_TET_CASES];
+    fc_surface_tet_tables(corners, cases);
+    glProgramUniform1uiv(s->cells_program, LOC_TET_CORNERS, FC_SURFACE_TETS, corners);
+    glProgramUniform1uiv(s->cells_program, LOC_TET_CASES, FC_SURFACE_TETS * FC_SURFACE_TET_CASES, cases);
+}
+
+fc_code fc_surface_mesher_check(const fc_frame *frame, const fc_settings *settings, fc_error *err)
+{
+    if (frame->count > FC_SURFACE_MAX_PARTICLES)
+        return fc_error_set(err, FC_ERR_LIMIT, "a surface mesh takes at most %u particles, not %llu",
+                            FC_SURFACE_MAX_PARTICLES, (unsigned long long)frame->count);
+    fc_code code = fc_settings_validate(settings, err);
+    return code == FC_OK ? fc_frame_validate(frame, err) : code;
+}
+
+fc_code fc_surface_mesher_run(const fc_surface_passes *passes, const fc_frame *frame, const fc_ellipsoid *ellipsoids,
+                              const fc_settings *settings, fc_surface_mesh *out, fc_error *err)
+{
+    memset(out, 0, sizeof *out);
+    if (frame->count == 0)
+        return FC_OK;
+    set_tet_tables(passes);
+    extraction x = {0};
+    fc_code code = extract(passes, frame, ellipsoids, settings, out, &x, err);
+    release(&x);
+    if (code != FC_OK)
+        fc_surface_mesh_free(out);
+    return code;
+}
