@@ -55,10 +55,11 @@ PACKAGES=(
 )
 
 # The peer benchmark (bench/run_bench.sh, bench/peer/compare_images.sh) also needs VTK and a
-# virtual X server, docs/gallery/make_gallery.sh oiiotool, and the verdict set's simulator
-# (bench/peer/verdict_set/simulate.py) scipy: `deploy/setup.sh --bench` adds them.
+# virtual X server, docs/gallery/make_gallery.sh oiiotool, the verdict set's simulator
+# (bench/peer/verdict_set/simulate.py) scipy, and bench/peer/mesh_vs_openvdb.sh OpenVDB (libopenvdb-dev):
+# `deploy/setup.sh --bench` adds them.
 if [ "${1:-}" = "--bench" ]; then
-  PACKAGES+=(python3-vtk9 python3-numpy python3-scipy xvfb xauth openimageio-tools)
+  PACKAGES+=(python3-vtk9 python3-numpy python3-scipy xvfb xauth openimageio-tools libopenvdb-dev)
 fi
 
 missing=()

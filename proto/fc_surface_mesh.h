@@ -1,8 +1,8 @@
 /* fc_surface_mesh.h — an extracted fluid surface (issue 27): what the daemon's
  * extractor (server/render/surface_extract.h) produces and what a client
  * receives and writes to files. Shared by both sides, so it lives in proto/. */
-#ifndef FC_SURFACE_MESH_H
-#define FC_SURFACE_MESH_H
+#ifndef FLUIDCAST_SURFACE_MESH_H
+#define FLUIDCAST_SURFACE_MESH_H
 
 #include <stdint.h>
 

@@ -27,7 +27,8 @@ extern "C" {
  * fc_msg_name are made from this one list, so a type cannot lack its name.
  * Numbers are the wire's: never renumber. Types 10 and up are extensions
  * (PROTOCOL.md 9): scene images (wire_scene.h), meshes (wire_mesh.h), and the
- * session and packed-upload messages (wire_session.h), which need a capability. */
+ * session and packed-upload messages (wire_session.h), which need a capability,
+ * and surface meshes (wire_surface.h). */
 #define FC_MSG_TYPES(X)                                                                                     \
     X(HELLO, 1)            /* client -> server */                                                           \
     X(WELCOME, 2)          /* server -> client */                                                           \
@@ -50,7 +51,9 @@ extern "C" {
     X(CHUNK, 21)           /* producer -> server: chunk i of K of a multi-rank frame */                     \
     X(FRAME_PACKED, 22)    /* client -> server: a FRAME in a packed body */                                 \
     X(LIST_SESSIONS, 23)   /* client -> server: which sessions exist */                                     \
-    X(SESSION_LIST, 24)    /* server -> client: answers LIST_SESSIONS */
+    X(SESSION_LIST, 24)    /* server -> client: answers LIST_SESSIONS */                                   \
+    X(SURFACE, 25)         /* client -> server: the surface mesh of the frame RENDER would render */      \
+    X(SURFACE_PART, 26)    /* server -> client: one part of SURFACE's answer */
 
 #define FC_MSG_ENUMERATOR(name, number) FC_MSG_##name = number,
 typedef enum fc_msg_type { FC_MSG_TYPES(FC_MSG_ENUMERATOR) } fc_msg_type;

@@ -1,5 +1,5 @@
 // protocol.js — the viewer's side of the fluidcast wire protocol (proto/PROTOCOL.md) in the browser:
-// each binary WebSocket message is one protocol message, header and payload (PROTOCOL.md section 13).
+// each binary WebSocket message is one protocol message, header and payload (PROTOCOL.md section 14).
 // Little-endian throughout; strings are a u16 length and UTF-8 bytes.
 
 export const HEADER_SIZE = 16;

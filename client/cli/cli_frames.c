@@ -43,6 +43,20 @@ fc_code fc_cli_ensure_dir(const char *dir, fc_error *err)
     return FC_OK;
 }
 
+fc_code fc_cli_ensure_parent_dir(const char *path, fc_error *err)
+{
+    const char *slash = strrchr(path, '/');
+    if (!slash || slash == path)
+        return FC_OK;
+    char dir[4096];
+    size_t len = (size_t)(slash - path);
+    if (len >= sizeof dir)
+        return fc_error_set(err, FC_ERR_USAGE, "the directory of %s is too long", path);
+    memcpy(dir, path, len);
+    dir[len] = '\0';
+    return fc_cli_ensure_dir(dir, err);
+}
+
 fc_code fc_cli_frame_path(char *out, size_t size, const char *dir, const char *prefix, uint64_t number,
                           fc_image_format format, fc_error *err)
 {

@@ -17,6 +17,10 @@ const char *fc_cli_format_extension(fc_image_format format);
 /* Creates the directory unless it exists. FC_ERR_IO naming it otherwise. */
 fc_code fc_cli_ensure_dir(const char *dir, fc_error *err);
 
+/* The directory part of an output path or pattern ("frames/f_%04d.png"),
+ * created when missing (one level); nothing for a name without one. */
+fc_code fc_cli_ensure_parent_dir(const char *path, fc_error *err);
+
 /* DIR/PREFIX_NNNNNN.EXT (the number zero-padded to 6 digits) into out.
  * FC_ERR_USAGE when it does not fit. */
 fc_code fc_cli_frame_path(char *out, size_t size, const char *dir, const char *prefix, uint64_t number,

@@ -6,6 +6,7 @@
 #include "cli_report.h"
 #include "cli_token.h"
 #include "info.h"
+#include "mesh_command.h"
 #include "render.h"
 #include "snapshot.h"
 #include "spacemouse_dump.h"
@@ -26,6 +27,8 @@ static void print_help(FILE *to)
           "                          (fluidcast snapshot --help for its options)\n"
           "  render INPUTS... -o OUT render a sequence of particle files to a video\n"
           "                          (.mp4, .webm) or numbered images\n"
+          "  mesh INPUTS... -o OUT   the fluid's surface as triangle meshes (.ply, .obj,\n"
+          "                          .vtp, .stl), extracted by the server\n"
           "  stream FILES...         push a sequence of particle files as frames, into a\n"
           "                          session (--session) and/or rendered back (--out-dir)\n"
           "  watch --session NAME    follow a session's frames as a viewer\n"
@@ -72,6 +75,8 @@ int main(int argc, char **argv)
         return fc_snapshot_main(argc - 2, argv + 2);
     if (strcmp(command, "render") == 0)
         return fc_render_main(argc - 2, argv + 2);
+    if (strcmp(command, "mesh") == 0)
+        return fc_mesh_main(argc - 2, argv + 2);
     if (strcmp(command, "stream") == 0)
         return fc_stream_main(argc - 2, argv + 2);
     if (strcmp(command, "watch") == 0)

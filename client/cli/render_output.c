@@ -9,26 +9,11 @@
 #include "output_file.h"
 #include "render_inputs.h"
 
-/* The directory part of a pattern, created when missing. */
-static fc_code ensure_pattern_dir(const char *pattern, fc_error *err)
-{
-    const char *slash = strrchr(pattern, '/');
-    if (!slash || slash == pattern)
-        return FC_OK;
-    char dir[4096];
-    size_t len = (size_t)(slash - pattern);
-    if (len >= sizeof dir)
-        return fc_error_set(err, FC_ERR_USAGE, "the directory of %s is too long", pattern);
-    memcpy(dir, pattern, len);
-    dir[len] = '\0';
-    return fc_cli_ensure_dir(dir, err);
-}
-
 fc_code fc_render_output_open(const fc_render_options *o, fc_render_output *out, fc_error *err)
 {
     *out = (fc_render_output){.options = o};
     if (!o->video)
-        return ensure_pattern_dir(o->view.output, err);
+        return fc_cli_ensure_parent_dir(o->view.output, err);
     const fc_video_params params = {
         .width = o->view.width, .height = o->view.height, .fps = o->fps, .quality = o->quality};
     return fc_video_open(o->view.output, &params, &out->video, err);

@@ -12,6 +12,7 @@
 #include "srv_candidates.h"
 #include "tls_client.h"
 #include "wire_session.h"
+#include "wire_surface.h"
 
 #define DEFAULT_CLIENT_NAME "libfluidcast"
 #define DEFAULT_CONNECT_TIMEOUT_MS 10000u
@@ -24,9 +25,14 @@
 /* The largest IMAGE the announced limits allow: RGBA float32 (16 bytes a pixel,
  * the widest encoding) of the largest image, plus overhead. Bounding replies this
  * way keeps a corrupt length from making the client allocate gigabytes. */
-static uint32_t max_image_reply(const fc_limits *limits)
+/* The largest reply: an IMAGE at the largest size (PROTOCOL.md 6.1), or a
+ * SURFACE_PART (13.2) when images are limited to less. */
+static uint32_t max_reply(const fc_limits *limits)
 {
     uint64_t bytes = (uint64_t)limits->max_width * limits->max_height * 16u + IMAGE_OVERHEAD;
+    const uint64_t surface_part = FC_SURFACE_PART_FIXED_SIZE + FC_SURFACE_PART_DATA_MAX;
+    if (bytes < surface_part)
+        bytes = surface_part;
     return bytes > UINT32_MAX ? UINT32_MAX : (uint32_t)bytes;
 }
 
@@ -83,7 +89,7 @@ static fc_code receive_welcome(fc_client *c, fc_error *err)
         return fc_error_set(err, FC_ERR_PROTOCOL, "the server chose protocol version %u; this client speaks %u",
                             (unsigned)welcome.version, FC_PROTOCOL_VERSION);
     copy_server_info(&welcome, &c->info);
-    c->max_reply = max_image_reply(&welcome.limits);
+    c->max_reply = max_reply(&welcome.limits);
     return FC_OK;
 }
 

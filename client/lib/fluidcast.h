@@ -37,6 +37,7 @@
 #include "fc_api.h"
 #include "fluidcast_types.h"
 #include "fc_settings.h"   /* fc_settings_default, fc_settings_validate and the settings table */
+#include "fc_surface_mesh.h" /* fc_surface_mesh, what fc_client_extract_surface returns */
 
 #ifdef __cplusplus
 extern "C" {
@@ -273,6 +274,19 @@ FC_API fc_code fc_client_render(fc_client *client, const fc_render_request *requ
 
 /* Releases the image bytes and empties the result. Safe on an emptied result. */
 FC_API void fc_image_result_free(fc_image_result *result);
+
+/* Asks for the surface mesh of the frame a render would show now (the current
+ * frame, or a session's newest) with the current settings (surface_cell,
+ * surface_kernel, surface_smoothing) and waits for all of it (PROTOCOL.md 13).
+ * `attributes` (FC_SURFACE_* bits) are the per-vertex attributes wanted; the
+ * mesh has those the frame can give (out->attributes says which). On success
+ * *out owns its arrays (free them with fc_surface_mesh_free) and *extract_ms
+ * (may be NULL) is the server's extraction time, negative if not measured. On
+ * failure *out is empty. Earlier rejections are returned as fc_client_render
+ * does; a reply that breaks 13.3 is FC_ERR_PROTOCOL (the client is then closed
+ * for further requests), with the receiver's verdict in the message. */
+FC_API fc_code fc_client_extract_surface(fc_client *client, uint32_t attributes, fc_surface_mesh *out,
+                                         float *extract_ms, fc_error *err);
 
 /* Says GOODBYE to the server (best effort), closes the connection and frees the
  * client. NULL is ignored. */

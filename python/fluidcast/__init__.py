@@ -18,10 +18,11 @@ libfluidcast: see :mod:`fluidcast._library` for where it is looked for
 
 from ._enums import (Aov, Code, ColorBy, Colormap, Format, JpegSubsampling, Kernel, MESH_HIDE_NEAR,
                      SERVER_CAN_DEVICE, SERVER_CAN_QUANTIZE16, SERVER_CAN_STREAM, SERVER_CAN_ZSTD, Smoothing, Stage,
-                     SurfaceKernel, SurfaceMode)
+                     SURFACE_DENSITY, SURFACE_ID, SURFACE_SPEED, SURFACE_VELOCITY, SurfaceKernel, SurfaceMode)
 from ._errors import Error
 from ._frame import Frame
 from ._mesh import Mesh
+from ._surface import SurfaceMesh
 from ._capi import library_path
 from ._client import (Client, Image, SETTING_NAMES, ServerInfo, SessionStatus, StreamImage, UploadStats, connect,
                       default_settings)
@@ -31,6 +32,7 @@ __all__ = [
     "UploadStats", "Format", "Aov", "Smoothing", "Kernel", "ColorBy", "Colormap", "JpegSubsampling", "Stage",
     "SurfaceMode", "SurfaceKernel",
     "SETTING_NAMES", "default_settings", "SERVER_CAN_STREAM", "SERVER_CAN_ZSTD", "SERVER_CAN_QUANTIZE16",
-    "SERVER_CAN_DEVICE", "MESH_HIDE_NEAR",
+    "SERVER_CAN_DEVICE", "MESH_HIDE_NEAR", "SurfaceMesh", "SURFACE_SPEED", "SURFACE_DENSITY", "SURFACE_VELOCITY",
+    "SURFACE_ID",
     "library_path",
 ]

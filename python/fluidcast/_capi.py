@@ -201,6 +201,23 @@ class FcUploadStats(Structure):
     ]
 
 
+class FcSurfaceMesh(Structure):
+    """fc_surface_mesh (fc_surface_mesh.h): an extracted surface; arrays owned by it (fc_surface_mesh_free)."""
+    _c_name_ = "fc_surface_mesh"
+    _fields_ = [
+        ("vertex_count", c_uint32),
+        ("triangle_count", c_uint32),
+        ("positions", POINTER(c_float)),
+        ("normals", POINTER(c_float)),
+        ("indices", POINTER(c_uint32)),
+        ("attributes", c_uint32),          # FC_SURFACE_* bits
+        ("speed", POINTER(c_float)),
+        ("density", POINTER(c_float)),
+        ("velocity", POINTER(c_float)),
+        ("id", POINTER(c_uint32)),
+    ]
+
+
 #: Every struct mirrored, for the layout test.
 lib, library_path = _library.load()
 
@@ -239,14 +256,14 @@ class FcSettings(Structure):
 
 
 STRUCTS = (FcError, FcFrame, FcCamera, FcSettings, FcSettingSpec, FcMesh, FcMeshTransform, FcRenderRequest, FcConnectOptions, FcServerInfo,
-           FcImageResult, FcSessionStatus, FcStreamImage, FcUploadOptions, FcUploadStats)
+           FcImageResult, FcSessionStatus, FcStreamImage, FcUploadOptions, FcUploadStats, FcSurfaceMesh)
 
 c_client_p = c_void_p  # fc_client *, opaque
 _E = POINTER(FcError)
 
 _SPEC_P = POINTER(FcSettingSpec)
 
-# name: (restype, argtypes), as declared in fluidcast.h and fc_settings.h
+# name: (restype, argtypes), as declared in fluidcast.h, fc_settings.h and fc_surface_mesh.h
 _PROTOTYPES = {
     "fc_settings_table": (_SPEC_P, [POINTER(c_size_t)]),
     "fc_setting_by_key": (_SPEC_P, [c_uint32]),
@@ -277,6 +294,8 @@ _PROTOTYPES = {
     "fc_client_move_meshes": (c_enum, [c_client_p, POINTER(FcMeshTransform), c_uint32, _E]),
     "fc_client_render": (c_enum, [c_client_p, POINTER(FcRenderRequest), POINTER(FcImageResult), _E]),
     "fc_image_result_free": (None, [POINTER(FcImageResult)]),
+    "fc_client_extract_surface": (c_enum, [c_client_p, c_uint32, POINTER(FcSurfaceMesh), POINTER(c_float), _E]),
+    "fc_surface_mesh_free": (None, [POINTER(FcSurfaceMesh)]),
     "fc_client_close": (None, [c_client_p]),
     "fc_client_publish": (c_enum, [c_client_p, c_char_p, POINTER(FcSessionStatus), _E]),
     "fc_client_subscribe": (c_enum, [c_client_p, c_char_p, POINTER(FcRenderRequest), c_uint32, c_uint32,

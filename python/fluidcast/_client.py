@@ -10,13 +10,14 @@ import numpy as np
 
 from . import _capi
 from ._capi import (FcCamera, FcConnectOptions, FcError, FcImageResult, FcRenderRequest, FcServerInfo, FcSessionStatus,
-                    FcSettings, FcStreamImage, FcUploadOptions, FcUploadStats)
+                    FcSettings, FcStreamImage, FcSurfaceMesh, FcUploadOptions, FcUploadStats)
 from ._enums import (Aov, Code, ColorBy, Colormap, Format, JpegSubsampling, Kernel, Smoothing, Stage, SurfaceKernel,
                      SurfaceMode, UPLOAD_QUANTIZE16, UPLOAD_ZSTD,
                      parse)
 from ._errors import Error, raise_for
 from ._frame import as_frame
 from ._mesh import as_mesh, transform_entries
+from ._surface import attribute_bits, from_c as surface_from_c
 
 _UINT32_MAX = 0xFFFFFFFF
 
@@ -593,6 +594,27 @@ class Client:
                                  result.height, _enum_or_int(Aov, result.aov))
         finally:
             _capi.fc_image_result_free(ctypes.byref(result))
+
+    def mesh(self, attributes="all"):
+        """The surface of the current frame extracted by the server as a :class:`SurfaceMesh` of numpy arrays
+        (fc_client_extract_surface, PROTOCOL.md section 13).
+
+        The settings' ``surface_cell``, ``surface_kernel`` and
+        ``surface_smoothing`` shape it. ``attributes``: "all" (default), None,
+        or names among "speed", "density", "velocity", "id"; the mesh has
+        those the frame can give (speed and velocity need velocities, density
+        densities, id ids). Errors as for :meth:`render_result`
+        (``Code.BAD_STATE`` before any frame, ``Code.LIMIT`` for a grid beyond
+        the server's budget).
+        """
+        bits = attribute_bits(attributes)
+        mesh = FcSurfaceMesh()
+        extract_ms = ctypes.c_float(-1.0)
+        try:
+            self._call(_capi.fc_client_extract_surface, bits, ctypes.byref(mesh), ctypes.byref(extract_ms))
+            return surface_from_c(mesh, extract_ms.value)
+        finally:
+            _capi.fc_surface_mesh_free(ctypes.byref(mesh))
 
     # -- sessions --
 

@@ -214,8 +214,18 @@ C_TYPES = {
     Stage: "fc_stage",
 }
 
+#: The per-vertex attributes of an extracted surface (fc_surface_mesh.h), as bits.
+SURFACE_SPEED = 1
+SURFACE_DENSITY = 2
+SURFACE_VELOCITY = 4
+SURFACE_ID = 8
+
 #: The #define'd and counted constants above, by their C names.
 C_CONSTANTS = {
+    "FC_SURFACE_SPEED": SURFACE_SPEED,
+    "FC_SURFACE_DENSITY": SURFACE_DENSITY,
+    "FC_SURFACE_VELOCITY": SURFACE_VELOCITY,
+    "FC_SURFACE_ID": SURFACE_ID,
     "FC_STAGE_COUNT": STAGE_COUNT,
     "FC_ERROR_MESSAGE_MAX": ERROR_MESSAGE_MAX,
     "FC_SERVER_CAN_STREAM": SERVER_CAN_STREAM,

@@ -18,7 +18,7 @@ from fluidcast import _capi, _enums
 from helpers import REPO
 
 HEADERS = [os.path.join(REPO, "proto", "fluidcast_types.h"), os.path.join(REPO, "proto", "fc_settings.h"),
-           os.path.join(REPO, "client", "lib", "fluidcast.h")]
+           os.path.join(REPO, "proto", "fc_surface_mesh.h"), os.path.join(REPO, "client", "lib", "fluidcast.h")]
 INCLUDE_DIRS = [os.path.join(REPO, "proto"), os.path.join(REPO, "client", "lib")]
 
 

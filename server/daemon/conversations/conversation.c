@@ -13,6 +13,7 @@
 #include "monotonic.h"
 #include "wire_mesh.h"
 #include "wire_session.h"
+#include "wire_surface.h"
 
 void fc_conversation_init(fc_conversation *c, const char *peer, fc_daemon_context *ctx, uint64_t connection_id,
                           fc_buf *out)
@@ -249,6 +250,25 @@ static fc_conversation_verdict handle_render(fc_conversation *c, fc_daemon_conte
     return FC_CONV_CONTINUE;
 }
 
+/* SURFACE: the surface of the frame a RENDER would render, extracted on the GL
+ * thread like a render; its parts answer it in its place among the replies. */
+static fc_conversation_verdict handle_surface(fc_conversation *c, fc_daemon_context *ctx, const fc_msg_header *h,
+                                              const uint8_t *payload, double received_ms, fc_buf *out)
+{
+    fc_render_order order = {.kind = FC_JOB_SURFACE, .request_id = h->request_id, .received_ms = received_ms};
+    fc_shared_frame *frame = fc_conversation_current_frame(c);
+    fc_error err;
+    fc_code code = fc_wire_read_surface_request(payload, h->length, &order.surface_attributes, &err);
+    if (code == FC_OK && !frame)
+        code = fc_error_set(&err, FC_ERR_BAD_STATE, "SURFACE before any FRAME");
+    if (code == FC_OK)
+        code = fc_conversation_submit_render(c, frame, &order, &err);
+    if (code != FC_OK)
+        return reply_error(c, ctx, h, &err, FC_CONV_CONTINUE, out);
+    c->reply_pending = true;
+    return FC_CONV_CONTINUE;
+}
+
 /* The connection closes after GOODBYE either way; a malformed one is still answered. */
 static fc_conversation_verdict handle_goodbye(fc_conversation *c, fc_daemon_context *ctx, const fc_msg_header *h,
                                               const uint8_t *payload, fc_buf *out)
@@ -307,7 +327,8 @@ static fc_conversation_verdict refuse_after_hello(fc_conversation *c, fc_daemon_
     fc_error err;
     if (h->type == FC_MSG_HELLO)
         fc_error_set(&err, FC_ERR_BAD_STATE, "HELLO was already answered");
-    else if (h->type == FC_MSG_WELCOME || h->type == FC_MSG_IMAGE || h->type == FC_MSG_ERROR)
+    else if (h->type == FC_MSG_WELCOME || h->type == FC_MSG_IMAGE || h->type == FC_MSG_ERROR ||
+             h->type == FC_MSG_SURFACE_PART)
         fc_error_set(&err, FC_ERR_BAD_STATE, "%s is sent by servers, not clients", fc_msg_name(h->type));
     else
         fc_error_set(&err, FC_ERR_UNKNOWN_TYPE, "message type %u is not defined in protocol version %u",
@@ -332,6 +353,8 @@ fc_conversation_verdict fc_conversation_handle(fc_conversation *c, fc_daemon_con
         return handle_settings(c, ctx, header, payload, out);
     case FC_MSG_RENDER:
         return handle_render(c, ctx, header, payload, received_ms, out);
+    case FC_MSG_SURFACE:
+        return handle_surface(c, ctx, header, payload, received_ms, out);
     case FC_MSG_GOODBYE:
         return handle_goodbye(c, ctx, header, payload, out);
     case FC_MSG_BACKGROUND:
@@ -363,12 +386,13 @@ void fc_conversation_job_done(fc_conversation *c, const fc_render_job *job)
     }
     fc_error err;
     /* A reply that does not fit leaves the queue as it was, so an ERROR can still follow. */
-    if (fc_conversation_queue_message(c, &job->message, "the IMAGE", &err) != FC_OK) {
+    const char *what = job->kind == FC_JOB_SURFACE ? "the surface mesh" : "the IMAGE";
+    if (fc_conversation_queue_message(c, &job->message, what, &err) != FC_OK) {
         fc_conversation_send_error(c, job->request_id, &err);
         return;
     }
-    fc_log_write(c->ctx->log, FC_LOG_DEBUG, "%s: request %u: IMAGE of %zu bytes queued", c->peer,
-                 (unsigned)job->request_id, job->message.len);
+    fc_log_write(c->ctx->log, FC_LOG_DEBUG, "%s: request %u: %s of %zu bytes queued", c->peer,
+                 (unsigned)job->request_id, what, job->message.len);
 }
 
 void fc_conversation_output_drained(fc_conversation *c)

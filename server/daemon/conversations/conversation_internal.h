@@ -41,6 +41,7 @@ typedef struct fc_render_order {
     fc_job_kind kind;
     uint32_t request_id;
     fc_render_request request;
+    uint32_t surface_attributes;   /* FC_JOB_SURFACE only: the FC_SURFACE_* bits asked for */
     fc_stream_tag tag;             /* FC_JOB_STREAM only */
     fc_h264_stream *video;         /* an H.264 viewer's stream (the job takes a reference); NULL: none */
     bool force_keyframe;           /* H.264: the image must be an IDR frame */

@@ -44,6 +44,7 @@ fc_code fc_conversation_submit_render(fc_conversation *c, fc_shared_frame *frame
     job->force_keyframe = order->force_keyframe;
     job->settings = c->settings;
     job->request = order->request;
+    job->surface_attributes = order->surface_attributes;
     job->background = c->scene.background ? fc_scene_part_ref(c->scene.background) : NULL;
     job->environment = c->scene.environment ? fc_scene_part_ref(c->scene.environment) : NULL;
     /* A session's meshes (its producers') first, then the connection's own. */

@@ -19,7 +19,8 @@
 
 typedef enum fc_job_kind {
     FC_JOB_REPLY = 0,     /* answers a RENDER: an IMAGE, never dropped */
-    FC_JOB_STREAM         /* a viewer's STREAM_IMAGE */
+    FC_JOB_STREAM,        /* a viewer's STREAM_IMAGE */
+    FC_JOB_SURFACE        /* answers a SURFACE: its SURFACE_PARTs, made on the GL thread, never encoded */
 } fc_job_kind;
 
 typedef struct fc_render_job {
@@ -38,6 +39,7 @@ typedef struct fc_render_job {
     bool auto_camera;                /* frame the particles' bounds at camera.width x camera.height */
     fc_settings settings;
     fc_render_request request;
+    uint32_t surface_attributes;     /* FC_JOB_SURFACE: the FC_SURFACE_* bits asked for */
     fc_scene_part *background;       /* the client's scene images: references, NULL = built-in */
     fc_scene_part *environment;
     fc_mesh_set meshes;              /* the meshes to draw, placed as at the request: references */
@@ -48,7 +50,7 @@ typedef struct fc_render_job {
     float stage_ms[FC_STAGE_COUNT];
     /* results */
     fc_image image;                  /* read back by the GL thread, freed once encoded */
-    fc_buf message;                  /* the complete reply message */
+    fc_buf message;                  /* the complete reply message (FC_JOB_SURFACE: all its parts) */
     fc_error error;                  /* code != FC_OK: the job failed and `message` is empty */
 } fc_render_job;
 

@@ -17,6 +17,7 @@
 #include "gpu/foam_apply.h"
 #include "gpu/gpu_state.h"
 #include "gpu/job_queue.h"
+#include "gpu/surface_job.h"
 #include "monotonic.h"
 
 typedef struct gl_identity {
@@ -125,8 +126,12 @@ static void finish_failed(fc_render_service *rs, fc_render_job *job)
 static void explain_failure(fc_render_job *job, fc_gpu_failure failure, fc_gl_reset reset)
 {
     char request[96];
-    snprintf(request, sizeof request, "a %ux%u image of %llu particles", (unsigned)job->camera.width,
-             (unsigned)job->camera.height, (unsigned long long)job->frame->frame.count);
+    if (job->kind == FC_JOB_SURFACE)
+        snprintf(request, sizeof request, "the surface of %llu particles",
+                 (unsigned long long)job->frame->frame.count);
+    else
+        snprintf(request, sizeof request, "a %ux%u image of %llu particles", (unsigned)job->camera.width,
+                 (unsigned)job->camera.height, (unsigned long long)job->frame->frame.count);
     fc_gpu_state_explain(failure, reset, request, &job->error);
 }
 
@@ -153,14 +158,20 @@ static void render_job(fc_render_service *rs, fc_render_job *job)
         finish_failed(rs, job);
         return;
     }
-    fc_code code = draw(&rs->gpu, job, &job->error);
+    fc_code code = job->kind == FC_JOB_SURFACE
+                       ? fc_surface_job_run(rs->gpu.pipeline, job, resolve_radius(job), &job->error)
+                       : draw(&rs->gpu, job, &job->error);
     bool simulate_loss = ++rs->renders == rs->config.lose_context_at_render;
     fc_gl_reset reset;
     fc_gpu_failure failure = fc_gpu_state_diagnose(&rs->gpu, code, simulate_loss, &reset);
     if (code == FC_OK && failure == FC_GPU_FINE) {
         report_gpu_memory(rs->config.metrics);
         job->rendered_ms = fc_monotonic_ms();
-        fc_encoder_pool_submit(rs->encoders, job);
+        /* A surface reply is complete already; images go to an encoder. */
+        if (job->kind == FC_JOB_SURFACE)
+            fc_job_queue_push(&rs->done, job);
+        else
+            fc_encoder_pool_submit(rs->encoders, job);
         return;
     }
     if (failure != FC_GPU_FINE)

@@ -1,6 +1,6 @@
 /* web_relay.h — one WebSocket of the web viewer relayed to a connection of
  * the daemon's own event loop. Each binary WebSocket message carries exactly
- * one protocol message (proto/PROTOCOL.md section 13): what the page sends is
+ * one protocol message (proto/PROTOCOL.md section 14): what the page sends is
  * written, byte for byte, to a Unix-domain connection to the daemon's private
  * relay socket, which the event loop serves like any client (limits, token,
  * hostile-input rules unchanged); what the daemon answers is cut at message

@@ -16,6 +16,7 @@
 #include "wire_mesh.h"
 #include "wire_scene.h"
 #include "wire_session.h"
+#include "wire_surface.h"
 
 enum { SEED_PARTICLES = 4 };
 
@@ -658,6 +659,57 @@ static int write_mesh_messages(const char *dir)
            save_messages(dir, target, "sequence.bin", sequence, COUNT(sequence));
 }
 
+/* A tetrahedron with every attribute: four vertices, four triangles. */
+static fc_code write_surface_tetrahedron(fc_buf *out)
+{
+    float positions[12] = {0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1};
+    float normals[12] = {-0.57735f, -0.57735f, -0.57735f, 1, 0, 0, 0, 1, 0, 0, 0, 1};
+    uint32_t indices[12] = {0, 2, 1, 0, 1, 3, 0, 3, 2, 1, 2, 3};
+    float speed[4] = {0, 1, 2, 3}, density[4] = {1000, 1001, 1002, 1003};
+    float velocity[12] = {0, 0, 0, 1, 0, 0, 0, 2, 0, 0, 0, 3};
+    uint32_t id[4] = {10, 11, 12, 13};
+    fc_surface_mesh m = {.vertex_count = 4, .triangle_count = 4, .positions = positions, .normals = normals,
+                         .indices = indices, .attributes = FC_SURFACE_ATTRIBUTES_ALL, .speed = speed,
+                         .density = density, .velocity = velocity, .id = id};
+    return fc_wire_write_surface_part(out, 15, &m, 2.5f, 0, NULL);
+}
+
+/* The same without attributes, as an OBJ or STL export asks. */
+static fc_code write_surface_plain(fc_buf *out)
+{
+    float positions[9] = {0, 0, 0, 1, 0, 0, 0, 1, 0}, normals[9] = {0, 0, 1, 0, 0, 1, 0, 0, 1};
+    uint32_t indices[3] = {0, 1, 2};
+    fc_surface_mesh m = {.vertex_count = 3, .triangle_count = 1, .positions = positions, .normals = normals,
+                         .indices = indices};
+    return fc_wire_write_surface_part(out, 16, &m, -1.0f, 0, NULL);
+}
+
+static fc_code write_surface_empty(fc_buf *out)
+{
+    fc_surface_mesh none = {0};
+    return fc_wire_write_surface_part(out, 17, &none, 0.0f, 0, NULL);
+}
+
+static fc_code write_surface_request(fc_buf *out)
+{
+    return fc_wire_write_surface_request(out, 15, FC_SURFACE_ATTRIBUTES_ALL, NULL);
+}
+
+static int write_surface_messages(const char *dir)
+{
+    static const seed_file singles[] = {
+        {"request.bin", write_surface_request},
+        {"tetrahedron.bin", write_surface_tetrahedron},
+        {"plain.bin", write_surface_plain},
+        {"empty.bin", write_surface_empty},
+    };
+    static const message_writer sequence[] = {write_surface_request, write_surface_tetrahedron, write_surface_plain,
+                                              write_surface_empty};
+    const char *target = "fuzz_wire_surface";
+    return save_singles(dir, target, singles, COUNT(singles)) |
+           save_messages(dir, target, "sequence.bin", sequence, COUNT(sequence));
+}
+
 /* fuzz_wire_settings takes bare payloads: the SETTINGS message without its header. */
 static int write_settings_payloads(const char *dir)
 {
@@ -702,6 +754,7 @@ int main(int argc, char **argv)
     const char *dir = argv[1];
     int failed = write_f32(dir) | write_binary_ply(dir, false) | write_binary_ply(dir, true) |
                  write_binary_vtk(dir, false) | write_binary_vtk(dir, true) | write_bgeo(dir) | write_npy(dir, false) | write_npy(dir, true) | write_messages(dir) |
-                 write_session_messages(dir) | write_settings_payloads(dir) | write_mesh_messages(dir);
+                 write_session_messages(dir) | write_settings_payloads(dir) | write_mesh_messages(dir) |
+                 write_surface_messages(dir);
     return failed ? 1 : 0;
 }
