@@ -11,6 +11,7 @@
 #include "image_decode.h"
 #include "test_scene.h"
 #include "test_util.h"
+#include "tinted_look.h"
 
 static const char *const daemon_args[] = {"--max-particles", "5000", "--max-image", "256x192",
                                           "--max-message", "1048576", NULL};
@@ -98,9 +99,26 @@ static int differs(const uint8_t *a, const uint8_t *b)
     return abs(a[0] - b[0]) + abs(a[1] - b[1]) + abs(a[2] - b[2]) > 30;
 }
 
+/* The tests that find the fluid by its colour ask for water that absorbs
+ * plainly (tinted_look.h): the default's shallow water is nearly clear. */
+static void send_tinted_look(int fd, uint32_t request_id)
+{
+    fc_settings settings;
+    fc_settings_default(&settings);
+    const float tinted[3] = TINTED_LOOK_ABSORPTION_RGB;
+    memcpy(settings.absorption, tinted, sizeof tinted);
+    fc_buf out;
+    fc_error err;
+    fc_buf_init(&out);
+    CHECK_MSG(fc_wire_write_settings(&out, request_id, &settings, &err) == FC_OK, "%s", err.message);
+    send_buf(fd, &out);
+    fc_buf_free(&out);
+}
+
 static void test_png_shows_fluid_over_background(uint16_t port)
 {
     int fd = connect_and_greet(port);
+    send_tinted_look(fd, 99);
     fc_image_reply image;
     fc_test_message reply = render(fd, 100, 64, 48, FC_FORMAT_PNG, FC_AOV_COLOR, &image);
     CHECK(image.width == 64 && image.height == 48 && image.format == FC_FORMAT_PNG && image.aov == FC_AOV_COLOR);
@@ -179,6 +197,7 @@ static void test_depth_matches_geometry_and_settings(uint16_t port)
 static void test_raw_colour_is_rgba8_rows(uint16_t port)
 {
     int fd = connect_and_greet(port);
+    send_tinted_look(fd, 299);
     fc_image_reply image;
     fc_test_message reply = render(fd, 300, 40, 30, FC_FORMAT_RAW, FC_AOV_COLOR, &image);
     CHECK_MSG(image.size == 40 * 30 * 4, "RAW size %llu", (unsigned long long)image.size);

@@ -7,5 +7,7 @@
 
 /* --absorption's value: per particle radius of thickness, R,G,B. */
 #define TINTED_LOOK_ABSORPTION "0.2,0.07,0.035"
+/* The same as an initializer of fc_settings.absorption. */
+#define TINTED_LOOK_ABSORPTION_RGB {0.2f, 0.07f, 0.035f}
 
 #endif
