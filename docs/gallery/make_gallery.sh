@@ -4,7 +4,8 @@
 # scene deploy/demo/drop_64k.f32 (65,536 particles) at 640x480, and on frames
 # 5, 11 and 16 of the splash simulation in ../shared/data/splash (its
 # suggested radius and camera, 640x360): the default (sphere kernel) | anisotropic and
-# shadow off | on. The VTK | fluidcast row comes from bench/peer/compare_images.sh.
+# shadow off | on. The VTK | fluidcast | reference row (verdict_f*.png) comes from the blind
+# panel's renders (bench/LOOK.md, "The README's triptych").
 # Usage: docs/gallery/make_gallery.sh   (after deploy/build.sh)
 set -euo pipefail
 cd "$(dirname "$0")/../.."
