@@ -53,6 +53,9 @@ if [ -d "$splash" ]; then
     look anisotropic --kernel anisotropic
     look shadow_off --shadow off
   done
+  # Frame 11's surface as a mesh extracted on the server (--surface mesh), beside the screen-space image.
+  f=11
+  look mesh --surface mesh
   # Per-particle radii: frame 11 with x >= 0.5 at twice the suggested radius (two_radii.py adds the column).
   two_radii=$(mktemp --suffix=.ply)
   /usr/bin/python3 docs/gallery/two_radii.py "$splash/frame_0011.ply" "$two_radii"
