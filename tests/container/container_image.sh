@@ -32,9 +32,11 @@ fi
 step "what the image declares"
 inspect() { "$DOCKER" image inspect -f "$1" "$RUNTIME_IMAGE"; }
 [ "$(inspect '{{json .Config.Entrypoint}}')" = '["fluidcastd"]' ] || fail "entrypoint: $(inspect '{{json .Config.Entrypoint}}')"
-[ "$(inspect '{{json .Config.Cmd}}')" = '["--listen","0.0.0.0:7450"]' ] || fail "cmd: $(inspect '{{json .Config.Cmd}}')"
+[ "$(inspect '{{json .Config.Cmd}}')" = '["--listen","0.0.0.0:7450","--web-listen","0.0.0.0:8450"]' ] ||
+    fail "cmd: $(inspect '{{json .Config.Cmd}}')"
 [ "$(inspect '{{.Config.User}}')" = fluidcast ] || fail "user: $(inspect '{{.Config.User}}')"
 inspect '{{json .Config.ExposedPorts}}' | matches -F '"7450/tcp"' || fail "port 7450 is not exposed"
+inspect '{{json .Config.ExposedPorts}}' | matches -F '"8450/tcp"' || fail "the web viewer's port 8450 is not exposed"
 inspect '{{json .Config.Env}}' | matches -F '"NVIDIA_DRIVER_CAPABILITIES=graphics,utility"' ||
     fail "NVIDIA_DRIVER_CAPABILITIES: $(inspect '{{json .Config.Env}}')"
 inspect '{{json .Config.Healthcheck.Test}}' | matches -F '"fluidcast","info","--server","127.0.0.1:7450"' ||
