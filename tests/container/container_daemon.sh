@@ -39,7 +39,8 @@ matches -iE "no (GPU|hardware) EGL device.*(llvmpipe|software)" "$OUT/log.txt" |
 
 step "the host's fluidcast renders through the container"
 "$BALL" write "$OUT"
-common=(--server "127.0.0.1:$PORT" --size 160x120 --eye 0,-4,0 --target 0,0,0 --radius 0.05)
+common=(--server "127.0.0.1:$PORT" --size 160x120 --eye 0,-4,0 --target 0,0,0 --radius 0.05
+        --absorption "$("$BALL" absorption)")
 "$CLI" snapshot "$OUT/ball.f32" -o "$OUT/ball.png" "${common[@]}"
 "$CLI" snapshot "$OUT/corners.f32" -o "$OUT/empty.png" "${common[@]}"
 "$BALL" check "$OUT/ball.png" "$OUT/empty.png" || fail "the picture does not show the ball"

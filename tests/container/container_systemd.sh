@@ -104,7 +104,7 @@ in_c mkdir -p /srv/fc
 # default 10 s to the WELCOME while the rest of the suite loads the machine.
 render() {  # SERVER INPUT OUTPUT
     in_c env FLUIDCAST_TOKEN="$TOKEN" fluidcast snapshot "/srv/fc/$2" -o "/srv/fc/$3" --server "$1" --size 160x120 \
-        --eye 0,-4,0 --target 0,0,0 --radius 0.05 --connect-timeout 60
+        --eye 0,-4,0 --target 0,0,0 --radius 0.05 --absorption "$("$BALL" absorption)" --connect-timeout 60
     "$DOCKER" cp "$NAME:/srv/fc/$3" "$OUT/$3"
 }
 render 127.0.0.1:7450 ball.f32 tcp.png || fail "no render over TCP"
