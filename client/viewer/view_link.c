@@ -303,6 +303,20 @@ static void run_session(fc_view_link *link, link_state *state)
         width = even(width);
         height = even(height);
     }
+    link_state st = *state;
+    /* The settings go out before SUBSCRIBE: the session's current frame is
+     * rendered for this viewer at once, and with the server's defaults it
+     * would show a look the user did not ask for until the first view change. */
+    fc_view_request first;
+    bool stopping = false;
+    if (fc_view_slots_wait_request(link->slots, 0, 0, &first, &stopping) && !st.settings_sent) {
+        if (fc_client_set_settings(link->client, &first.settings, &err) != FC_OK) {
+            give_up(link, client_exit(&err), "%s", err.message);
+            return;
+        }
+        st.settings = first.settings;
+        st.settings_sent = true;
+    }
     fc_session_status status;
     if (fc_client_subscribe(link->client, link->config.session, &request, width, height, &status, &err) != FC_OK) {
         give_up(link, client_exit(&err), "%s", err.message);
@@ -310,7 +324,6 @@ static void run_session(fc_view_link *link, link_state *state)
     }
     bool have_frame = status.last_frame != 0;
     set_session_state(link, have_frame ? FC_VIEW_SESSION_LIVE : FC_VIEW_SESSION_WAITING);
-    link_state st = *state;
     uint64_t done = 0, shown = 0;
     bool preview = false;
     for (;;) {
