@@ -39,6 +39,8 @@ PACKAGES=(
   libsystemd-dev systemd libmicrohttpd-dev prometheus
   # its web viewer (--web-listen: libwebsockets), tested in Debian's headless chromium (tests/web)
   libwebsockets-dev chromium
+  # the HTTPS test trusts its own CA in a private NSS database, as a user would (certutil)
+  libnss3-tools
   # the Python binding (python/fluidcast) and its tests under Debian's python3
   python3-numpy python3-pytest
   # "srv:" addresses: a real DNS server (dnsmasq, its binary alone) serves SRV records in tests/srv

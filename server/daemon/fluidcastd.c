@@ -236,7 +236,7 @@ static fc_code start_web(const fc_daemon_options *options, const fc_log *log, da
     s->served_count = s->count;
     if (!options->web_host[0])
         return FC_OK;
-    fc_code code = fc_web_server_start(options->web_host, options->web_port, log, &s->web, err);
+    fc_code code = fc_web_server_start(options->web_host, options->web_port, s->tls, log, &s->web, err);
     if (code == FC_OK)
         s->served[s->served_count++] = *fc_web_server_relay(s->web);
     return code;
@@ -278,7 +278,8 @@ static void announce_ready(const fc_daemon_context *ctx, const fc_listener *list
                      listeners[i].tls ? " (TLS)" : "");
     if (web)
         /* Tests read this line for the web port. */
-        fc_log_write(ctx->log, FC_LOG_INFO, "web viewer on http://%s/", fc_web_server_address(web));
+        fc_log_write(ctx->log, FC_LOG_INFO, "web viewer on %s://%s/", fc_web_server_scheme(web),
+                     fc_web_server_address(web));
     describe_listeners(listeners, count, where, sizeof where);
     fc_service_notify(ctx->log, "READY=1\nSTATUS=serving on %s; renderer %s", where, ctx->welcome.renderer);
 }

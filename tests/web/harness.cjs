@@ -40,12 +40,15 @@ async function startDaemon({ name = 'daemon', env = {}, listen = '127.0.0.1:0', 
   const proc = spawn(DAEMON, ['--listen', listen, '--port-file', portFile, '--web-listen', web, '--refresh-ms', '0',
     ...args], { env: { ...process.env, ...env }, stdio: ['ignore', out, out] });
   children.push(proc);
-  const address = await until(() => {
+  const [scheme, address] = await until(() => {
     const log = fs.readFileSync(logPath, 'utf8');
-    const m = log.match(/web viewer on http:\/\/([^/]+)\//g);
-    return m && fs.existsSync(portFile) ? m[m.length - 1].replace(/^web viewer on http:\/\/|\/$/g, '') : null;
+    const m = [...log.matchAll(/web viewer on (https?):\/\/([^/]+)\//g)];
+    return m.length && fs.existsSync(portFile) ? [m[m.length - 1][1], m[m.length - 1][2]] : null;
   }, `${name} to serve`);
-  return { proc, web: address, server: `127.0.0.1:${fs.readFileSync(portFile, 'utf8').trim()}`, logPath };
+  // With a certificate every TCP listener speaks TLS: the page is https:// and the protocol port tls://.
+  const port = fs.readFileSync(portFile, 'utf8').trim();
+  return { proc, web: address, origin: `${scheme}://${address}`,
+    server: scheme === 'https' ? `tls://127.0.0.1:${port}` : `127.0.0.1:${port}`, logPath };
 }
 
 async function stopDaemon(daemon) {
@@ -90,19 +93,21 @@ function snapshot(server, camera, width, height) {
   return fs.readFileSync(out).toString('base64');
 }
 
-async function launchBrowser() {
-  return puppeteer.launch({ executablePath: '/usr/bin/chromium', headless: true,
+// env: e.g. a HOME whose NSS database (~/.pki/nssdb) trusts a test CA, as a user's browser would.
+async function launchBrowser(env = {}) {
+  return puppeteer.launch({ executablePath: '/usr/bin/chromium', headless: true, env: { ...process.env, ...env },
     args: ['--no-sandbox', '--use-gl=swiftshader', '--enable-unsafe-swiftshader', '--disable-gpu-sandbox'] });
 }
 
-// A page of the viewer; page.consoleErrors collects what the page logs as errors and throws.
+// A page of the viewer at web (HOST:PORT, http, or a daemon's origin such as https://HOST:PORT);
+// page.consoleErrors collects what the page logs as errors and throws.
 async function openPage(browser, web, query = '', viewport = { width: 640, height: 480 }) {
   const page = await browser.newPage();
   await page.setViewport(viewport);
   page.consoleErrors = [];
   page.on('console', (m) => { if (m.type() === 'error') page.consoleErrors.push(m.text()); });
   page.on('pageerror', (e) => page.consoleErrors.push(e.message));
-  await page.goto(`http://${web}/${query}`);
+  await page.goto(`${web.includes('://') ? web : `http://${web}`}/${query}`);
   return page;
 }
 

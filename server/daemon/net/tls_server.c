@@ -2,6 +2,7 @@
 #include "net/tls_server.h"
 
 #include <openssl/err.h>
+#include <pthread.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -10,7 +11,8 @@
 
 struct fc_tls_server {
     fc_tls_server_files files;
-    SSL_CTX *ctx;   /* the context new sessions are made from */
+    SSL_CTX *ctx;            /* the context new sessions are made from */
+    pthread_mutex_t swap;    /* ctx's replacement against another thread's fc_tls_server_current */
 };
 
 void fc_tls_drain_errors(char *out, size_t size)
@@ -93,6 +95,10 @@ fc_code fc_tls_server_create(const fc_tls_server_files *files, fc_tls_server **o
         return fc_error_set(err, FC_ERR_NOMEM, "TLS: out of memory");
     s->files = *files;
     fc_code code = make_context(files, &s->ctx, err);
+    if (code == FC_OK && pthread_mutex_init(&s->swap, NULL) != 0) {
+        SSL_CTX_free(s->ctx);
+        code = fc_error_set(err, FC_ERR_NOMEM, "TLS: cannot create a lock");
+    }
     if (code != FC_OK) {
         free(s);
         return code;
@@ -106,6 +112,7 @@ void fc_tls_server_destroy(fc_tls_server *s)
     if (!s)
         return;
     SSL_CTX_free(s->ctx);
+    pthread_mutex_destroy(&s->swap);
     free(s);
 }
 
@@ -116,9 +123,26 @@ fc_code fc_tls_server_reload(fc_tls_server *s, fc_error *err)
     if (code != FC_OK)
         return code;
     /* Open sessions hold their own reference to the old context. */
-    SSL_CTX_free(s->ctx);
+    pthread_mutex_lock(&s->swap);
+    SSL_CTX *old = s->ctx;
     s->ctx = fresh;
+    pthread_mutex_unlock(&s->swap);
+    SSL_CTX_free(old);
     return FC_OK;
+}
+
+const fc_tls_server_files *fc_tls_server_paths(const fc_tls_server *s)
+{
+    return &s->files;
+}
+
+SSL_CTX *fc_tls_server_current(fc_tls_server *s)
+{
+    pthread_mutex_lock(&s->swap);
+    SSL_CTX *ctx = s->ctx;
+    SSL_CTX_up_ref(ctx);
+    pthread_mutex_unlock(&s->swap);
+    return ctx;
 }
 
 SSL *fc_tls_server_session(fc_tls_server *s, int fd)

@@ -4,7 +4,7 @@
  * SIGHUP reloads the files (fc_tls_server_reload): connections accepted
  * afterwards get the new certificate, those already open keep theirs, since
  * every session holds a reference to the context it was made from.
- * Event-loop thread only. */
+ * Event-loop thread only, but for fc_tls_server_current. */
 #ifndef FC_DAEMON_TLS_SERVER_H
 #define FC_DAEMON_TLS_SERVER_H
 
@@ -29,6 +29,14 @@ void fc_tls_server_destroy(fc_tls_server *s);
 /* Reads the files again; on success new sessions use them, on failure the
  * previous context stays in use and *err says why. */
 fc_code fc_tls_server_reload(fc_tls_server *s, fc_error *err);
+
+/* The files it was created from. */
+const fc_tls_server_files *fc_tls_server_paths(const fc_tls_server *s);
+
+/* A reference to the context new sessions are made from now (release it with
+ * SSL_CTX_free): for the web viewer's thread, which serves the same
+ * certificate and sees a reload as the listeners do. Any thread. */
+SSL_CTX *fc_tls_server_current(fc_tls_server *s);
 
 /* A server-side session on the connected socket fd (not yet handshaken);
  * NULL when OpenSSL has no memory. */

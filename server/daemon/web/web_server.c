@@ -15,6 +15,7 @@
 
 #include "fc_colormap.h"
 #include "fc_error.h"
+#include "net/tls_server.h"
 #include "web/web_assets.h"
 #include "web/web_relay.h"
 
@@ -36,6 +37,7 @@ struct fc_web_server {
     const fc_log *log;
     fc_listener web;                    /* fd -1 once libwebsockets owns it */
     fc_listener relay;
+    fc_tls_server *tls;                 /* the listeners' certificate: https:// and wss://; NULL: http:// */
     char relay_dir[64];                 /* "" when not made */
     char relay_path[108];
     struct lws_protocols protocols[PROTOCOL_COUNT + 1];
@@ -173,10 +175,24 @@ static bool same_origin(struct lws *wsi)
     return same;
 }
 
+/* Every handshake takes the certificate and key the protocol listeners have
+ * now (fc_tls_server_current), so that SIGHUP's reload reaches the web
+ * listener too: libwebsockets loaded the files once, at the start. */
+static int use_current_certificate(SSL *ssl, void *arg)
+{
+    SSL_CTX *current = fc_tls_server_current(arg);
+    bool swapped = SSL_set_SSL_CTX(ssl, current) == current;
+    SSL_CTX_free(current);   /* the session holds its own reference */
+    return swapped;
+}
+
 static int http_callback(struct lws *wsi, enum lws_callback_reasons reason, void *user, void *in, size_t len)
 {
     (void)len;
     switch (reason) {
+    case LWS_CALLBACK_OPENSSL_LOAD_EXTRA_SERVER_VERIFY_CERTS:   /* user: the host's SSL_CTX */
+        SSL_CTX_set_cert_cb(user, use_current_certificate, server_of(wsi)->tls);
+        return 0;
     case LWS_CALLBACK_HTTP:
         return start_reply(wsi, user, in);
     case LWS_CALLBACK_HTTP_WRITEABLE:
@@ -247,13 +263,35 @@ static fc_code open_relay(fc_web_server *s, fc_error *err)
     return fc_listener_open_unix(s->relay_path, &s->relay, err);
 }
 
+/* With the protocol listeners' certificate (--tls-cert, --tls-key) the page
+ * and its WebSocket are served over TLS only: https:// and wss://, with the
+ * same floor as the protocol listeners (TLS 1.2, net/tls_server.c) and, with
+ * --tls-client-ca, the same demand for a client certificate. A plain HTTP
+ * request on that port fails its handshake. */
+static void set_vhost_tls(const fc_tls_server_files *tls, struct lws_context_creation_info *info)
+{
+    /* libwebsockets needs the files to start TLS on the host; the handshakes
+     * then use the listeners' context (use_current_certificate). */
+    info->ssl_cert_filepath = tls->cert_file;
+    info->ssl_private_key_filepath = tls->key_file;
+    info->ssl_options_set = SSL_OP_NO_TLSv1 | SSL_OP_NO_TLSv1_1;
+    /* HTTP/1.1 only: libwebsockets 4.1's HTTP/2 on an adopted socket resets
+     * the connection at a second request (a browser's page, then its scripts). */
+    info->alpn = "http/1.1";
+    if (tls->client_ca_file) {
+        info->ssl_ca_filepath = tls->client_ca_file;
+        info->options |= LWS_SERVER_OPTION_REQUIRE_VALID_OPENSSL_CLIENT_CERT;
+    }
+}
+
 static fc_code start_lws(fc_web_server *s, fc_error *err)
 {
     fill_protocols(s);
     lws_set_log_level(LLL_ERR, NULL);
     struct lws_context_creation_info info;
     memset(&info, 0, sizeof info);
-    info.options = LWS_SERVER_OPTION_EXPLICIT_VHOSTS;
+    const fc_tls_server_files *tls = s->tls ? fc_tls_server_paths(s->tls) : NULL;
+    info.options = LWS_SERVER_OPTION_EXPLICIT_VHOSTS | (tls ? LWS_SERVER_OPTION_DO_SSL_GLOBAL_INIT : 0);
     info.port = CONTEXT_PORT_NO_LISTEN_SERVER;
     info.protocols = s->protocols;
     info.user = s;
@@ -263,9 +301,14 @@ static fc_code start_lws(fc_web_server *s, fc_error *err)
     if (!s->context)
         return fc_error_set(err, FC_ERR_IO, "web: libwebsockets cannot start");
     info.vhost_name = "fluidcast";
+    if (tls)
+        set_vhost_tls(tls, &info);
     s->vhost = lws_create_vhost(s->context, &info);
     if (!s->vhost)
-        return fc_error_set(err, FC_ERR_IO, "web: libwebsockets cannot make its host");
+        return fc_error_set(err, FC_ERR_IO, tls ? "web: libwebsockets cannot make its host with the certificate "
+                                                  "%s and the key %s"
+                                                : "web: libwebsockets cannot make its host%s%s",
+                            tls ? tls->cert_file : "", tls ? tls->key_file : "");
     lws_sock_file_fd_type fd = {.filefd = s->web.fd};
     struct lws *listener = lws_adopt_descriptor_vhost(s->vhost, LWS_ADOPT_RAW_FILE_DESC, fd, ACCEPT_PROTOCOL, NULL);
     s->web.fd = -1;   /* libwebsockets closes it, on failure too */
@@ -283,13 +326,14 @@ static void *serve(void *arg)
     return NULL;
 }
 
-fc_code fc_web_server_start(const char *host, const char *port, const fc_log *log, fc_web_server **out,
-                            fc_error *err)
+fc_code fc_web_server_start(const char *host, const char *port, fc_tls_server *tls, const fc_log *log,
+                            fc_web_server **out, fc_error *err)
 {
     fc_web_server *s = calloc(1, sizeof *s);
     if (!s)
         return fc_error_set(err, FC_ERR_NOMEM, "web: out of memory");
     s->log = log;
+    s->tls = tls;
     s->relay_config.log = log;
     s->web.fd = s->relay.fd = -1;
     atomic_init(&s->stopping, false);
@@ -322,6 +366,11 @@ const fc_listener *fc_web_server_relay(const fc_web_server *server)
 const char *fc_web_server_address(const fc_web_server *server)
 {
     return server->web.address;
+}
+
+const char *fc_web_server_scheme(const fc_web_server *server)
+{
+    return server->tls ? "https" : "http";
 }
 
 void fc_web_server_stop(fc_web_server *server)
