@@ -119,12 +119,12 @@ fc_code fc_channel_recv_exact(fc_channel *ch, uint8_t *data, size_t n, fc_error 
     return code;
 }
 
-bool fc_channel_input_waiting(const fc_channel *ch)
+bool fc_channel_wait_input(const fc_channel *ch, int timeout_ms)
 {
     if (ch->ssl && SSL_pending(ch->ssl) > 0)
         return true;
     struct pollfd pfd = {.fd = ch->fd, .events = POLLIN};
-    return poll(&pfd, 1, 0) > 0;
+    return poll(&pfd, 1, timeout_ms) > 0;
 }
 
 void fc_channel_close(fc_channel *ch, bool orderly)

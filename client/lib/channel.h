@@ -27,8 +27,9 @@ fc_code fc_channel_send_all(fc_channel *ch, const uint8_t *data, size_t n, fc_er
 fc_code fc_channel_send_parts(fc_channel *ch, struct iovec *parts, size_t count, fc_error *err);
 fc_code fc_channel_recv_exact(fc_channel *ch, uint8_t *data, size_t n, fc_error *err);
 
-/* True when bytes can be read now without waiting (decrypted ones included). */
-bool fc_channel_input_waiting(const fc_channel *ch);
+/* True when bytes can be read (decrypted ones included), or the peer hung up,
+ * within timeout_ms (0: now, without waiting). */
+bool fc_channel_wait_input(const fc_channel *ch, int timeout_ms);
 
 /* Frees the TLS session and closes the socket; orderly (the stream is in
  * step, the server reading): after a TLS close_notify, best effort. */

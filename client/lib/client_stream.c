@@ -2,6 +2,7 @@
  * between requests (fc_client_poll_errors). */
 #include "fluidcast.h"
 
+#include <limits.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -119,10 +120,24 @@ void fc_stream_image_free(fc_stream_image *image)
     memset(image, 0, sizeof *image);
 }
 
+fc_code fc_client_wait_input(fc_client *client, uint32_t timeout_ms, int *ready, fc_error *err)
+{
+    if (ready)
+        *ready = 0;
+    fc_code code = fc_client_check_usable(client, err);
+    if (code != FC_OK)
+        return code;
+    if (!ready)
+        return fc_error_set(err, FC_ERR_USAGE, "fc_client_wait_input needs somewhere to say whether input waits");
+    int wait = timeout_ms > INT_MAX ? INT_MAX : (int)timeout_ms;
+    *ready = client->stream_ended || fc_channel_wait_input(&client->channel, wait);
+    return FC_OK;
+}
+
 fc_code fc_client_poll_errors(fc_client *client, fc_error *err)
 {
     fc_code code = fc_client_check_usable(client, err);
-    while (code == FC_OK && fc_channel_input_waiting(&client->channel)) {
+    while (code == FC_OK && fc_channel_wait_input(&client->channel, 0)) {
         fc_msg_header header;
         code = fc_client_receive(client, &header, err);
         if (code != FC_OK || fc_client_absorb_stream(client, &header))

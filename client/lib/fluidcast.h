@@ -398,6 +398,15 @@ typedef struct fc_stream_image {
  * request of this client (e.g. a CAMERA) or could not render an image for this
  * viewer (the subscription stays either way); the connection errors. */
 FC_API fc_code fc_client_next_image(fc_client *client, fc_stream_image *out, fc_error *err);
+
+/* Waits at most timeout_ms (0: not at all) for the server to send this client
+ * something, such as the subscribed session's next image; *ready becomes
+ * nonzero when there is input to read (or the connection was closed, which the
+ * next read reports). A viewer calls it between its camera changes, so that it
+ * can send them while a slow producer's next frame is still to come, and calls
+ * fc_client_next_image once it is ready. Errors: FC_ERR_USAGE for a NULL ready;
+ * FC_ERR_CLOSED on a client already broken. */
+FC_API fc_code fc_client_wait_input(fc_client *client, uint32_t timeout_ms, int *ready, fc_error *err);
 FC_API void fc_stream_image_free(fc_stream_image *image);
 
 /* Asks the server to make this viewer's next H.264 image a key frame (an

@@ -248,6 +248,10 @@ static void script_step(viewer *v)
         v->step_started_ms = 0.0;
         break;
     case FC_VIEW_STEP_RESIZE: fc_view_script_resize(v->win.window, s->dx, s->dy); break;
+    case FC_VIEW_STEP_RTT:
+        printf("round trip: %.1f ms %ux%u\n", v->shown.round_trip_ms, v->shown.width, v->shown.height);
+        fflush(stdout);
+        break;
     case FC_VIEW_STEP_QUIT: v->ctl.quit = true; break;
     case FC_VIEW_STEP_DONE: break;
     }

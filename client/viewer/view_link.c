@@ -15,6 +15,11 @@
 #include "view_camera.h"
 #include "view_decode.h"
 
+/* How long a session's worker waits for the server's next message before it
+ * looks for a camera change again: short beside a render, so a drag goes out
+ * at once, and the idle worker wakes 100 times a second at most. */
+#define REQUEST_POLL_MS 10u
+
 /* What the worker remembers of what it sent, to send only changes. */
 typedef struct link_state {
     uint32_t loaded;              /* frame index on the server; UINT32_MAX: none */
@@ -291,9 +296,12 @@ static bool follow_ended(fc_view_link *link, link_state *st, uint64_t done, bool
 }
 
 /* A session: images come when the producer publishes (or after a view
- * change); a changed camera goes out between images. Until the first image
- * the session waits (for its producer or its first frame); after its end the
- * viewer stays on the last frame (follow_ended). */
+ * change); a changed camera goes out as soon as the UI makes it, also while
+ * a slow producer's next frame is minutes away: the worker reads an image
+ * only once one is arriving, and looks for the UI's requests every
+ * REQUEST_POLL_MS meanwhile. Until the first image the session waits (for its
+ * producer or its first frame); after its end the viewer stays on the last
+ * frame (follow_ended). */
 static void run_session(fc_view_link *link, link_state *state)
 {
     fc_error err;
@@ -338,6 +346,11 @@ static void run_session(fc_view_link *link, link_state *state)
         }
         if (stop)
             return;
+        int ready = 0;
+        if (fc_client_wait_input(link->client, REQUEST_POLL_MS, &ready, &err) != FC_OK)
+            break;
+        if (!ready)
+            continue;
         fc_stream_image img;
         if (fc_client_next_image(link->client, &img, &err) != FC_OK)
             break;

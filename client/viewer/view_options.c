@@ -177,7 +177,7 @@ void fc_view_print_help(FILE *to)
           "  --log-camera            print each camera sent to the daemon\n"
           "  --test-script SCRIPT    test hook: run ';'-separated commands (wait [S], drag DX DY,\n"
           "                          pan DX DY, dclick DX DY, shot FILE.bmp, key K, sleep MS,\n"
-          "                          resize W H, quit) against the window\n"
+          "                          resize W H, rtt, quit) against the window\n"
           "  -h, --help              show this help\n"
           "\n",
           to);

@@ -32,6 +32,8 @@ static fc_code parse_step(const char *text, fc_view_step *s, fc_error *err)
     }
     else if (n >= 1 && strcmp(word, "quit") == 0)
         s->kind = FC_VIEW_STEP_QUIT;
+    else if (n == 1 && strcmp(word, "rtt") == 0)
+        s->kind = FC_VIEW_STEP_RTT;
     else if ((strcmp(word, "drag") == 0 || strcmp(word, "pan") == 0 || strcmp(word, "dclick") == 0) &&
              sscanf(text, " %*s %d %d", &s->dx, &s->dy) == 2)
         s->kind = word[1] == 'c' ? FC_VIEW_STEP_DCLICK : word[0] == 'd' ? FC_VIEW_STEP_DRAG : FC_VIEW_STEP_PAN;

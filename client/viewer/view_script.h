@@ -14,6 +14,9 @@
  *     sleep MS        lets MS milliseconds pass (events keep being handled)
  *     resize W H      asks for a W x H window (SDL_SetWindowSize), as a user's
  *                     drag of its border does
+ *     rtt             prints the round trip of the image on screen: "round
+ *                     trip: MS ms WxH" (its request sent -> it decoded;
+ *                     bench/viewer/viewer_latency.sh reads it after a wait)
  *     quit            ends the viewer (exit status 0)
  * Not meant for users; documented in --help as a test hook. */
 #ifndef FC_VIEW_SCRIPT_H
@@ -34,6 +37,7 @@ typedef enum fc_view_step_kind {
     FC_VIEW_STEP_SHOT,
     FC_VIEW_STEP_SLEEP,
     FC_VIEW_STEP_RESIZE,
+    FC_VIEW_STEP_RTT,
     FC_VIEW_STEP_QUIT
 } fc_view_step_kind;
 

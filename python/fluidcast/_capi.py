@@ -312,6 +312,7 @@ _PROTOTYPES = {
     "fc_client_send_chunk": (c_enum, [c_client_p, c_uint64, c_uint32, c_uint32, POINTER(FcFrame),
                                       POINTER(FcUploadOptions), POINTER(FcUploadStats), _E]),
     "fc_client_poll_errors": (c_enum, [c_client_p, _E]),
+    "fc_client_wait_input": (c_enum, [c_client_p, c_uint32, POINTER(c_int), _E]),
 }
 
 

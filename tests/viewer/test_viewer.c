@@ -30,6 +30,11 @@
  *               and drawn; the producer leaves: the viewer says the session
  *               ended, and a drag after that still shows a new picture of the
  *               last frame (PROTOCOL.md 10.1), the title saying so
+ *   session_drag the slab published to a session whose producer stays but
+ *               sends nothing more (a slow simulation between frames): a drag
+ *               in `view --session` (raw images, which have no lossless
+ *               refresh to wake the viewer) is rendered and shown at once,
+ *               not at the producer's next frame
  * Usage: test_viewer MODE FLUIDCAST_CLI TESTS_INPUT_DIR [GALLERY_PNG] */
 #include <fcntl.h>
 #include <math.h>
@@ -285,6 +290,28 @@ static double azimuth(const float v[3], const float up[3])
         a[i] -= d * up[i];
     double b[3] = {up[1] * a[2] - up[2] * a[1], up[2] * a[0] - up[0] * a[2], up[0] * a[1] - up[1] * a[0]};
     return atan2(v[0] * b[0] + v[1] * b[1] + v[2] * b[2], v[0] * a[0] + v[1] * a[1] + v[2] * a[2]);
+}
+
+/* session_drag: an image answering a camera request (generation > 1) is shown
+ * before the second shot, with the session still live, and it differs. */
+static int test_session_drag(const char *log, const char *before, const char *after)
+{
+    const char *second_shot = strstr(log, "shot: ");
+    second_shot = second_shot ? strstr(second_shot + 1, "shot: ") : NULL;
+    REQUIRE_MSG(second_shot != NULL, "two screenshots expected:\n%s", log);
+    REQUIRE_MSG(strstr(log, "ended") == NULL, "the session ended; it should have stayed live:\n%s", log);
+    unsigned long long generation = 0;
+    for (const char *p = strstr(log, "shown "); p && p < second_shot; p = strstr(p + 1, "shown "))
+        generation = strtoull(p + 6, NULL, 10);
+    CHECK_MSG(generation > 1, "the image shown after the drag answers request %llu:\n%s", generation, log);
+    fc_decoded_image a = {0}, b = {0};
+    REQUIRE(decode_bmp(before, &a) && decode_bmp(after, &b));
+    double diff = mean_abs_difference(&a, &b);
+    printf("session_drag: mean absolute difference of the pictures before and after the drag %.1f\n", diff);
+    CHECK(diff > 5.0);
+    fc_decoded_image_free(&a);
+    fc_decoded_image_free(&b);
+    return 0;
 }
 
 static int test_drag(const scene *s, const char *log, const char *before, const char *after)
@@ -638,6 +665,8 @@ static int run_viewer(const scene *s, const char *mode, char **log)
     } else if (strcmp(mode, "session_end") == 0) {
         /* The drag's picture can only come after the end: no frame follows the first. */
         snprintf(script, sizeof script, "wait; shot %s; sleep 500; drag %d 0; wait; shot %s; quit", a, DRAG_PX, b);
+    } else if (strcmp(mode, "session_drag") == 0) {
+        snprintf(script, sizeof script, "wait; shot %s; drag %d 0; wait; shot %s; quit", a, DRAG_PX, b);
     } else if (strcmp(mode, "draw") == 0 || strcmp(mode, "h264") == 0) {
         snprintf(script, sizeof script, "wait; shot %s; quit", a);
     } else {
@@ -658,6 +687,11 @@ static int run_viewer(const scene *s, const char *mode, char **log)
         argv[2] = "--session=view-h264";   /* in place of the files */
         argv[n++] = "--format";
         argv[n++] = "h264";
+    }
+    if (strcmp(mode, "session_drag") == 0) {
+        producer = publish_slab(s->server, "view-live");   /* stays, publishing nothing more */
+        REQUIRE(producer != NULL);
+        argv[2] = "--session=view-live";
     }
     if (strcmp(mode, "wait_limit") == 0)
         argv[2] = "--session=nobody-publishes";   /* a session no producer ever fills: no image comes */
@@ -688,6 +722,8 @@ static int run_viewer(const scene *s, const char *mode, char **log)
         return test_draw(s, *log, a);
     if (strcmp(mode, "drag") == 0)
         return test_drag(s, *log, a, b);
+    if (strcmp(mode, "session_drag") == 0)
+        return test_session_drag(*log, a, b);
     if (strcmp(mode, "pick") == 0)
         return test_pick(*log);
     if (strcmp(mode, "quality") == 0)
@@ -706,7 +742,7 @@ static int run_viewer(const scene *s, const char *mode, char **log)
 int main(int argc, char **argv)
 {
     if (argc < 4) {
-        fprintf(stderr, "usage: test_viewer draw|drag|pick|spacemouse|h264|quality|resize|playback|wait_limit|session_end FLUIDCAST_CLI TESTS_INPUT_DIR [GALLERY_PNG]\n");
+        fprintf(stderr, "usage: test_viewer draw|drag|pick|spacemouse|h264|quality|resize|playback|wait_limit|session_end|session_drag FLUIDCAST_CLI TESTS_INPUT_DIR [GALLERY_PNG]\n");
         return 2;
     }
     const char *mode = argv[1];
