@@ -11,7 +11,7 @@ fuzz_dir=$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)
 fuzz_all_targets=(fuzz_reader_f32 fuzz_reader_ply fuzz_reader_vtk fuzz_reader_csv fuzz_reader_bgeo fuzz_reader_npy
                   fuzz_reader_vtkxml fuzz_reader_hdf5 fuzz_wire_messages fuzz_wire_session fuzz_wire_settings
                   fuzz_wire_mesh fuzz_wire_surface fuzz_srv_answer fuzz_camera_path fuzz_mesh_obj fuzz_mesh_stl fuzz_mesh_ply
-                  fuzz_mesh_vtk fuzz_mesh_vtp)
+                  fuzz_mesh_vtk fuzz_mesh_vtp fuzz_tls_handshake)
 # fuzz_reader_hdf5 is fuzzed only when named: Debian 12's libhdf5 1.10.8 itself reads past a buffer of its own
 # on some damaged compact datasets (H5VM_memcpyvv under H5Dread, found by this target in CI), which the storage
 # size it reports does not reveal. Its committed corpus is replayed like every other (replay_corpus.sh).

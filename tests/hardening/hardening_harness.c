@@ -10,6 +10,7 @@
 #include <unistd.h>
 
 #include "fc_error.h"
+#include "hardening_tls.h"
 #include "integration/scene_fixtures.h"
 #include "test_scene.h"
 #include "test_util.h"
@@ -117,6 +118,8 @@ void hx_sleep_ms(int ms)
 
 int hx_connect(const hx_env *env)
 {
+    if (env->tls)
+        return hx_tls_connect(env->tls, env->daemon.port);
     int fd = -1;
     fc_error err;
     CHECK_MSG(fc_test_connect(env->daemon.port, &fd, &err) == FC_OK, "%s", err.message);
@@ -395,6 +398,16 @@ bool hx_env_start_with(hx_env *env, const fc_test_daemon_setup *setup)
 {
     const char *args[MAX_DAEMON_ARGS + 1] = {"--log-level", "warn"};
     int n = 2;
+    env->tls = NULL;
+    if (hx_tls_requested() && !(env->tls = hx_tls_create()))
+        return false;   /* never the plaintext matrix in place of the TLS one */
+    if (env->tls) {
+        printf("hardening: every connection through TLS 1.3 (certificate %s)\n", hx_tls_cert_path(env->tls));
+        args[n++] = "--tls-cert";
+        args[n++] = hx_tls_cert_path(env->tls);
+        args[n++] = "--tls-key";
+        args[n++] = hx_tls_key_path(env->tls);
+    }
     for (int i = 0; setup->extra_args && setup->extra_args[i] && n < MAX_DAEMON_ARGS; i++)
         args[n++] = setup->extra_args[i];
     args[n] = NULL;
@@ -419,6 +432,8 @@ void hx_env_stop(hx_env *env)
         close(env->witness_fd);
     fc_error err;
     CHECK_MSG(fc_test_daemon_stop(&env->daemon, FC_TEST_DAEMON_STOP_TIMEOUT_MS, &err) == FC_OK, "%s", err.message);
+    hx_tls_destroy(env->tls);
+    env->tls = NULL;
 }
 
 long long hx_daemon_status_kib(const hx_env *env, const char *field)

@@ -76,9 +76,11 @@ typedef struct hx_env {
     fc_test_daemon daemon;
     int witness_fd;
     uint32_t witness_next_id;
+    struct hx_tls *tls;   /* FC_HARDENING_TRANSPORT=tls: every connection through TLS (hardening_tls.h); else NULL */
 } hx_env;
 
-/* Starts fluidcastd with extra_args (plus --log-level warn) and connects the witness. */
+/* Starts fluidcastd with extra_args (plus --log-level warn, and a certificate
+ * when the run asks for TLS) and connects the witness. */
 bool hx_env_start(hx_env *env, const char *const *extra_args);
 /* The same with the daemon's process set up as `setup` says. */
 bool hx_env_start_with(hx_env *env, const fc_test_daemon_setup *setup);
