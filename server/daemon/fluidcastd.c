@@ -207,10 +207,12 @@ static fc_code start_metrics(const fc_daemon_options *options, const fc_log *log
     else if (fc_listener_open(options->metrics_host, options->metrics_port, &l, &open_err) != FC_OK)
         return fc_error_set(err, FC_ERR_IO, "--metrics-listen: %s", open_err.message);
     s->metrics_fd = -1;   /* the endpoint owns it now, started or not */
-    fc_code code = fc_metrics_http_start(l.fd, metrics, &s->http, err);
+    bool https = options->metrics_tls;
+    fc_code code = fc_metrics_http_start(l.fd, metrics, https ? options->tls_cert : NULL,
+                                         https ? options->tls_key : NULL, &s->http, err);
     if (code == FC_OK)
-        fc_log_write(log, FC_LOG_INFO, "metrics, health and readiness on http://%s/metrics, /healthz, /readyz",
-                     l.address);
+        fc_log_write(log, FC_LOG_INFO, "metrics, health and readiness on %s://%s/metrics, /healthz, /readyz",
+                     https ? "https" : "http", l.address);
     return code;
 }
 

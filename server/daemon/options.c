@@ -95,6 +95,13 @@ static fc_code set_tls_cert(void *o, const char *name, const char *value, fc_err
     return FC_OK;
 }
 
+static fc_code set_metrics_tls(void *o, const char *name, const char *value, fc_error *err)
+{
+    (void)name, (void)value, (void)err;
+    as_options(o)->metrics_tls = true;
+    return FC_OK;
+}
+
 static fc_code set_tls_key(void *o, const char *name, const char *value, fc_error *err)
 {
     (void)name, (void)err;
@@ -248,6 +255,9 @@ static const fc_option options[] = {
     {"--tls-key", "PATH", set_tls_key, "the PEM private key of --tls-cert", NULL},
     {"--tls-client-ca", "PATH", set_tls_client_ca,
      "mutual TLS: clients must present a certificate issued by a CA in this PEM file", NULL},
+    {"--metrics-tls", NULL, set_metrics_tls,
+     "serve --metrics-listen over HTTPS with the --tls-cert certificate and key (read once, at the start; "
+     "restart the daemon to rotate them there)", NULL},
     {"--tls-handshake-timeout-ms", "MS", set_tls_handshake_timeout,
      "a TLS handshake not complete within this is dropped (counted in /metrics)", "10000"},
 };
@@ -268,6 +278,8 @@ fc_code fc_daemon_options_check_tls(const fc_daemon_options *o, fc_error *err)
         return fc_error_set(err, FC_ERR_USAGE, "--tls-cert and --tls-key go together");
     if (o->tls_client_ca && !o->tls_cert)
         return fc_error_set(err, FC_ERR_USAGE, "--tls-client-ca needs --tls-cert and --tls-key");
+    if (o->metrics_tls && !o->tls_cert)
+        return fc_error_set(err, FC_ERR_USAGE, "--metrics-tls needs --tls-cert and --tls-key");
     return FC_OK;
 }
 

@@ -38,6 +38,7 @@ typedef struct fc_daemon_options {
     const char *tls_key;       /* --tls-key: the certificate's private key */
     const char *tls_client_ca; /* --tls-client-ca: mutual TLS, clients need a certificate from these CAs */
     uint32_t tls_handshake_timeout_ms;  /* a TLS handshake not complete within this is dropped */
+    bool metrics_tls;          /* --metrics-tls: the metrics endpoint over HTTPS with --tls-cert/--tls-key */
     bool help;                 /* -h/--help: print usage and exit */
 } fc_daemon_options;
 

@@ -24,6 +24,7 @@ No timing asserts: every wait is for an event, bounded only to end a hung test.
 usage: test_tls.py FLUIDCASTD FLUIDCAST_CLI   (PYTHONPATH and FLUIDCAST_LIBRARY for the binding)
 """
 
+import http.client
 import os
 import re
 import shutil
@@ -36,6 +37,7 @@ import sys
 import tempfile
 import threading
 import time
+import urllib.error
 import urllib.request
 
 DAEMON, CLI = sys.argv[1], sys.argv[2]
@@ -125,13 +127,19 @@ class Daemon:
         self.port = int(open(self.port_file).read())
         match = None
         while time.monotonic() < deadline and not match:
-            match = re.search(r"http://127\.0\.0\.1:(\d+)/metrics", open(self.log_path).read())
+            match = re.search(r"(https?)://127\.0\.0\.1:(\d+)/metrics", open(self.log_path).read())
             time.sleep(0.05)
-        self.metrics_port = int(match.group(1))
+        self.metrics_scheme, self.metrics_port = match.group(1), int(match.group(2))
+
+    def http_get(self, what):
+        """GET what from the metrics endpoint: https (--metrics-tls) verified against the test CA."""
+        context = ssl.create_default_context(cafile=path("ca.pem")) if self.metrics_scheme == "https" else None
+        host = "localhost" if context else "127.0.0.1"
+        url = "%s://%s:%d%s" % (self.metrics_scheme, host, self.metrics_port, what)
+        return urllib.request.urlopen(url, timeout=30, context=context).read().decode()
 
     def metric(self, name):
-        body = urllib.request.urlopen("http://127.0.0.1:%d/metrics" % self.metrics_port, timeout=30).read().decode()
-        return float(re.search(r"^%s (\S+)$" % name, body, re.M).group(1))
+        return float(re.search(r"^%s (\S+)$" % name, self.http_get("/metrics"), re.M).group(1))
 
     def stop(self):
         if self.process.poll() is None:
@@ -345,6 +353,18 @@ def test_stalled_handshakes(a, c):
     check(c.metric("fluidcast_tls_handshake_timeouts_total") >= 1, "... and counted in /metrics")
 
 
+def test_metrics_tls(m):
+    """--metrics-tls: /healthz and /metrics over HTTPS with the daemon's certificate; plain HTTP gets nothing."""
+    check(m.metrics_scheme == "https", "with --metrics-tls the log names an https:// metrics endpoint")
+    check(m.http_get("/healthz").strip() == "ok", "/healthz answers over HTTPS, the certificate verified")
+    check("fluidcast_build_info" in m.http_get("/metrics"), "/metrics answers over HTTPS")
+    try:
+        urllib.request.urlopen("http://127.0.0.1:%d/healthz" % m.metrics_port, timeout=30).read()
+        check(False, "plain HTTP to the HTTPS metrics endpoint is refused")
+    except (urllib.error.URLError, ConnectionError, http.client.HTTPException):
+        check(True, "plain HTTP to the HTTPS metrics endpoint is refused")
+
+
 def main():
     with open(path("token"), "w") as f:
         f.write(TOKEN + "\n")
@@ -361,14 +381,16 @@ def main():
     b = Daemon("b")
     c = Daemon("c", "--tls-cert", path("server.pem"), "--tls-key", path("server.key"), "--tls-client-ca",
                path("ca.pem"), "--tls-handshake-timeout-ms", "300", "--max-connections", "2")
+    m = Daemon("m", "--tls-cert", path("server.pem"), "--tls-key", path("server.key"), "--metrics-tls")
     try:
-        for d in (a, b, c):
+        for d in (a, b, c, m):
             d.wait_ready()
         test_same_image(a, particles)
         test_failures(a, b, c)
         test_proxy_sees_nothing(a, b, particles)
         test_reload(a)
         test_stalled_handshakes(a, c)
+        test_metrics_tls(m)
     finally:
         for d in daemons:
             d.stop()

@@ -7,11 +7,14 @@
 #include <unistd.h>
 
 #include "fc_error.h"
+#include "fc_file.h"
 #include "metrics/metrics_text.h"
 
 /* A scraper or a probe needs one connection; a few more are room for several,
  * and the limit keeps a flood from costing threads or memory. */
 enum { MAX_CONNECTIONS = 32, CONNECTION_TIMEOUT_S = 10 };
+/* A PEM certificate chain or key is a few KiB; this bounds a wrong path's cost. */
+#define MAX_PEM_BYTES ((size_t)1 << 20)
 
 #if MHD_VERSION < 0x00097002
 typedef int fc_mhd_result;
@@ -23,6 +26,7 @@ struct fc_metrics_http {
     struct MHD_Daemon *daemon;
     int listen_fd;
     fc_metrics *metrics;
+    uint8_t *cert_pem, *key_pem;   /* HTTPS: the PEM files as libmicrohttpd was given them; NULL: HTTP */
 };
 
 static fc_mhd_result respond(struct MHD_Connection *connection, unsigned status, const char *content_type,
@@ -97,7 +101,42 @@ static fc_mhd_result on_request(void *closure, struct MHD_Connection *connection
     return respond_text(connection, MHD_HTTP_NOT_FOUND, "not found: /metrics, /healthz or /readyz\n", NULL);
 }
 
-fc_code fc_metrics_http_start(int listen_fd, fc_metrics *metrics, fc_metrics_http **out, fc_error *err)
+static void free_server(fc_metrics_http *server)
+{
+    free(server->cert_pem);
+    free(server->key_pem);
+    free(server);
+}
+
+/* HTTPS: the certificate and key in memory, as libmicrohttpd takes them. */
+static fc_code read_pems(fc_metrics_http *server, const char *cert_file, const char *key_file, fc_error *err)
+{
+    size_t size;
+    fc_error why;
+    if (fc_read_file(cert_file, MAX_PEM_BYTES, &server->cert_pem, &size, &why) != FC_OK)
+        return fc_error_set(err, FC_ERR_USAGE, "--metrics-tls: --tls-cert %s", why.message);
+    if (fc_read_file(key_file, MAX_PEM_BYTES, &server->key_pem, &size, &why) != FC_OK)
+        return fc_error_set(err, FC_ERR_USAGE, "--metrics-tls: --tls-key %s", why.message);
+    return FC_OK;
+}
+
+static struct MHD_Daemon *start_mhd(fc_metrics_http *server)
+{
+    /* One internal thread polls every connection: a scrape is small and rare. */
+    unsigned flags = MHD_USE_INTERNAL_POLLING_THREAD | MHD_USE_POLL;
+    if (!server->cert_pem)
+        return MHD_start_daemon(flags, 0, NULL, NULL, on_request, server->metrics, MHD_OPTION_LISTEN_SOCKET,
+                                server->listen_fd, MHD_OPTION_CONNECTION_LIMIT, (unsigned)MAX_CONNECTIONS,
+                                MHD_OPTION_CONNECTION_TIMEOUT, (unsigned)CONNECTION_TIMEOUT_S, MHD_OPTION_END);
+    return MHD_start_daemon(flags | MHD_USE_TLS, 0, NULL, NULL, on_request, server->metrics,
+                            MHD_OPTION_LISTEN_SOCKET, server->listen_fd, MHD_OPTION_CONNECTION_LIMIT,
+                            (unsigned)MAX_CONNECTIONS, MHD_OPTION_CONNECTION_TIMEOUT, (unsigned)CONNECTION_TIMEOUT_S,
+                            MHD_OPTION_HTTPS_MEM_CERT, (const char *)server->cert_pem, MHD_OPTION_HTTPS_MEM_KEY,
+                            (const char *)server->key_pem, MHD_OPTION_END);
+}
+
+fc_code fc_metrics_http_start(int listen_fd, fc_metrics *metrics, const char *cert_file, const char *key_file,
+                              fc_metrics_http **out, fc_error *err)
 {
     fc_metrics_http *server = calloc(1, sizeof *server);
     if (!server) {
@@ -106,15 +145,14 @@ fc_code fc_metrics_http_start(int listen_fd, fc_metrics *metrics, fc_metrics_htt
     }
     server->listen_fd = listen_fd;
     server->metrics = metrics;
-    /* One internal thread polls every connection: a scrape is small and rare. */
-    server->daemon = MHD_start_daemon(MHD_USE_INTERNAL_POLLING_THREAD | MHD_USE_POLL, 0, NULL, NULL, on_request,
-                                      metrics, MHD_OPTION_LISTEN_SOCKET, listen_fd, MHD_OPTION_CONNECTION_LIMIT,
-                                      (unsigned)MAX_CONNECTIONS, MHD_OPTION_CONNECTION_TIMEOUT,
-                                      (unsigned)CONNECTION_TIMEOUT_S, MHD_OPTION_END);
-    if (!server->daemon) {
+    fc_code code = cert_file ? read_pems(server, cert_file, key_file, err) : FC_OK;
+    if (code == FC_OK && !(server->daemon = start_mhd(server)))
+        code = fc_error_set(err, FC_ERR_IO, "metrics endpoint: libmicrohttpd cannot start on its socket%s",
+                            cert_file ? " with the certificate (is it built with TLS?)" : "");
+    if (code != FC_OK) {
         close(listen_fd);
-        free(server);
-        return fc_error_set(err, FC_ERR_IO, "metrics endpoint: libmicrohttpd cannot start on its socket");
+        free_server(server);
+        return code;
     }
     *out = server;
     return FC_OK;
@@ -127,5 +165,5 @@ void fc_metrics_http_stop(fc_metrics_http *server)
     MHD_stop_daemon(server->daemon);
     /* MHD_stop_daemon closes the listening socket too, the one it was given
      * included (it was never quiesced), so no close() here. */
-    free(server);
+    free_server(server);
 }

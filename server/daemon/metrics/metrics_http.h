@@ -17,9 +17,12 @@
 typedef struct fc_metrics_http fc_metrics_http;
 
 /* Serves on listen_fd, a listening TCP socket (taken over: closed by
- * fc_metrics_http_stop). metrics must outlive the server. FC_ERR_IO when
- * libmicrohttpd cannot start. */
-fc_code fc_metrics_http_start(int listen_fd, fc_metrics *metrics, fc_metrics_http **out, fc_error *err);
+ * fc_metrics_http_stop): over HTTPS when cert_file and key_file (PEM) are
+ * given, read once here; over HTTP when they are NULL. metrics must outlive
+ * the server. FC_ERR_USAGE naming a file that cannot be read; FC_ERR_IO when
+ * libmicrohttpd cannot start (or take the certificate). */
+fc_code fc_metrics_http_start(int listen_fd, fc_metrics *metrics, const char *cert_file, const char *key_file,
+                              fc_metrics_http **out, fc_error *err);
 /* Stops the thread, closes the socket; NULL is fine. */
 void fc_metrics_http_stop(fc_metrics_http *server);
 
