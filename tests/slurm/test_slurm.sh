@@ -128,10 +128,17 @@ else
     fail "job $two never wrote its address: $(cat "$work/two/job.log" 2>/dev/null)"
 fi
 
-# 3: two ranks, each renders through its node's daemon.
+# 3: two ranks, each renders through its node's daemon; rank 0 also reaches the node's daemon over its TCP
+# address for viewers, in TLS with the node's certificate.
 mkdir -p "$work/ranks"
 cat > "$work/ranks/rank.sh" <<RANK
 #!/bin/bash
+if [[ \$SLURM_PROCID == 0 ]]; then
+    address=\$(cat "$work/ranks/addresses/"*.address)
+    echo "\$address" > "$work/ranks/tcp_address.txt"
+    "$client" info --server "\$address" --tls-ca "\$(ls "$work/ranks/addresses/"*.address.pem)" \\
+        --token-file "\$FLUIDCAST_TOKEN_FILE" > "$work/ranks/info.txt" || exit 1
+fi
 exec "$client" snapshot "$work/ball.f32" -o "$work/ranks/rank-\$SLURM_PROCID.png" --size 40x40 \\
     --server "\$FLUIDCAST_SERVER" --token-file "\$FLUIDCAST_TOKEN_FILE"
 RANK
@@ -154,6 +161,10 @@ done
 [[ $(grep -c "unix#[0-9]*: HELLO from 'fluidcast snapshot'" "$work/ranks/job.log") -eq 2 ]] ||
     fail "the node's daemon did not serve both ranks over its Unix socket"
 grep -q "fluidcastd on .* exited with status 0" "$work/ranks/job.log" || fail "the ranks' daemon did not drain and exit 0"
+[[ $(cat "$work/ranks/tcp_address.txt" 2>/dev/null) == tls://127.0.0.1:* ]] ||
+    fail "the node's address for viewers is not tls://: $(cat "$work/ranks/tcp_address.txt" 2>/dev/null)"
+[[ -s $work/ranks/info.txt ]] || fail "fluidcast info over TLS with the node's certificate failed"
+[[ ! -e $work/ranks/addresses/$(hostname -s).address.pem ]] || fail "the node's certificate was left behind"
 
 if [[ $failures -eq 0 ]]; then
     rm -rf "$work"
