@@ -58,8 +58,9 @@ mkdir -p "$OUT"
 VDB=$OUT/mesh_openvdb
 if [ ! -x "$VDB" ] || [ "$PEER_DIR/mesh_openvdb.cpp" -nt "$VDB" ]; then
     echo "building $VDB (OpenVDB $(dpkg-query -W -f='${Version}' libopenvdb-dev 2>/dev/null || echo '?'))" >&2
-    g++ -std=c++17 -O2 -o "$VDB" "$PEER_DIR/mesh_openvdb.cpp" -lopenvdb -ltbb \
-        "$(pkg-config --libs Imath 2>/dev/null || echo -lImath-3_1)"
+    # pkg-config's flags as words (its output ends in a space, which one quoted argument would keep).
+    read -ra IMATH_LIBS < <(pkg-config --libs Imath 2>/dev/null || echo -lImath-3_1)
+    g++ -std=c++17 -O2 -o "$VDB" "$PEER_DIR/mesh_openvdb.cpp" -lopenvdb -ltbb "${IMATH_LIBS[@]}"
 fi
 
 DAEMON_PID=""
