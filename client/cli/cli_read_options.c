@@ -53,7 +53,7 @@ void fc_cli_recentre_point(const fc_recentring *r, float point[3])
         point[k] = (float)((double)point[k] - r->offset[k]);
 }
 
-void fc_cli_print_read_options_help(FILE *to)
+void fc_cli_print_read_options_help(FILE *to, bool step_is_stride)
 {
     fputs("particle files:\n"
           "  --dataset PATH          HDF5: where the particles are, when the file is not\n"
@@ -61,9 +61,12 @@ void fc_cli_print_read_options_help(FILE *to)
           "                          (particles/*/arrays) or H5Part (Step#N): a group\n"
           "                          holding Coordinates or x, y, z (and the optional\n"
           "                          arrays), an N x 3 dataset of positions, or\n"
-          "                          x=PATH,y=PATH,z=PATH (three 1-D datasets)\n"
-          "  --step N                H5Part: read group Step#N (default: the lowest N)\n"
-          "  --select ATTR=V[,V...]  keep only the particles whose attribute is one of the\n"
+          "                          x=PATH,y=PATH,z=PATH (three 1-D datasets)\n",
+          to);
+    fputs(step_is_stride ? "                          (H5Part: each file's lowest Step#N group)\n"
+                         : "  --step N                H5Part: read group Step#N (default: the lowest N)\n",
+          to);
+    fputs("  --select ATTR=V[,V...]  keep only the particles whose attribute is one of the\n"
           "  --select 'ATTR<V'       values, or compares so (also <=, >, >=, !=);\n"
           "                          repeatable, all must hold. ATTR: x, y, z, density,\n"
           "                          vx, vy, vz, speed, id, radius, or any other column or\n"

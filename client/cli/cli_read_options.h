@@ -4,6 +4,7 @@
 #ifndef FC_CLI_READ_OPTIONS_H
 #define FC_CLI_READ_OPTIONS_H
 
+#include <stdbool.h>
 #include <stdio.h>
 
 #include "fluidcast_types.h"
@@ -20,7 +21,9 @@ void fc_cli_print_recentring(const fc_recentring *r);
 /* A point given in the file's coordinates (--eye, --target) moved into the recentred frame. */
 void fc_cli_recentre_point(const fc_recentring *r, float point[3]);
 
-/* The "particle files" section of a command's help. */
-void fc_cli_print_read_options_help(FILE *to);
+/* The "particle files" section of a command's help. step_is_stride: the
+ * command's own --step is a sequence's frame stride (render, mesh), so the
+ * readers' --step (an H5Part file's Step#N group) is not among its options. */
+void fc_cli_print_read_options_help(FILE *to, bool step_is_stride);
 
 #endif

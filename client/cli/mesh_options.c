@@ -194,7 +194,7 @@ void fc_mesh_print_help(FILE *to)
           "                          velocities, density densities, id ids)\n"
           "\n",
           to);
-    fc_cli_print_read_options_help(to);
+    fc_cli_print_read_options_help(to, true);
     fc_settings defaults;
     fc_settings_default(&defaults);
     fc_cli_print_settings_help(to, &defaults);

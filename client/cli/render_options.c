@@ -246,7 +246,7 @@ static void print_sequence_help(FILE *to)
 void fc_render_print_help(FILE *to)
 {
     print_sequence_help(to);
-    fc_cli_print_read_options_help(to);
+    fc_cli_print_read_options_help(to, true);
     fc_snapshot_print_settings_help(to);
     fputs("On a terminal a progress bar shows frames, fps and the time left; otherwise one\n"
           "line per frame. A frame that cannot be read stops the render with its name; a\n"

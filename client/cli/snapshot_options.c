@@ -326,7 +326,7 @@ void fc_snapshot_print_help(FILE *to)
           "\n",
           to);
     print_camera_help(to);
-    fc_cli_print_read_options_help(to);
+    fc_cli_print_read_options_help(to, false);
     fc_snapshot_print_settings_help(to);
     fputs("  -h, --help              show this help\n\n", to);
     fc_cli_print_exit_codes(to);

@@ -170,7 +170,7 @@ void fc_stream_print_help(FILE *to)
           "  -h, --help              show this help\n"
           "\n",
           to);
-    fc_cli_print_read_options_help(to);
+    fc_cli_print_read_options_help(to, false);
     fc_settings defaults;
     fc_settings_default(&defaults);
     fc_cli_print_settings_help(to, &defaults);

@@ -181,7 +181,7 @@ void fc_view_print_help(FILE *to)
           "  -h, --help              show this help\n"
           "\n",
           to);
-    fc_cli_print_read_options_help(to);
+    fc_cli_print_read_options_help(to, false);
     fc_cli_settings defaults;
     view_settings_init(&defaults);
     fc_cli_print_settings_help(to, &defaults.values);
