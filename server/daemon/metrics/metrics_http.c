@@ -2,6 +2,7 @@
 #include "metrics/metrics_http.h"
 
 #include <microhttpd.h>
+#include <stdbool.h>
 #include <stdlib.h>
 #include <string.h>
 #include <unistd.h>
@@ -122,17 +123,17 @@ static fc_code read_pems(fc_metrics_http *server, const char *cert_file, const c
 
 static struct MHD_Daemon *start_mhd(fc_metrics_http *server)
 {
+    /* HTTPS adds the certificate and key; over HTTP the list is empty. */
+    struct MHD_OptionItem https[] = {{MHD_OPTION_HTTPS_MEM_CERT, 0, server->cert_pem},
+                                     {MHD_OPTION_HTTPS_MEM_KEY, 0, server->key_pem},
+                                     {MHD_OPTION_END, 0, NULL}};
+    bool tls = server->cert_pem != NULL;
     /* One internal thread polls every connection: a scrape is small and rare. */
-    unsigned flags = MHD_USE_INTERNAL_POLLING_THREAD | MHD_USE_POLL;
-    if (!server->cert_pem)
-        return MHD_start_daemon(flags, 0, NULL, NULL, on_request, server->metrics, MHD_OPTION_LISTEN_SOCKET,
-                                server->listen_fd, MHD_OPTION_CONNECTION_LIMIT, (unsigned)MAX_CONNECTIONS,
-                                MHD_OPTION_CONNECTION_TIMEOUT, (unsigned)CONNECTION_TIMEOUT_S, MHD_OPTION_END);
-    return MHD_start_daemon(flags | MHD_USE_TLS, 0, NULL, NULL, on_request, server->metrics,
-                            MHD_OPTION_LISTEN_SOCKET, server->listen_fd, MHD_OPTION_CONNECTION_LIMIT,
-                            (unsigned)MAX_CONNECTIONS, MHD_OPTION_CONNECTION_TIMEOUT, (unsigned)CONNECTION_TIMEOUT_S,
-                            MHD_OPTION_HTTPS_MEM_CERT, (const char *)server->cert_pem, MHD_OPTION_HTTPS_MEM_KEY,
-                            (const char *)server->key_pem, MHD_OPTION_END);
+    unsigned flags = MHD_USE_INTERNAL_POLLING_THREAD | MHD_USE_POLL | (tls ? MHD_USE_TLS : 0);
+    return MHD_start_daemon(flags, 0, NULL, NULL, on_request, server->metrics, MHD_OPTION_LISTEN_SOCKET,
+                            server->listen_fd, MHD_OPTION_CONNECTION_LIMIT, (unsigned)MAX_CONNECTIONS,
+                            MHD_OPTION_CONNECTION_TIMEOUT, (unsigned)CONNECTION_TIMEOUT_S, MHD_OPTION_ARRAY,
+                            tls ? https : https + 2, MHD_OPTION_END);
 }
 
 fc_code fc_metrics_http_start(int listen_fd, fc_metrics *metrics, const char *cert_file, const char *key_file,

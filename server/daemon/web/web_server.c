@@ -304,11 +304,11 @@ static fc_code start_lws(fc_web_server *s, fc_error *err)
     if (tls)
         set_vhost_tls(tls, &info);
     s->vhost = lws_create_vhost(s->context, &info);
+    if (!s->vhost && tls)
+        return fc_error_set(err, FC_ERR_IO, "web: libwebsockets cannot make its host with the certificate %s and "
+                            "the key %s", tls->cert_file, tls->key_file);
     if (!s->vhost)
-        return fc_error_set(err, FC_ERR_IO, tls ? "web: libwebsockets cannot make its host with the certificate "
-                                                  "%s and the key %s"
-                                                : "web: libwebsockets cannot make its host%s%s",
-                            tls ? tls->cert_file : "", tls ? tls->key_file : "");
+        return fc_error_set(err, FC_ERR_IO, "web: libwebsockets cannot make its host");
     lws_sock_file_fd_type fd = {.filefd = s->web.fd};
     struct lws *listener = lws_adopt_descriptor_vhost(s->vhost, LWS_ADOPT_RAW_FILE_DESC, fd, ACCEPT_PROTOCOL, NULL);
     s->web.fd = -1;   /* libwebsockets closes it, on failure too */
