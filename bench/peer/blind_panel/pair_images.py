@@ -61,8 +61,12 @@ def main():
     key = ["# Blind panel key (pair_images.py): which condition each pair shows left (A) and right (B).",
            "# Do not give this file to judges. Scorer: bench/peer/blind_panel/score.py",
            f"seed\t{args.seed}", "pair\tA\tB\tframe"]
-    for i, (frame, a, b) in enumerate(pairs, 1):
-        if rng.random() < 0.5:
+    # Sides balanced, not coin-flipped: a coin put one condition on A in 6 of
+    # 7 pairs once, and a judge who favours a side then reads as a verdict.
+    swaps = [i % 2 == 1 for i in range(len(pairs))]
+    rng.shuffle(swaps)
+    for i, ((frame, a, b), swap) in enumerate(zip(pairs, swaps), 1):
+        if swap:
             a, b = b, a
         name = f"pair_{i:0{width}d}"
         images = [vtk_scene.read_png(os.path.join(d, frame)) for _, d in (a, b)]
