@@ -1,22 +1,21 @@
 /* mesh_vtp.c — VTK XML PolyData (.vtp): the single Piece's Points and its
  * Polys (connectivity + offsets, VTK's end offsets), polygons fanned into
- * triangles. The XML is parsed with expat up to AppendedData (raw appended bytes
- * are not XML); DataArray bytes are decoded by the particle reader's
- * reader_vtkxml_data.h (base64 or raw, UInt32/UInt64 headers, zlib blocks), so
- * both readers accept the same encodings. Point Normals and other arrays are
- * skipped (MESH carries positions and triangles only). Strips-, Lines- or
- * Verts-only files and several pieces are refused with a reason. */
+ * triangles. The XML part (expat, up to AppendedData: raw appended bytes are not
+ * XML) is the particle reader's reader_vtkxml_xml.h and DataArray bytes are
+ * decoded by its reader_vtkxml_data.h (base64 or raw, UInt32/UInt64 headers,
+ * zlib blocks), so both readers accept the same files and encodings. Point
+ * Normals and other arrays are skipped (MESH carries positions and triangles
+ * only). Strips-, Lines- or Verts-only files and several pieces are refused
+ * with a reason. */
 #include "mesh_formats.h"
 
-#include <expat.h>
-#include <limits.h>
-#include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "fc_error.h"
 #include "reader_vtkxml_data.h"
+#include "reader_vtkxml_xml.h"
 
 enum { VP_POINTS, VP_CONNECTIVITY, VP_OFFSETS, VP_ARRAYS };
 enum { VP_MAX_DEPTH = 64, VP_MAX_CORNERS = 4096 };
@@ -34,13 +33,9 @@ typedef struct vp_array {
 } vp_array;
 
 typedef struct vp_doc {
-    const fc_cursor *c;
-    fc_error *err;
-    fc_code code;
-    XML_Parser parser;
+    fc_vx_xml xml; /* the file, its first error, its encoding */
     size_t depth;
     char stack[VP_MAX_DEPTH][12]; /* element names that matter, "" for others */
-    bool have_file, big_endian, header64, compressed, appended_base64, have_appended;
     size_t pieces;
     uint64_t points, polys, strips, lines;
     vp_array arrays[VP_ARRAYS];
@@ -48,21 +43,6 @@ typedef struct vp_doc {
 } vp_doc;
 
 static const char *const array_names[VP_ARRAYS] = {"Points", "connectivity", "offsets"};
-
-static void vp_fail(vp_doc *d, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
-static void vp_fail(vp_doc *d, const char *fmt, ...)
-{
-    if (d->code != FC_OK)
-        return;
-    char reason[FC_ERROR_MESSAGE_MAX];
-    va_list args;
-    va_start(args, fmt);
-    vsnprintf(reason, sizeof reason, fmt, args);
-    va_end(args);
-    d->code = fc_error_set(d->err, FC_ERR_PARSE, "%s: line %lu: %s", d->c->name,
-                           (unsigned long)XML_GetCurrentLineNumber(d->parser), reason);
-    XML_StopParser(d->parser, XML_FALSE);
-}
 
 /* An absent count is 0 (VTK omits none, but hand-written files may). */
 static bool count_attribute(const XML_Char **attrs, const char *name, uint64_t *out)
@@ -74,56 +54,51 @@ static bool count_attribute(const XML_Char **attrs, const char *name, uint64_t *
 
 static void on_file(vp_doc *d, const XML_Char **attrs)
 {
-    const char *type = fc_vx_attribute(attrs, "type"), *order = fc_vx_attribute(attrs, "byte_order");
-    const char *header = fc_vx_attribute(attrs, "header_type"), *compressor = fc_vx_attribute(attrs, "compressor");
+    const char *type = fc_vx_attribute(attrs, "type");
     if (type == NULL || strcmp(type, "PolyData") != 0)
-        return vp_fail(d, "VTKFile type '%.40s' is not PolyData", type ? type : "(none)");
-    d->big_endian = order != NULL && strcmp(order, "BigEndian") == 0;
-    if (order != NULL && !d->big_endian && strcmp(order, "LittleEndian") != 0)
-        return vp_fail(d, "byte_order '%.40s' is neither LittleEndian nor BigEndian", order);
-    d->header64 = header != NULL && strcmp(header, "UInt64") == 0;
-    if (header != NULL && !d->header64 && strcmp(header, "UInt32") != 0)
-        return vp_fail(d, "header_type '%.40s' is neither UInt32 nor UInt64", header);
-    d->compressed = compressor != NULL && compressor[0] != '\0';
-    if (d->compressed && strcmp(compressor, "vtkZLibDataCompressor") != 0)
-        return vp_fail(d, "compressor '%.40s' is not supported (only vtkZLibDataCompressor)", compressor);
-    d->have_file = true;
+        return fc_vx_fail(&d->xml, FC_ERR_PARSE, "VTKFile type '%.40s' is not PolyData", type ? type : "(none)");
+    fc_vx_on_file(&d->xml, attrs);
 }
 
 static void on_piece(vp_doc *d, const XML_Char **attrs)
 {
     if (++d->pieces > 1)
-        return vp_fail(d, "a second Piece: only single-piece .vtp meshes are read (merge the pieces)");
+        return fc_vx_fail(&d->xml, FC_ERR_PARSE,
+                          "a second Piece: only single-piece .vtp meshes are read (merge the pieces)");
     if (!count_attribute(attrs, "NumberOfPoints", &d->points) || !count_attribute(attrs, "NumberOfPolys", &d->polys) ||
         !count_attribute(attrs, "NumberOfStrips", &d->strips) || !count_attribute(attrs, "NumberOfLines", &d->lines))
-        return vp_fail(d, "Piece: NumberOfPoints/Polys/Strips/Lines must be non-negative integers");
+        return fc_vx_fail(&d->xml, FC_ERR_PARSE,
+                          "Piece: NumberOfPoints/Polys/Strips/Lines must be non-negative integers");
 }
 
 static void on_data_array(vp_doc *d, int which, const XML_Char **attrs)
 {
     vp_array *a = &d->arrays[which];
     if (a->present)
-        return vp_fail(d, "a second '%s' DataArray", array_names[which]);
+        return fc_vx_fail(&d->xml, FC_ERR_PARSE, "a second '%s' DataArray", array_names[which]);
     a->present = true;
     const char *format = fc_vx_attribute(attrs, "format"), *components = fc_vx_attribute(attrs, "NumberOfComponents");
     a->components = 1;
-    if (components != NULL && !fc_span_to_count(fc_span_trim((fc_span){components, strlen(components)}), &a->components))
-        return vp_fail(d, "DataArray '%s': NumberOfComponents is not a count", array_names[which]);
+    if (components != NULL && !fc_span_to_count(fc_span_trim((fc_span){components, strlen(components)}),
+                                                &a->components))
+        return fc_vx_fail(&d->xml, FC_ERR_PARSE, "DataArray '%s': NumberOfComponents is not a count",
+                          array_names[which]);
     if (a->components != (which == VP_POINTS ? 3u : 1u))
-        return vp_fail(d, "DataArray '%s' has %llu components, expected %u", array_names[which],
-                       (unsigned long long)a->components, which == VP_POINTS ? 3u : 1u);
+        return fc_vx_fail(&d->xml, FC_ERR_PARSE, "DataArray '%s' has %llu components, expected %u", array_names[which],
+                          (unsigned long long)a->components, which == VP_POINTS ? 3u : 1u);
     if (!fc_vx_scalar_type(fc_vx_attribute(attrs, "type"), &a->type))
-        return vp_fail(d, "DataArray '%s': type is not a numeric VTK type", array_names[which]);
+        return fc_vx_fail(&d->xml, FC_ERR_PARSE, "DataArray '%s': type is not a numeric VTK type", array_names[which]);
     if (format != NULL && strcmp(format, "appended") == 0) {
         a->format = VP_APPENDED;
         if (!count_attribute(attrs, "offset", &a->offset) || fc_vx_attribute(attrs, "offset") == NULL)
-            return vp_fail(d, "DataArray '%s': appended without a non-negative offset", array_names[which]);
+            return fc_vx_fail(&d->xml, FC_ERR_PARSE, "DataArray '%s': appended without a non-negative offset",
+                              array_names[which]);
     } else if (format != NULL && (strcmp(format, "binary") == 0 || strcmp(format, "ascii") == 0)) {
         a->format = format[0] == 'b' ? VP_BINARY : VP_ASCII;
         d->collecting = a;
     } else {
-        return vp_fail(d, "DataArray '%s': format '%.30s' is not ascii, binary or appended", array_names[which],
-                       format ? format : "(none)");
+        return fc_vx_fail(&d->xml, FC_ERR_PARSE, "DataArray '%s': format '%.30s' is not ascii, binary or appended",
+                          array_names[which], format ? format : "(none)");
     }
 }
 
@@ -132,23 +107,19 @@ static void XMLCALL on_start(void *user, const XML_Char *name, const XML_Char **
 {
     vp_doc *d = user;
     if (d->depth == VP_MAX_DEPTH)
-        return vp_fail(d, "elements nested more than %d deep", VP_MAX_DEPTH);
+        return fc_vx_fail(&d->xml, FC_ERR_PARSE, "elements nested more than %d deep", VP_MAX_DEPTH);
     const char *parent = d->depth ? d->stack[d->depth - 1] : NULL;
     const char *kind = "";
     d->collecting = NULL;
     if (parent == NULL) {
         if (strcmp(name, "VTKFile") != 0)
-            return vp_fail(d, "root element '%.40s' is not VTKFile", name);
+            return fc_vx_fail(&d->xml, FC_ERR_PARSE, "root element '%.40s' is not VTKFile", name);
         kind = "VTKFile";
         on_file(d, attrs);
     } else if (strcmp(parent, "VTKFile") == 0 && strcmp(name, "PolyData") == 0) {
         kind = "PolyData";
     } else if (strcmp(parent, "VTKFile") == 0 && strcmp(name, "AppendedData") == 0) {
-        const char *encoding = fc_vx_attribute(attrs, "encoding");
-        d->have_appended = true;
-        d->appended_base64 = encoding == NULL || strcmp(encoding, "base64") == 0;
-        if (!d->appended_base64 && strcmp(encoding, "raw") != 0)
-            vp_fail(d, "AppendedData encoding '%.30s' is neither raw nor base64", encoding);
+        fc_vx_on_appended(&d->xml, attrs);
     } else if (strcmp(parent, "PolyData") == 0 && strcmp(name, "Piece") == 0) {
         kind = "Piece";
         on_piece(d, attrs);
@@ -179,34 +150,8 @@ static void XMLCALL on_text(void *user, const XML_Char *text, int len)
 {
     vp_doc *d = user;
     vp_array *a = d->collecting;
-    if (a != NULL && len > 0 && !fc_vx_text_append(&a->text, &a->text_len, &a->text_cap, text, (size_t)len)) {
-        d->code = fc_error_set(d->err, FC_ERR_NOMEM, "%s: out of memory for DataArray text", d->c->name);
-        XML_StopParser(d->parser, XML_FALSE);
-    }
-}
-
-static fc_code parse_xml(vp_doc *d, size_t size, bool complete)
-{
-    d->parser = XML_ParserCreate(NULL);
-    if (d->parser == NULL)
-        return fc_error_set(d->err, FC_ERR_NOMEM, "%s: cannot create the XML parser", d->c->name);
-    XML_SetUserData(d->parser, d);
-    XML_SetElementHandler(d->parser, on_start, on_end);
-    XML_SetCharacterDataHandler(d->parser, on_text);
-    size_t done = 0;
-    enum XML_Status status = XML_STATUS_OK;
-    do { /* expat takes int lengths */
-        size_t piece = size - done > INT_MAX / 2 ? INT_MAX / 2 : size - done;
-        status = XML_Parse(d->parser, (const char *)d->c->data + done, (int)piece, complete && done + piece == size);
-        done += piece;
-    } while (status == XML_STATUS_OK && done < size);
-    if (status == XML_STATUS_ERROR && d->code == FC_OK)
-        d->code = fc_error_set(d->err, FC_ERR_PARSE, "%s: line %lu: XML: %s", d->c->name,
-                               (unsigned long)XML_GetCurrentLineNumber(d->parser),
-                               XML_ErrorString(XML_GetErrorCode(d->parser)));
-    XML_ParserFree(d->parser);
-    d->parser = NULL;
-    return d->code;
+    if (a != NULL && len > 0 && !fc_vx_text_append(&a->text, &a->text_len, &a->text_cap, text, (size_t)len))
+        fc_vx_fail(&d->xml, FC_ERR_NOMEM, "out of memory for DataArray text");
 }
 
 /* The most values an array's bytes could hold (ascii: one per character; base64 3:4; deflate 1032:1), checked
@@ -216,9 +161,9 @@ static uint64_t most_values(const vp_doc *d, const vp_array *a, size_t appended_
     if (a->format == VP_ASCII)
         return a->text_len;
     uint64_t bytes = a->format == VP_BINARY ? a->text_len : appended_size;
-    if (a->format == VP_BINARY || d->appended_base64)
+    if (a->format == VP_BINARY || d->xml.appended_base64)
         bytes = bytes / 4 * 3 + 3;
-    if (d->compressed)
+    if (d->xml.encoding.compressed)
         bytes = bytes > UINT64_MAX / 1032 ? UINT64_MAX : bytes * 1032;
     return bytes / fc_scalar_size(a->type);
 }
@@ -228,46 +173,47 @@ static fc_code read_values(const vp_doc *d, int which, const uint8_t *appended, 
                            double **out)
 {
     const vp_array *a = &d->arrays[which];
-    const char *name = d->c->name, *what = array_names[which];
+    const char *name = d->xml.c->name, *what = array_names[which];
     *out = NULL;
     if (a->format == VP_APPENDED && appended == NULL)
-        return fc_error_set(d->err, FC_ERR_PARSE, "%s: DataArray '%s' is appended but the file has no AppendedData",
+        return fc_error_set(d->xml.err, FC_ERR_PARSE, "%s: DataArray '%s' is appended but the file has no AppendedData",
                             name, what);
     if (count > most_values(d, a, appended_size))
-        return fc_error_set(d->err, FC_ERR_PARSE, "%s: DataArray '%s': %llu values cannot fit in its data", name, what,
-                            (unsigned long long)count);
+        return fc_error_set(d->xml.err, FC_ERR_PARSE, "%s: DataArray '%s': %llu values cannot fit in its data", name,
+                            what, (unsigned long long)count);
     double *values = malloc((count ? count : 1) * sizeof *values);
     if (values == NULL)
-        return fc_error_set(d->err, FC_ERR_NOMEM, "%s: out of memory for DataArray '%s'", name, what);
+        return fc_error_set(d->xml.err, FC_ERR_NOMEM, "%s: out of memory for DataArray '%s'", name, what);
     fc_code code = FC_OK;
     if (a->format == VP_ASCII) {
         fc_span rest = {a->text ? a->text : "", a->text_len}, token;
         for (uint64_t i = 0; code == FC_OK && i < count; i++)
             if (!fc_span_next_token(&rest, &token) || !fc_span_to_double(token, &values[i]))
-                code = fc_error_set(d->err, FC_ERR_PARSE, "%s: DataArray '%s': value %llu is missing or not a number",
+                code = fc_error_set(d->xml.err, FC_ERR_PARSE,
+                                    "%s: DataArray '%s': value %llu is missing or not a number",
                                     name, what, (unsigned long long)i);
         if (code == FC_OK && fc_span_next_token(&rest, &token))
-            code = fc_error_set(d->err, FC_ERR_PARSE, "%s: DataArray '%s': more than the %llu values expected", name,
-                                what, (unsigned long long)count);
+            code = fc_error_set(d->xml.err, FC_ERR_PARSE, "%s: DataArray '%s': more than the %llu values expected",
+                                name, what, (unsigned long long)count);
     } else {
         fc_vx_source source;
         if (a->format == VP_BINARY)
             fc_vx_source_init(&source, (const uint8_t *)a->text, a->text_len, true);
         else if (a->offset <= appended_size)
-            fc_vx_source_init(&source, appended + a->offset, appended_size - (size_t)a->offset, d->appended_base64);
+            fc_vx_source_init(&source, appended + a->offset, appended_size - (size_t)a->offset, d->xml.appended_base64);
         else
-            code = fc_error_set(d->err, FC_ERR_PARSE, "%s: DataArray '%s': offset past the appended data", name, what);
+            code = fc_error_set(d->xml.err, FC_ERR_PARSE, "%s: DataArray '%s': offset past the appended data", name,
+                                what);
         size_t bytes_count = (size_t)count * fc_scalar_size(a->type);
-        fc_vx_encoding encoding = {d->header64, d->big_endian, d->compressed};
         uint8_t *bytes = NULL;
         char label[48];
         snprintf(label, sizeof label, "DataArray '%s'", what);
         if (code == FC_OK)
-            code = fc_vx_read_block(&source, &encoding, bytes_count, name, label, &bytes, d->err);
+            code = fc_vx_read_block(&source, &d->xml.encoding, bytes_count, name, label, &bytes, d->xml.err);
         fc_cursor c;
         fc_cursor_init(&c, bytes, code == FC_OK ? bytes_count : 0, name);
         for (uint64_t i = 0; code == FC_OK && i < count; i++)
-            fc_cursor_read_scalar(&c, a->type, d->big_endian, &values[i]); /* the block holds exactly these */
+            fc_cursor_read_scalar(&c, a->type, d->xml.encoding.big_endian, &values[i]); /* the block holds them */
         free(bytes);
     }
     if (code != FC_OK) {
@@ -287,16 +233,16 @@ static fc_code add_polygons(const vp_doc *d, fc_mesh_builder *b, const double *o
     for (uint64_t cell = 0; cell < d->polys; cell++) {
         uint64_t end = (uint64_t)offsets[cell]; /* checked in range by read_mesh_arrays */
         if (end - start > VP_MAX_CORNERS)
-            return fc_cursor_fail(d->c, err, "Polys cell %llu has more than %d corners", (unsigned long long)cell,
+            return fc_cursor_fail(d->xml.c, err, "Polys cell %llu has more than %d corners", (unsigned long long)cell,
                                   VP_MAX_CORNERS);
         for (uint64_t k = start; k < end; k++) {
             double v = connectivity[k];
             if (!(v >= 0 && v < (double)b->mesh.vertex_count) || v != (double)(uint64_t)v)
-                return fc_cursor_fail(d->c, err, "Polys connectivity[%llu] = %g is not a point index below %u",
+                return fc_cursor_fail(d->xml.c, err, "Polys connectivity[%llu] = %g is not a point index below %u",
                                       (unsigned long long)k, v, (unsigned)b->mesh.vertex_count);
             corners[k - start] = (uint64_t)v;
         }
-        fc_code code = fc_mesh_builder_polygon(b, d->c, corners, end - start, err);
+        fc_code code = fc_mesh_builder_polygon(b, d->xml.c, corners, end - start, err);
         if (code != FC_OK)
             return code;
         start = end;
@@ -307,7 +253,7 @@ static fc_code add_polygons(const vp_doc *d, fc_mesh_builder *b, const double *o
 static fc_code read_mesh_arrays(vp_doc *d, const uint8_t *appended, size_t appended_size, fc_mesh_builder *b,
                                 fc_error *err)
 {
-    const char *name = d->c->name;
+    const char *name = d->xml.c->name;
     if (d->pieces == 0 || !d->arrays[VP_POINTS].present)
         return fc_error_set(err, FC_ERR_PARSE, "%s: no Piece with Points found", name);
     if (d->polys == 0)
@@ -320,11 +266,12 @@ static fc_code read_mesh_arrays(vp_doc *d, const uint8_t *appended, size_t appen
     fc_code code = FC_OK;
     double *points = NULL, *offsets = NULL, *connectivity = NULL;
     if (d->points > UINT64_MAX / 3)
-        code = fc_error_set(err, FC_ERR_PARSE, "%s: NumberOfPoints %llu overflows", name, (unsigned long long)d->points);
+        code = fc_error_set(err, FC_ERR_PARSE, "%s: NumberOfPoints %llu overflows", name,
+                            (unsigned long long)d->points);
     else
         code = read_values(d, VP_POINTS, appended, appended_size, 3 * d->points, &points);
     for (uint64_t i = 0; code == FC_OK && i < d->points; i++)
-        code = fc_mesh_builder_vertex(b, d->c, &points[3 * i], err);
+        code = fc_mesh_builder_vertex(b, d->xml.c, &points[3 * i], err);
     if (code == FC_OK)
         code = read_values(d, VP_OFFSETS, appended, appended_size, d->polys, &offsets);
     double previous = 0;
@@ -351,26 +298,13 @@ fc_code fc_read_mesh_vtp(fc_cursor *c, fc_mesh_builder *b, fc_error *err)
     vp_doc *d = calloc(1, sizeof *d);
     if (d == NULL)
         return fc_error_set(err, FC_ERR_NOMEM, "%s: out of memory", c->name);
-    d->c = c;
-    d->err = err;
-    size_t xml_size = 0;
-    const uint8_t *appended = fc_vx_find_appended(c->data, c->size, &xml_size);
-    fc_code code = parse_xml(d, xml_size, appended == NULL);
-    if (code == FC_OK && !d->have_file)
-        code = fc_error_set(err, FC_ERR_PARSE, "%s: no VTKFile element", c->name);
-    if (code == FC_OK && appended != NULL && !d->have_appended)
-        code = fc_error_set(err, FC_ERR_PARSE, "%s: AppendedData is not a child of VTKFile", c->name);
-    if (code == FC_OK && appended != NULL) {
-        size_t left = c->size - (size_t)(appended - c->data);
-        while (left > 0 && (*appended == ' ' || *appended == '\n' || *appended == '\r' || *appended == '\t'))
-            appended++, left--;
-        if (left == 0 || *appended != '_')
-            code = fc_error_set(err, FC_ERR_PARSE, "%s: AppendedData does not start with '_'", c->name);
-        else
-            code = read_mesh_arrays(d, appended + 1, left - 1, b, err);
-    } else if (code == FC_OK) {
-        code = read_mesh_arrays(d, NULL, 0, b, err);
-    }
+    d->xml.c = c;
+    d->xml.err = err;
+    const uint8_t *appended;
+    size_t appended_size;
+    fc_code code = fc_vx_parse(&d->xml, on_start, on_end, on_text, d, &appended, &appended_size);
+    if (code == FC_OK)
+        code = read_mesh_arrays(d, appended, appended_size, b, err);
     for (int i = 0; i < VP_ARRAYS; i++)
         free(d->arrays[i].text);
     free(d);

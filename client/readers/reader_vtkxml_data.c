@@ -244,14 +244,6 @@ fc_code fc_vx_read_block(fc_vx_source *s, const fc_vx_encoding *encoding, size_t
     return code;
 }
 
-const char *fc_vx_attribute(const char **attrs, const char *name)
-{
-    for (size_t i = 0; attrs[i] != NULL; i += 2)
-        if (strcmp(attrs[i], name) == 0)
-            return attrs[i + 1];
-    return NULL;
-}
-
 bool fc_vx_scalar_type(const char *name, fc_scalar_type *type)
 {
     static const struct {
@@ -265,41 +257,4 @@ bool fc_vx_scalar_type(const char *name, fc_scalar_type *type)
         if (strcmp(name, types[i].name) == 0)
             return *type = types[i].type, true;
     return false;
-}
-
-bool fc_vx_text_append(char **text, size_t *len, size_t *cap, const char *add, size_t n)
-{
-    if (*len + n > *cap) {
-        size_t grown_cap = *cap ? *cap : 256;
-        while (grown_cap < *len + n)
-            grown_cap *= 2;
-        char *grown = realloc(*text, grown_cap);
-        if (grown == NULL)
-            return false;
-        *text = grown;
-        *cap = grown_cap;
-    }
-    memcpy(*text + *len, add, n);
-    *len += n;
-    return true;
-}
-
-const uint8_t *fc_vx_find_appended(const uint8_t *data, size_t size, size_t *xml_size)
-{
-    static const char tag[] = "<AppendedData";
-    *xml_size = size;
-    for (size_t i = 0; i + sizeof tag - 1 <= size; i++) {
-        const uint8_t *hit = memchr(data + i, '<', size - i);
-        if (hit == NULL || (size_t)(hit - data) + sizeof tag - 1 > size)
-            return NULL;
-        i = (size_t)(hit - data);
-        if (memcmp(hit, tag, sizeof tag - 1) != 0)
-            continue;
-        const uint8_t *close = memchr(hit, '>', size - i);
-        if (close == NULL)
-            return NULL;
-        *xml_size = (size_t)(close + 1 - data); /* up to and including the start tag */
-        return close + 1;
-    }
-    return NULL;
 }

@@ -4,9 +4,9 @@
  * data) decoded as it is read, so that a header and its data encoded as one
  * base64 stream or as two (each padded, as VTK writes compressed arrays) read
  * the same. A block is VTK's header (UInt32 or UInt64 words) and its data, plain
- * or in vtkZLibDataCompressor blocks. Also what both VTK XML readers (particles
- * here, meshes in client/meshes/mesh_vtp.c) need of the XML part: attributes,
- * type names, DataArray text and where appended data starts. */
+ * or in vtkZLibDataCompressor blocks, and the type names of DataArrays. Both VTK
+ * XML readers (particles here, meshes in client/meshes/mesh_vtp.c) read their
+ * arrays with it; the XML part they share is reader_vtkxml_xml.h. */
 #ifndef FC_READER_VTKXML_DATA_H
 #define FC_READER_VTKXML_DATA_H
 
@@ -41,19 +41,7 @@ typedef struct fc_vx_encoding {
 fc_code fc_vx_read_block(fc_vx_source *s, const fc_vx_encoding *encoding, size_t expected, const char *name,
                          const char *what, uint8_t **out, fc_error *err);
 
-/* The value of attribute `name` in expat's name/value list (NULL-terminated), or NULL. */
-const char *fc_vx_attribute(const char **attrs, const char *name);
-
 /* A DataArray's type name (Int8 ... UInt64, Float32, Float64) as a scalar type; false for others and NULL. */
 bool fc_vx_scalar_type(const char *name, fc_scalar_type *type);
-
-/* Appends n bytes of a DataArray's character data to a growing buffer (*text, *len, *cap; doubling from 256).
- * false when memory runs out (the buffer is left as it was). */
-bool fc_vx_text_append(char **text, size_t *len, size_t *cap, const char *add, size_t n);
-
-/* Where appended data starts in a file's bytes: just after the "<AppendedData ...>" start tag; *xml_size is
- * then what expat is given (up to and including that tag). NULL, with *xml_size = size, when there is no such
- * tag or it never closes. */
-const uint8_t *fc_vx_find_appended(const uint8_t *data, size_t size, size_t *xml_size);
 
 #endif
