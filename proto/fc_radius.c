@@ -11,7 +11,10 @@
  * A pilot search among the samples themselves gives each sample an upper
  * bound of its neighbour's distance, and (scaled by the sampling density) the
  * base cell size, which so follows the typical spacing rather than the
- * bounding box: far-away splash particles do not change it.
+ * bounding box: far-away splash particles do not change it. The pilot itself
+ * buckets the samples on cells sized by a few probes' spacing, so it costs
+ * about a millisecond, not the 6-10 ms of measuring every pair (which it did
+ * on every new frame the spray classes see).
  *
  * A sample settles once its neighbour is closer than the cells it searched
  * reach. One that does not gets a second pass on a level of cells (4x wider
@@ -25,19 +28,15 @@
 #include <string.h>
 
 #define SAMPLE_MAX 4096u
-/* The pilot's rows keep running minima in two vectors of four floats (GCC's
- * and Clang's vector extension: the compilers' own vectorisers do not take a
- * floating-point minimum, whose NaN rules they must keep, and a hand-unrolled
- * loop that GCC vectorises at -O2 it does not at -O3). SAMPLE_MAX is a
- * multiple of PILOT_LANES. */
-#define PILOT_VECTOR 4
-#define PILOT_LANES (2 * PILOT_VECTOR)
-/* The float arithmetic of a pilot distance errs by less than 6 x 2^-24 of it;
- * widened by this factor it is at least the distance in double. */
-#define PILOT_WIDENING (1.0 + 0x1p-20)
-/* Below this, float squares may be subnormal and lose that precision: such a
- * row is measured again in double. */
-#define PILOT_FLOAT_MIN 1e-30f
+/* The pilot: this many samples, spread over the sample, measure their nearest
+ * fellow among all samples; their median spacing sizes the cells the pilot
+ * buckets every sample on, so that a sample's nearest fellow mostly lies in
+ * the 3x3x3 cells around it. */
+#define PILOT_PROBES 64
+#define PILOT_CELL_PER_SPACING 1.5
+/* Pilot cell coordinates are clamped here (a far outlier shares the last
+ * cell: a fellow found there is still a real distance, an upper bound). */
+#define PILOT_COORD_MAX 0x1p40
 #define RADIUS_PER_SPACING 0.9
 #define FALLBACK_RADIUS 1.0f
 /* The largest radius settings accept (fc_settings_validate): an estimate beyond
@@ -94,9 +93,6 @@ typedef struct cell_table {
 typedef struct search {
     size_t n;
     float positions[SAMPLE_MAX * 3];   /* copied together so the pass over all particles stays in cache */
-    /* The same by axis, for the pilot's rows; past n, up to a multiple of
-     * PILOT_LANES, infinitely far (they are nobody's nearest). */
-    float x[SAMPLE_MAX], y[SAMPLE_MAX], z[SAMPLE_MAX];
     double best_sq[SAMPLE_MAX];        /* squared distance to the nearest distinct particle so far */
     int level[SAMPLE_MAX];             /* cell level each sample searches */
     int reach[SAMPLE_MAX];             /* cells searched around the sample's own, per axis and side */
@@ -105,8 +101,6 @@ typedef struct search {
     size_t n_pending;
 } search;
 
-typedef float pilot_floats __attribute__((vector_size(PILOT_VECTOR * sizeof(float))));
-typedef int32_t pilot_mask __attribute__((vector_size(PILOT_VECTOR * sizeof(int32_t))));
 
 typedef struct sample_order {
     float position[3];
@@ -119,6 +113,12 @@ static uint64_t splitmix64(uint64_t x)
     x = (x ^ (x >> 30)) * 0xBF58476D1CE4E5B9ull;
     x = (x ^ (x >> 27)) * 0x94D049BB133111EBull;
     return x ^ (x >> 31);
+}
+
+static uint64_t cell_key(int level, const int64_t c[3])
+{
+    return (uint64_t)level << KEY_LEVEL_SHIFT | ((uint64_t)c[0] & KEY_AXIS_MASK) |
+           ((uint64_t)c[1] & KEY_AXIS_MASK) << KEY_AXIS_BITS | ((uint64_t)c[2] & KEY_AXIS_MASK) << (2 * KEY_AXIS_BITS);
 }
 
 static double distance_sq(const float *a, const float *b)
@@ -163,15 +163,10 @@ static void choose_sample(const fc_frame *frame, search *s)
         uint64_t size = stratum + (i < extra);
         uint64_t index = begin + splitmix64(i) % size;
         memcpy(s->positions + 3 * i, frame->positions + 3 * index, 3 * sizeof(float));
-        s->x[i] = s->positions[3 * i];
-        s->y[i] = s->positions[3 * i + 1];
-        s->z[i] = s->positions[3 * i + 2];
         s->best_sq[i] = INFINITY;
         s->level[i] = 0;
         s->reach[i] = FIRST_REACH;
     }
-    for (size_t i = s->n; i % PILOT_LANES; i++)
-        s->x[i] = s->y[i] = s->z[i] = INFINITY;
 }
 
 static int compare_positions(const void *a, const void *b)
@@ -204,56 +199,9 @@ static void pend_distinct_samples(search *s)
     }
 }
 
-/* Lane by lane: where m is set, a; elsewhere b. */
-static pilot_floats pilot_select(pilot_mask m, pilot_floats a, pilot_floats b)
-{
-    return (pilot_floats)(((pilot_mask)a & m) | ((pilot_mask)b & ~m));
-}
-
-static pilot_floats pilot_load(const float *p)
-{
-    pilot_floats v;
-    memcpy(&v, p, sizeof v);
-    return v;
-}
-
-static pilot_floats pilot_splat(float value)
-{
-    pilot_floats v;
-    for (int l = 0; l < PILOT_VECTOR; l++)
-        v[l] = value;
-    return v;
-}
-
-/* The squared distance from sample i to its nearest distinct fellow sample
- * in float: INFINITY when none is distinct (or all are too far for a float
- * square). Every pair is measured twice (once per row), but a row is minima
- * over contiguous floats four at a time: 6-10 ms for 4096 samples, against
- * 18-22 ms measuring each pair once in double and updating both ends through
- * a branch. */
-static float nearest_fellow_sq_float(const search *s, size_t i)
-{
-    const pilot_floats xi = pilot_splat(s->x[i]), yi = pilot_splat(s->y[i]), zi = pilot_splat(s->z[i]);
-    const pilot_floats none = pilot_splat(INFINITY), zero = pilot_splat(0.0f);
-    pilot_floats best[2] = {none, none};
-    for (size_t j = 0; j < s->n; j += PILOT_LANES)
-        for (int h = 0; h < 2; h++) {
-            size_t at = j + (size_t)h * PILOT_VECTOR;
-            pilot_floats dx = xi - pilot_load(s->x + at), dy = yi - pilot_load(s->y + at),
-                         dz = zi - pilot_load(s->z + at);
-            pilot_floats d = dx * dx + dy * dy + dz * dz;
-            d = pilot_select(d > zero, d, none); /* distinct only, as offer(); the padding is INFINITY too */
-            best[h] = pilot_select(d < best[h], d, best[h]);
-        }
-    float nearest = INFINITY;
-    for (int h = 0; h < 2; h++)
-        for (int l = 0; l < PILOT_VECTOR; l++)
-            nearest = best[h][l] < nearest ? best[h][l] : nearest;
-    return nearest;
-}
-
-/* The same in double, pair by pair: exact, for the rare rows float cannot measure. */
-static double nearest_fellow_sq_double(const search *s, size_t i)
+/* The squared distance from sample i to its nearest distinct fellow sample,
+ * measured against every sample (INFINITY when none is distinct). */
+static double nearest_fellow_sq(const search *s, size_t i)
 {
     double best = INFINITY;
     for (size_t j = 0; j < s->n; j++)
@@ -261,25 +209,134 @@ static double nearest_fellow_sq_double(const search *s, size_t i)
     return best;
 }
 
-/* An upper bound of the squared distance from sample i to its nearest
- * distinct fellow sample (INFINITY: none known), never below it: the float
- * minimum widened, so that the grid passes, which measure in double, reach
- * that fellow and anything nearer and so end with the exact distance. */
-static double nearest_fellow_bound_sq(const search *s, size_t i)
+/* The median nearest-fellow distance of PILOT_PROBES samples spread over
+ * the sample; 0 when none has a distinct fellow. */
+static double probe_spacing(const search *s)
 {
-    float nearest = nearest_fellow_sq_float(s, i);
-    if (nearest < PILOT_FLOAT_MIN)
-        return nearest_fellow_sq_double(s, i);
-    return isfinite(nearest) ? (double)nearest * PILOT_WIDENING : INFINITY;
+    double nearest[PILOT_PROBES];
+    size_t found = 0, probes = s->n < PILOT_PROBES ? s->n : PILOT_PROBES;
+    for (size_t k = 0; k < probes; k++) {
+        double d = nearest_fellow_sq(s, k * s->n / probes);
+        if (isfinite(d))
+            nearest[found++] = sqrt(d);
+    }
+    return found ? median(nearest, found) : 0.0;
 }
 
-/* Starts every sample's search from its nearest distinct fellow sample (an
+/* The samples bucketed on cubic cells: a hash of cell coordinates to the
+ * samples in the cell. */
+typedef struct buckets {
+    double lo[3], per_cell;
+    uint64_t mask;          /* slots - 1 */
+    uint64_t *keys;         /* EMPTY_KEY where free */
+    uint32_t *start;        /* slots + 1: slot s holds members[start[s] .. start[s + 1]) */
+    uint16_t *members;
+} buckets;
+
+static void bucket_cell(const buckets *b, const float *p, int64_t c[3])
+{
+    for (int k = 0; k < 3; k++) {
+        double x = floor(((double)p[k] - b->lo[k]) * b->per_cell);
+        c[k] = (int64_t)(x > 0 ? fmin(x, PILOT_COORD_MAX) : 0);
+    }
+}
+
+static uint64_t bucket_slot(const buckets *b, const int64_t c[3])
+{
+    uint64_t key = cell_key(0, c);
+    uint64_t slot = splitmix64(key) & b->mask;
+    while (b->keys[slot] != key && b->keys[slot] != EMPTY_KEY)
+        slot = (slot + 1) & b->mask;
+    return slot;
+}
+
+static void buckets_free(buckets *b)
+{
+    free(b->keys);
+    free(b->start);
+    free(b->members);
+}
+
+/* Buckets every sample on cells `cell` wide; false when memory runs out. */
+static bool buckets_build(buckets *b, const search *s, double cell)
+{
+    memset(b, 0, sizeof *b);
+    uint64_t slots = 64;
+    while (slots < 2 * s->n)
+        slots *= 2;
+    b->mask = slots - 1;
+    b->per_cell = 1.0 / cell;
+    b->keys = malloc(slots * sizeof *b->keys);
+    b->start = calloc(slots + 1, sizeof *b->start);
+    b->members = malloc(s->n * sizeof *b->members);
+    if (!b->keys || !b->start || !b->members) {
+        buckets_free(b);
+        return false;
+    }
+    memset(b->keys, 0xFF, slots * sizeof *b->keys); /* EMPTY_KEY everywhere */
+    for (int k = 0; k < 3; k++)
+        b->lo[k] = INFINITY;
+    for (size_t i = 0; i < s->n; i++)
+        for (int k = 0; k < 3; k++)
+            b->lo[k] = fmin(b->lo[k], s->positions[3 * i + k]);
+    int64_t c[3];
+    for (size_t i = 0; i < s->n; i++) {
+        bucket_cell(b, s->positions + 3 * i, c);
+        uint64_t slot = bucket_slot(b, c);
+        b->keys[slot] = cell_key(0, c);
+        b->start[slot + 1]++;
+    }
+    for (uint64_t slot = 0; slot < slots; slot++)
+        b->start[slot + 1] += b->start[slot];
+    /* Filling advances each slot's start to the next one's; shifting back restores them. */
+    for (size_t i = 0; i < s->n; i++) {
+        bucket_cell(b, s->positions + 3 * i, c);
+        b->members[b->start[bucket_slot(b, c)]++] = (uint16_t)i;
+    }
+    memmove(b->start + 1, b->start, slots * sizeof *b->start);
+    b->start[0] = 0;
+    return true;
+}
+
+/* The nearest distinct fellow of sample i in the 3x3x3 cells around its
+ * own (INFINITY when none is there): a real fellow, so an upper bound of its
+ * nearest particle, exact whenever it lies within one cell. */
+static double nearest_bucketed_sq(const buckets *b, const search *s, size_t i)
+{
+    const float *p = s->positions + 3 * i;
+    int64_t c[3], at[3];
+    bucket_cell(b, p, c);
+    double best = INFINITY;
+    for (at[2] = c[2] - 1; at[2] <= c[2] + 1; at[2]++)
+        for (at[1] = c[1] - 1; at[1] <= c[1] + 1; at[1]++)
+            for (at[0] = c[0] - 1; at[0] <= c[0] + 1; at[0]++) {
+                if (at[0] < 0 || at[1] < 0 || at[2] < 0)
+                    continue;
+                uint64_t slot = bucket_slot(b, at);
+                for (uint32_t m = b->start[slot]; m < b->start[slot + 1]; m++)
+                    offer(&best, p, s->positions + 3 * b->members[m]);
+            }
+    return best;
+}
+
+/* Starts every sample's search from a distinct fellow sample near it (an
  * upper bound of its nearest particle, so the grid passes know how far to
- * look); returns the median of those distances, or 0 when none is known. */
+ * look): the nearest in the cells around it, or among all samples when those
+ * hold none. Returns the median of those distances, or 0 when none is known.
+ * The passes measure in double and end with the exact distances, whatever
+ * the bounds. */
 static double pilot_spacing(search *s)
 {
-    for (size_t i = 0; i < s->n; i++)
-        s->best_sq[i] = nearest_fellow_bound_sq(s, i);
+    double probe = probe_spacing(s);
+    buckets b;
+    bool bucketed = probe > 0 && buckets_build(&b, s, PILOT_CELL_PER_SPACING * probe);
+    for (size_t i = 0; i < s->n; i++) {
+        s->best_sq[i] = bucketed ? nearest_bucketed_sq(&b, s, i) : INFINITY;
+        if (!isfinite(s->best_sq[i]))
+            s->best_sq[i] = nearest_fellow_sq(s, i);
+    }
+    if (bucketed)
+        buckets_free(&b);
     double nearest[SAMPLE_MAX];
     size_t found = 0;
     for (size_t i = 0; i < s->n; i++)
@@ -337,11 +394,6 @@ static void cell_of(const grid *g, int level, const float *p, int64_t c[3])
     level_cell(base, level, c);
 }
 
-static uint64_t cell_key(int level, const int64_t c[3])
-{
-    return (uint64_t)level << KEY_LEVEL_SHIFT | ((uint64_t)c[0] & KEY_AXIS_MASK) |
-           ((uint64_t)c[1] & KEY_AXIS_MASK) << KEY_AXIS_BITS | ((uint64_t)c[2] & KEY_AXIS_MASK) << (2 * KEY_AXIS_BITS);
-}
 
 /* ---- Table of needed cells ---- */
 
