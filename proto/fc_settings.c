@@ -141,6 +141,14 @@ static const fc_setting_spec table[] = {
     {FIELD(48, surface_smoothing, FC_SETTING_UINT, 1), .initial = {4}, .min = 0, .max = 100,
      .group = FC_GROUP_SURFACE, .option = "--surface-smoothing", .metavar = "N",
      .help = "Taubin smoothing steps of the surface mesh (volume kept); 0 = off"},
+    {FIELD(57, contact_shadow, FC_SETTING_FLOAT, 1), .initial = {0.45f}, .min = 0, .max = 1,
+     .group = FC_GROUP_SHADING, .option = "--contact-shadow", .metavar = "S",
+     .help = "how much the water darkens where it meets the built-in floor (within 2.5 particle radii), so its "
+             "foot shows on a floor of its own grey; 0 = off"},
+    {FIELD(58, depth_dimming, FC_SETTING_FLOAT, 1), .initial = {0.3f}, .min = 0, .max = 1,
+     .group = FC_GROUP_SHADING, .option = "--depth-dimming", .metavar = "D",
+     .help = "how much what shows through thick water dims (63% of it at 12 particle radii of thickness), so a "
+             "body's far faces read; 0 = off"},
 };
 
 #define TABLE_LENGTH (sizeof table / sizeof table[0])

@@ -199,6 +199,10 @@ typedef struct fc_settings {
     float surface_cell;        /* the mesh's grid cell edge in particle radii, (0.25, 4] */
     fc_surface_kernel surface_kernel; /* the field the mesh is an isosurface of */
     uint32_t surface_smoothing;/* Taubin smoothing steps of the mesh (each a shrink and an inflate); 0 = off */
+    float contact_shadow;      /* how much the water darkens within 2.5 particle radii (along the view ray) of the
+                                  built-in floor, so that its foot shows on a floor of its own grey; 0 = off */
+    float depth_dimming;       /* how much what shows through thick water dims (63% of it at 12 particle radii
+                                  of thickness), so that a body's far faces read; 0 = off */
 } fc_settings;
 
 /* ---- Meshes ---------------------------------------------------------------

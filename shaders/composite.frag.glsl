@@ -71,6 +71,18 @@ const vec3 foam_color = vec3(0.90, 0.92, 0.94);
 // filmic shoulder shows it near white, as the sun's glint on water is.
 const vec3 highlight_radiance = 4.0 * vec3(1.00, 0.93, 0.82);
 
+// Shape cues (issue 26): clear water shows a body's faces only by what it
+// refracts and reflects, so its far and top faces and its foot fade into the
+// scene. Two faint cues give them back: what shows through thick water dims a
+// little (as through a thick body of real water, whose volume scatters light
+// away), and a contact shadow darkens the water where it meets the floor.
+// (A crease line where the depth bends sharply was tried and judged blind:
+// it fired on single droplets as dark specks; bench/LOOK.md.)
+layout(location = 57) uniform float contact_shadow;   // the most the water's foot darkens
+layout(location = 58) uniform float depth_dimming;    // the most what shows through thick water dims
+const float dimming_thickness = 12.0;       // particle radii at which 63% of the dimming is reached
+const float contact_height = 2.5;           // particle radii of depth above the floor it fades over
+
 layout(location = 0) out vec4 color;
 
 vec3 reflected_radiance(vec3 origin, vec3 dir)
@@ -110,7 +122,7 @@ float outline_coverage(ivec2 p)
     return float(fluid_pixels) / 9.0;
 }
 
-vec3 shade_fluid(ivec2 p, float z, vec3 behind_here)
+vec3 shade_fluid(ivec2 p, float z, float z_floor, vec3 behind_here)
 {
     vec3 centre = view_point(p, z);
     surface_spans spans = spans_at(p, z);
@@ -143,7 +155,12 @@ vec3 shade_fluid(ivec2 p, float z, vec3 behind_here)
     // texture holds stale pixels where an edge texel used to be repeated.
     vec2 shifted = clamp(gl_FragCoord.xy + shift, vec2(0.5), viewport - 0.5);
     vec3 behind = texture(background, shifted / background_texture_size).rgb;
-    vec3 refracted = mix(thick_color, behind, exp(-absorption * t));
+    // The cues dim only what shows through: fluid thick enough to show its
+    // own colour (tinted water, colour by attribute) keeps it exactly.
+    float contact = 1.0 - smoothstep(0.0, contact_height * particle_radius, z_floor - z);
+    float dimming = (1.0 - depth_dimming * (1.0 - exp(-t / (dimming_thickness * particle_radius))))
+                  * (1.0 - contact_shadow * contact);
+    vec3 refracted = mix(thick_color, dimming * behind, exp(-absorption * t));
 
     vec3 reflected = reflected_radiance(to_world_point(centre), to_world_direction(reflect(-v, n)));
 
@@ -169,5 +186,5 @@ void main()
     float z, z_floor;
     fluid_here(z, z_floor);   // true: the stencil holds where it is
     ivec2 p = ivec2(gl_FragCoord.xy);
-    color = vec4(display_color(shade_fluid(p, z, texelFetch(background, p, 0).rgb)), 1.0);
+    color = vec4(display_color(shade_fluid(p, z, z_floor, texelFetch(background, p, 0).rgb)), 1.0);
 }

@@ -27,7 +27,9 @@ enum {
     LOC_BACKGROUND_TEXTURE_SIZE = 44,
     LOC_THICKNESS_PER_PIXEL = 45,
     LOC_THICKNESS_SIZE = 46,
-    LOC_COLORED = 47
+    LOC_COLORED = 47,
+    LOC_CONTACT_SHADOW = 57,
+    LOC_DEPTH_DIMMING = 58
 };
 /* Texture units fixed by layout(binding) in the composite shaders (surface_normal.frag.glsl also has 3). */
 enum { UNIT_SURFACE_DEPTH = 0, UNIT_THICKNESS = 1, UNIT_BACKGROUND = 2, UNIT_ENVIRONMENT_MAP = 4 };
@@ -119,6 +121,10 @@ static void apply_material(const fc_settings *settings, bool colored, uint64_t u
         glUniform1f(LOC_SPECULAR, settings->specular);
     if (ACTIVE(LOC_SHININESS))
         glUniform1f(LOC_SHININESS, settings->shininess);
+    if (ACTIVE(LOC_CONTACT_SHADOW))
+        glUniform1f(LOC_CONTACT_SHADOW, settings->contact_shadow);
+    if (ACTIVE(LOC_DEPTH_DIMMING))
+        glUniform1f(LOC_DEPTH_DIMMING, settings->depth_dimming);
     /* No noise, no foam; the range must stay non-empty even then (smoothstep). */
     bool foam = has_foam(settings);
     float noise = foam ? settings->noise : 1.0f;
