@@ -9,6 +9,11 @@
 // reads as water, not as a white bead. Speed whitens it towards foam when
 // `whitening` (settings.foam) asks for it (Cords & Staadt, Instant Liquids,
 // §4: the velocity map shifts the colour to white).
+// With velocities (streak_room > 1) a droplet is a streak along its velocity
+// across the view (spray_pass.h): an ellipse as long as 1 + (room - 1) x its
+// speed across the view over (its speed + the frame's mean speed), in a
+// sprite `streak_room` times the droplet's; its body is spread over the
+// longer streak, so it grows fainter as it grows longer.
 
 // The particle's shape, sphere or ellipsoid: sphere_shape.frag.glsl, ellipsoid_shape.frag.glsl.
 bool cast_particle_ray(vec2 pixel, vec3 centre, out float depth, out float chord);
@@ -22,6 +27,17 @@ layout(location = 10) uniform vec3 light_view;       // unit, towards the light,
 layout(location = 11) uniform vec3 fluid_color;      // linear RGB
 layout(location = 12) uniform float whitening;       // settings.foam: how white fast spray gets
 layout(location = 13) uniform float speed_reference; // a droplet this fast is half-way to white
+layout(location = 0) uniform mat4 view_matrix;       // world -> view
+layout(location = 14) uniform int first_spray;       // draw slot of the first droplet: velocities[0]
+layout(location = 15) uniform float mean_speed;      // the frame's mean speed
+layout(location = 16) uniform float streak_room;     // the sprite's radius per round droplet's; 1: no velocities
+
+// World velocity per droplet, from draw slot first_spray on (spray_pass.c).
+layout(std430, binding = 17) readonly buffer spray_velocities {
+    vec4 velocities[];
+};
+layout(location = 1) flat in int particle_slot;
+layout(location = 6) flat in float splat_radius;     // the sprite's radius, world units
 
 layout(location = 0) flat in vec3 sphere_centre;
 layout(location = 0) out vec4 color;
@@ -51,20 +67,33 @@ void main()
     if (!cast_particle_ray(gl_FragCoord.xy, sphere_centre, depth, chord))
         discard;
     vec3 dir = vec3((gl_FragCoord.xy / viewport * 2.0 - 1.0) / projection.xy, -1.0);
-    vec3 outer = particle_normal(depth * dir, sphere_centre);
-    // The droplet: a sphere of its own size inside the particle's, centred on it.
-    vec2 q = outer.xy / droplet_size(particle_id());
+    // The droplet: a sphere of its own size inside the particle's, centred
+    // on it, stretched along its velocity across the view.
+    vec2 along = vec2(1.0, 0.0);
+    float stretch = 1.0;
+    if (streak_room > 1.0) {
+        vec3 v = mat3(view_matrix) * velocities[particle_slot - first_spray].xyz;
+        float across_view = length(v.xy);
+        if (across_view > 0.0) {
+            along = v.xy / across_view;
+            stretch = 1.0 + (streak_room - 1.0) * across_view / (length(v) + mean_speed);
+        }
+    }
+    // Where the pixel's ray crosses the plane of the droplet's centre, in
+    // round droplets' radii: the droplet's own outline, whatever the sprite.
+    vec2 p = (dir * -sphere_centre.z - sphere_centre).xy / splat_radius * streak_room / droplet_size(particle_id());
+    vec2 q = vec2(dot(p, along) / stretch, dot(p, vec2(-along.y, along.x)));
     float q2 = dot(q, q);
     if (q2 >= 1.0)
         discard;
-    vec3 n = vec3(q, sqrt(1.0 - q2));
+    vec3 n = vec3(q.x * along + q.y * vec2(-along.y, along.x), sqrt(1.0 - q2));
     float fresnel = schlick_r0 + (1.0 - schlick_r0) * pow(1.0 - n.z, 5.0);
     vec3 inverted = mix(sky, ground, 0.5 + 0.5 * n.y);
     vec3 body = mix(inverted, inverted * fluid_color / max(max(fluid_color.r, fluid_color.g), fluid_color.b), tint);
     vec3 reflected = mix(sky, ground, 0.5 - 0.5 * reflect(vec3(0.0, 0.0, -1.0), n).y);
     float highlight = pow(max(dot(reflect(-light_view, n), vec3(0.0, 0.0, 1.0)), 0.0), 80.0);
     vec3 water = mix(body, reflected, fresnel) + vec3(highlight);
-    float alpha = clamp(mix(body_opacity, 1.0, fresnel) + highlight, 0.0, 1.0);
+    float alpha = clamp(mix(body_opacity, 1.0, fresnel) + highlight, 0.0, 1.0) / sqrt(stretch);
     float speed = particle_speed();
     float white = clamp(whitening * speed / (speed + speed_reference), 0.0, 1.0);
     // Fading towards the rim keeps tiny droplets from aliasing.

@@ -12,7 +12,6 @@ typedef struct fc_cli_choices {
     bool radius;   /* the radius was estimated from the particle spacing */
     bool per_particle_radius;   /* radius left at 0: the frame's own radii are used (median below) */
     float median_radius;        /* the frame's median radius, when per_particle_radius */
-    bool spray;    /* the spray threshold was set from the frame's densities */
     bool color_range;   /* the colour range was set from the frame's attribute */
 } fc_cli_choices;
 
@@ -21,12 +20,12 @@ typedef struct fc_cli_choices {
  * particle at its own, PROTOCOL.md 5), and is otherwise estimated from the
  * particle spacing (fc_frame_estimate_radius:
  * side by side on the splash frames and the demo scene, smaller radii made
- * ellipsoids no crisper, and jittered surfaces pebbly); unless the user
- * gave one, a frame with densities gets a spray threshold of half its median
- * density, so that single-particle droplets (an isolated SPH particle has
- * about a third of the rest density) are drawn as white spray instead of as
- * clear beads that hardly show. */
-void fc_cli_complete_settings(fc_settings *s, const fc_frame *frame, bool threshold_given, fc_cli_choices *chosen);
+ * ellipsoids no crisper, and jittered surfaces pebbly). No density
+ * threshold is chosen: spray is classified by neighbour count on the server
+ * (spray_neighbours), and a threshold from the densities (it was half the
+ * median) turned a thin crown or sheet, whose particles a solver gives low
+ * densities, into dust (bench/LOOK.md). */
+void fc_cli_complete_settings(fc_settings *s, const fc_frame *frame, fc_cli_choices *chosen);
 
 /* Unless the user gave a range, a frame coloured by an attribute it has gets
  * the 2nd to 98th percentile of that attribute (over an evenly spread sample

@@ -89,7 +89,7 @@ static int choose_view(render_job *job)
         /* Completed from the first frame as snapshot completes them from its one. */
         job->settings = o->view.settings.values;
         fc_cli_choices chosen;
-        fc_cli_complete_settings(&job->settings, &first, fc_cli_setting_given(&o->view.settings, "density_threshold"), &chosen);
+        fc_cli_complete_settings(&job->settings, &first, &chosen);
         /* A fixed range for the whole sequence, so that its frames compare. */
         fc_cli_complete_color_range(&job->settings, &first, fc_cli_setting_given(&o->view.settings, "color_range"), &chosen);
         printf("render: %u frames, %s .. %s", (unsigned)job->inputs.count, job->inputs.paths[0],
@@ -105,10 +105,6 @@ static int choose_view(render_job *job)
         if (!o->camera_path && !o->view.has_eye)
             fc_snapshot_print_left_out(&bounds.box, true);
         fc_cli_print_radius(&job->settings, &chosen, "the first frame's particle spacing");
-        if (chosen.spray)
-            printf("spray: particles below density %g (half the first frame's median; --density-threshold to "
-                   "change)\n",
-                   (double)job->settings.density_threshold);
         if (chosen.color_range)
             fc_cli_print_color_range(&job->settings);
     }

@@ -84,9 +84,6 @@ static int write_image(const fc_snapshot_options *o, const fc_image_result *imag
     if (!up->given)
         printf("up %s\n", up->note);
     fc_snapshot_print_left_out(box, false);
-    if (chosen->spray)
-        printf("spray: particles below density %g (half the median; --density-threshold to change)\n",
-               (double)settings->density_threshold);
     if (chosen->color_range)
         fc_cli_print_color_range(settings);
     return FC_EXIT_OK;
@@ -128,7 +125,7 @@ static int snapshot(const fc_snapshot_options *o, fc_frame *frame)
     /* The options' settings (checked while parsing), completed from the frame so the choices can be reported. */
     fc_settings settings = o->settings.values;
     fc_cli_choices chosen;
-    fc_cli_complete_settings(&settings, frame, fc_cli_setting_given(&o->settings, "density_threshold"), &chosen);
+    fc_cli_complete_settings(&settings, frame, &chosen);
     fc_cli_complete_color_range(&settings, frame, fc_cli_setting_given(&o->settings, "color_range"), &chosen);
     fc_image_result image = { 0 };
     status = render_remotely(o, &scene, frame, &cam, &settings, &image);

@@ -44,11 +44,8 @@ static int set_up_view(fc_client *c, const fc_stream_options *o, const fc_frame 
         return fc_cli_fail(FC_EXIT_USAGE, "bad camera: %s", why.message);
     fc_settings settings = o->settings.values;
     fc_cli_choices chosen;
-    fc_cli_complete_settings(&settings, first, fc_cli_setting_given(&o->settings, "density_threshold"), &chosen);
+    fc_cli_complete_settings(&settings, first, &chosen);
     fc_cli_complete_color_range(&settings, first, fc_cli_setting_given(&o->settings, "color_range"), &chosen);
-    if (chosen.spray)
-        printf("spray: particles below density %g (half the first frame's median)\n",
-               (double)settings.density_threshold);
     if (chosen.color_range)
         fc_cli_print_color_range(&settings);
     if (fc_client_set_camera(c, &cam, &err) != FC_OK || fc_client_set_settings(c, &settings, &err) != FC_OK)

@@ -61,7 +61,7 @@ static void wake(void *ctx)
     SDL_PushEvent(&e);
 }
 
-/* A sequence's first frame gives the settings (radius, spray) and the home
+/* A sequence's first frame gives the settings (radius) and the home
  * camera: framed on its fluid (framing_bounds.h), upright along the guessed
  * up axis. */
 static int prepare_files(const fc_view_options *o, fc_frame *first, fc_settings *settings, fc_camera *home)
@@ -71,7 +71,7 @@ static int prepare_files(const fc_view_options *o, fc_frame *first, fc_settings 
         return status;
     fc_cli_print_recentring(&o->recentring);
     fc_cli_choices chosen;
-    fc_cli_complete_settings(settings, first, fc_cli_setting_given(&o->settings, "density_threshold"), &chosen);
+    fc_cli_complete_settings(settings, first, &chosen);
     fc_cli_complete_color_range(settings, first, fc_cli_setting_given(&o->settings, "color_range"), &chosen);
     fc_up_guess guess;
     float up[3] = {0, 0, 1};

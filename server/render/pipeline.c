@@ -379,8 +379,8 @@ static fc_code composite_stage(fc_pipeline *p, const render_job *job, const fc_r
     }
     if (code == FC_OK) {
         fc_pass_profile_begin(profile, "spray");
-        code = fc_spray_pass_run(&p->spray, &p->particles, job->surface.count, &p->attributes, job->view, &job->env,
-                                 job->settings, *result, err);
+        code = fc_spray_pass_run(&p->spray, &p->particles, job->surface.count, &p->attributes, &p->frame, job->view,
+                                 &job->env, job->settings, *result, err);
         fc_pass_profile_end(profile);
     }
     if (code == FC_OK && job->mesh_count > 0) {

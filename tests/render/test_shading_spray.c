@@ -4,7 +4,8 @@
  * light droplets, whiter the faster they move, and are hidden behind fluid;
  * the order is sorted only when a render asks for a threshold. Classified by
  * neighbours (spray_classes.h), isolated particles are spray and a block and
- * a jet are not, and the droplets differ in size and are shaded within. */
+ * a jet are not, and the droplets differ in size and are shaded within; with
+ * velocities each droplet is a streak along its velocity across the view. */
 #include <math.h>
 #include <stdbool.h>
 #include <stdlib.h>
@@ -355,6 +356,69 @@ static void test_isolated_particles_are_droplets(render_fixture *f)
     fc_image_free(&reference);
 }
 
+/* The extent, in pixels along x and along y, of the pixels of `color` that
+ * differ from `reference` within `half` columns and CLASS_STREAK_ROWS rows
+ * of (x, row). */
+#define CLASS_STREAK_ROWS 12
+static void droplet_extent(const fc_image *color, const fc_image *reference, uint32_t x, uint32_t row,
+                           uint32_t half, int *along_x, int *along_y)
+{
+    int lo_x = 1 << 30, hi_x = -1, lo_y = 1 << 30, hi_y = -1;
+    for (uint32_t r = row - CLASS_STREAK_ROWS; r <= row + CLASS_STREAK_ROWS; r++)
+        for (uint32_t c = x - half; c <= x + half; c++) {
+            if (luminance(color, c, r) == luminance(reference, c, r))
+                continue;
+            lo_x = (int)c < lo_x ? (int)c : lo_x;
+            hi_x = (int)c > hi_x ? (int)c : hi_x;
+            lo_y = (int)r < lo_y ? (int)r : lo_y;
+            hi_y = (int)r > hi_y ? (int)r : hi_y;
+        }
+    *along_x = hi_x - lo_x + 1;
+    *along_y = hi_y - lo_y + 1;
+}
+
+/* The isolated droplets of the classes frame, moving along their row (x):
+ * each is a streak along x, at least twice as long as it is wide; moving
+ * towards the camera, or without velocities, each is round. */
+static void test_droplets_streak_along_velocity(render_fixture *f)
+{
+    static float in_view[3 * CLASS_COUNT], away[3 * CLASS_COUNT], velocity[3 * CLASS_COUNT];
+    make_classes_frame(in_view, true);
+    make_classes_frame(away, false);
+    fc_camera cam = axis_camera(2.0, CLASS_WIDTH, CLASS_HEIGHT);
+    fc_settings settings = test_settings(0.6f * CLASS_SPACING, FC_SMOOTHING_NONE, 0);
+    settings.spray_neighbours = 2;
+    uint32_t px[CLASS_ISOLATED], row[CLASS_ISOLATED];
+    for (int i = 0; i < CLASS_ISOLATED; i++)
+        pixel_of(&cam, in_view + 3 * (CLASS_BLOCK + CLASS_ROW + i), &px[i], &row[i]);
+    uint32_t half = (px[1] - px[0]) / 2;
+    /* 0: none, 1: along the row, 2: towards the camera. */
+    for (int motion = 0; motion < 3; motion++) {
+        memset(velocity, 0, sizeof velocity);
+        for (int i = 0; i < CLASS_ISOLATED; i++)
+            velocity[3 * (CLASS_BLOCK + CLASS_ROW + i) + (motion == 1 ? 0 : 2)] = 1.0f;
+        fc_frame frame = {.count = CLASS_COUNT, .positions = in_view, .velocity = motion ? velocity : NULL};
+        fc_frame without = {.count = CLASS_COUNT, .positions = away, .velocity = motion ? velocity : NULL};
+        fc_image color = {0}, reference = {0};
+        CHECK_CODE(render_frame(f, &frame, &cam, &settings, NULL, FC_AOV_COLOR, 0, &color), FC_OK);
+        CHECK_CODE(render_frame(f, &without, &cam, &settings, NULL, FC_AOV_COLOR, 0, &reference), FC_OK);
+        for (int i = 0; i < CLASS_ISOLATED; i++) {
+            int along_x, along_y;
+            droplet_extent(&color, &reference, px[i], row[i], half, &along_x, &along_y);
+            printf("motion %d, droplet %d: %d x %d pixels\n", motion, i, along_x, along_y);
+            CHECK_MSG(along_y > 0, "motion %d: droplet %d not drawn", motion, i);
+            if (motion == 1)
+                CHECK_MSG(along_x >= 2 * along_y, "droplet %d moving along x is no streak: %d x %d pixels", i,
+                          along_x, along_y);
+            else
+                CHECK_MSG(along_x <= along_y + 1 && along_y <= along_x + 1,
+                          "motion %d: droplet %d is not round: %d x %d pixels", motion, i, along_x, along_y);
+        }
+        fc_image_free(&color);
+        fc_image_free(&reference);
+    }
+}
+
 int main(void)
 {
     test_density_order();
@@ -368,6 +432,7 @@ int main(void)
     test_sorted_only_for_a_threshold(&f);
     test_isolated_droplet_keeps_its_sphere(&f);
     test_isolated_particles_are_droplets(&f);
+    test_droplets_streak_along_velocity(&f);
     fixture_close(&f);
     return test_result();
 }
