@@ -1,9 +1,11 @@
 #version 450 core
 // Surface mesh, pass 1: the field at every sample of every block, its
 // gradient, the particles' attributes summed with the field's weights (the
-// vertices divide by the field: weighted means) and the nearest particle's id. Each sample sums over its block's list of
-// particles in list order, so equal input gives equal bits, and a sample
-// shared by two blocks gets the same value in both (surface_grid.h).
+// vertices divide by the field: weighted means) and the nearest particle's id.
+// Each sample sums the particles of the 3 x 3 x 3 bins around it (the
+// particles come sorted by bin, surface_grid.h) in bin order, so equal input
+// gives equal bits, and a sample shared by two blocks gets the same value in
+// both: its bins and their order follow from its lattice point alone.
 // The grid's sizes come as #defines (FC_SURFACE_GRID, surface_passes.c).
 
 layout(local_size_x = 64) in;
@@ -12,12 +14,13 @@ layout(location = 0) uniform uint block_count;
 layout(location = 1) uniform vec3 origin;
 layout(location = 2) uniform float cell;
 layout(location = 4) uniform int kernel;   // fc_surface_kernel: 0 metaball, 1 sph (2 is 0 on ellipsoids)
+layout(location = 6) uniform float bin;    // bin edge, at least the field's reach; bin 0 starts at origin
+layout(location = 7) uniform uvec3 bins;   // bins along each axis
 
-layout(std430, binding = 0) readonly buffer Particles { vec4 particles[]; };      // xyz, radius
+layout(std430, binding = 0) readonly buffer Particles { vec4 particles[]; };      // xyz, radius; by bin
 layout(std430, binding = 1) readonly buffer Attributes { vec4 attributes[]; };    // velocity, density
 layout(std430, binding = 2) readonly buffer Ids { uint ids[]; };
-layout(std430, binding = 4) readonly buffer ListStarts { uint list_starts[]; };
-layout(std430, binding = 5) readonly buffer Lists { uint lists[]; };
+layout(std430, binding = 4) readonly buffer BinStarts { uint bin_starts[]; };  // x + bins.x (y + bins.y z)
 layout(std430, binding = 6) writeonly buffer Field { vec4 field[]; };             // gradient, value
 layout(std430, binding = 7) writeonly buffer SampleAttributes { vec4 sample_attributes[]; };
 layout(std430, binding = 8) writeonly buffer SampleExtras { uvec2 sample_extras[]; }; // speed bits, id
@@ -63,6 +66,31 @@ vec3 kernel_offset(uint p, vec3 d, out mat3 g)
     return g * d;
 }
 
+// Adds the particles [first, last) to the sums of the sample at x.
+void add_particles(uint first, uint last, vec3 x, inout float f, inout vec3 gradient, inout vec4 weighted,
+                   inout float speed, inout float nearest, inout uint nearest_id)
+{
+    for (uint p = first; p < last; p++) {
+        mat3 g;
+        vec4 particle = particles[p];
+        vec3 d = kernel_offset(p, x - particle.xyz, g);
+        float d2 = dot(d, d);
+        if (d2 < nearest) {
+            nearest = d2;
+            nearest_id = ids[p];
+        }
+        float slope;
+        float w = weight(d, particle.w, slope);
+        if (w <= 0.0)
+            continue;
+        f += w;
+        gradient += 2.0 * slope * (g * d);
+        vec4 a = attributes[p];
+        weighted += w * a;
+        speed += w * length(a.xyz);
+    }
+}
+
 void main()
 {
     uint block = this_block();
@@ -71,34 +99,20 @@ void main()
     uvec3 base = block_coordinates(block_keys[block]) * BLOCK;
     for (uint s = gl_LocalInvocationID.x; s < BLOCK_SAMPLES; s += gl_WorkGroupSize.x) {
         uvec3 local = uvec3(s % (BLOCK + 1u), (s / (BLOCK + 1u)) % (BLOCK + 1u), s / ((BLOCK + 1u) * (BLOCK + 1u)));
-        uvec3 upper = uvec3(greaterThanEqual(local, uvec3(HALF)));
-        uint octant = block * 8u + upper.x + 2u * upper.y + 4u * upper.z;
-        uint first = list_starts[octant], last = list_starts[octant + 1u];
         vec3 x = origin + vec3(base + local) * cell;
+        ivec3 centre = ivec3(floor((x - origin) / bin));
+        ivec3 lo = max(centre - 1, ivec3(0)), hi = min(centre + 1, ivec3(bins) - 1);
         float f = 0.0, speed = 0.0, nearest = 1.0 / 0.0;
         vec3 gradient = vec3(0.0);
         vec4 weighted = vec4(0.0);
         uint nearest_id = 0u;
-        for (uint k = first; k < last; k++) {
-            uint p = lists[k];
-            vec4 particle = particles[p];
-            mat3 g;
-            vec3 d = kernel_offset(p, x - particle.xyz, g);
-            float d2 = dot(d, d);
-            if (d2 < nearest) {
-                nearest = d2;
-                nearest_id = ids[p];
+        for (int z = lo.z; z <= hi.z; z++)
+            for (int y = lo.y; y <= hi.y && lo.x <= hi.x; y++) {
+                // A row of bins along x is one run of the sorted particles.
+                uint row = bins.x * (uint(y) + bins.y * uint(z));
+                add_particles(bin_starts[row + uint(lo.x)], bin_starts[row + uint(hi.x) + 1u], x, f, gradient,
+                              weighted, speed, nearest, nearest_id);
             }
-            float slope;
-            float w = weight(d, particle.w, slope);
-            if (w <= 0.0)
-                continue;
-            f += w;
-            gradient += 2.0 * slope * (g * d);
-            vec4 a = attributes[p];
-            weighted += w * a;
-            speed += w * length(a.xyz);
-        }
         uint slot = block * BLOCK_SAMPLES + s;
         field[slot] = vec4(gradient, f);
         sample_attributes[slot] = weighted;

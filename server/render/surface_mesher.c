@@ -22,10 +22,10 @@
 #include "surface_tets.h"
 
 /* Uniform locations of surface_*.comp.glsl. */
-enum { LOC_BLOCKS = 0, LOC_ORIGIN = 1, LOC_CELL = 2, LOC_ISO = 3, LOC_KERNEL = 4, LOC_EMIT = 5,
-       LOC_TET_CORNERS = 10, LOC_TET_CASES = 20 };
-/* Shader storage bindings of surface_*.comp.glsl. */
-enum { BIND_PARTICLES = 0, BIND_ATTRIBUTES = 1, BIND_IDS = 2, BIND_KEYS = 3, BIND_STARTS = 4, BIND_LISTS = 5,
+enum { LOC_BLOCKS = 0, LOC_ORIGIN = 1, LOC_CELL = 2, LOC_ISO = 3, LOC_KERNEL = 4, LOC_EMIT = 5, LOC_BIN = 6,
+       LOC_BINS = 7, LOC_TET_CORNERS = 10, LOC_TET_CASES = 20 };
+/* Shader storage bindings of surface_*.comp.glsl (5 unused). */
+enum { BIND_PARTICLES = 0, BIND_ATTRIBUTES = 1, BIND_IDS = 2, BIND_KEYS = 3, BIND_BIN_STARTS = 4,
        BIND_FIELD = 6, BIND_SAMPLE_ATTRIBUTES = 7, BIND_SAMPLE_EXTRAS = 8, BIND_SHAPES = 9, BIND_EDGES = 10,
        BIND_CELLS = 11, BIND_POSITIONS = 12, BIND_NORMALS = 13, BIND_VERTEX_ATTRIBUTES = 14,
        BIND_VERTEX_EXTRAS = 15, BIND_INDICES = 16 };
@@ -59,7 +59,7 @@ static fc_code make_buffer(GLuint *buffer, uint64_t bytes, const void *data, fc_
     return fc_gl_check("allocating the surface mesh buffers", err);
 }
 
-/* The particles as the field pass reads them: centre (the ellipsoid's
+/* The particles as the field pass reads them, in the grid's bin order: centre (the ellipsoid's
  * smoothed one with the anisotropic kernel) and radius, velocity and density,
  * id (the index where the frame has none); and the ellipsoids' G as two vec4
  * (xx xy xz yy, yz zz), or one unused vec4 for the other kernels. */
@@ -68,21 +68,23 @@ static fc_code upload_particles(extraction *x, const fc_frame *frame, const floa
                                 fc_error *err)
 {
     size_t n = (size_t)frame->count, shapes_n = ellipsoids ? 2 * n : 1;
+    const uint32_t *order = x->grid.order;
     float *particles = malloc(n * 16), *attributes = calloc(n, 16), *shapes = calloc(shapes_n, 16);
     uint32_t *ids = malloc(n * 4);
     fc_code code = FC_OK;
     if (!particles || !attributes || !ids || !shapes)
         code = fc_error_set(err, FC_ERR_NOMEM, "cannot stage %zu particles for the surface mesh", n);
     for (size_t i = 0; code == FC_OK && ellipsoids && i < n; i++)
-        memcpy(shapes + 8 * i, ellipsoids[i].inverse, 6 * sizeof(float));
+        memcpy(shapes + 8 * i, ellipsoids[order[i]].inverse, 6 * sizeof(float));
     for (size_t i = 0; code == FC_OK && i < n; i++) {
-        memcpy(particles + 4 * i, centres + 3 * i, 12);
-        particles[4 * i + 3] = radius ? radius[i] : uniform_radius;
+        size_t p = order[i];
+        memcpy(particles + 4 * i, centres + 3 * p, 12);
+        particles[4 * i + 3] = radius ? radius[p] : uniform_radius;
         if (frame->velocity)
-            memcpy(attributes + 4 * i, frame->velocity + 3 * i, 12);
+            memcpy(attributes + 4 * i, frame->velocity + 3 * p, 12);
         if (frame->density)
-            attributes[4 * i + 3] = frame->density[i];
-        ids[i] = frame->ids ? frame->ids[i] : (uint32_t)i;
+            attributes[4 * i + 3] = frame->density[p];
+        ids[i] = frame->ids ? frame->ids[p] : (uint32_t)p;
     }
     if (code == FC_OK)
         code = make_buffer(&x->buffers[BIND_PARTICLES], n * 16, particles, err);
@@ -99,18 +101,16 @@ static fc_code upload_particles(extraction *x, const fc_frame *frame, const floa
     return code;
 }
 
-/* The grid's lists and the passes' work buffers. */
+/* The grid's bins and the passes' work buffers. */
 static fc_code allocate_grid(extraction *x, fc_error *err)
 {
     const fc_surface_grid *g = &x->grid;
     uint64_t blocks = g->block_count;
     uint64_t samples = blocks * FC_SURFACE_BLOCK_SAMPLES;
     fc_code code = make_buffer(&x->buffers[BIND_KEYS], blocks * 4, g->block_keys, err);
+    uint64_t bins = (uint64_t)g->bins[0] * g->bins[1] * g->bins[2];
     if (code == FC_OK)
-        code = make_buffer(&x->buffers[BIND_STARTS], (blocks * FC_SURFACE_OCTANTS + 1) * 4, g->list_starts, err);
-    if (code == FC_OK)
-        code = make_buffer(&x->buffers[BIND_LISTS], (uint64_t)g->list_starts[blocks * FC_SURFACE_OCTANTS] * 4,
-                           g->list, err);
+        code = make_buffer(&x->buffers[BIND_BIN_STARTS], (bins + 1) * 4, g->bin_starts, err);
     if (code == FC_OK)
         code = make_buffer(&x->buffers[BIND_FIELD], samples * 16, NULL, err);
     if (code == FC_OK)
@@ -134,7 +134,7 @@ static void bind_all(const extraction *x)
 }
 
 /* The uniforms each program declares (setting one a program lacks is an error). */
-enum { USES_PLACE = 1, USES_ISO = 2, USES_KERNEL = 4, USES_EMIT = 8 };
+enum { USES_PLACE = 1, USES_ISO = 2, USES_KERNEL = 4, USES_EMIT = 8, USES_BINS = 16 };
 
 static void set_grid_uniforms(GLuint program, unsigned uses, const extraction *x, int emit)
 {
@@ -149,6 +149,10 @@ static void set_grid_uniforms(GLuint program, unsigned uses, const extraction *x
         glProgramUniform1i(program, LOC_KERNEL, x->kernel);
     if (uses & USES_EMIT)
         glProgramUniform1i(program, LOC_EMIT, emit);
+    if (uses & USES_BINS) {
+        glProgramUniform1f(program, LOC_BIN, x->grid.bin);
+        glProgramUniform3uiv(program, LOC_BINS, 1, x->grid.bins);
+    }
 }
 
 static void run_program(const fc_surface_passes *s, GLuint program, unsigned uses, const extraction *x, int emit)
@@ -161,7 +165,7 @@ static void run_program(const fc_surface_passes *s, GLuint program, unsigned use
 
 static void run_field(const fc_surface_passes *s, const extraction *x)
 {
-    run_program(s, s->field_program, USES_PLACE | USES_KERNEL, x, 0);
+    run_program(s, s->field_program, USES_PLACE | USES_KERNEL | USES_BINS, x, 0);
 }
 
 static void run_edges(const fc_surface_passes *s, const extraction *x, int emit)
