@@ -32,10 +32,9 @@
  * cells, bins): past it the request fails with LIMIT instead of exhausting
  * the machine. */
 #define FC_SURFACE_GRID_BUDGET ((uint64_t)1 << 30)
-/* Bytes a block costs on the GPU: per sample its field and gradient (vec4),
- * velocity and density (vec4), speed and nearest id; per owned edge
- * (7 per cell) and per cell a scan entry. */
-#define FC_SURFACE_BLOCK_BYTES ((uint64_t)FC_SURFACE_BLOCK_SAMPLES * 40u + (uint64_t)FC_SURFACE_BLOCK_EDGES * 4u + (uint64_t)FC_SURFACE_BLOCK_CELLS * 4u)
+/* Bytes a block costs on the GPU: per sample its field's value; per owned
+ * edge (7 per cell) and per cell a scan entry. */
+#define FC_SURFACE_BLOCK_BYTES ((uint64_t)FC_SURFACE_BLOCK_SAMPLES * 4u + (uint64_t)FC_SURFACE_BLOCK_EDGES * 4u + (uint64_t)FC_SURFACE_BLOCK_CELLS * 4u)
 
 typedef struct fc_surface_grid {
     float origin[3];          /* world position of lattice point (0, 0, 0) */

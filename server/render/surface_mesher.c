@@ -24,9 +24,9 @@
 /* Uniform locations of surface_*.comp.glsl. */
 enum { LOC_BLOCKS = 0, LOC_ORIGIN = 1, LOC_CELL = 2, LOC_ISO = 3, LOC_KERNEL = 4, LOC_EMIT = 5, LOC_BIN = 6,
        LOC_BINS = 7, LOC_TET_CORNERS = 10, LOC_TET_CASES = 20 };
-/* Shader storage bindings of surface_*.comp.glsl (5 unused). */
+/* Shader storage bindings of surface_*.comp.glsl (5, 7 and 8 unused). */
 enum { BIND_PARTICLES = 0, BIND_ATTRIBUTES = 1, BIND_IDS = 2, BIND_KEYS = 3, BIND_BIN_STARTS = 4,
-       BIND_FIELD = 6, BIND_SAMPLE_ATTRIBUTES = 7, BIND_SAMPLE_EXTRAS = 8, BIND_SHAPES = 9, BIND_EDGES = 10,
+       BIND_FIELD = 6, BIND_SHAPES = 9, BIND_EDGES = 10,
        BIND_CELLS = 11, BIND_POSITIONS = 12, BIND_NORMALS = 13, BIND_VERTEX_ATTRIBUTES = 14,
        BIND_VERTEX_EXTRAS = 15, BIND_INDICES = 16 };
 enum { BUFFER_COUNT = 17 };
@@ -112,11 +112,7 @@ static fc_code allocate_grid(extraction *x, fc_error *err)
     if (code == FC_OK)
         code = make_buffer(&x->buffers[BIND_BIN_STARTS], (bins + 1) * 4, g->bin_starts, err);
     if (code == FC_OK)
-        code = make_buffer(&x->buffers[BIND_FIELD], samples * 16, NULL, err);
-    if (code == FC_OK)
-        code = make_buffer(&x->buffers[BIND_SAMPLE_ATTRIBUTES], samples * 16, NULL, err);
-    if (code == FC_OK)
-        code = make_buffer(&x->buffers[BIND_SAMPLE_EXTRAS], samples * 8, NULL, err);
+        code = make_buffer(&x->buffers[BIND_FIELD], samples * 4, NULL, err);
     if (code == FC_OK)
         code = make_buffer(&x->buffers[BIND_EDGES],
                            fc_surface_scan_entries(blocks * FC_SURFACE_BLOCK_EDGES) * 4, NULL, err);
@@ -170,7 +166,7 @@ static void run_field(const fc_surface_passes *s, const extraction *x)
 
 static void run_edges(const fc_surface_passes *s, const extraction *x, int emit)
 {
-    run_program(s, s->edges_program, USES_PLACE | USES_ISO | USES_EMIT, x, emit);
+    run_program(s, s->edges_program, USES_PLACE | USES_ISO | USES_EMIT | USES_KERNEL | USES_BINS, x, emit);
 }
 
 static void run_cells(const fc_surface_passes *s, const extraction *x, int emit)

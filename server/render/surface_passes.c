@@ -86,13 +86,13 @@ fc_code fc_surface_passes_create(const char *shader_dir, fc_surface_passes *s, f
     memset(s, 0, sizeof *s);
     char defines[352];
     grid_defines(defines, sizeof defines);
-    const char *field[] = {"surface_grid.comp.glsl", "surface_field.comp.glsl"};
-    const char *edges[] = {"surface_grid.comp.glsl", "surface_edges.comp.glsl"};
+    const char *field[] = {"surface_grid.comp.glsl", "surface_kernel.comp.glsl", "surface_field.comp.glsl"};
+    const char *edges[] = {"surface_grid.comp.glsl", "surface_kernel.comp.glsl", "surface_edges.comp.glsl"};
     const char *cells[] = {"surface_grid.comp.glsl", "surface_cells.comp.glsl"};
     const char *scan[] = {"anisotropy_scan.comp.glsl"};
-    fc_code code = fc_program_build_defines(shader_dir, defines, field, 2, &s->field_program, err);
+    fc_code code = fc_program_build_defines(shader_dir, defines, field, 3, &s->field_program, err);
     if (code == FC_OK)
-        code = fc_program_build_defines(shader_dir, defines, edges, 2, &s->edges_program, err);
+        code = fc_program_build_defines(shader_dir, defines, edges, 3, &s->edges_program, err);
     if (code == FC_OK)
         code = fc_program_build_defines(shader_dir, defines, cells, 2, &s->cells_program, err);
     if (code == FC_OK)
