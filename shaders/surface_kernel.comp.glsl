@@ -3,15 +3,15 @@
 // library without main, linked into the field pass (the field's value at the
 // blocks' samples) and the edges pass (the field's gradient and the particles'
 // attributes at each vertex, where they are wanted, not at every sample).
-// A point sums the particles of the 3 x 3 x 3 bins around it (the particles
+// A point sums the particles of the bins within BIN_SPLIT of its own (the particles
 // come sorted by bin, surface_grid.h) in bin order, so equal input gives
 // equal bits, and a sample shared by two blocks gets the same value in both:
 // its bins and their order follow from its lattice point alone.
-// REACH_RADII comes as a #define from surface_passes.c.
+// REACH_RADII and BIN_SPLIT come as #defines from surface_passes.c.
 
 layout(location = 1) uniform vec3 origin;  // world position of lattice point 0, where bin 0 starts
 layout(location = 4) uniform int kernel;   // fc_surface_kernel: 0 metaball, 1 sph (2 is 0 on ellipsoids)
-layout(location = 6) uniform float bin;    // bin edge, at least the field's reach
+layout(location = 6) uniform float bin;    // bin edge, at least the field's reach / BIN_SPLIT
 layout(location = 7) uniform uvec3 bins;   // bins along each axis
 
 layout(std430, binding = 0) readonly buffer Particles { vec4 particles[]; };      // xyz, radius; by bin
@@ -55,8 +55,8 @@ mat3 shape_of(uint p)
 void bins_around(vec3 x, out ivec3 lo, out ivec3 hi)
 {
     ivec3 centre = ivec3(floor((x - origin) / bin));
-    lo = max(centre - 1, ivec3(0));
-    hi = min(centre + 1, ivec3(bins) - 1);
+    lo = max(centre - int(BIN_SPLIT), ivec3(0));
+    hi = min(centre + int(BIN_SPLIT), ivec3(bins) - 1);
 }
 
 // The run of sorted particles of the row of bins lo.x..hi.x at (y, z).

@@ -142,13 +142,13 @@ static fc_code collect_blocks(const uint64_t *pairs, uint64_t n, fc_surface_grid
     return FC_OK;
 }
 
-/* The bin edge: the field's reach (a little more, so that rounding cannot
- * put a reaching particle two bins away), grown until the bins of the grid's
+/* The bin edge: the field's reach over FC_SURFACE_BIN_SPLIT (a little more,
+ * so that rounding cannot put a reaching particle a bin further away), grown until the bins of the grid's
  * box number at most FC_SURFACE_MAX_BINS (a frame spread thinly over a large
  * box gets bigger bins rather than a huge table). */
 static void size_bins(fc_surface_grid *g, const float hi[3], float reach)
 {
-    g->bin = reach * 1.001f;
+    g->bin = reach * 1.001f / (float)FC_SURFACE_BIN_SPLIT;
     for (;;) {
         double total = 1.0;
         for (int a = 0; a < 3; a++) {

@@ -2,7 +2,7 @@
  * (surface_extract.h): blocks of FC_SURFACE_BLOCK^3 cells, only those near
  * particles, and the particles sorted into bins at least the field's reach
  * wide (Janisz's "particle lookup cache", after Rosenberg & Birdwell 2008):
- * a sample sums the particles of the 3 x 3 x 3 bins around it, so every
+ * a sample sums the particles of the bins within FC_SURFACE_BIN_SPLIT of its own, so every
  * particle is listed once whatever the cell size, and a sample tests a few
  * dozen particles rather than all those of a block. Built on the CPU by
  * stable sorts, so that equal input gives equal bins in particle order.
@@ -26,6 +26,9 @@
 #define FC_SURFACE_MAX_BLOCKS_PER_AXIS (1u << FC_SURFACE_KEY_BITS)
 /* The most particles one extraction takes (their lists are indexed by 32 bits). */
 #define FC_SURFACE_MAX_PARTICLES (1u << 28)
+/* Bins per field reach: a sample reads the (2 SPLIT + 1)^3 bins around its
+ * own. 2 tests about 15 r^3 of particles per sample where 1 tests 27 r^3. */
+#define FC_SURFACE_BIN_SPLIT 2u
 /* The most bins of the particles' box (their starts take 4 bytes each). */
 #define FC_SURFACE_MAX_BINS (1u << 24)
 /* GPU and CPU bytes one extraction may use for its grid (samples, edges,
@@ -41,7 +44,8 @@ typedef struct fc_surface_grid {
     float cell;               /* cell edge, world units */
     uint32_t block_count;
     uint32_t *block_keys;     /* ascending: x | y << 10 | z << 20, block coordinates */
-    float bin;                /* bin edge, world units, at least the field's reach; bin (0, 0, 0) starts at origin */
+    float bin;                /* bin edge, world units, the field's reach / FC_SURFACE_BIN_SPLIT or more; bin
+                                 (0, 0, 0) starts at origin */
     uint32_t bins[3];         /* bins along each axis */
     uint32_t *bin_starts;     /* bins[0] bins[1] bins[2] + 1: bin x + bins[0] (y + bins[1] z) holds the
                                  particles order[bin_starts[i] .. bin_starts[i + 1]) */
