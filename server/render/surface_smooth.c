@@ -43,17 +43,23 @@ static void laplacian_step(const neighbours *n, uint32_t vertices, float factor,
 {
     for (uint32_t v = 0; v < vertices; v++) {
         uint32_t first = n->start[v], last = n->start[v + 1];
-        for (int a = 0; a < 3; a++) {
-            float x = from[3 * (size_t)v + a];
-            if (last == first) {
-                to[3 * (size_t)v + a] = x;
-                continue;
-            }
-            float sum = 0.0f;
-            for (uint32_t k = first; k < last; k++)
-                sum += from[3 * (size_t)n->of[k] + a];
-            to[3 * (size_t)v + a] = x + factor * (sum / (float)(last - first) - x);
+        const float *x = from + 3 * (size_t)v;
+        float *out = to + 3 * (size_t)v;
+        if (last == first) {
+            memcpy(out, x, 3 * sizeof *x);
+            continue;
         }
+        /* One walk over the neighbours for the three axes (each axis's sum
+         * in the same order as before, so the result is unchanged). */
+        float sum[3] = {0.0f, 0.0f, 0.0f};
+        for (uint32_t k = first; k < last; k++) {
+            const float *y = from + 3 * (size_t)n->of[k];
+            sum[0] += y[0];
+            sum[1] += y[1];
+            sum[2] += y[2];
+        }
+        for (int a = 0; a < 3; a++)
+            out[a] = x[a] + factor * (sum[a] / (float)(last - first) - x[a]);
     }
 }
 
