@@ -84,6 +84,28 @@ float field_value(vec3 x)
     return f;
 }
 
+// The field's gradient at x: all a vertex takes when the frame has no
+// attributes.
+vec3 field_gradient(vec3 x)
+{
+    ivec3 lo, hi;
+    bins_around(x, lo, hi);
+    vec3 gradient = vec3(0.0);
+    for (int z = lo.z; z <= hi.z; z++)
+        for (int y = lo.y; y <= hi.y && lo.x <= hi.x; y++) {
+            uvec2 run = row_run(lo, hi, y, z);
+            for (uint p = run.x; p < run.y; p++) {
+                vec4 particle = particles[p];
+                mat3 g = shape_of(p);
+                vec3 d = kernel == 2 ? g * (x - particle.xyz) : x - particle.xyz;
+                float slope;
+                if (weight(d, particle.w, slope) > 0.0)
+                    gradient += 2.0 * slope * (kernel == 2 ? g * d : d);
+            }
+        }
+    return gradient;
+}
+
 // Everything a vertex at x takes: the field's gradient, the particles'
 // attributes averaged with the field's weights (velocity and density, and
 // speed), and the nearest particle's id.

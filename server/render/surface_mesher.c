@@ -23,10 +23,10 @@
 
 /* Uniform locations of surface_*.comp.glsl. */
 enum { LOC_BLOCKS = 0, LOC_ORIGIN = 1, LOC_CELL = 2, LOC_ISO = 3, LOC_KERNEL = 4, LOC_EMIT = 5, LOC_BIN = 6,
-       LOC_BINS = 7, LOC_TET_CORNERS = 10, LOC_TET_CASES = 20 };
-/* Shader storage bindings of surface_*.comp.glsl (5, 7 and 8 unused). */
+       LOC_BINS = 7, LOC_WITH_ATTRIBUTES = 8, LOC_VERTEX_COUNT = 9, LOC_TET_CORNERS = 10, LOC_TET_CASES = 20 };
+/* Shader storage bindings of surface_*.comp.glsl (5 and 8 unused). */
 enum { BIND_PARTICLES = 0, BIND_ATTRIBUTES = 1, BIND_IDS = 2, BIND_KEYS = 3, BIND_BIN_STARTS = 4,
-       BIND_FIELD = 6, BIND_SHAPES = 9, BIND_EDGES = 10,
+       BIND_FIELD = 6, BIND_VERTEX_EDGES = 7, BIND_SHAPES = 9, BIND_EDGES = 10,
        BIND_CELLS = 11, BIND_POSITIONS = 12, BIND_NORMALS = 13, BIND_VERTEX_ATTRIBUTES = 14,
        BIND_VERTEX_EXTRAS = 15, BIND_INDICES = 16 };
 enum { BUFFER_COUNT = 17 };
@@ -35,14 +35,16 @@ enum { BUFFER_COUNT = 17 };
  * a lone particle at one radius, so a lone particle meshes as its sphere. */
 #define METABALL_ISO 0.421875f   /* (1 - (1/2)^2)^3 */
 #define SPH_ISO 0.25f            /* (2 - 1)^3 / 4 */
-/* Bytes of one output vertex on the GPU (position, normal, attributes, speed and id) and of one triangle. */
-#define VERTEX_BYTES 48u
+/* Bytes of one output vertex on the GPU (its edge, position, normal, attributes, speed and id) and of one
+ * triangle. */
+#define VERTEX_BYTES 52u
 #define TRIANGLE_BYTES 12u
 
 typedef struct extraction {
     fc_surface_grid grid;
     float iso;
     int kernel;
+    int with_attributes;   /* the frame has attributes for the vertices (mesh_attributes) */
     uint32_t vertices, triangles;
     GLuint buffers[BUFFER_COUNT];
 } extraction;
@@ -166,7 +168,24 @@ static void run_field(const fc_surface_passes *s, const extraction *x)
 
 static void run_edges(const fc_surface_passes *s, const extraction *x, int emit)
 {
-    run_program(s, s->edges_program, USES_PLACE | USES_ISO | USES_EMIT | USES_KERNEL | USES_BINS, x, emit);
+    run_program(s, s->edges_program, USES_ISO | USES_EMIT, x, emit);
+}
+
+/* One invocation per vertex, in workgroups of 64. */
+static void run_vertices(const fc_surface_passes *s, const extraction *x)
+{
+    GLuint p = s->vertices_program;
+    glProgramUniform3fv(p, LOC_ORIGIN, 1, x->grid.origin);
+    glProgramUniform1f(p, LOC_CELL, x->grid.cell);
+    glProgramUniform1f(p, LOC_ISO, x->iso);
+    glProgramUniform1i(p, LOC_KERNEL, x->kernel);
+    glProgramUniform1f(p, LOC_BIN, x->grid.bin);
+    glProgramUniform3uiv(p, LOC_BINS, 1, x->grid.bins);
+    glProgramUniform1i(p, LOC_WITH_ATTRIBUTES, x->with_attributes);
+    glProgramUniform1ui(p, LOC_VERTEX_COUNT, x->vertices);
+    glUseProgram(p);
+    bind_all(x);
+    fc_surface_dispatch_blocks(s, (x->vertices + 63u) / 64u);
 }
 
 static void run_cells(const fc_surface_passes *s, const extraction *x, int emit)
@@ -208,7 +227,9 @@ static fc_code count_mesh(const fc_surface_passes *s, extraction *x, fc_error *e
 static fc_code emit_mesh(const fc_surface_passes *s, extraction *x, fc_error *err)
 {
     uint64_t v = x->vertices, t = x->triangles;
-    fc_code code = make_buffer(&x->buffers[BIND_POSITIONS], v * 12, NULL, err);
+    fc_code code = make_buffer(&x->buffers[BIND_VERTEX_EDGES], v * 4, NULL, err);
+    if (code == FC_OK)
+        code = make_buffer(&x->buffers[BIND_POSITIONS], v * 12, NULL, err);
     if (code == FC_OK)
         code = make_buffer(&x->buffers[BIND_NORMALS], v * 12, NULL, err);
     if (code == FC_OK)
@@ -220,6 +241,7 @@ static fc_code emit_mesh(const fc_surface_passes *s, extraction *x, fc_error *er
     if (code != FC_OK)
         return code;
     run_edges(s, x, 1);
+    run_vertices(s, x);
     run_cells(s, x, 1);
     glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
     return fc_gl_check("writing the surface mesh", err);
@@ -366,6 +388,7 @@ static fc_code extract(const fc_surface_passes *s, const fc_frame *frame, const 
     float reach = FC_SURFACE_KERNEL_REACH_RADII * stretch * largest(per_particle, frame->count, radius);
     x->iso = iso_of(settings->surface_kernel);
     x->kernel = (int)settings->surface_kernel;
+    x->with_attributes = mesh_attributes(frame) != 0;
     if (code == FC_OK)
         code = fc_surface_grid_build(positions, frame->count, reach, settings->surface_cell * radius, &x->grid, err);
     if (code == FC_OK)
