@@ -1,9 +1,9 @@
 /* surface_mesher.c — the surface mesh of a frame (surface_mesher.h): the grid and
- * its particle lists on the CPU (surface_grid.c), then five compute passes:
+ * the particles' bins on the CPU (surface_grid.c), then the compute passes:
  * the field at the blocks' samples; the crossed lattice edges counted and
  * prefix-summed into vertex numbers; the cells' triangles counted and
- * prefix-summed; the vertices written; the triangles written (marching
- * tetrahedra, surface_tets.h). No atomics anywhere: every output's place comes
+ * prefix-summed; each vertex's edge written; the vertices written, one
+ * invocation each; the triangles written (marching tetrahedra, surface_tets.h). No atomics anywhere: every output's place comes
  * from a prefix sum over blocks in key order, so equal input gives the same
  * arrays bit for bit. Then Taubin smoothing on the CPU (surface_smooth.c). */
 #include "surface_mesher.h"
