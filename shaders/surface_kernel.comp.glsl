@@ -7,7 +7,7 @@
 // come sorted by bin, surface_grid.h) in bin order, so equal input gives
 // equal bits, and a sample shared by two blocks gets the same value in both:
 // its bins and their order follow from its lattice point alone.
-// REACH_RADII and BIN_SPLIT come as #defines from surface_passes.c.
+// REACH_RADII, BIN_SPLIT and MISSING come as #defines (FC_SURFACE_GRID, surface_passes.c).
 
 layout(location = 1) uniform vec3 origin;  // world position of lattice point 0, where bin 0 starts
 layout(location = 4) uniform int kernel;   // fc_surface_kernel: 0 metaball, 1 sph (2 is 0 on ellipsoids)
@@ -106,9 +106,34 @@ vec3 field_gradient(vec3 x)
     return gradient;
 }
 
+// The particle nearest x among the bins read around it (MISSING if none):
+// where no particle's field reaches a vertex (a kernel's support can end
+// between an edge's two samples), its normal points away from this one and
+// its attributes are this one's.
+uint nearest_particle(vec3 x)
+{
+    ivec3 lo, hi;
+    bins_around(x, lo, hi);
+    float nearest = 1.0 / 0.0;
+    uint found = MISSING;
+    for (int z = lo.z; z <= hi.z; z++)
+        for (int y = lo.y; y <= hi.y && lo.x <= hi.x; y++) {
+            uvec2 run = row_run(lo, hi, y, z);
+            for (uint p = run.x; p < run.y; p++) {
+                vec3 d = x - particles[p].xyz;
+                if (dot(d, d) < nearest) {
+                    nearest = dot(d, d);
+                    found = p;
+                }
+            }
+        }
+    return found;
+}
+
 // Everything a vertex at x takes: the field's gradient, the particles'
 // attributes averaged with the field's weights (velocity and density, and
-// speed), and the nearest particle's id.
+// speed; the nearest particle's where no field reaches x), and the nearest
+// particle's id.
 void field_at_vertex(vec3 x, out vec3 gradient, out vec4 mean, out float speed, out uint nearest_id)
 {
     ivec3 lo, hi;
@@ -141,4 +166,9 @@ void field_at_vertex(vec3 x, out vec3 gradient, out vec4 mean, out float speed, 
         }
     mean = weighted / max(f, 1e-30);
     speed /= max(f, 1e-30);
+    uint p = f > 0.0 ? MISSING : nearest_particle(x);
+    if (p != MISSING) {
+        mean = attributes[p];
+        speed = length(mean.xyz);
+    }
 }

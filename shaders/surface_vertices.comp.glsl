@@ -29,6 +29,9 @@ uint sample_index(uvec3 local);
 uvec3 unpack_point(uint point);
 void field_at_vertex(vec3 x, out vec3 gradient, out vec4 mean, out float speed, out uint nearest_id);
 vec3 field_gradient(vec3 x);
+uint nearest_particle(vec3 x);
+
+layout(std430, binding = 0) readonly buffer Particles { vec4 particles[]; };
 
 void main()
 {
@@ -51,6 +54,9 @@ void main()
         field_at_vertex(x, g, mean, speed, nearest_id);
     else
         g = field_gradient(x);
+    uint p = length(g) > 0.0 ? MISSING : nearest_particle(x);
+    if (p != MISSING)
+        g = particles[p].xyz - x;   // no field reaches x: away from the nearest particle
     float len = length(g);
     vec3 n = len > 0.0 ? -g / len : vec3(0.0, 0.0, 1.0);
     for (uint c = 0u; c < 3u; c++) {
