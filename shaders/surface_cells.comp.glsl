@@ -17,7 +17,7 @@ layout(location = 10) uniform uint tet_corners[6];   // four 3-bit corner codes 
 layout(location = 20) uniform uint tet_cases[96];    // 16 per tetrahedron: count, then edges 3 bits each
 
 layout(std430, binding = 3) readonly buffer BlockKeys { uint block_keys[]; };
-layout(std430, binding = 6) readonly buffer Field { vec4 field[]; };
+layout(std430, binding = 6) readonly buffer Field { float field[]; };
 layout(std430, binding = 10) readonly buffer EdgeScan { uint edge_scan[]; };
 layout(std430, binding = 11) buffer CellScan { uint cell_scan[]; };
 layout(std430, binding = 16) writeonly buffer Indices { uint indices[]; };
@@ -63,7 +63,7 @@ void main()
         uvec3 cell = unpack_point(c);
         uint inside = 0u;
         for (uint k = 0u; k < 8u; k++)
-            if (field[block * BLOCK_SAMPLES + sample_index(cell + corner_offset(k))].w >= iso)
+            if (field[block * BLOCK_SAMPLES + sample_index(cell + corner_offset(k))] >= iso)
                 inside |= 1u << k;
         uint slot = block * BLOCK_CELLS + c;
         uint next = emit ? cell_scan[slot] : 0u;

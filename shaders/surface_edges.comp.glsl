@@ -4,75 +4,43 @@
 // point), so every edge of the grid has exactly one owner and one vertex,
 // numbered by the owner's block and the edge's place in it: the mesh is
 // welded by construction. Counting (emit false) writes 1 per crossed edge for
-// the prefix sum; emitting writes each crossed edge's vertex at its scanned
-// place: position, outward normal (minus the field's gradient) and the
-// attributes, interpolated where the field meets the iso value.
+// the prefix sum; emitting writes, at each crossed edge's scanned place, the
+// edge (block * BLOCK_EDGES + its place), which the vertices pass
+// (surface_vertices.comp.glsl) turns into the vertex, one invocation per
+// vertex: the particles summed there, not by every lane of an edge group.
 // The grid's sizes come as #defines (FC_SURFACE_GRID, surface_passes.c).
 
 layout(local_size_x = 64) in;
 
 layout(location = 0) uniform uint block_count;
-layout(location = 1) uniform vec3 origin;
-layout(location = 2) uniform float cell;
 layout(location = 3) uniform float iso;
 layout(location = 5) uniform bool emit;
 
-layout(std430, binding = 3) readonly buffer BlockKeys { uint block_keys[]; };
-layout(std430, binding = 6) readonly buffer Field { vec4 field[]; };
-layout(std430, binding = 7) readonly buffer SampleAttributes { vec4 sample_attributes[]; };
-layout(std430, binding = 8) readonly buffer SampleExtras { uvec2 sample_extras[]; };
+layout(std430, binding = 6) readonly buffer Field { float field[]; };
+layout(std430, binding = 7) writeonly buffer VertexEdges { uint vertex_edges[]; };
 layout(std430, binding = 10) buffer EdgeScan { uint edge_scan[]; };
-layout(std430, binding = 12) writeonly buffer Positions { float positions[]; };
-layout(std430, binding = 13) writeonly buffer Normals { float normals[]; };
-layout(std430, binding = 14) writeonly buffer VertexAttributes { vec4 vertex_attributes[]; };
-layout(std430, binding = 15) writeonly buffer VertexExtras { uvec2 vertex_extras[]; };
 
 uint this_block();
-uvec3 block_coordinates(uint key);
 uvec3 direction(uint d);
 uint sample_index(uvec3 local);
 uvec3 unpack_point(uint point);
-
-void write_vertex(uint v, uvec3 base, uvec3 point, uint d, uint s0, uint s1, vec4 a, vec4 b)
-{
-    float t = (iso - a.w) / (b.w - a.w);
-    vec3 x = origin + (vec3(base + point) + t * vec3(direction(d))) * cell;
-    vec3 g = mix(a.xyz, b.xyz, t);
-    float len = length(g);
-    vec3 n = len > 0.0 ? -g / len : vec3(0.0, 0.0, 1.0);
-    for (uint c = 0u; c < 3u; c++) {
-        positions[3u * v + c] = x[c];
-        normals[3u * v + c] = n[c];
-    }
-    // The samples hold weighted sums; their means (sum / field) interpolate
-    // linearly, where a sample outside every particle's reach (field 0)
-    // has none and the other's stands.
-    uvec2 e0 = sample_extras[s0], e1 = sample_extras[s1];
-    vec4 mean0 = sample_attributes[s0] / max(a.w, 1e-30), mean1 = sample_attributes[s1] / max(b.w, 1e-30);
-    float speed0 = uintBitsToFloat(e0.x) / max(a.w, 1e-30), speed1 = uintBitsToFloat(e1.x) / max(b.w, 1e-30);
-    float u = a.w > 0.0 && b.w > 0.0 ? t : (a.w > 0.0 ? 0.0 : 1.0);
-    vertex_attributes[v] = mix(mean0, mean1, u);
-    float speed = mix(speed0, speed1, u);
-    vertex_extras[v] = uvec2(floatBitsToUint(speed), t < 0.5 ? e0.y : e1.y);
-}
 
 void main()
 {
     uint block = this_block();
     if (block >= block_count)
         return;
-    uvec3 base = block_coordinates(block_keys[block]) * BLOCK;
     for (uint e = gl_LocalInvocationID.x; e < BLOCK_EDGES; e += gl_WorkGroupSize.x) {
         uint d = e % EDGE_DIRECTIONS;
         uvec3 point = unpack_point(e / EDGE_DIRECTIONS);
         uint s0 = block * BLOCK_SAMPLES + sample_index(point);
         uint s1 = block * BLOCK_SAMPLES + sample_index(point + direction(d));
-        vec4 a = field[s0], b = field[s1];
-        bool crossed = (a.w >= iso) != (b.w >= iso);
+        float a = field[s0], b = field[s1];
+        bool crossed = (a >= iso) != (b >= iso);
         uint slot = block * BLOCK_EDGES + e;
         if (!emit)
             edge_scan[slot] = crossed ? 1u : 0u;
         else if (crossed)
-            write_vertex(edge_scan[slot], base, point, d, s0, s1, a, b);
+            vertex_edges[edge_scan[slot]] = slot;
     }
 }

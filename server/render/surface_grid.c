@@ -1,6 +1,5 @@
 /* surface_grid.c — the blocks of surface_grid.h (those whose cells a
- * particle's reach plus one cell meets) and their octants' particle lists
- * (the particles whose reach meets the octant's samples). */
+ * particle's reach plus one cell meets) and the particles' bins. */
 #include "surface_grid.h"
 
 #include <math.h>
@@ -63,11 +62,9 @@ static uint32_t key_of(uint32_t x, uint32_t y, uint32_t z)
     return x | y << FC_SURFACE_KEY_BITS | z << (2 * FC_SURFACE_KEY_BITS);
 }
 
-/* A pair is key << PARTICLE_BITS | particle: a block key (30 bits) or an
- * octant key (block key << 3 | octant, 33 bits) over a particle index of
- * PARTICLE_BITS (FC_SURFACE_MAX_PARTICLES). */
+/* A pair is key << PARTICLE_BITS | particle: a block key (30 bits) over a
+ * particle index of PARTICLE_BITS (FC_SURFACE_MAX_PARTICLES). */
 #define PARTICLE_BITS 28u
-#define PARTICLE_MASK ((1ull << PARTICLE_BITS) - 1u)
 
 /* Stable LSD radix sort of the pairs by their key's `key_bits`, 8 bits a pass. */
 static fc_code sort_pairs(uint64_t *pairs, uint64_t n, unsigned key_bits, fc_error *err)
@@ -145,101 +142,74 @@ static fc_code collect_blocks(const uint64_t *pairs, uint64_t n, fc_surface_grid
     return FC_OK;
 }
 
-/* Along one axis, the octant halves (global index 2 block + half) whose
- * samples a particle's field reaches: samples [lo, hi] (lattice indices). A
- * half's samples are [8 b, 8 b + 3] (lower) or [8 b + 4, 8 b + 8] (upper:
- * the block's upper face too, which is the next block's lower face). */
-static uint32_t halves_reached(int64_t lo, int64_t hi, uint32_t out[8])
+/* The bin edge: the field's reach over FC_SURFACE_BIN_SPLIT (a little more,
+ * so that rounding cannot put a reaching particle a bin further away), grown until the bins of the grid's
+ * box number at most FC_SURFACE_MAX_BINS (a frame spread thinly over a large
+ * box gets bigger bins rather than a huge table). */
+static void size_bins(fc_surface_grid *g, const float hi[3], float reach)
 {
-    uint32_t n = 0;
-    for (int64_t b = (lo - 8) / 8 > 0 ? (lo - 8) / 8 : 0; b * 8 <= hi; b++)
-        for (int64_t h = 0; h < 2; h++) {
-            int64_t first = 8 * b + 4 * h, last = h ? 8 * b + 8 : 8 * b + 3;
-            if (first <= hi && last >= lo && n < 8)
-                out[n++] = (uint32_t)(2 * b + h);
-        }
-    return n;
-}
-
-/* The samples a particle at p reaches along axis a, widened by one sample
- * against rounding. */
-static void samples_reached(const fc_surface_grid *g, const float *p, float reach, int a, int64_t *lo, int64_t *hi)
-{
-    double l = floor(((double)p[a] - reach - g->origin[a]) / g->cell) - 1.0;
-    double h = ceil(((double)p[a] + reach - g->origin[a]) / g->cell) + 1.0;
-    *lo = l > 0 ? (int64_t)l : 0;
-    *hi = (int64_t)h;
-}
-
-static uint64_t octant_key(uint32_t hx, uint32_t hy, uint32_t hz)
-{
-    return (uint64_t)key_of(hx >> 1, hy >> 1, hz >> 1) << 3 | (hx & 1u) | (hy & 1u) << 1 | (hz & 1u) << 2;
-}
-
-/* Every (octant, particle) pair, or only their number when pairs is NULL. */
-static uint64_t octant_pairs(const fc_surface_grid *g, const float *positions, uint64_t count, float reach,
-                             uint64_t *pairs)
-{
-    uint64_t n = 0;
-    for (uint64_t i = 0; i < count; i++) {
-        uint32_t halves[3][8], k[3];
+    g->bin = reach * 1.001f / (float)FC_SURFACE_BIN_SPLIT;
+    for (;;) {
+        double total = 1.0;
         for (int a = 0; a < 3; a++) {
-            int64_t lo, hi;
-            samples_reached(g, positions + 3 * i, reach, a, &lo, &hi);
-            k[a] = halves_reached(lo, hi, halves[a]);
+            g->bins[a] = (uint32_t)((hi[a] - g->origin[a]) / g->bin) + 1u;
+            total *= g->bins[a];
         }
-        if (!pairs) {
-            n += (uint64_t)k[0] * k[1] * k[2];
-            continue;
-        }
-        for (uint32_t z = 0; z < k[2]; z++)
-            for (uint32_t y = 0; y < k[1]; y++)
-                for (uint32_t x = 0; x < k[0]; x++)
-                    pairs[n++] = octant_key(halves[0][x], halves[1][y], halves[2][z]) << PARTICLE_BITS | i;
+        if (total <= FC_SURFACE_MAX_BINS)
+            return;
+        g->bin *= (float)cbrt(total / FC_SURFACE_MAX_BINS) * 1.01f;
     }
-    return n;
 }
 
-/* The sorted octant pairs -> each octant's list of every block (octants of
- * blocks not in the grid hold no sample and are dropped). */
-static fc_code collect_lists(const uint64_t *pairs, uint64_t n, fc_surface_grid *g, fc_error *err)
+static uint32_t bin_of(const fc_surface_grid *g, const float *p)
 {
-    uint64_t slots = (uint64_t)g->block_count * FC_SURFACE_OCTANTS;
-    g->list_starts = malloc((slots + 1) * sizeof *g->list_starts);
-    g->list = malloc((n ? n : 1) * sizeof *g->list);
-    if (!g->list_starts || !g->list)
-        return fc_error_set(err, FC_ERR_NOMEM, "cannot allocate the surface grid's lists");
-    uint64_t i = 0, kept = 0;
-    for (uint64_t s = 0; s < slots; s++) {
-        uint64_t key = (uint64_t)g->block_keys[s / FC_SURFACE_OCTANTS] << 3 | (s % FC_SURFACE_OCTANTS);
-        while (i < n && pairs[i] >> PARTICLE_BITS < key)
-            i++;
-        g->list_starts[s] = (uint32_t)kept;
-        for (; i < n && pairs[i] >> PARTICLE_BITS == key; i++)
-            g->list[kept++] = (uint32_t)(pairs[i] & PARTICLE_MASK);
+    uint32_t c[3];
+    for (int a = 0; a < 3; a++) {
+        float f = floorf((p[a] - g->origin[a]) / g->bin);
+        c[a] = f <= 0.0f ? 0u : f >= (float)(g->bins[a] - 1u) ? g->bins[a] - 1u : (uint32_t)f;
     }
-    g->list_starts[slots] = (uint32_t)kept;
-    return FC_OK;
+    return c[0] + g->bins[0] * (c[1] + g->bins[1] * c[2]);
 }
 
-/* The octants' lists, within the budget. */
-static fc_code build_lists(const float *positions, uint64_t count, float reach, fc_surface_grid *g, fc_error *err)
+/* Every particle in exactly one bin: a stable counting sort by bin, so a
+ * bin's particles keep their frame order and the lists take one entry per
+ * particle whatever the cell size (Rosenberg & Birdwell's lookup, without
+ * replicating a particle into every block it reaches). */
+static fc_code build_bins(const float *positions, uint64_t count, float reach, fc_surface_grid *g, fc_error *err)
 {
-    uint64_t n = octant_pairs(g, positions, count, reach, NULL);
-    if (n * 12u + (uint64_t)g->block_count * FC_SURFACE_BLOCK_BYTES > FC_SURFACE_GRID_BUDGET || n > UINT32_MAX)
+    float hi[3] = {-INFINITY, -INFINITY, -INFINITY};
+    for (uint64_t i = 0; i < count; i++)
+        for (int a = 0; a < 3; a++)
+            hi[a] = fmaxf(hi[a], positions[3 * i + a]);
+    size_bins(g, hi, reach);
+    uint64_t bins = (uint64_t)g->bins[0] * g->bins[1] * g->bins[2];
+    uint64_t bytes = (uint64_t)g->block_count * FC_SURFACE_BLOCK_BYTES + (bins + 1 + count) * 4u;
+    if (bytes > FC_SURFACE_GRID_BUDGET)
         return fc_error_set(err, FC_ERR_LIMIT,
-                            "the surface grid's particle lists would hold %llu entries, over its budget of "
-                            "%llu MiB: raise surface_cell",
-                            (unsigned long long)n, (unsigned long long)(FC_SURFACE_GRID_BUDGET >> 20));
-    uint64_t *pairs = malloc((n ? n : 1) * sizeof *pairs);
-    if (!pairs)
-        return fc_error_set(err, FC_ERR_NOMEM, "cannot allocate %llu surface grid pairs", (unsigned long long)n);
-    octant_pairs(g, positions, count, reach, pairs);
-    fc_code code = sort_pairs(pairs, n, 3 * FC_SURFACE_KEY_BITS + 3, err);
-    if (code == FC_OK)
-        code = collect_lists(pairs, n, g, err);
-    free(pairs);
-    return code;
+                            "the surface grid would need %llu blocks (%llu MiB), over its budget of %llu MiB: "
+                            "raise surface_cell",
+                            (unsigned long long)g->block_count, (unsigned long long)(bytes >> 20),
+                            (unsigned long long)(FC_SURFACE_GRID_BUDGET >> 20));
+    g->bin_starts = calloc(bins + 1, sizeof *g->bin_starts);
+    g->order = malloc((count ? count : 1) * sizeof *g->order);
+    uint32_t *bin_index = malloc((count ? count : 1) * sizeof *bin_index);
+    if (!g->bin_starts || !g->order || !bin_index) {
+        free(bin_index);
+        return fc_error_set(err, FC_ERR_NOMEM, "cannot allocate the surface grid's %llu bins", (unsigned long long)bins);
+    }
+    for (uint64_t i = 0; i < count; i++) {
+        bin_index[i] = bin_of(g, positions + 3 * i);
+        g->bin_starts[bin_index[i] + 1]++;
+    }
+    for (uint64_t b = 0; b < bins; b++)
+        g->bin_starts[b + 1] += g->bin_starts[b];
+    for (uint64_t i = 0; i < count; i++)
+        g->order[g->bin_starts[bin_index[i]]++] = (uint32_t)i;
+    /* The fill advanced each start to its bin's end: shift them back. */
+    memmove(g->bin_starts + 1, g->bin_starts, bins * sizeof *g->bin_starts);
+    g->bin_starts[0] = 0;
+    free(bin_index);
+    return FC_OK;
 }
 
 fc_code fc_surface_grid_build(const float *positions, uint64_t count, float reach, float cell,
@@ -261,7 +231,7 @@ fc_code fc_surface_grid_build(const float *positions, uint64_t count, float reac
         code = collect_blocks(pairs, n, out, err);
     free(pairs);
     if (code == FC_OK)
-        code = build_lists(positions, count, reach, out, err);
+        code = build_bins(positions, count, reach, out, err);
     if (code != FC_OK)
         fc_surface_grid_free(out);
     return code;
@@ -270,7 +240,7 @@ fc_code fc_surface_grid_build(const float *positions, uint64_t count, float reac
 void fc_surface_grid_free(fc_surface_grid *grid)
 {
     free(grid->block_keys);
-    free(grid->list_starts);
-    free(grid->list);
+    free(grid->bin_starts);
+    free(grid->order);
     memset(grid, 0, sizeof *grid);
 }

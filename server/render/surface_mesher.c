@@ -1,9 +1,9 @@
 /* surface_mesher.c — the surface mesh of a frame (surface_mesher.h): the grid and
- * its particle lists on the CPU (surface_grid.c), then five compute passes:
+ * the particles' bins on the CPU (surface_grid.c), then the compute passes:
  * the field at the blocks' samples; the crossed lattice edges counted and
  * prefix-summed into vertex numbers; the cells' triangles counted and
- * prefix-summed; the vertices written; the triangles written (marching
- * tetrahedra, surface_tets.h). No atomics anywhere: every output's place comes
+ * prefix-summed; each vertex's edge written; the vertices written, one
+ * invocation each; the triangles written (marching tetrahedra, surface_tets.h). No atomics anywhere: every output's place comes
  * from a prefix sum over blocks in key order, so equal input gives the same
  * arrays bit for bit. Then Taubin smoothing on the CPU (surface_smooth.c). */
 #include "surface_mesher.h"
@@ -22,11 +22,11 @@
 #include "surface_tets.h"
 
 /* Uniform locations of surface_*.comp.glsl. */
-enum { LOC_BLOCKS = 0, LOC_ORIGIN = 1, LOC_CELL = 2, LOC_ISO = 3, LOC_KERNEL = 4, LOC_EMIT = 5,
-       LOC_TET_CORNERS = 10, LOC_TET_CASES = 20 };
-/* Shader storage bindings of surface_*.comp.glsl. */
-enum { BIND_PARTICLES = 0, BIND_ATTRIBUTES = 1, BIND_IDS = 2, BIND_KEYS = 3, BIND_STARTS = 4, BIND_LISTS = 5,
-       BIND_FIELD = 6, BIND_SAMPLE_ATTRIBUTES = 7, BIND_SAMPLE_EXTRAS = 8, BIND_SHAPES = 9, BIND_EDGES = 10,
+enum { LOC_BLOCKS = 0, LOC_ORIGIN = 1, LOC_CELL = 2, LOC_ISO = 3, LOC_KERNEL = 4, LOC_EMIT = 5, LOC_BIN = 6,
+       LOC_BINS = 7, LOC_WITH_ATTRIBUTES = 8, LOC_VERTEX_COUNT = 9, LOC_TET_CORNERS = 10, LOC_TET_CASES = 20 };
+/* Shader storage bindings of surface_*.comp.glsl (5 and 8 unused). */
+enum { BIND_PARTICLES = 0, BIND_ATTRIBUTES = 1, BIND_IDS = 2, BIND_KEYS = 3, BIND_BIN_STARTS = 4,
+       BIND_FIELD = 6, BIND_VERTEX_EDGES = 7, BIND_SHAPES = 9, BIND_EDGES = 10,
        BIND_CELLS = 11, BIND_POSITIONS = 12, BIND_NORMALS = 13, BIND_VERTEX_ATTRIBUTES = 14,
        BIND_VERTEX_EXTRAS = 15, BIND_INDICES = 16 };
 enum { BUFFER_COUNT = 17 };
@@ -35,14 +35,16 @@ enum { BUFFER_COUNT = 17 };
  * a lone particle at one radius, so a lone particle meshes as its sphere. */
 #define METABALL_ISO 0.421875f   /* (1 - (1/2)^2)^3 */
 #define SPH_ISO 0.25f            /* (2 - 1)^3 / 4 */
-/* Bytes of one output vertex on the GPU (position, normal, attributes, speed and id) and of one triangle. */
-#define VERTEX_BYTES 48u
+/* Bytes of one output vertex on the GPU (its edge, position, normal, attributes, speed and id) and of one
+ * triangle. */
+#define VERTEX_BYTES 52u
 #define TRIANGLE_BYTES 12u
 
 typedef struct extraction {
     fc_surface_grid grid;
     float iso;
     int kernel;
+    int with_attributes;   /* the frame has attributes for the vertices (mesh_attributes) */
     uint32_t vertices, triangles;
     GLuint buffers[BUFFER_COUNT];
 } extraction;
@@ -59,7 +61,7 @@ static fc_code make_buffer(GLuint *buffer, uint64_t bytes, const void *data, fc_
     return fc_gl_check("allocating the surface mesh buffers", err);
 }
 
-/* The particles as the field pass reads them: centre (the ellipsoid's
+/* The particles as the field pass reads them, in the grid's bin order: centre (the ellipsoid's
  * smoothed one with the anisotropic kernel) and radius, velocity and density,
  * id (the index where the frame has none); and the ellipsoids' G as two vec4
  * (xx xy xz yy, yz zz), or one unused vec4 for the other kernels. */
@@ -68,21 +70,23 @@ static fc_code upload_particles(extraction *x, const fc_frame *frame, const floa
                                 fc_error *err)
 {
     size_t n = (size_t)frame->count, shapes_n = ellipsoids ? 2 * n : 1;
+    const uint32_t *order = x->grid.order;
     float *particles = malloc(n * 16), *attributes = calloc(n, 16), *shapes = calloc(shapes_n, 16);
     uint32_t *ids = malloc(n * 4);
     fc_code code = FC_OK;
     if (!particles || !attributes || !ids || !shapes)
         code = fc_error_set(err, FC_ERR_NOMEM, "cannot stage %zu particles for the surface mesh", n);
     for (size_t i = 0; code == FC_OK && ellipsoids && i < n; i++)
-        memcpy(shapes + 8 * i, ellipsoids[i].inverse, 6 * sizeof(float));
+        memcpy(shapes + 8 * i, ellipsoids[order[i]].inverse, 6 * sizeof(float));
     for (size_t i = 0; code == FC_OK && i < n; i++) {
-        memcpy(particles + 4 * i, centres + 3 * i, 12);
-        particles[4 * i + 3] = radius ? radius[i] : uniform_radius;
+        size_t p = order[i];
+        memcpy(particles + 4 * i, centres + 3 * p, 12);
+        particles[4 * i + 3] = radius ? radius[p] : uniform_radius;
         if (frame->velocity)
-            memcpy(attributes + 4 * i, frame->velocity + 3 * i, 12);
+            memcpy(attributes + 4 * i, frame->velocity + 3 * p, 12);
         if (frame->density)
-            attributes[4 * i + 3] = frame->density[i];
-        ids[i] = frame->ids ? frame->ids[i] : (uint32_t)i;
+            attributes[4 * i + 3] = frame->density[p];
+        ids[i] = frame->ids ? frame->ids[p] : (uint32_t)p;
     }
     if (code == FC_OK)
         code = make_buffer(&x->buffers[BIND_PARTICLES], n * 16, particles, err);
@@ -99,24 +103,18 @@ static fc_code upload_particles(extraction *x, const fc_frame *frame, const floa
     return code;
 }
 
-/* The grid's lists and the passes' work buffers. */
+/* The grid's bins and the passes' work buffers. */
 static fc_code allocate_grid(extraction *x, fc_error *err)
 {
     const fc_surface_grid *g = &x->grid;
     uint64_t blocks = g->block_count;
     uint64_t samples = blocks * FC_SURFACE_BLOCK_SAMPLES;
     fc_code code = make_buffer(&x->buffers[BIND_KEYS], blocks * 4, g->block_keys, err);
+    uint64_t bins = (uint64_t)g->bins[0] * g->bins[1] * g->bins[2];
     if (code == FC_OK)
-        code = make_buffer(&x->buffers[BIND_STARTS], (blocks * FC_SURFACE_OCTANTS + 1) * 4, g->list_starts, err);
+        code = make_buffer(&x->buffers[BIND_BIN_STARTS], (bins + 1) * 4, g->bin_starts, err);
     if (code == FC_OK)
-        code = make_buffer(&x->buffers[BIND_LISTS], (uint64_t)g->list_starts[blocks * FC_SURFACE_OCTANTS] * 4,
-                           g->list, err);
-    if (code == FC_OK)
-        code = make_buffer(&x->buffers[BIND_FIELD], samples * 16, NULL, err);
-    if (code == FC_OK)
-        code = make_buffer(&x->buffers[BIND_SAMPLE_ATTRIBUTES], samples * 16, NULL, err);
-    if (code == FC_OK)
-        code = make_buffer(&x->buffers[BIND_SAMPLE_EXTRAS], samples * 8, NULL, err);
+        code = make_buffer(&x->buffers[BIND_FIELD], samples * 4, NULL, err);
     if (code == FC_OK)
         code = make_buffer(&x->buffers[BIND_EDGES],
                            fc_surface_scan_entries(blocks * FC_SURFACE_BLOCK_EDGES) * 4, NULL, err);
@@ -134,7 +132,7 @@ static void bind_all(const extraction *x)
 }
 
 /* The uniforms each program declares (setting one a program lacks is an error). */
-enum { USES_PLACE = 1, USES_ISO = 2, USES_KERNEL = 4, USES_EMIT = 8 };
+enum { USES_PLACE = 1, USES_ISO = 2, USES_KERNEL = 4, USES_EMIT = 8, USES_BINS = 16 };
 
 static void set_grid_uniforms(GLuint program, unsigned uses, const extraction *x, int emit)
 {
@@ -149,6 +147,10 @@ static void set_grid_uniforms(GLuint program, unsigned uses, const extraction *x
         glProgramUniform1i(program, LOC_KERNEL, x->kernel);
     if (uses & USES_EMIT)
         glProgramUniform1i(program, LOC_EMIT, emit);
+    if (uses & USES_BINS) {
+        glProgramUniform1f(program, LOC_BIN, x->grid.bin);
+        glProgramUniform3uiv(program, LOC_BINS, 1, x->grid.bins);
+    }
 }
 
 static void run_program(const fc_surface_passes *s, GLuint program, unsigned uses, const extraction *x, int emit)
@@ -161,12 +163,29 @@ static void run_program(const fc_surface_passes *s, GLuint program, unsigned use
 
 static void run_field(const fc_surface_passes *s, const extraction *x)
 {
-    run_program(s, s->field_program, USES_PLACE | USES_KERNEL, x, 0);
+    run_program(s, s->field_program, USES_PLACE | USES_KERNEL | USES_BINS, x, 0);
 }
 
 static void run_edges(const fc_surface_passes *s, const extraction *x, int emit)
 {
-    run_program(s, s->edges_program, USES_PLACE | USES_ISO | USES_EMIT, x, emit);
+    run_program(s, s->edges_program, USES_ISO | USES_EMIT, x, emit);
+}
+
+/* One invocation per vertex, in workgroups of 64. */
+static void run_vertices(const fc_surface_passes *s, const extraction *x)
+{
+    GLuint p = s->vertices_program;
+    glProgramUniform3fv(p, LOC_ORIGIN, 1, x->grid.origin);
+    glProgramUniform1f(p, LOC_CELL, x->grid.cell);
+    glProgramUniform1f(p, LOC_ISO, x->iso);
+    glProgramUniform1i(p, LOC_KERNEL, x->kernel);
+    glProgramUniform1f(p, LOC_BIN, x->grid.bin);
+    glProgramUniform3uiv(p, LOC_BINS, 1, x->grid.bins);
+    glProgramUniform1i(p, LOC_WITH_ATTRIBUTES, x->with_attributes);
+    glProgramUniform1ui(p, LOC_VERTEX_COUNT, x->vertices);
+    glUseProgram(p);
+    bind_all(x);
+    fc_surface_dispatch_blocks(s, (x->vertices + 63u) / 64u);
 }
 
 static void run_cells(const fc_surface_passes *s, const extraction *x, int emit)
@@ -208,7 +227,9 @@ static fc_code count_mesh(const fc_surface_passes *s, extraction *x, fc_error *e
 static fc_code emit_mesh(const fc_surface_passes *s, extraction *x, fc_error *err)
 {
     uint64_t v = x->vertices, t = x->triangles;
-    fc_code code = make_buffer(&x->buffers[BIND_POSITIONS], v * 12, NULL, err);
+    fc_code code = make_buffer(&x->buffers[BIND_VERTEX_EDGES], v * 4, NULL, err);
+    if (code == FC_OK)
+        code = make_buffer(&x->buffers[BIND_POSITIONS], v * 12, NULL, err);
     if (code == FC_OK)
         code = make_buffer(&x->buffers[BIND_NORMALS], v * 12, NULL, err);
     if (code == FC_OK)
@@ -220,6 +241,7 @@ static fc_code emit_mesh(const fc_surface_passes *s, extraction *x, fc_error *er
     if (code != FC_OK)
         return code;
     run_edges(s, x, 1);
+    run_vertices(s, x);
     run_cells(s, x, 1);
     glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
     return fc_gl_check("writing the surface mesh", err);
@@ -366,6 +388,7 @@ static fc_code extract(const fc_surface_passes *s, const fc_frame *frame, const 
     float reach = FC_SURFACE_KERNEL_REACH_RADII * stretch * largest(per_particle, frame->count, radius);
     x->iso = iso_of(settings->surface_kernel);
     x->kernel = (int)settings->surface_kernel;
+    x->with_attributes = mesh_attributes(frame) != 0;
     if (code == FC_OK)
         code = fc_surface_grid_build(positions, frame->count, reach, settings->surface_cell * radius, &x->grid, err);
     if (code == FC_OK)

@@ -77,9 +77,9 @@ static void grid_defines(char *out, size_t size)
     snprintf(out, size,
              "#define FC_SURFACE_GRID 1\n#define BLOCK %uu\n#define BLOCK_SAMPLES %uu\n#define BLOCK_CELLS %uu\n#define EDGE_DIRECTIONS 7u\n"
              "#define BLOCK_EDGES %uu\n#define KEY_BITS %uu\n#define MISSING 0xFFFFFFFFu\n#define REACH_RADII %.9f\n"
-             "#define HALF %uu\n",
+             "#define BIN_SPLIT %uu\n",
              FC_SURFACE_BLOCK, FC_SURFACE_BLOCK_SAMPLES, FC_SURFACE_BLOCK_CELLS, FC_SURFACE_BLOCK_EDGES,
-             FC_SURFACE_KEY_BITS, (double)FC_SURFACE_KERNEL_REACH_RADII, FC_SURFACE_HALF);
+             FC_SURFACE_KEY_BITS, (double)FC_SURFACE_KERNEL_REACH_RADII, FC_SURFACE_BIN_SPLIT);
 }
 
 fc_code fc_surface_passes_create(const char *shader_dir, fc_surface_passes *s, fc_error *err)
@@ -87,15 +87,18 @@ fc_code fc_surface_passes_create(const char *shader_dir, fc_surface_passes *s, f
     memset(s, 0, sizeof *s);
     char defines[352];
     grid_defines(defines, sizeof defines);
-    const char *field[] = {"surface_grid.comp.glsl", "surface_field.comp.glsl"};
+    const char *field[] = {"surface_grid.comp.glsl", "surface_kernel.comp.glsl", "surface_field.comp.glsl"};
     const char *edges[] = {"surface_grid.comp.glsl", "surface_edges.comp.glsl"};
+    const char *vertices[] = {"surface_grid.comp.glsl", "surface_kernel.comp.glsl", "surface_vertices.comp.glsl"};
     const char *cells[] = {"surface_grid.comp.glsl", "surface_cells.comp.glsl"};
     const char *scan[] = {"anisotropy_scan.comp.glsl"};
-    fc_code code = fc_program_build_defines(shader_dir, defines, field, 2, &s->field_program, err);
+    fc_code code = fc_program_build_defines(shader_dir, defines, field, 3, &s->field_program, err);
     if (code == FC_OK)
         code = fc_program_build_defines(shader_dir, defines, edges, 2, &s->edges_program, err);
     if (code == FC_OK)
         code = fc_program_build_defines(shader_dir, defines, cells, 2, &s->cells_program, err);
+    if (code == FC_OK)
+        code = fc_program_build_defines(shader_dir, defines, vertices, 3, &s->vertices_program, err);
     if (code == FC_OK)
         code = fc_program_build(shader_dir, scan, 1, &s->scan_program, err);
     if (code != FC_OK) {
@@ -111,6 +114,7 @@ void fc_surface_passes_destroy(fc_surface_passes *s)
     glDeleteProgram(s->field_program);
     glDeleteProgram(s->edges_program);
     glDeleteProgram(s->cells_program);
+    glDeleteProgram(s->vertices_program);
     glDeleteProgram(s->scan_program);
     memset(s, 0, sizeof *s);
 }

@@ -9,18 +9,19 @@
 
 typedef struct neighbours {
     uint32_t *start;   /* vertex_count + 1 */
-    uint32_t *of;      /* each triangle corner's two other corners (an edge of a closed mesh twice, in both
-                          triangles: the mean is that of the neighbours) */
+    uint32_t *of;      /* each triangle corner's next corner: in a closed, consistently oriented mesh (the
+                          extraction's, by construction) every neighbour of a vertex follows it in exactly
+                          one of its triangles, so each is listed once */
 } neighbours;
 
 static fc_code list_neighbours(const fc_surface_mesh *m, neighbours *n, fc_error *err)
 {
     n->start = calloc((size_t)m->vertex_count + 1, sizeof *n->start);
-    n->of = malloc(((size_t)m->triangle_count * 6 + 1) * sizeof *n->of);
+    n->of = malloc(((size_t)m->triangle_count * 3 + 1) * sizeof *n->of);
     if (!n->start || !n->of)
         return fc_error_set(err, FC_ERR_NOMEM, "cannot allocate the neighbours of %u vertices", m->vertex_count);
     for (size_t i = 0; i < (size_t)m->triangle_count * 3; i++)
-        n->start[m->indices[i] + 1] += 2;
+        n->start[m->indices[i] + 1]++;
     for (uint32_t v = 0; v < m->vertex_count; v++)
         n->start[v + 1] += n->start[v];
     uint32_t *fill = malloc(((size_t)m->vertex_count + 1) * sizeof *fill);
@@ -29,10 +30,8 @@ static fc_code list_neighbours(const fc_surface_mesh *m, neighbours *n, fc_error
     memcpy(fill, n->start, ((size_t)m->vertex_count + 1) * sizeof *fill);
     for (size_t t = 0; t < m->triangle_count; t++) {
         const uint32_t *c = m->indices + 3 * t;
-        for (int k = 0; k < 3; k++) {
+        for (int k = 0; k < 3; k++)
             n->of[fill[c[k]]++] = c[(k + 1) % 3];
-            n->of[fill[c[k]]++] = c[(k + 2) % 3];
-        }
     }
     free(fill);
     return FC_OK;
@@ -43,17 +42,22 @@ static void laplacian_step(const neighbours *n, uint32_t vertices, float factor,
 {
     for (uint32_t v = 0; v < vertices; v++) {
         uint32_t first = n->start[v], last = n->start[v + 1];
-        for (int a = 0; a < 3; a++) {
-            float x = from[3 * (size_t)v + a];
-            if (last == first) {
-                to[3 * (size_t)v + a] = x;
-                continue;
-            }
-            float sum = 0.0f;
-            for (uint32_t k = first; k < last; k++)
-                sum += from[3 * (size_t)n->of[k] + a];
-            to[3 * (size_t)v + a] = x + factor * (sum / (float)(last - first) - x);
+        const float *x = from + 3 * (size_t)v;
+        float *out = to + 3 * (size_t)v;
+        if (last == first) {
+            memcpy(out, x, 3 * sizeof *x);
+            continue;
         }
+        /* One walk over the neighbours for the three axes. */
+        float sum[3] = {0.0f, 0.0f, 0.0f};
+        for (uint32_t k = first; k < last; k++) {
+            const float *y = from + 3 * (size_t)n->of[k];
+            sum[0] += y[0];
+            sum[1] += y[1];
+            sum[2] += y[2];
+        }
+        for (int a = 0; a < 3; a++)
+            out[a] = x[a] + factor * (sum[a] / (float)(last - first) - x[a]);
     }
 }
 

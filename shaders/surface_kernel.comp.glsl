@@ -1,0 +1,174 @@
+#version 450 core
+// The particles' field of a surface mesh (surface_mesher.c): a compute
+// library without main, linked into the field pass (the field's value at the
+// blocks' samples) and the edges pass (the field's gradient and the particles'
+// attributes at each vertex, where they are wanted, not at every sample).
+// A point sums the particles of the bins within BIN_SPLIT of its own (the particles
+// come sorted by bin, surface_grid.h) in bin order, so equal input gives
+// equal bits, and a sample shared by two blocks gets the same value in both:
+// its bins and their order follow from its lattice point alone.
+// REACH_RADII, BIN_SPLIT and MISSING come as #defines (FC_SURFACE_GRID, surface_passes.c).
+
+layout(location = 1) uniform vec3 origin;  // world position of lattice point 0, where bin 0 starts
+layout(location = 4) uniform int kernel;   // fc_surface_kernel: 0 metaball, 1 sph (2 is 0 on ellipsoids)
+layout(location = 6) uniform float bin;    // bin edge, at least the field's reach / BIN_SPLIT
+layout(location = 7) uniform uvec3 bins;   // bins along each axis
+
+layout(std430, binding = 0) readonly buffer Particles { vec4 particles[]; };      // xyz, radius; by bin
+layout(std430, binding = 1) readonly buffer Attributes { vec4 attributes[]; };    // velocity, density
+layout(std430, binding = 2) readonly buffer Ids { uint ids[]; };
+layout(std430, binding = 4) readonly buffer BinStarts { uint bin_starts[]; };   // x + bins.x (y + bins.y z)
+layout(std430, binding = 9) readonly buffer Shapes { vec4 shapes[]; };            // G: xx xy xz yy, yz zz
+
+// The weight of a particle of radius r at offset d from it, and the weight's
+// derivative by |d|^2 (both kernels reach REACH_RADII r: the spline's 2 h).
+float weight(vec3 d, float r, out float slope)
+{
+    float d2 = dot(d, d);
+    float reach2 = REACH_RADII * REACH_RADII * r * r;
+    slope = 0.0;
+    if (d2 >= reach2)
+        return 0.0;
+    if (kernel != 1) {   // Wyvill's soft objects: (1 - d^2 / R^2)^3
+        float q = 1.0 - d2 / reach2;
+        slope = -3.0 * q * q / reach2;
+        return q * q * q;
+    }
+    // Cubic spline, 1 at the centre: q = |d| / r in [0, 2).
+    float dist = sqrt(d2), q = dist / r;
+    float dw_dq = q < 1.0 ? -3.0 * q + 2.25 * q * q : -0.75 * (2.0 - q) * (2.0 - q);
+    float w = q < 1.0 ? 1.0 - 1.5 * q * q + 0.75 * q * q * q : 0.25 * (2.0 - q) * (2.0 - q) * (2.0 - q);
+    slope = dist > 0.0 ? dw_dq / (r * 2.0 * dist) : 0.0;
+    return w;
+}
+
+// The ellipsoid's G of particle p for the anisotropic kernel, else identity.
+mat3 shape_of(uint p)
+{
+    if (kernel != 2)
+        return mat3(1.0);
+    vec4 a = shapes[2u * p], b = shapes[2u * p + 1u];
+    return mat3(a.x, a.y, a.z, a.y, a.w, b.x, a.z, b.x, b.y);
+}
+
+// The bins around x: [lo, hi] per axis, empty where lo > hi.
+void bins_around(vec3 x, out ivec3 lo, out ivec3 hi)
+{
+    ivec3 centre = ivec3(floor((x - origin) / bin));
+    lo = max(centre - int(BIN_SPLIT), ivec3(0));
+    hi = min(centre + int(BIN_SPLIT), ivec3(bins) - 1);
+}
+
+// The run of sorted particles of the row of bins lo.x..hi.x at (y, z).
+uvec2 row_run(ivec3 lo, ivec3 hi, int y, int z)
+{
+    uint row = bins.x * (uint(y) + bins.y * uint(z));
+    return uvec2(bin_starts[row + uint(lo.x)], bin_starts[row + uint(hi.x) + 1u]);
+}
+
+// The field at x: the value only, as the samples need it.
+float field_value(vec3 x)
+{
+    ivec3 lo, hi;
+    bins_around(x, lo, hi);
+    float f = 0.0, slope;
+    for (int z = lo.z; z <= hi.z; z++)
+        for (int y = lo.y; y <= hi.y && lo.x <= hi.x; y++) {
+            uvec2 run = row_run(lo, hi, y, z);
+            for (uint p = run.x; p < run.y; p++) {
+                vec4 particle = particles[p];
+                vec3 d = x - particle.xyz;
+                f += weight(kernel == 2 ? shape_of(p) * d : d, particle.w, slope);
+            }
+        }
+    return f;
+}
+
+// The field's gradient at x: all a vertex takes when the frame has no
+// attributes.
+vec3 field_gradient(vec3 x)
+{
+    ivec3 lo, hi;
+    bins_around(x, lo, hi);
+    vec3 gradient = vec3(0.0);
+    for (int z = lo.z; z <= hi.z; z++)
+        for (int y = lo.y; y <= hi.y && lo.x <= hi.x; y++) {
+            uvec2 run = row_run(lo, hi, y, z);
+            for (uint p = run.x; p < run.y; p++) {
+                vec4 particle = particles[p];
+                mat3 g = shape_of(p);
+                vec3 d = kernel == 2 ? g * (x - particle.xyz) : x - particle.xyz;
+                float slope;
+                if (weight(d, particle.w, slope) > 0.0)
+                    gradient += 2.0 * slope * (kernel == 2 ? g * d : d);
+            }
+        }
+    return gradient;
+}
+
+// The particle nearest x among the bins read around it (MISSING if none):
+// where no particle's field reaches a vertex (a kernel's support can end
+// between an edge's two samples), its normal points away from this one and
+// its attributes are this one's.
+uint nearest_particle(vec3 x)
+{
+    ivec3 lo, hi;
+    bins_around(x, lo, hi);
+    float nearest = 1.0 / 0.0;
+    uint found = MISSING;
+    for (int z = lo.z; z <= hi.z; z++)
+        for (int y = lo.y; y <= hi.y && lo.x <= hi.x; y++) {
+            uvec2 run = row_run(lo, hi, y, z);
+            for (uint p = run.x; p < run.y; p++) {
+                vec3 d = x - particles[p].xyz;
+                if (dot(d, d) < nearest) {
+                    nearest = dot(d, d);
+                    found = p;
+                }
+            }
+        }
+    return found;
+}
+
+// Everything a vertex at x takes: the field's gradient, the particles'
+// attributes averaged with the field's weights (velocity and density, and
+// speed; the nearest particle's where no field reaches x), and the nearest
+// particle's id.
+void field_at_vertex(vec3 x, out vec3 gradient, out vec4 mean, out float speed, out uint nearest_id)
+{
+    ivec3 lo, hi;
+    bins_around(x, lo, hi);
+    float f = 0.0, nearest = 1.0 / 0.0;
+    vec4 weighted = vec4(0.0);
+    gradient = vec3(0.0);
+    speed = 0.0;
+    nearest_id = 0u;
+    for (int z = lo.z; z <= hi.z; z++)
+        for (int y = lo.y; y <= hi.y && lo.x <= hi.x; y++) {
+            uvec2 run = row_run(lo, hi, y, z);
+            for (uint p = run.x; p < run.y; p++) {
+                mat3 g = shape_of(p);
+                vec3 d = g * (x - particles[p].xyz);
+                float d2 = dot(d, d), slope;
+                if (d2 < nearest) {
+                    nearest = d2;
+                    nearest_id = ids[p];
+                }
+                float w = weight(d, particles[p].w, slope);
+                if (w <= 0.0)
+                    continue;
+                f += w;
+                gradient += 2.0 * slope * (g * d);
+                vec4 a = attributes[p];
+                weighted += w * a;
+                speed += w * length(a.xyz);
+            }
+        }
+    mean = weighted / max(f, 1e-30);
+    speed /= max(f, 1e-30);
+    uint p = f > 0.0 ? MISSING : nearest_particle(x);
+    if (p != MISSING) {
+        mean = attributes[p];
+        speed = length(mean.xyz);
+    }
+}
