@@ -65,17 +65,24 @@ static float brightest(const fc_image *img, uint32_t x, uint32_t row)
     return v;
 }
 
-static void render_pair(render_fixture *f, const particles *p, const fc_camera *cam, fc_settings on,
-                        const fc_scene_textures *scene, fc_image *with, fc_image *without, int cue)
+/* The same frame with the cues as `on` has them and as `off` has them. */
+static void render_pair(render_fixture *f, const particles *p, const fc_camera *cam, const fc_settings *on,
+                        const fc_settings *off, const fc_scene_textures *scene, fc_image *with, fc_image *without)
 {
-    fc_settings off = on;
-    if (cue == 0)
-        off.contact_shadow = 0.0f;
-    else
-        off.depth_dimming = 0.0f;
     fc_frame frame = {.count = p->count, .positions = (float *)p->positions};
-    CHECK_CODE(render_frame(f, &frame, cam, &on, scene, FC_AOV_COLOR, 0, with), FC_OK);
-    CHECK_CODE(render_frame(f, &frame, cam, &off, scene, FC_AOV_COLOR, 0, without), FC_OK);
+    CHECK_CODE(render_frame(f, &frame, cam, on, scene, FC_AOV_COLOR, 0, with), FC_OK);
+    CHECK_CODE(render_frame(f, &frame, cam, off, scene, FC_AOV_COLOR, 0, without), FC_OK);
+}
+
+/* The largest change of any channel of any pixel between the two. */
+static double largest_difference(const fc_image *a, const fc_image *b)
+{
+    double differ = 0.0;
+    for (uint32_t row = 0; row < a->height; row++)
+        for (uint32_t x = 0; x < a->width; x++)
+            for (uint32_t c = 0; c < 3; c++)
+                differ = fmax(differ, fabs(channel_f32(a, x, row, c) - channel_f32(b, x, row, c)));
+    return differ;
 }
 
 /* Pixels where `with` is brighter than `without` in some channel. */
@@ -104,24 +111,22 @@ static void test_contact_shadow(render_fixture *f)
     fc_settings settings;
     fc_settings_default(&settings);
     settings.radius = RADIUS;
+    fc_settings off = settings;
+    off.contact_shadow = 0.0f;
     fc_image with = {0}, without = {0};
 
-    render_pair(f, &floating, &cam, settings, NULL, &with, &without, 0);
-    double differ = 0.0;
-    for (uint32_t row = 0; row < HEIGHT; row++)
-        for (uint32_t x = 0; x < WIDTH; x++)
-            for (uint32_t c = 0; c < 3; c++)
-                differ = fmax(differ, fabs(channel_f32(&with, x, row, c) - channel_f32(&without, x, row, c)));
+    render_pair(f, &floating, &cam, &settings, &off, NULL, &with, &without);
+    double differ = largest_difference(&with, &without);
     CHECK_MSG(differ == 0.0, "a block 2 units above the floor changed by up to %g with the contact shadow", differ);
     fc_image_free(&with);
     fc_image_free(&without);
 
-    render_pair(f, &resting, &cam, settings, NULL, &with, &without, 0);
+    render_pair(f, &resting, &cam, &settings, &off, NULL, &with, &without);
     fc_image depth = {0};
     fc_frame frame = {.count = resting.count, .positions = resting.positions};
     CHECK_CODE(render_frame(f, &frame, &cam, &settings, NULL, FC_AOV_SMOOTHED_DEPTH, 0, &depth), FC_OK);
-    CHECK_MSG(brightened(&with, &without) == 0, "the contact shadow brightened %d pixels",
-              brightened(&with, &without));
+    int lighter = brightened(&with, &without);
+    CHECK_MSG(lighter == 0, "the contact shadow brightened %d pixels", lighter);
     double fluid_rows = 0.0, darkened_rows = 0.0;
     int fluid = 0, darkened = 0;
     for (uint32_t row = 0; row < HEIGHT; row++)
@@ -199,10 +204,12 @@ static void test_depth_dimming(render_fixture *f)
     fc_scene_textures *scene = grey_scene(f);
     if (!scene)
         return;
+    fc_settings off = settings;
+    off.depth_dimming = 0.0f;
     fc_image with = {0}, without = {0};
-    render_pair(f, &p, &cam, settings, scene, &with, &without, 1);
-    CHECK_MSG(brightened(&with, &without) == 0, "the depth dimming brightened %d pixels",
-              brightened(&with, &without));
+    render_pair(f, &p, &cam, &settings, &off, scene, &with, &without);
+    int lighter = brightened(&with, &without);
+    CHECK_MSG(lighter == 0, "the depth dimming brightened %d pixels", lighter);
     /* The sheet's and the block's middles, where they project (about 32 pixels either side of the centre). */
     double sheet = dimmed_ratio(&with, &without, WIDTH / 2 - 32), block = dimmed_ratio(&with, &without, WIDTH / 2 + 32);
     CHECK_MSG(sheet > 0.95, "a single sheet dimmed to %.3f of its light", sheet);
@@ -214,13 +221,9 @@ static void test_depth_dimming(render_fixture *f)
 
     /* Opaque water shows its own colour: nothing shows through to dim. */
     for (int c = 0; c < 3; c++)
-        settings.absorption[c] = 1e6f;
-    render_pair(f, &p, &cam, settings, scene, &with, &without, 1);
-    double differ = 0.0;
-    for (uint32_t row = 0; row < HEIGHT; row++)
-        for (uint32_t x = 0; x < WIDTH; x++)
-            for (uint32_t c = 0; c < 3; c++)
-                differ = fmax(differ, fabs(channel_f32(&with, x, row, c) - channel_f32(&without, x, row, c)));
+        settings.absorption[c] = off.absorption[c] = 1e6f;
+    render_pair(f, &p, &cam, &settings, &off, scene, &with, &without);
+    double differ = largest_difference(&with, &without);
     CHECK_MSG(differ < 1e-5, "opaque water changed by up to %g with the depth dimming", differ);
     fc_image_free(&with);
     fc_image_free(&without);
