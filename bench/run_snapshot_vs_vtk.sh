@@ -51,17 +51,18 @@ export_scene() {
     cat "$path.radius"
 }
 
-now_ms() { echo $(( $(date +%s%N) / 1000000 )); }
-
-# One whole snapshot: milliseconds from before the process starts to after it exits (file written).
+# One whole snapshot: milliseconds from before the process starts to after it exits (file written),
+# on the shell's own clock (microseconds): forking `date` and `cat` inside the timed span, as this did
+# until 2026-12-05, added 20-25 ms of this VM's fork and exec to every snapshot (bench/RESULTS.md).
 snapshot_ms() {
-    local particles=$1 size=$2 radius=$3 start end
-    start=$(now_ms)
+    local particles=$1 size=$2 radius=$3 server start end
+    server="127.0.0.1:$(cat "$WORK/port")"
+    start=${EPOCHREALTIME/[.,]/}
     timeout "$STEP_TIMEOUT" "$BUILD_DIR/bin/fluidcast" snapshot "$WORK/scene_$particles.f32" -o "$WORK/snap.png" \
-        --server "127.0.0.1:$(cat "$WORK/port")" --size "$size" --radius "$radius" "${CAMERA[@]}" "${SMOOTHING[@]}" \
+        --server "$server" --size "$size" --radius "$radius" "${CAMERA[@]}" "${SMOOTHING[@]}" \
         >>"$WORK/snapshot.log" 2>&1 || { echo ""; return; }
-    end=$(now_ms)
-    echo $((end - start))
+    end=${EPOCHREALTIME/[.,]/}
+    echo $(((end - start + 500) / 1000))
 }
 
 render_ms() {
