@@ -98,11 +98,7 @@ static int load_image(const char *path, uint32_t channels, fc_png_rows *rows)
         free(img.pixels);
         return 0;
     }
-    uint8_t *px = img.pixels;
-    size_t pixels = (size_t)img.width * img.height;
-    for (size_t i = 0; channels == 3 && i < pixels; i++)
-        memmove(px + i * 3, px + i * 4, 3);
-    *rows = (fc_png_rows){px, img.width, img.height, channels};
+    *rows = (fc_png_rows){img.pixels, img.width, img.height, channels, 4};   /* RGB: alpha read past */
     return 1;
 }
 
@@ -117,7 +113,7 @@ static fc_png_rows synthetic(uint32_t w, uint32_t h, uint32_t channels)
         size_t pixel = i / channels;
         px[i] = (uint8_t)((pixel % w) * 3 + (pixel / w) * 2 + (i % channels) * 50 + ((state >> 29) & 3));
     }
-    return (fc_png_rows){px, w, h, channels};
+    return (fc_png_rows){px, w, h, channels, 0};
 }
 
 static fc_code set_rgb(void *o, const char *name, const char *value, fc_error *err)

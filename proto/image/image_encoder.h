@@ -14,17 +14,20 @@ extern "C" {
 #endif
 
 /* PNG's zlib level when none is chosen. With the SUB row filter, level 4
- * encodes a rendered 1280x720 RGBA image about 3.5 times faster than
+ * encoded a rendered 1280x720 RGBA image about 3.5 times faster than
  * OpenImageIO's default (level 6, libpng's adaptive filters) into a file
- * about 4% larger, on one core; png_encoder.h spreads it over several
- * (bench/RESULTS.md). */
-#define FC_PNG_DEFAULT_COMPRESSION 4   /* unsuffixed: fluidcastd --help prints it (FC_STRINGIFY) */
+ * about 4% larger, on one core; png_encoder.h spreads it over several. An
+ * opaque colour image is written as RGB, and at level 2 its file is as
+ * large as the RGBA one at level 4 and takes 40% less time (bench/RESULTS.md,
+ * "PNG as RGB"). */
+#define FC_PNG_DEFAULT_COMPRESSION 2   /* unsuffixed: fluidcastd --help prints it (FC_STRINGIFY) */
 #define FC_PNG_MAX_COMPRESSION 9u
 
 /* Encodes img into `out` (appended after out->len) in `format`:
  *   PNG:  U8 RGBA/1-channel as is; F32 converted (colour clamped to [0,1] and sRGB-encoded);
  *         zlib level FC_PNG_DEFAULT_COMPRESSION, SUB filter, deflated in strips on up to
- *         FC_PNG_MAX_THREADS threads (png_encoder.h); 1 channel: grey, 3: RGB, 4: RGBA.
+ *         FC_PNG_MAX_THREADS threads (png_encoder.h); 1 channel: grey, 3: RGB, 4: RGBA, or RGB
+ *         where every pixel's alpha is 255 (the alpha left out).
  *   JPEG: like PNG, alpha dropped, `quality` 1..100, chroma 4:4:4 (baseline, libjpeg-turbo's
  *         accurate integer DCT and standard Huffman tables: the fastest settings that keep quality).
  *   EXR:  F32 as float32 channels (R,G,B,A; R,G,B for the normal AOV; a single "Z" channel for the

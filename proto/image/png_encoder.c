@@ -100,6 +100,8 @@ static fc_code check_rows(const fc_png_rows *rows, uint32_t level, fc_error *err
                             rows->height);
     if (rows->channels != 1 && rows->channels != 3 && rows->channels != 4)
         return fc_error_set(err, FC_ERR_USAGE, "PNG: %u channels (expected 1, 3 or 4)", rows->channels);
+    if (rows->stride != 0 && (rows->stride < rows->channels || rows->stride > 4))
+        return fc_error_set(err, FC_ERR_USAGE, "PNG: %u channels read %u bytes apart", rows->channels, rows->stride);
     if (level > 9)
         return fc_error_set(err, FC_ERR_USAGE, "PNG: compression %u outside 0..9", level);
     return FC_OK;

@@ -50,6 +50,12 @@ unsigned fc_png_default_threads(void)
     return cores < (long)FC_PNG_MAX_THREADS ? (unsigned)cores : FC_PNG_MAX_THREADS;
 }
 
+/* The bytes between two pixels of the source rows. */
+static uint32_t pixel_stride(const fc_png_rows *r)
+{
+    return r->stride > r->channels ? r->stride : r->channels;
+}
+
 /* One filtered row: the type byte, then the samples (SUB: each minus the
  * same channel of the pixel to its left, PNG spec 9.2). */
 static void filter_row(const uint8_t *row, size_t bytes, uint32_t bpp, int filter, uint8_t *out)
@@ -66,13 +72,35 @@ static void filter_row(const uint8_t *row, size_t bytes, uint32_t bpp, int filte
         out[i] = (uint8_t)(row[i] - row[i - bpp]);
 }
 
+/* The same for source pixels `stride` bytes apart, of which the first
+ * `bpp` are written (an RGBA row written as RGB). */
+static void filter_strided_row(const uint8_t *row, uint32_t width, uint32_t bpp, uint32_t stride, int filter,
+                               uint8_t *out)
+{
+    static const uint8_t black[4] = {0};
+    *out++ = (uint8_t)filter;
+    const uint8_t *left = black;   /* SUB's pixel to the left; none for the first, or without a filter */
+    for (uint32_t x = 0; x < width; x++, row += stride, out += bpp) {
+        for (uint32_t c = 0; c < bpp; c++)
+            out[c] = (uint8_t)(row[c] - left[c]);
+        if (filter == FILTER_SUB)
+            left = row;
+    }
+}
+
 static void filter_rows(const strip_work *w, uint32_t first, uint32_t end, uint8_t *out)
 {
     const fc_png_rows *r = w->rows;
-    size_t bytes = w->row_bytes - 1;
+    uint32_t stride = pixel_stride(r);
+    size_t source_bytes = (size_t)r->width * stride;
     int filter = w->level == 0 ? FILTER_NONE : FILTER_SUB;
-    for (uint32_t y = first; y < end; y++, out += w->row_bytes)
-        filter_row(r->pixels + (size_t)y * bytes, bytes, r->channels, filter, out);
+    for (uint32_t y = first; y < end; y++, out += w->row_bytes) {
+        const uint8_t *row = r->pixels + (size_t)y * source_bytes;
+        if (stride == r->channels)
+            filter_row(row, w->row_bytes - 1, r->channels, filter, out);
+        else
+            filter_strided_row(row, r->width, r->channels, stride, filter, out);
+    }
 }
 
 /* Makes room for at least `want` more output bytes (doubling). */
@@ -212,8 +240,10 @@ fc_code fc_png_deflate_strips(const fc_png_rows *rows, uint32_t level, unsigned 
     memset(out, 0, sizeof *out);
     if (level > 9)
         return fc_error_set(err, FC_ERR_USAGE, "PNG: compression %u outside 0..9", level);
-    if (!rows->pixels || rows->width == 0 || rows->height == 0 || rows->channels == 0 || rows->channels > 4)
-        return fc_error_set(err, FC_ERR_USAGE, "PNG: empty image or %u channels", rows->channels);
+    if (!rows->pixels || rows->width == 0 || rows->height == 0 || rows->channels == 0 || rows->channels > 4 ||
+        (rows->stride != 0 && (rows->stride < rows->channels || rows->stride > 4)))
+        return fc_error_set(err, FC_ERR_USAGE, "PNG: empty image, or %u channels %u bytes apart", rows->channels,
+                            rows->stride);
     strip_work w = {.rows = rows, .level = (int)level};
     w.row_bytes = (size_t)rows->width * rows->channels + 1;
     size_t per_strip = FC_PNG_STRIP_BYTES / w.row_bytes;

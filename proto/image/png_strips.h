@@ -29,12 +29,15 @@ extern "C" {
 /* The most threads one image is split over (automatic choice). */
 #define FC_PNG_MAX_THREADS 8u
 
-/* 8-bit rows, top to bottom, no padding: `channels` bytes per pixel. */
+/* 8-bit rows, top to bottom, no padding: `channels` bytes per pixel written,
+ * read `stride` bytes apart (0: `channels`; more: the pixel's first `channels`
+ * bytes are written, the rest left out, e.g. an RGBA image's opaque alpha). */
 typedef struct fc_png_rows {
     const uint8_t *pixels;
     uint32_t width;
     uint32_t height;
     uint32_t channels;
+    uint32_t stride;
 } fc_png_rows;
 
 typedef struct fc_png_strip {

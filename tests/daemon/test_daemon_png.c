@@ -16,7 +16,8 @@
 enum { WIDTH = 256, HEIGHT = 192, LEVELS = 3 };
 
 /* The PNG bytes of the cube rendered by a daemon started with `level` (NULL:
- * the default), decoded into *pixels (malloc'd RGBA); its size, 0 on failure. */
+ * the default), decoded into *pixels (malloc'd RGB: a colour image is opaque, so
+ * the daemon writes it without alpha); its size, 0 on failure. */
 static size_t render_png(const char *level, uint8_t **pixels)
 {
     const char *args[] = {"--max-image", "256x192", "--png-compression", level, NULL};
@@ -43,10 +44,10 @@ static size_t render_png(const char *level, uint8_t **pixels)
         if (reply.header.type == FC_MSG_IMAGE &&
             fc_wire_read_image(reply.payload, reply.header.length, &image, &err) == FC_OK &&
             fc_decode_image(image.data, image.size, "png", 0, &png, &err) == FC_OK) {
-            CHECK(png.width == WIDTH && png.height == HEIGHT && png.channels == 4);
-            *pixels = malloc((size_t)WIDTH * HEIGHT * 4);
-            if (*pixels && png.width == WIDTH && png.height == HEIGHT && png.channels == 4) {
-                memcpy(*pixels, png.pixels, (size_t)WIDTH * HEIGHT * 4);
+            CHECK(png.width == WIDTH && png.height == HEIGHT && png.channels == 3);
+            *pixels = malloc((size_t)WIDTH * HEIGHT * 3);
+            if (*pixels && png.width == WIDTH && png.height == HEIGHT && png.channels == 3) {
+                memcpy(*pixels, png.pixels, (size_t)WIDTH * HEIGHT * 3);
                 size = image.size;
             }
             fc_decoded_image_free(&png);
@@ -74,11 +75,11 @@ int main(void)
            sizes[1], sizes[2]);
     if (sizes[0] && sizes[1] && sizes[2]) {
         /* Lossless at every level: the same image, byte for byte. */
-        CHECK_MSG(memcmp(pixels[0], pixels[1], (size_t)WIDTH * HEIGHT * 4) == 0, "level 0 and default differ");
-        CHECK_MSG(memcmp(pixels[2], pixels[1], (size_t)WIDTH * HEIGHT * 4) == 0, "level 9 and default differ");
+        CHECK_MSG(memcmp(pixels[0], pixels[1], (size_t)WIDTH * HEIGHT * 3) == 0, "level 0 and default differ");
+        CHECK_MSG(memcmp(pixels[2], pixels[1], (size_t)WIDTH * HEIGHT * 3) == 0, "level 9 and default differ");
         /* Level 0 stores the rows as they are (plus a filter byte per row and zlib's framing). */
-        CHECK_MSG(sizes[0] >= (size_t)WIDTH * HEIGHT * 4, "level 0: %zu bytes for %d raw", sizes[0],
-                  WIDTH * HEIGHT * 4);
+        CHECK_MSG(sizes[0] >= (size_t)WIDTH * HEIGHT * 3, "level 0: %zu bytes for %d raw", sizes[0],
+                  WIDTH * HEIGHT * 3);
         CHECK_MSG(sizes[1] < sizes[0] / 2, "default: %zu bytes, level 0: %zu", sizes[1], sizes[0]);
         CHECK_MSG(sizes[2] < sizes[1], "level 9: %zu bytes, default: %zu", sizes[2], sizes[1]);
     }

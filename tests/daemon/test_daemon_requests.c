@@ -129,9 +129,9 @@ static void test_png_shows_fluid_over_background(uint16_t port)
     fc_error err;
     if (image.data &&
         fc_decode_image(image.data, image.size, "png", 0, &png, &err) == FC_OK) {
-        CHECK(png.width == 64 && png.height == 48 && png.channels == 4);
+        CHECK(png.width == 64 && png.height == 48 && png.channels == 3);   /* opaque: written without alpha */
         const uint8_t *px = png.pixels;
-        const uint8_t *centre = px + (24 * 64 + 32) * 4;
+        const uint8_t *centre = px + (24 * 64 + 32) * 3;
         const uint8_t *corner = px;
         CHECK_MSG(differs(centre, corner), "centre %d,%d,%d vs corner %d,%d,%d", centre[0], centre[1], centre[2],
                   corner[0], corner[1], corner[2]);

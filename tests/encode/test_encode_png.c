@@ -122,7 +122,7 @@ static void png_read_free(png_read *r)
 static fc_buf encode_and_check(const uint8_t *px, uint32_t w, uint32_t h, uint32_t ch, uint32_t level,
                                unsigned threads)
 {
-    fc_png_rows rows = {px, w, h, ch};
+    fc_png_rows rows = {px, w, h, ch, 0};
     fc_buf out;
     fc_buf_init(&out);
     fc_error err;
@@ -273,8 +273,9 @@ static void test_refusals(void)
     CHECK(fc_buf_reserve(&out, 3));
     out.len = 3;
     fc_error err;
-    fc_png_rows two = {px, 2, 2, 2}, empty = {px, 0, 2, 4}, none = {NULL, 2, 2, 4}, huge = {px, 0x80000000u, 1, 1};
-    fc_png_rows ok = {px, 2, 2, 4};
+    fc_png_rows two = {px, 2, 2, 2, 0}, empty = {px, 0, 2, 4, 0}, none = {NULL, 2, 2, 4, 0},
+                huge = {px, 0x80000000u, 1, 1, 0};
+    fc_png_rows ok = {px, 2, 2, 4, 0};
     CHECK_CODE(fc_png_encode(&two, 4, 0, &out, &err), FC_ERR_USAGE);
     CHECK_CODE(fc_png_encode(&empty, 4, 0, &out, &err), FC_ERR_USAGE);
     CHECK_CODE(fc_png_encode(&none, 4, 0, &out, &err), FC_ERR_USAGE);
@@ -301,6 +302,53 @@ static void test_through_fc_encode_image(void)
     free(px);
 }
 
+/* An RGBA image whose every pixel is opaque (every colour image fluidcastd
+ * renders) is written as RGB, its alpha read past in place: IHDR's colour
+ * type 2, the bytes of the same RGB rows packed, and the input's RGB decoded
+ * back; one translucent pixel
+ * keeps RGBA (colour type 6). Pixel strides the rows cannot have are refused. */
+static void test_opaque_rgba_written_as_rgb(void)
+{
+    enum { W = 301, H = 77, IHDR_COLOUR_TYPE = 8 + 8 + 9 };
+    uint8_t *px = make_pixels(W, H, 4, 11, 0), *rgb = make_pixels(W, H, 3, 11, 0);
+    for (size_t i = 0; px && rgb && i < (size_t)W * H; i++) {
+        px[4 * i + 3] = 255;
+        memcpy(rgb + 3 * i, px + 4 * i, 3);
+    }
+    fc_image img = {W, H, 4, FC_PIXEL_U8, px, 0};
+    fc_buf via;
+    fc_buf_init(&via);
+    fc_error err;
+    CHECK_CODE(fc_encode_image_png_level(&img, FC_FORMAT_PNG, 0, 2, &via, &err), FC_OK);
+    fc_buf packed = encode_and_check(rgb, W, H, 3, 2, 0);
+    CHECK(via.len > IHDR_COLOUR_TYPE && via.data[IHDR_COLOUR_TYPE] == 2);
+    CHECK_MSG(via.len == packed.len && memcmp(via.data, packed.data, via.len) == 0,
+              "opaque RGBA: %zu bytes, the packed RGB rows %zu", via.len, packed.len);
+    fc_decoded_image dec;
+    CHECK_CODE(fc_decode_image(via.data, via.len, "png", 0, &dec, &err), FC_OK);
+    CHECK(dec.pixels && dec.channels == 3 && memcmp(dec.pixels, rgb, (size_t)W * H * 3) == 0);
+    fc_decoded_image_free(&dec);
+
+    px[4 * (W * H / 2) + 3] = 254;
+    fc_buf translucent;
+    fc_buf_init(&translucent);
+    CHECK_CODE(fc_encode_image_png_level(&img, FC_FORMAT_PNG, 0, 2, &translucent, &err), FC_OK);
+    CHECK(translucent.len > IHDR_COLOUR_TYPE && translucent.data[IHDR_COLOUR_TYPE] == 6);
+
+    fc_png_rows narrow = {px, W, H, 4, 3}, wide = {px, W, H, 3, 5};
+    fc_buf refused;
+    fc_buf_init(&refused);
+    CHECK_CODE(fc_png_encode(&narrow, 2, 0, &refused, &err), FC_ERR_USAGE);
+    CHECK_CODE(fc_png_encode(&wide, 2, 0, &refused, &err), FC_ERR_USAGE);
+    CHECK(refused.len == 0);
+    fc_buf_free(&via);
+    fc_buf_free(&packed);
+    fc_buf_free(&translucent);
+    fc_buf_free(&refused);
+    free(px);
+    free(rgb);
+}
+
 int main(void)
 {
     test_sizes_and_thread_counts();
@@ -311,5 +359,6 @@ int main(void)
     test_random_shapes();
     test_refusals();
     test_through_fc_encode_image();
+    test_opaque_rgba_written_as_rgb();
     return test_result();
 }
