@@ -7,7 +7,8 @@
 // come sorted by bin, surface_grid.h) in bin order, so equal input gives
 // equal bits, and a sample shared by two blocks gets the same value in both:
 // its bins and their order follow from its lattice point alone.
-// REACH_RADII, BIN_SPLIT and MISSING come as #defines (FC_SURFACE_GRID, surface_passes.c).
+// METABALL_REACH_RADII, SPH_REACH_RADII, BIN_SPLIT and MISSING come as #defines
+// (FC_SURFACE_GRID, surface_passes.c; the reaches from surface_mesher.h).
 
 layout(location = 1) uniform vec3 origin;  // world position of lattice point 0, where bin 0 starts
 layout(location = 4) uniform int kernel;   // fc_surface_kernel: 0 metaball, 1 sph (2 is 0 on ellipsoids)
@@ -21,11 +22,12 @@ layout(std430, binding = 4) readonly buffer BinStarts { uint bin_starts[]; };   
 layout(std430, binding = 9) readonly buffer Shapes { vec4 shapes[]; };            // G: xx xy xz yy, yz zz
 
 // The weight of a particle of radius r at offset d from it, and the weight's
-// derivative by |d|^2 (both kernels reach REACH_RADII r: the spline's 2 h).
+// derivative by |d|^2 (fc_surface_kernel_weight in surface_mesher.c: the
+// metaballs reach METABALL_REACH_RADII r, the spline SPH_REACH_RADII r = 2 h).
 float weight(vec3 d, float r, out float slope)
 {
     float d2 = dot(d, d);
-    float reach2 = REACH_RADII * REACH_RADII * r * r;
+    float reach = (kernel == 1 ? SPH_REACH_RADII : METABALL_REACH_RADII) * r, reach2 = reach * reach;
     slope = 0.0;
     if (d2 >= reach2)
         return 0.0;
@@ -34,11 +36,11 @@ float weight(vec3 d, float r, out float slope)
         slope = -3.0 * q * q / reach2;
         return q * q * q;
     }
-    // Cubic spline, 1 at the centre: q = |d| / r in [0, 2).
-    float dist = sqrt(d2), q = dist / r;
+    // Cubic spline, 1 at the centre: q = |d| / h in [0, 2).
+    float h = 0.5 * reach, dist = sqrt(d2), q = dist / h;
     float dw_dq = q < 1.0 ? -3.0 * q + 2.25 * q * q : -0.75 * (2.0 - q) * (2.0 - q);
     float w = q < 1.0 ? 1.0 - 1.5 * q * q + 0.75 * q * q * q : 0.25 * (2.0 - q) * (2.0 - q) * (2.0 - q);
-    slope = dist > 0.0 ? dw_dq / (r * 2.0 * dist) : 0.0;
+    slope = dist > 0.0 ? dw_dq / (h * 2.0 * dist) : 0.0;
     return w;
 }
 

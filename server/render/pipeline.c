@@ -803,7 +803,7 @@ fc_code fc_pipeline_render_with(fc_pipeline *p, const fc_camera *camera, const f
     fc_view view;
     float reach = fc_anisotropy_reach(&p->particles, settings->radius);
     if (settings->surface == FC_SURFACE_MODE_MESH)
-        reach *= FC_SURFACE_KERNEL_REACH_RADII;   /* the mesh reaches as far as the field */
+        reach *= fc_surface_kernel_reach_radii(settings->surface_kernel);   /* the mesh reaches as far as the field */
     fc_view_from_camera(camera, lo, hi, reach, &view);
     render_job job;
     plan_job(p, &view, camera, settings, &scene, aov, want_u8 != 0, &job);

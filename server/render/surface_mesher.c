@@ -31,10 +31,6 @@ enum { BIND_PARTICLES = 0, BIND_ATTRIBUTES = 1, BIND_IDS = 2, BIND_KEYS = 3, BIN
        BIND_VERTEX_EXTRAS = 15, BIND_INDICES = 16 };
 enum { BUFFER_COUNT = 17 };
 
-/* Both kernels reach 2 radii from a particle; the iso value is the field of
- * a lone particle at one radius, so a lone particle meshes as its sphere. */
-#define METABALL_ISO 0.421875f   /* (1 - (1/2)^2)^3 */
-#define SPH_ISO 0.25f            /* (2 - 1)^3 / 4 */
 /* Bytes of one output vertex on the GPU (its edge, position, normal, attributes, speed and id) and of one
  * triangle. */
 #define VERTEX_BYTES 52u
@@ -49,9 +45,29 @@ typedef struct extraction {
     GLuint buffers[BUFFER_COUNT];
 } extraction;
 
+float fc_surface_kernel_reach_radii(fc_surface_kernel kernel)
+{
+    return kernel == FC_SURFACE_KERNEL_SPH ? FC_SURFACE_SPH_REACH_RADII : FC_SURFACE_METABALL_REACH_RADII;
+}
+
+/* As weight() in surface_kernel.comp.glsl. */
+float fc_surface_kernel_weight(fc_surface_kernel kernel, float d)
+{
+    float reach = fc_surface_kernel_reach_radii(kernel);
+    if (d >= reach)
+        return 0.0f;
+    if (kernel != FC_SURFACE_KERNEL_SPH) {   /* Wyvill's soft objects: (1 - d^2 / R^2)^3 */
+        float q = 1.0f - d * d / (reach * reach);
+        return q * q * q;
+    }
+    float q = d / (0.5f * reach);            /* the cubic spline, 1 at the centre, q = d / h in [0, 2) */
+    return q < 1.0f ? 1.0f - 1.5f * q * q + 0.75f * q * q * q : 0.25f * (2.0f - q) * (2.0f - q) * (2.0f - q);
+}
+
+/* A lone particle's field at one radius: its surface is its sphere. */
 static float iso_of(fc_surface_kernel kernel)
 {
-    return kernel == FC_SURFACE_KERNEL_SPH ? SPH_ISO : METABALL_ISO;
+    return fc_surface_kernel_weight(kernel, 1.0f);
 }
 
 static fc_code make_buffer(GLuint *buffer, uint64_t bytes, const void *data, fc_error *err)
@@ -385,7 +401,8 @@ static fc_code extract(const fc_surface_passes *s, const fc_frame *frame, const 
     else
         code = ellipsoid_centres(ellipsoids, frame->count, &centres, &stretch, err);
     const float *positions = centres ? centres : frame->positions;
-    float reach = FC_SURFACE_KERNEL_REACH_RADII * stretch * largest(per_particle, frame->count, radius);
+    float reach = fc_surface_kernel_reach_radii(settings->surface_kernel) * stretch *
+                  largest(per_particle, frame->count, radius);
     x->iso = iso_of(settings->surface_kernel);
     x->kernel = (int)settings->surface_kernel;
     x->with_attributes = mesh_attributes(frame) != 0;

@@ -76,10 +76,11 @@ static void grid_defines(char *out, size_t size)
 {
     snprintf(out, size,
              "#define FC_SURFACE_GRID 1\n#define BLOCK %uu\n#define BLOCK_SAMPLES %uu\n#define BLOCK_CELLS %uu\n#define EDGE_DIRECTIONS 7u\n"
-             "#define BLOCK_EDGES %uu\n#define KEY_BITS %uu\n#define MISSING 0xFFFFFFFFu\n#define REACH_RADII %.9f\n"
-             "#define BIN_SPLIT %uu\n",
+             "#define BLOCK_EDGES %uu\n#define KEY_BITS %uu\n#define MISSING 0xFFFFFFFFu\n"
+             "#define METABALL_REACH_RADII %.9f\n#define SPH_REACH_RADII %.9f\n#define BIN_SPLIT %uu\n",
              FC_SURFACE_BLOCK, FC_SURFACE_BLOCK_SAMPLES, FC_SURFACE_BLOCK_CELLS, FC_SURFACE_BLOCK_EDGES,
-             FC_SURFACE_KEY_BITS, (double)FC_SURFACE_KERNEL_REACH_RADII, FC_SURFACE_BIN_SPLIT);
+             FC_SURFACE_KEY_BITS, (double)FC_SURFACE_METABALL_REACH_RADII, (double)FC_SURFACE_SPH_REACH_RADII,
+             FC_SURFACE_BIN_SPLIT);
 }
 
 fc_code fc_surface_passes_create(const char *shader_dir, fc_surface_passes *s, fc_error *err)

@@ -15,7 +15,7 @@
 #include "test_util.h"
 
 #define RADIUS 1.0f
-#define REACH (FC_SURFACE_KERNEL_REACH_RADII * RADIUS)
+#define REACH (FC_SURFACE_KERNEL_MAX_REACH_RADII * RADIUS)
 
 /* A fixed-seed generator: the same points every run. */
 static float next_unit(uint32_t *state)
