@@ -2,12 +2,17 @@
 // the industry's way to mesh particles, with Debian's libopenvdb-dev, and the
 // distance between two meshes.
 //
-//   mesh_openvdb mesh IN.f32 RADIUS CELL OUT.ply
+//   mesh_openvdb mesh IN.f32 RADIUS CELL OUT.ply [GROW]
 //       the particles of IN.f32 (float32 x y z) as spheres of RADIUS
 //       (ParticlesToLevelSet, a narrow-band level set of voxel size CELL, world
 //       units), polygonised at level 0 (VolumeToMesh, quads split into
 //       triangles); writes OUT.ply (binary, x y z, triangles) and prints
 //       "openvdb: P particles, T triangles, S s (L s level set, M s mesh)".
+//       With GROW > 0 the spheres are (1 + GROW) x RADIUS and the level set is
+//       then offset inwards by GROW x RADIUS (LevelSetFilter::offset): how an
+//       OpenVDB user closes the gaps between particles at rest (spheres of the
+//       solver's radius, half the spacing, barely touch and leave a cavity in
+//       every lattice cube) and keeps a lone particle at its radius.
 //   mesh_openvdb distance A.ply B.ply
 //       for every vertex of A the nearest vertex of B and the other way round;
 //       prints "distance: mean M max X (A->B mean, max; B->A mean, max)".
@@ -15,6 +20,7 @@
 // Reads the binary little-endian PLY that fluidcast mesh and this program
 // write: 4-byte vertex properties, x y z first; faces as uchar-counted uint lists.
 #include <openvdb/openvdb.h>
+#include <openvdb/tools/LevelSetFilter.h>
 #include <openvdb/tools/ParticlesToLevelSet.h>
 #include <openvdb/tools/VolumeToMesh.h>
 
@@ -130,17 +136,21 @@ void write_ply(const char *path, const Mesh &m)
         throw std::runtime_error(std::string("cannot write ") + path);
 }
 
-int mesh_particles(const char *input, double radius, double cell, const char *output)
+int mesh_particles(const char *input, double radius, double cell, double grow, const char *output)
 {
     Particles particles;
     particles.positions = read_f32(input);
-    particles.radius = radius;
+    particles.radius = radius * (1.0 + grow);
     auto start = std::chrono::steady_clock::now();
     auto grid = openvdb::createLevelSet<openvdb::FloatGrid>(cell, 3.0);
     openvdb::tools::ParticlesToLevelSet<openvdb::FloatGrid> raster(*grid);
     raster.setRmin(0.0);   // the default (1.5 voxels) drops every particle at cells of 1 x r and coarser
     raster.rasterizeSpheres(particles);
     raster.finalize(true);
+    if (grow > 0.0) {
+        openvdb::tools::LevelSetFilter<openvdb::FloatGrid> filter(*grid);
+        filter.offset(static_cast<float>(grow * radius));   // positive: the surface moves inwards
+    }
     double level_set_s = seconds_since(start);
     std::vector<openvdb::Vec3s> points;
     std::vector<openvdb::Vec3I> triangles;
@@ -225,11 +235,12 @@ int main(int argc, char **argv)
 {
     try {
         openvdb::initialize();
-        if (argc == 6 && std::strcmp(argv[1], "mesh") == 0)
-            return mesh_particles(argv[2], std::stod(argv[3]), std::stod(argv[4]), argv[5]);
+        if ((argc == 6 || argc == 7) && std::strcmp(argv[1], "mesh") == 0)
+            return mesh_particles(argv[2], std::stod(argv[3]), std::stod(argv[4]), argc == 7 ? std::stod(argv[6]) : 0.0,
+                                  argv[5]);
         if (argc == 4 && std::strcmp(argv[1], "distance") == 0)
             return distance(argv[2], argv[3]);
-        std::fprintf(stderr, "usage: %s mesh IN.f32 RADIUS CELL OUT.ply | distance A.ply B.ply\n", argv[0]);
+        std::fprintf(stderr, "usage: %s mesh IN.f32 RADIUS CELL OUT.ply [GROW] | distance A.ply B.ply\n", argv[0]);
         return 2;
     } catch (const std::exception &e) {
         std::fprintf(stderr, "mesh_openvdb: %s\n", e.what());
