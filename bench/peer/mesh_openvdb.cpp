@@ -8,11 +8,12 @@
 //       units), polygonised at level 0 (VolumeToMesh, quads split into
 //       triangles); writes OUT.ply (binary, x y z, triangles) and prints
 //       "openvdb: P particles, T triangles, S s (L s level set, M s mesh)".
-//       With GROW > 0 the spheres are (1 + GROW) x RADIUS and the level set is
-//       then offset inwards by GROW x RADIUS (LevelSetFilter::offset): how an
-//       OpenVDB user closes the gaps between particles at rest (spheres of the
-//       solver's radius, half the spacing, barely touch and leave a cavity in
-//       every lattice cube) and keeps a lone particle at its radius.
+//       With GROW > 0 the spheres are (1 + GROW) x RADIUS, the level set is
+//       rebuilt as a signed distance (levelSetRebuild) and meshed GROW x RADIUS
+//       inside: how an OpenVDB user closes the gaps between particles at rest
+//       (spheres of the solver's radius, half the spacing, barely touch and
+//       leave a cavity in every lattice cube) and keeps a lone particle at its
+//       radius.
 //   mesh_openvdb distance A.ply B.ply
 //       for every vertex of A the nearest vertex of B and the other way round;
 //       prints "distance: mean M max X (A->B mean, max; B->A mean, max)".
@@ -20,7 +21,7 @@
 // Reads the binary little-endian PLY that fluidcast mesh and this program
 // write: 4-byte vertex properties, x y z first; faces as uchar-counted uint lists.
 #include <openvdb/openvdb.h>
-#include <openvdb/tools/LevelSetFilter.h>
+#include <openvdb/tools/LevelSetRebuild.h>
 #include <openvdb/tools/ParticlesToLevelSet.h>
 #include <openvdb/tools/VolumeToMesh.h>
 
@@ -34,7 +35,6 @@
 #include <sstream>
 #include <stdexcept>
 #include <string>
-#include <unordered_map>
 #include <vector>
 
 namespace {
@@ -147,16 +147,20 @@ int mesh_particles(const char *input, double radius, double cell, double grow, c
     raster.setRmin(0.0);   // the default (1.5 voxels) drops every particle at cells of 1 x r and coarser
     raster.rasterizeSpheres(particles);
     raster.finalize(true);
+    // Grown spheres' union is a signed distance only near its surface (inside, each voxel holds its depth in
+    // the nearest sphere); rebuilt, it is one deep enough to mesh grow x radius further in.
+    float level = 0.0f;
     if (grow > 0.0) {
-        openvdb::tools::LevelSetFilter<openvdb::FloatGrid> filter(*grid);
-        filter.offset(static_cast<float>(grow * radius));   // positive: the surface moves inwards
+        level = static_cast<float>(-grow * radius);
+        float inside = static_cast<float>(grow * radius / cell) + 3.0f;
+        grid = openvdb::tools::levelSetRebuild(*grid, 0.0f, 3.0f, inside);
     }
     double level_set_s = seconds_since(start);
     std::vector<openvdb::Vec3s> points;
     std::vector<openvdb::Vec3I> triangles;
     std::vector<openvdb::Vec4I> quads;
     auto mesh_start = std::chrono::steady_clock::now();
-    openvdb::tools::volumeToMesh(*grid, points, triangles, quads, 0.0);
+    openvdb::tools::volumeToMesh(*grid, points, triangles, quads, level);
     Mesh m{points, triangles};
     // OpenVDB's quads and triangles wind the other way round from fluidcast's (outward, counter-clockwise).
     for (auto &t : m.triangles)
@@ -172,35 +176,73 @@ int mesh_particles(const char *input, double radius, double cell, double grow, c
     return 0;
 }
 
-// Nearest vertex of `to` for each vertex of `from`, on a hash grid of cell h.
+// Nearest vertex of `to` for each vertex of `from`, through a k-d tree of
+// `to` (a hash grid's shells, used before, took hours where one mesh has
+// surfaces far from the other's, as OpenVDB's cavities are from a closed mesh).
 struct Distances {
     double mean = 0, max = 0;
 };
 
-Distances nearest_vertex(const Mesh &from, const Mesh &to, double h)
+class KdTree {
+public:
+    explicit KdTree(const std::vector<openvdb::Vec3s> &points) : points_(points), order_(points.size())
+    {
+        for (size_t i = 0; i < order_.size(); i++)
+            order_[i] = i;
+        build(0, order_.size(), 0);
+    }
+
+    double nearest(const openvdb::Vec3s &p) const
+    {
+        double best = INFINITY;
+        search(p, 0, order_.size(), 0, best);
+        return std::sqrt(best);
+    }
+
+private:
+    // order_[begin, end) split at its middle along `axis`: the median there, smaller before, larger after.
+    void build(size_t begin, size_t end, int axis)
+    {
+        if (end - begin < 2)
+            return;
+        size_t mid = begin + (end - begin) / 2;
+        std::nth_element(order_.begin() + begin, order_.begin() + mid, order_.begin() + end,
+                         [&](size_t a, size_t b) { return points_[a][axis] < points_[b][axis]; });
+        build(begin, mid, (axis + 1) % 3);
+        build(mid + 1, end, (axis + 1) % 3);
+    }
+
+    void search(const openvdb::Vec3s &p, size_t begin, size_t end, int axis, double &best) const
+    {
+        if (begin >= end)
+            return;
+        size_t mid = begin + (end - begin) / 2;
+        const openvdb::Vec3s &q = points_[order_[mid]];
+        best = std::min(best, (double)(q - p).lengthSqr());
+        double side = (double)p[axis] - q[axis];
+        int next = (axis + 1) % 3;
+        // The half holding p first; the other only if the splitting plane is nearer than the best so far.
+        if (side < 0) {
+            search(p, begin, mid, next, best);
+            if (side * side < best)
+                search(p, mid + 1, end, next, best);
+        } else {
+            search(p, mid + 1, end, next, best);
+            if (side * side < best)
+                search(p, begin, mid, next, best);
+        }
+    }
+
+    const std::vector<openvdb::Vec3s> &points_;
+    std::vector<size_t> order_;
+};
+
+Distances nearest_vertex(const Mesh &from, const Mesh &to)
 {
-    auto key = [h](const openvdb::Vec3s &p, int dx, int dy, int dz) {
-        int64_t x = (int64_t)std::floor(p[0] / h) + dx, y = (int64_t)std::floor(p[1] / h) + dy,
-                z = (int64_t)std::floor(p[2] / h) + dz;
-        return (x * 73856093) ^ (y * 19349663) ^ (z * 83492791);
-    };
-    std::unordered_multimap<int64_t, size_t> grid;
-    for (size_t i = 0; i < to.points.size(); i++)
-        grid.emplace(key(to.points[i], 0, 0, 0), i);
+    KdTree tree(to.points);
     Distances d;
     for (const auto &p : from.points) {
-        double best = INFINITY;
-        // Shells of cells outward until the nearest found is closer than the next shell can be.
-        for (int r = 0; r < 64 && !(best <= (r - 1) * h); r++)
-            for (int dx = -r; dx <= r; dx++)
-                for (int dy = -r; dy <= r; dy++)
-                    for (int dz = -r; dz <= r; dz++) {
-                        if (std::max({std::abs(dx), std::abs(dy), std::abs(dz)}) != r)
-                            continue;
-                        auto range = grid.equal_range(key(p, dx, dy, dz));
-                        for (auto it = range.first; it != range.second; ++it)
-                            best = std::min(best, (double)(to.points[it->second] - p).length());
-                    }
+        double best = tree.nearest(p);
         d.mean += best;
         d.max = std::max(d.max, best);
     }
@@ -208,21 +250,12 @@ Distances nearest_vertex(const Mesh &from, const Mesh &to, double h)
     return d;
 }
 
-double mean_edge(const Mesh &m)
-{
-    double sum = 0;
-    for (const auto &t : m.triangles)
-        sum += (m.points[t[0]] - m.points[t[1]]).length();
-    return m.triangles.empty() ? 1.0 : sum / m.triangles.size();
-}
-
 int distance(const char *a_path, const char *b_path)
 {
     Mesh a = read_ply(a_path), b = read_ply(b_path);
     if (a.points.empty() || b.points.empty())
         throw std::runtime_error("a mesh without vertices");
-    double h = 2 * std::max(mean_edge(a), mean_edge(b));
-    Distances ab = nearest_vertex(a, b, h), ba = nearest_vertex(b, a, h);
+    Distances ab = nearest_vertex(a, b), ba = nearest_vertex(b, a);
     double mean = (ab.mean * a.points.size() + ba.mean * b.points.size()) / (a.points.size() + b.points.size());
     std::printf("distance: mean %.6g max %.6g (A->B mean %.6g max %.6g; B->A mean %.6g max %.6g)\n", mean,
                 std::max(ab.max, ba.max), ab.mean, ab.max, ba.mean, ba.max);

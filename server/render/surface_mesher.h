@@ -12,16 +12,17 @@
 
 /* How far a particle's field reaches, in its radii (its ellipsoid's longest
  * axis for the anisotropic kernel): the metaballs' radius of influence
- * (Janisz's R_c > R) and the cubic spline's support 2 h, with h = 1.5 r. The
- * iso value is a lone particle's field at one radius, so a lone particle
- * meshes as its sphere. The reaches are wide enough that particles at rest,
- * 2 r apart as solvers write them (r: half the spacing), fill the space between
- * them: at a lattice cube's centre the field is 1.9 (metaball) and 2.2
+ * (Janisz's R_c > R) and the cubic spline's support 2 h, with h = 2 r (the
+ * smoothing length splashsurf meshes with by default). The iso value is a
+ * lone particle's field at one radius, so a lone particle meshes as its
+ * sphere. The reaches are wide enough that particles at rest, 2 r apart as
+ * solvers write them (r: half the spacing), fill the space between them even
+ * jittered: at a lattice cube's centre the field is 3.4 (metaball) and 4.6
  * (spline) times the iso value, where a reach of 2 r, used until 2026-12-05,
  * gave 0.3 and 0.16 and left a bubble in every cube (a sponge of triangles
  * through the whole volume). The mesh lies within the reach. */
-#define FC_SURFACE_METABALL_REACH_RADII 2.5f
-#define FC_SURFACE_SPH_REACH_RADII 3.0f
+#define FC_SURFACE_METABALL_REACH_RADII 3.0f
+#define FC_SURFACE_SPH_REACH_RADII 4.0f
 #define FC_SURFACE_KERNEL_MAX_REACH_RADII FC_SURFACE_SPH_REACH_RADII
 
 /* The reach of `kernel`'s field in particle radii (the anisotropic kernel is

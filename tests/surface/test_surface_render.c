@@ -16,10 +16,12 @@
 #define SIZE 96u
 /* The mesh's facets at 0.3 radii cells (up to 0.5 radii across: 3% sagitta)
  * and the metaball field's linear interpolation along edges (vertices within
- * 2.6% of the sphere) keep its depth within this of the sphere's, in radii, where the
- * sphere faces the camera (its depth grows steeply towards the silhouette,
- * which facets cut: there only the coverage is compared). */
-#define DEPTH_TOLERANCE_RADII 0.06
+ * about 4% of the sphere: at one radius the field of reach 3 radii curves half
+ * as fast as it falls, where that of reach 2 curved a third as fast) keep its
+ * depth within this of the sphere's, in radii, where the sphere faces the
+ * camera (its depth grows steeply towards the silhouette, which facets cut:
+ * there only the coverage is compared). */
+#define DEPTH_TOLERANCE_RADII 0.08
 #define FACING 0.25
 /* Pixels this close to the silhouette (relative to r^2) may go either way. */
 #define EDGE_SLACK 0.05
