@@ -22,7 +22,7 @@ layout(std430, binding = 4) readonly buffer BinStarts { uint bin_starts[]; };   
 layout(std430, binding = 9) readonly buffer Shapes { vec4 shapes[]; };            // G: xx xy xz yy, yz zz
 
 // The weight of a particle of radius r at offset d from it, and the weight's
-// derivative by |d|^2 (fc_surface_kernel_weight in surface_mesher.c: the
+// derivative by |d|^2 (kernel_weight in surface_mesher.c: the
 // metaballs reach METABALL_REACH_RADII r, the spline SPH_REACH_RADII r = 2 h).
 float weight(vec3 d, float r, out float slope)
 {

@@ -123,12 +123,12 @@ static fc_code collect_blocks(const uint64_t *pairs, uint64_t n, fc_surface_grid
     uint64_t blocks = 0;
     for (uint64_t i = 0; i < n; i++)
         blocks += i == 0 || pairs[i] >> PARTICLE_BITS != pairs[i - 1] >> PARTICLE_BITS;
-    if (blocks * FC_SURFACE_BLOCK_BYTES + n * 12u > FC_SURFACE_GRID_BUDGET)
+    if (blocks * FC_SURFACE_FIELD_BLOCK_BYTES + n * 12u > FC_SURFACE_GRID_BUDGET)
         return fc_error_set(err, FC_ERR_LIMIT,
                             "the surface grid would need %llu blocks (%llu MiB), over its budget of %llu MiB: "
                             "raise surface_cell",
                             (unsigned long long)blocks,
-                            (unsigned long long)((blocks * FC_SURFACE_BLOCK_BYTES + n * 12u) >> 20),
+                            (unsigned long long)((blocks * FC_SURFACE_FIELD_BLOCK_BYTES + n * 12u) >> 20),
                             (unsigned long long)(FC_SURFACE_GRID_BUDGET >> 20));
     g->block_keys = malloc((blocks ? blocks : 1) * sizeof *g->block_keys);
     if (!g->block_keys)
@@ -183,7 +183,7 @@ static fc_code build_bins(const float *positions, uint64_t count, float reach, f
             hi[a] = fmaxf(hi[a], positions[3 * i + a]);
     size_bins(g, hi, reach);
     uint64_t bins = (uint64_t)g->bins[0] * g->bins[1] * g->bins[2];
-    uint64_t bytes = (uint64_t)g->block_count * FC_SURFACE_BLOCK_BYTES + (bins + 1 + count) * 4u;
+    uint64_t bytes = (uint64_t)g->block_count * FC_SURFACE_FIELD_BLOCK_BYTES + (bins + 1 + count) * 4u;
     if (bytes > FC_SURFACE_GRID_BUDGET)
         return fc_error_set(err, FC_ERR_LIMIT,
                             "the surface grid would need %llu blocks (%llu MiB), over its budget of %llu MiB: "

@@ -35,8 +35,12 @@
  * cells, bins): past it the request fails with LIMIT instead of exhausting
  * the machine. */
 #define FC_SURFACE_GRID_BUDGET ((uint64_t)1 << 30)
-/* Bytes a block costs on the GPU: per sample its field's value; per owned
- * edge (7 per cell) and per cell a scan entry. */
+/* Bytes every block of the grid costs on the GPU: per sample its field's
+ * value, and whether the surface crosses it (surface_crossed.comp.glsl). */
+#define FC_SURFACE_FIELD_BLOCK_BYTES ((uint64_t)FC_SURFACE_BLOCK_SAMPLES * 4u + 4u)
+/* Bytes a block the surface crosses costs besides: its field once more (the
+ * crossed blocks' own grid), per owned edge (7 per cell) and per cell a scan
+ * entry. */
 #define FC_SURFACE_BLOCK_BYTES ((uint64_t)FC_SURFACE_BLOCK_SAMPLES * 4u + (uint64_t)FC_SURFACE_BLOCK_EDGES * 4u + (uint64_t)FC_SURFACE_BLOCK_CELLS * 4u)
 
 typedef struct fc_surface_grid {

@@ -24,9 +24,9 @@
 /* Uniform locations of surface_*.comp.glsl. */
 enum { LOC_BLOCKS = 0, LOC_ORIGIN = 1, LOC_CELL = 2, LOC_ISO = 3, LOC_KERNEL = 4, LOC_EMIT = 5, LOC_BIN = 6,
        LOC_BINS = 7, LOC_WITH_ATTRIBUTES = 8, LOC_VERTEX_COUNT = 9, LOC_TET_CORNERS = 10, LOC_TET_CASES = 20 };
-/* Shader storage bindings of surface_*.comp.glsl (5 and 8 unused). */
+/* Shader storage bindings of surface_*.comp.glsl (8 unused). */
 enum { BIND_PARTICLES = 0, BIND_ATTRIBUTES = 1, BIND_IDS = 2, BIND_KEYS = 3, BIND_BIN_STARTS = 4,
-       BIND_FIELD = 6, BIND_VERTEX_EDGES = 7, BIND_SHAPES = 9, BIND_EDGES = 10,
+       BIND_CROSSED = 5, BIND_FIELD = 6, BIND_VERTEX_EDGES = 7, BIND_SHAPES = 9, BIND_EDGES = 10,
        BIND_CELLS = 11, BIND_POSITIONS = 12, BIND_NORMALS = 13, BIND_VERTEX_ATTRIBUTES = 14,
        BIND_VERTEX_EXTRAS = 15, BIND_INDICES = 16 };
 enum { BUFFER_COUNT = 17 };
@@ -50,8 +50,9 @@ float fc_surface_kernel_reach_radii(fc_surface_kernel kernel)
     return kernel == FC_SURFACE_KERNEL_SPH ? FC_SURFACE_SPH_REACH_RADII : FC_SURFACE_METABALL_REACH_RADII;
 }
 
-/* As weight() in surface_kernel.comp.glsl. */
-float fc_surface_kernel_weight(fc_surface_kernel kernel, float d)
+/* The field of one particle of radius 1 at distance `d` (in radii): 1 at
+ * the centre, 0 from its reach on; as weight() in surface_kernel.comp.glsl. */
+static float kernel_weight(fc_surface_kernel kernel, float d)
 {
     float reach = fc_surface_kernel_reach_radii(kernel);
     if (d >= reach)
@@ -67,7 +68,7 @@ float fc_surface_kernel_weight(fc_surface_kernel kernel, float d)
 /* A lone particle's field at one radius: its surface is its sphere. */
 static float iso_of(fc_surface_kernel kernel)
 {
-    return fc_surface_kernel_weight(kernel, 1.0f);
+    return kernel_weight(kernel, 1.0f);
 }
 
 static fc_code make_buffer(GLuint *buffer, uint64_t bytes, const void *data, fc_error *err)
@@ -120,24 +121,38 @@ static fc_code upload_particles(extraction *x, const fc_frame *frame, const floa
 }
 
 /* The grid's bins and the passes' work buffers. */
+/* The grid's blocks and their field: keys, the particles' bins, a sample's value each, a crossed flag each. */
 static fc_code allocate_grid(extraction *x, fc_error *err)
 {
     const fc_surface_grid *g = &x->grid;
     uint64_t blocks = g->block_count;
-    uint64_t samples = blocks * FC_SURFACE_BLOCK_SAMPLES;
     fc_code code = make_buffer(&x->buffers[BIND_KEYS], blocks * 4, g->block_keys, err);
     uint64_t bins = (uint64_t)g->bins[0] * g->bins[1] * g->bins[2];
     if (code == FC_OK)
         code = make_buffer(&x->buffers[BIND_BIN_STARTS], (bins + 1) * 4, g->bin_starts, err);
     if (code == FC_OK)
-        code = make_buffer(&x->buffers[BIND_FIELD], samples * 4, NULL, err);
+        code = make_buffer(&x->buffers[BIND_FIELD], blocks * FC_SURFACE_BLOCK_SAMPLES * 4, NULL, err);
     if (code == FC_OK)
-        code = make_buffer(&x->buffers[BIND_EDGES],
-                           fc_surface_scan_entries(blocks * FC_SURFACE_BLOCK_EDGES) * 4, NULL, err);
+        code = make_buffer(&x->buffers[BIND_CROSSED], blocks * 4, NULL, err);
+    return code;
+}
+
+/* The prefix sums' entries of the (crossed) blocks' edges and cells. */
+static fc_code allocate_scans(extraction *x, fc_error *err)
+{
+    uint64_t blocks = x->grid.block_count;
+    fc_code code = make_buffer(&x->buffers[BIND_EDGES],
+                               fc_surface_scan_entries(blocks * FC_SURFACE_BLOCK_EDGES) * 4, NULL, err);
     if (code == FC_OK)
         code = make_buffer(&x->buffers[BIND_CELLS],
                            fc_surface_scan_entries(blocks * FC_SURFACE_BLOCK_CELLS) * 4, NULL, err);
     return code;
+}
+
+static void delete_buffer(extraction *x, int binding)
+{
+    glDeleteBuffers(1, &x->buffers[binding]);
+    x->buffers[binding] = 0;
 }
 
 static void bind_all(const extraction *x)
@@ -182,6 +197,53 @@ static void run_field(const fc_surface_passes *s, const extraction *x)
     run_program(s, s->field_program, USES_PLACE | USES_KERNEL | USES_BINS, x, 0);
 }
 
+static void run_crossed(const fc_surface_passes *s, const extraction *x)
+{
+    run_program(s, s->crossed_program, USES_ISO, x, 0);
+}
+
+/* Keeps the blocks the surface crosses (surface_crossed.comp.glsl), in key
+ * order, with their field computed again for them alone: the edges, cells and
+ * vertices only ever need those, and the scans over every block of the grid
+ * (most of them inside the fluid or in the air around it) were most of its
+ * memory and time. */
+static fc_code keep_crossed_blocks(const fc_surface_passes *s, extraction *x, fc_error *err)
+{
+    fc_surface_grid *g = &x->grid;
+    uint32_t blocks = g->block_count;
+    run_field(s, x);
+    run_crossed(s, x);
+    glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+    uint32_t *crossed = malloc((blocks ? blocks : 1) * sizeof *crossed);
+    if (!crossed)
+        return fc_error_set(err, FC_ERR_NOMEM, "out of memory for the surface's %u block flags", blocks);
+    glGetNamedBufferSubData(x->buffers[BIND_CROSSED], 0, (GLsizeiptr)blocks * 4, crossed);
+    uint32_t kept = 0;
+    for (uint32_t b = 0; b < blocks; b++)
+        if (crossed[b])
+            g->block_keys[kept++] = g->block_keys[b];
+    free(crossed);
+    fc_code code = fc_gl_check("finding the blocks the surface crosses", err);
+    if (code != FC_OK || kept == blocks)
+        return code;
+    if ((uint64_t)kept * FC_SURFACE_BLOCK_BYTES > FC_SURFACE_GRID_BUDGET)
+        return fc_error_set(err, FC_ERR_LIMIT,
+                            "the surface crosses %u blocks (%llu MiB), past its budget of %llu MiB: raise "
+                            "surface_cell",
+                            kept, (unsigned long long)(((uint64_t)kept * FC_SURFACE_BLOCK_BYTES) >> 20),
+                            (unsigned long long)(FC_SURFACE_GRID_BUDGET >> 20));
+    g->block_count = kept;
+    delete_buffer(x, BIND_KEYS);
+    delete_buffer(x, BIND_FIELD);
+    delete_buffer(x, BIND_CROSSED);
+    code = make_buffer(&x->buffers[BIND_KEYS], (uint64_t)kept * 4, g->block_keys, err);
+    if (code == FC_OK)
+        code = make_buffer(&x->buffers[BIND_FIELD], (uint64_t)kept * FC_SURFACE_BLOCK_SAMPLES * 4, NULL, err);
+    if (code == FC_OK)
+        run_field(s, x);
+    return code;
+}
+
 static void run_edges(const fc_surface_passes *s, const extraction *x, int emit)
 {
     run_program(s, s->edges_program, USES_ISO | USES_EMIT, x, emit);
@@ -216,11 +278,15 @@ static uint32_t read_uint(GLuint buffer, uint64_t index)
     return v;
 }
 
-/* Field, then the counts and their prefix sums: the mesh's size. */
+/* Field and the crossed blocks, then the counts and their prefix sums: the mesh's size. */
 static fc_code count_mesh(const fc_surface_passes *s, extraction *x, fc_error *err)
 {
+    fc_code code = keep_crossed_blocks(s, x, err);
+    if (code == FC_OK)
+        code = allocate_scans(x, err);
+    if (code != FC_OK)
+        return code;
     uint64_t blocks = x->grid.block_count;
-    run_field(s, x);
     run_edges(s, x, 0);
     fc_surface_scan(s, x->buffers[BIND_EDGES], blocks * FC_SURFACE_BLOCK_EDGES);
     run_cells(s, x, 0);
@@ -228,7 +294,7 @@ static fc_code count_mesh(const fc_surface_passes *s, extraction *x, fc_error *e
     glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
     x->vertices = read_uint(x->buffers[BIND_EDGES], blocks * FC_SURFACE_BLOCK_EDGES);
     x->triangles = read_uint(x->buffers[BIND_CELLS], blocks * FC_SURFACE_BLOCK_CELLS);
-    fc_code code = fc_gl_check("counting the surface mesh", err);
+    code = fc_gl_check("counting the surface mesh", err);
     if (code != FC_OK)
         return code;
     uint64_t bytes = (uint64_t)x->vertices * VERTEX_BYTES + (uint64_t)x->triangles * TRIANGLE_BYTES;

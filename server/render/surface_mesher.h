@@ -29,10 +29,6 @@
  * the metaballs' on ellipsoids). */
 float fc_surface_kernel_reach_radii(fc_surface_kernel kernel);
 
-/* The field of one particle of radius 1 at distance `d` (in radii) for
- * `kernel`: 1 at the centre, 0 from its reach on. */
-float fc_surface_kernel_weight(fc_surface_kernel kernel, float d);
-
 /* Checks what the mesher takes before anything is read or computed: at most
  * FC_SURFACE_MAX_PARTICLES (LIMIT, the arrays untouched), valid settings and
  * a valid frame (INVALID_VALUE: NaN, radii out of range). */

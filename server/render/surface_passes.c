@@ -89,11 +89,14 @@ fc_code fc_surface_passes_create(const char *shader_dir, fc_surface_passes *s, f
     char defines[352];
     grid_defines(defines, sizeof defines);
     const char *field[] = {"surface_grid.comp.glsl", "surface_kernel.comp.glsl", "surface_field.comp.glsl"};
+    const char *crossed[] = {"surface_grid.comp.glsl", "surface_crossed.comp.glsl"};
     const char *edges[] = {"surface_grid.comp.glsl", "surface_edges.comp.glsl"};
     const char *vertices[] = {"surface_grid.comp.glsl", "surface_kernel.comp.glsl", "surface_vertices.comp.glsl"};
     const char *cells[] = {"surface_grid.comp.glsl", "surface_cells.comp.glsl"};
     const char *scan[] = {"anisotropy_scan.comp.glsl"};
     fc_code code = fc_program_build_defines(shader_dir, defines, field, 3, &s->field_program, err);
+    if (code == FC_OK)
+        code = fc_program_build_defines(shader_dir, defines, crossed, 2, &s->crossed_program, err);
     if (code == FC_OK)
         code = fc_program_build_defines(shader_dir, defines, edges, 2, &s->edges_program, err);
     if (code == FC_OK)
@@ -113,6 +116,7 @@ fc_code fc_surface_passes_create(const char *shader_dir, fc_surface_passes *s, f
 void fc_surface_passes_destroy(fc_surface_passes *s)
 {
     glDeleteProgram(s->field_program);
+    glDeleteProgram(s->crossed_program);
     glDeleteProgram(s->edges_program);
     glDeleteProgram(s->cells_program);
     glDeleteProgram(s->vertices_program);

@@ -10,7 +10,7 @@
 #include "fluidcast_types.h"
 
 typedef struct fc_surface_passes {
-    GLuint field_program, edges_program, cells_program, vertices_program, scan_program;
+    GLuint field_program, crossed_program, edges_program, cells_program, vertices_program, scan_program;
     GLint max_groups;   /* GL_MAX_COMPUTE_WORK_GROUP_COUNT along x */
 } fc_surface_passes;
 
