@@ -39,7 +39,7 @@
  * value, and whether the surface crosses it (surface_crossed.comp.glsl). */
 #define FC_SURFACE_FIELD_BLOCK_BYTES ((uint64_t)FC_SURFACE_BLOCK_SAMPLES * 4u + 4u)
 /* Bytes a block the surface crosses costs besides: its field once more (the
- * crossed blocks' own grid), per owned edge (7 per cell) and per cell a scan
+ * crossed blocks' own copy), per owned edge (7 per cell) and per cell a scan
  * entry. */
 #define FC_SURFACE_BLOCK_BYTES ((uint64_t)FC_SURFACE_BLOCK_SAMPLES * 4u + (uint64_t)FC_SURFACE_BLOCK_EDGES * 4u + (uint64_t)FC_SURFACE_BLOCK_CELLS * 4u)
 

@@ -1,6 +1,7 @@
 /* surface_mesher.c — the surface mesh of a frame (surface_mesher.h): the grid and
  * the particles' bins on the CPU (surface_grid.c), then the compute passes:
- * the field at the blocks' samples; the crossed lattice edges counted and
+ * the field at the blocks' samples; the blocks the surface crosses kept with
+ * their field; the crossed lattice edges counted and
  * prefix-summed into vertex numbers; the cells' triangles counted and
  * prefix-summed; each vertex's edge written; the vertices written, one
  * invocation each; the triangles written (marching tetrahedra, surface_tets.h). No atomics anywhere: every output's place comes
@@ -202,11 +203,31 @@ static void run_crossed(const fc_surface_passes *s, const extraction *x)
     run_program(s, s->crossed_program, USES_ISO, x, 0);
 }
 
+/* Copies the field of the kept blocks (crossed[b] != 0, in order) from `all` into `kept`, a run of
+ * consecutive blocks at a time. */
+static void copy_kept_field(GLuint all, GLuint kept, const uint32_t *crossed, uint32_t blocks)
+{
+    const GLsizeiptr block_bytes = (GLsizeiptr)FC_SURFACE_BLOCK_SAMPLES * 4;
+    uint32_t to = 0;
+    for (uint32_t b = 0; b < blocks;) {
+        if (!crossed[b]) {
+            b++;
+            continue;
+        }
+        uint32_t end = b;
+        while (end < blocks && crossed[end])
+            end++;
+        glCopyNamedBufferSubData(all, kept, (GLintptr)b * block_bytes, (GLintptr)to * block_bytes,
+                                 (GLsizeiptr)(end - b) * block_bytes);
+        to += end - b;
+        b = end;
+    }
+}
+
 /* Keeps the blocks the surface crosses (surface_crossed.comp.glsl), in key
- * order, with their field computed again for them alone: the edges, cells and
- * vertices only ever need those, and the scans over every block of the grid
- * (most of them inside the fluid or in the air around it) were most of its
- * memory and time. */
+ * order, with their field: the edges, cells and vertices only ever need
+ * those, and the scans over every block of the grid (most of them inside the
+ * fluid or in the air around it) were most of its memory and time. */
 static fc_code keep_crossed_blocks(const fc_surface_passes *s, extraction *x, fc_error *err)
 {
     fc_surface_grid *g = &x->grid;
@@ -222,25 +243,31 @@ static fc_code keep_crossed_blocks(const fc_surface_passes *s, extraction *x, fc
     for (uint32_t b = 0; b < blocks; b++)
         if (crossed[b])
             g->block_keys[kept++] = g->block_keys[b];
-    free(crossed);
     fc_code code = fc_gl_check("finding the blocks the surface crosses", err);
-    if (code != FC_OK || kept == blocks)
-        return code;
-    if ((uint64_t)kept * FC_SURFACE_BLOCK_BYTES > FC_SURFACE_GRID_BUDGET)
-        return fc_error_set(err, FC_ERR_LIMIT,
-                            "the surface crosses %u blocks (%llu MiB), past its budget of %llu MiB: raise "
+    if (code == FC_OK && kept < blocks &&
+        (uint64_t)blocks * FC_SURFACE_FIELD_BLOCK_BYTES + (uint64_t)kept * FC_SURFACE_BLOCK_BYTES >
+            FC_SURFACE_GRID_BUDGET)
+        code = fc_error_set(err, FC_ERR_LIMIT,
+                            "the surface crosses %u of %u blocks (%llu MiB), past its budget of %llu MiB: raise "
                             "surface_cell",
-                            kept, (unsigned long long)(((uint64_t)kept * FC_SURFACE_BLOCK_BYTES) >> 20),
+                            kept, blocks, (unsigned long long)(((uint64_t)kept * FC_SURFACE_BLOCK_BYTES) >> 20),
                             (unsigned long long)(FC_SURFACE_GRID_BUDGET >> 20));
+    if (code != FC_OK || kept == blocks) {
+        free(crossed);
+        return code;
+    }
+    GLuint all = x->buffers[BIND_FIELD];
+    x->buffers[BIND_FIELD] = 0;
+    code = make_buffer(&x->buffers[BIND_FIELD], (uint64_t)kept * FC_SURFACE_BLOCK_SAMPLES * 4, NULL, err);
+    if (code == FC_OK)
+        copy_kept_field(all, x->buffers[BIND_FIELD], crossed, blocks);
+    free(crossed);
+    glDeleteBuffers(1, &all);
     g->block_count = kept;
     delete_buffer(x, BIND_KEYS);
-    delete_buffer(x, BIND_FIELD);
     delete_buffer(x, BIND_CROSSED);
-    code = make_buffer(&x->buffers[BIND_KEYS], (uint64_t)kept * 4, g->block_keys, err);
     if (code == FC_OK)
-        code = make_buffer(&x->buffers[BIND_FIELD], (uint64_t)kept * FC_SURFACE_BLOCK_SAMPLES * 4, NULL, err);
-    if (code == FC_OK)
-        run_field(s, x);
+        code = make_buffer(&x->buffers[BIND_KEYS], (uint64_t)kept * 4, g->block_keys, err);
     return code;
 }
 
