@@ -94,6 +94,33 @@ static void face_segments(uint32_t m, uint32_t a, uint32_t s, uint8_t next[12])
     }
 }
 
+/* Whether cell edges k and l lie on a common face of the cell: each edge lies
+ * on the two faces (axis b, side of its corner's bit b) of the other axes. */
+static int share_face(uint32_t k, uint32_t l)
+{
+    uint32_t ck = fc_surface_cube_edge_corner(k), cl = fc_surface_cube_edge_corner(l);
+    for (uint32_t b = 0; b < 3u; b++)
+        if (b != k / 4u && b != l / 4u && ((ck >> b) & 1u) == ((cl >> b) & 1u))
+            return 1;
+    return 0;
+}
+
+/* The loop's vertex to fan from: one none of whose diagonals joins two
+ * vertices of one face. Such a diagonal lies in the face (an ambiguous one,
+ * holding four vertices), where the cell across it could fan the same one:
+ * the mesh edge would have four triangles. */
+static uint32_t fan_start(const uint32_t *loop, uint32_t n)
+{
+    for (uint32_t r = 0; r < n; r++) {
+        int clean = 1;
+        for (uint32_t i = 2; i + 1 < n && clean; i++)
+            clean = !share_face(loop[r], loop[(r + i) % n]);
+        if (clean)
+            return r;
+    }
+    return 0;
+}
+
 uint32_t fc_surface_cube_tables(uint32_t cases[FC_SURFACE_CUBE_CASES],
                                 uint32_t triangles[FC_SURFACE_CUBE_TRIANGLES_MAX])
 {
@@ -114,8 +141,9 @@ uint32_t fc_surface_cube_tables(uint32_t cases[FC_SURFACE_CUBE_CASES],
                 visited[k] = 1;
                 loop[n++] = k;
             }
+            uint32_t r = fan_start(loop, n);
             for (uint32_t i = 1; i + 1 < n && total < FC_SURFACE_CUBE_TRIANGLES_MAX; i++)
-                triangles[total++] = loop[0] | loop[i] << 4 | loop[i + 1] << 8;
+                triangles[total++] = loop[r] | loop[(r + i) % n] << 4 | loop[(r + i + 1) % n] << 8;
         }
         cases[m] = first | (total - first) << 16;
     }

@@ -7,7 +7,9 @@
  * edges), so the two cells sharing a face cut it the same way. Each crossed
  * edge ends one segment and starts the next (segments are directed with the
  * inside on their right, seen from outside the cell), so the segments chain
- * into loops; each loop is fanned into triangles. A vertex on a lattice edge
+ * into loops; each loop is fanned into triangles from a vertex none of whose
+ * diagonals lies in an ambiguous face (the cell across it could fan the same
+ * diagonal, which would then have four triangles). A vertex on a lattice edge
  * then has one segment in each of the edge's four faces: its triangles form
  * one ring, and every mesh edge lies on two triangles.
  *
