@@ -130,7 +130,7 @@ static const fc_setting_spec table[] = {
     {FIELD(45, surface, FC_SETTING_CHOICE, 1), .initial = {FC_SURFACE_MODE_SCREEN}, .choices = surface_names,
      .group = FC_GROUP_SURFACE, .option = "--surface",
      .help = "the fluid's surface: splatted and smoothed in screen space, or a mesh extracted from the "
-             "particles' field (marching tetrahedra on the GPU) and drawn with the same shading"},
+             "particles' field (marching cubes on the GPU) and drawn with the same shading"},
     {FIELD(46, surface_cell, FC_SETTING_FLOAT, 1), .initial = {1.0f}, .min = 0.25, .max = 4,
      .flags = FC_SETTING_MIN_OPEN, .group = FC_GROUP_SURFACE, .option = "--surface-cell", .metavar = "C",
      .help = "the surface mesh's grid cell edge in particle radii (smaller: finer and slower)"},

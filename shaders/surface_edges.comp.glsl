@@ -1,6 +1,6 @@
 #version 450 core
 // Surface mesh, passes 2 and 4: the lattice edges the isosurface crosses.
-// Each block owns the edges that start at its points [0, BLOCK)^3 (seven per
+// Each block owns the edges that start at its points [0, BLOCK)^3 (three per
 // point), so every edge of the grid has exactly one owner and one vertex,
 // numbered by the owner's block and the edge's place in it: the mesh is
 // welded by construction. Counting (emit false) writes 1 per crossed edge for

@@ -3,27 +3,18 @@
 // without main, linked into each surface pass: blocks of BLOCK^3 cells with
 // (BLOCK + 1)^3 samples each, the upper faces included, keyed
 // x | y << KEY_BITS | z << 2 KEY_BITS and listed in ascending key order; and the
-// seven directions of the lattice edges marching tetrahedra put vertices on
-// (surface_tets.h). BLOCK, KEY_BITS and the other sizes come as #defines from
+// three directions of the lattice edges marching cubes put vertices on
+// (surface_cubes.h). BLOCK, KEY_BITS and the other sizes come as #defines from
 // surface_passes.c (FC_SURFACE_GRID marks the files that read them).
 
 layout(location = 0) uniform uint block_count;
 
 layout(std430, binding = 3) readonly buffer BlockKeys { uint block_keys[]; };
 
-// x, y, z, xy, xz, yz, xyz.
+// x, y, z: the lattice edge directions (EDGE_DIRECTIONS), and a cell edge's axis.
 uvec3 direction(uint d)
 {
-    const uvec3 directions[7] = uvec3[7](uvec3(1, 0, 0), uvec3(0, 1, 0), uvec3(0, 0, 1), uvec3(1, 1, 0),
-                                         uvec3(1, 0, 1), uvec3(0, 1, 1), uvec3(1, 1, 1));
-    return directions[d];
-}
-
-// The direction whose axes are the bits of m (x | y << 1 | z << 2), m in 1..7.
-uint direction_of_mask(uint m)
-{
-    const uint of_mask[8] = uint[8](MISSING, 0u, 1u, 3u, 2u, 4u, 5u, 6u);
-    return of_mask[m];
+    return uvec3(equal(uvec3(d), uvec3(0u, 1u, 2u)));
 }
 
 uvec3 block_coordinates(uint key)

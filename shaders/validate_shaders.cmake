@@ -40,7 +40,7 @@ endfunction()
 # syntax, so these are placeholders, not the grid's.
 function(validate_surface_grid path)
   file(READ ${path} text)
-  string(REGEX REPLACE "^(#version[^\n]*\n)" "\\1#define FC_SURFACE_GRID 1\n#define BLOCK 2u\n#define BLOCK_SAMPLES 27u\n#define BLOCK_CELLS 8u\n#define EDGE_DIRECTIONS 7u\n#define BLOCK_EDGES 56u\n#define KEY_BITS 5u\n#define MISSING 0xFFFFFFFFu\n#define METABALL_REACH_RADII 3.0\n#define SPH_REACH_RADII 4.0\n#define BIN_SPLIT 2u\n#line 2\n" text "${text}")
+  string(REGEX REPLACE "^(#version[^\n]*\n)" "\\1#define FC_SURFACE_GRID 1\n#define BLOCK 2u\n#define BLOCK_SAMPLES 27u\n#define BLOCK_CELLS 8u\n#define EDGE_DIRECTIONS 3u\n#define BLOCK_EDGES 24u\n#define KEY_BITS 5u\n#define MISSING 0xFFFFFFFFu\n#define METABALL_REACH_RADII 3.0\n#define SPH_REACH_RADII 4.0\n#define BIN_SPLIT 2u\n#define CUBE_CASES 256u\n#line 2\n" text "${text}")
   get_filename_component(name ${path} NAME)
   set(copy "${CMAKE_CURRENT_BINARY_DIR}/grid_${name}")
   file(WRITE ${copy} "${text}")

@@ -21,7 +21,8 @@
 #define FC_SURFACE_BLOCK 8u                       /* cells per block edge */
 #define FC_SURFACE_BLOCK_SAMPLES 729u             /* (FC_SURFACE_BLOCK + 1)^3 */
 #define FC_SURFACE_BLOCK_CELLS 512u               /* FC_SURFACE_BLOCK^3 */
-#define FC_SURFACE_BLOCK_EDGES 3584u              /* 7 lattice edges per cell corner it owns */
+#define FC_SURFACE_EDGE_DIRECTIONS 3u             /* lattice edges per point: x, y, z (marching cubes) */
+#define FC_SURFACE_BLOCK_EDGES 1536u              /* FC_SURFACE_EDGE_DIRECTIONS per cell corner it owns */
 #define FC_SURFACE_KEY_BITS 10u                   /* bits of a block coordinate in a key */
 #define FC_SURFACE_MAX_BLOCKS_PER_AXIS (1u << FC_SURFACE_KEY_BITS)
 /* The most particles one extraction takes (their lists are indexed by 32 bits). */
@@ -39,7 +40,7 @@
  * value, and whether the surface crosses it (surface_crossed.comp.glsl). */
 #define FC_SURFACE_FIELD_BLOCK_BYTES ((uint64_t)FC_SURFACE_BLOCK_SAMPLES * 4u + 4u)
 /* Bytes a block the surface crosses costs besides: its field once more (the
- * crossed blocks' own copy), per owned edge (7 per cell) and per cell a scan
+ * crossed blocks' own copy), per owned edge (3 per cell) and per cell a scan
  * entry. */
 #define FC_SURFACE_BLOCK_BYTES ((uint64_t)FC_SURFACE_BLOCK_SAMPLES * 4u + (uint64_t)FC_SURFACE_BLOCK_EDGES * 4u + (uint64_t)FC_SURFACE_BLOCK_CELLS * 4u)
 

@@ -4,7 +4,7 @@
  * their field; the crossed lattice edges counted and
  * prefix-summed into vertex numbers; the cells' triangles counted and
  * prefix-summed; each vertex's edge written; the vertices written, one
- * invocation each; the triangles written (marching tetrahedra, surface_tets.h). No atomics anywhere: every output's place comes
+ * invocation each; the triangles written (marching cubes, surface_cubes.h). No atomics anywhere: every output's place comes
  * from a prefix sum over blocks in key order, so equal input gives the same
  * arrays bit for bit. Then Taubin smoothing on the CPU (surface_smooth.c). */
 #include "surface_mesher.h"
@@ -17,17 +17,17 @@
 #include "fc_frame.h"
 #include "fc_settings.h"
 #include "gl_util.h"
+#include "surface_cubes.h"
 #include "surface_grid.h"
 #include "surface_passes.h"
 #include "surface_smooth.h"
-#include "surface_tets.h"
 
 /* Uniform locations of surface_*.comp.glsl. */
 enum { LOC_BLOCKS = 0, LOC_ORIGIN = 1, LOC_CELL = 2, LOC_ISO = 3, LOC_KERNEL = 4, LOC_EMIT = 5, LOC_BIN = 6,
-       LOC_BINS = 7, LOC_WITH_ATTRIBUTES = 8, LOC_VERTEX_COUNT = 9, LOC_TET_CORNERS = 10, LOC_TET_CASES = 20 };
-/* Shader storage bindings of surface_*.comp.glsl (8 unused). */
+       LOC_BINS = 7, LOC_WITH_ATTRIBUTES = 8, LOC_VERTEX_COUNT = 9 };
+/* Shader storage bindings of surface_*.comp.glsl. */
 enum { BIND_PARTICLES = 0, BIND_ATTRIBUTES = 1, BIND_IDS = 2, BIND_KEYS = 3, BIND_BIN_STARTS = 4,
-       BIND_CROSSED = 5, BIND_FIELD = 6, BIND_VERTEX_EDGES = 7, BIND_SHAPES = 9, BIND_EDGES = 10,
+       BIND_CROSSED = 5, BIND_FIELD = 6, BIND_VERTEX_EDGES = 7, BIND_CUBES = 8, BIND_SHAPES = 9, BIND_EDGES = 10,
        BIND_CELLS = 11, BIND_POSITIONS = 12, BIND_NORMALS = 13, BIND_VERTEX_ATTRIBUTES = 14,
        BIND_VERTEX_EXTRAS = 15, BIND_INDICES = 16 };
 enum { BUFFER_COUNT = 17 };
@@ -305,12 +305,23 @@ static uint32_t read_uint(GLuint buffer, uint64_t index)
     return v;
 }
 
+/* The marching cubes tables (surface_cubes.h) as the cells pass reads them: the 256 cases, then the
+ * triangles. */
+static fc_code upload_cube_tables(extraction *x, fc_error *err)
+{
+    uint32_t tables[FC_SURFACE_CUBE_CASES + FC_SURFACE_CUBE_TRIANGLES_MAX];
+    uint32_t triangles = fc_surface_cube_tables(tables, tables + FC_SURFACE_CUBE_CASES);
+    return make_buffer(&x->buffers[BIND_CUBES], (uint64_t)(FC_SURFACE_CUBE_CASES + triangles) * 4, tables, err);
+}
+
 /* Field and the crossed blocks, then the counts and their prefix sums: the mesh's size. */
 static fc_code count_mesh(const fc_surface_passes *s, extraction *x, fc_error *err)
 {
     fc_code code = keep_crossed_blocks(s, x, err);
     if (code == FC_OK)
         code = allocate_scans(x, err);
+    if (code == FC_OK)
+        code = upload_cube_tables(x, err);
     if (code != FC_OK)
         return code;
     uint64_t blocks = x->grid.block_count;
@@ -519,14 +530,6 @@ static fc_code extract(const fc_surface_passes *s, const fc_frame *frame, const 
     return code;
 }
 
-static void set_tet_tables(const fc_surface_passes *s)
-{
-    uint32_t corners[FC_SURFACE_TETS], cases[FC_SURFACE_TETS * FC_SURFACE_TET_CASES];
-    fc_surface_tet_tables(corners, cases);
-    glProgramUniform1uiv(s->cells_program, LOC_TET_CORNERS, FC_SURFACE_TETS, corners);
-    glProgramUniform1uiv(s->cells_program, LOC_TET_CASES, FC_SURFACE_TETS * FC_SURFACE_TET_CASES, cases);
-}
-
 fc_code fc_surface_mesher_check(const fc_frame *frame, const fc_settings *settings, fc_error *err)
 {
     if (frame->count > FC_SURFACE_MAX_PARTICLES)
@@ -542,7 +545,6 @@ fc_code fc_surface_mesher_run(const fc_surface_passes *passes, const fc_frame *f
     memset(out, 0, sizeof *out);
     if (frame->count == 0)
         return FC_OK;
-    set_tet_tables(passes);
     extraction x = {0};
     fc_code code = extract(passes, frame, ellipsoids, settings, out, &x, err);
     release(&x);

@@ -7,6 +7,7 @@
 
 #include "gl_util.h"
 #include "shader_program.h"
+#include "surface_cubes.h"
 #include "surface_grid.h"
 #include "surface_mesher.h"
 
@@ -75,18 +76,18 @@ void fc_surface_dispatch_blocks(const fc_surface_passes *s, uint32_t blocks)
 static void grid_defines(char *out, size_t size)
 {
     snprintf(out, size,
-             "#define FC_SURFACE_GRID 1\n#define BLOCK %uu\n#define BLOCK_SAMPLES %uu\n#define BLOCK_CELLS %uu\n#define EDGE_DIRECTIONS 7u\n"
+             "#define FC_SURFACE_GRID 1\n#define BLOCK %uu\n#define BLOCK_SAMPLES %uu\n#define BLOCK_CELLS %uu\n#define EDGE_DIRECTIONS %uu\n"
              "#define BLOCK_EDGES %uu\n#define KEY_BITS %uu\n#define MISSING 0xFFFFFFFFu\n"
-             "#define METABALL_REACH_RADII %.9f\n#define SPH_REACH_RADII %.9f\n#define BIN_SPLIT %uu\n",
-             FC_SURFACE_BLOCK, FC_SURFACE_BLOCK_SAMPLES, FC_SURFACE_BLOCK_CELLS, FC_SURFACE_BLOCK_EDGES,
+             "#define METABALL_REACH_RADII %.9f\n#define SPH_REACH_RADII %.9f\n#define BIN_SPLIT %uu\n#define CUBE_CASES %uu\n",
+             FC_SURFACE_BLOCK, FC_SURFACE_BLOCK_SAMPLES, FC_SURFACE_BLOCK_CELLS, FC_SURFACE_EDGE_DIRECTIONS, FC_SURFACE_BLOCK_EDGES,
              FC_SURFACE_KEY_BITS, (double)FC_SURFACE_METABALL_REACH_RADII, (double)FC_SURFACE_SPH_REACH_RADII,
-             FC_SURFACE_BIN_SPLIT);
+             FC_SURFACE_BIN_SPLIT, FC_SURFACE_CUBE_CASES);
 }
 
 fc_code fc_surface_passes_create(const char *shader_dir, fc_surface_passes *s, fc_error *err)
 {
     memset(s, 0, sizeof *s);
-    char defines[352];
+    char defines[384];
     grid_defines(defines, sizeof defines);
     const char *field[] = {"surface_grid.comp.glsl", "surface_kernel.comp.glsl", "surface_field.comp.glsl"};
     const char *crossed[] = {"surface_grid.comp.glsl", "surface_crossed.comp.glsl"};
