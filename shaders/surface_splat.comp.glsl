@@ -53,41 +53,35 @@ const float MARGIN_PIXELS = 0.25;
 // That replaces the ray cast and the floor's clipping per pixel, which took
 // half of the 1M-particle thickness splat's instructions
 // (bench/RESULTS.md), by a few multiplications; the floor takes its share
-// per particle, the fraction of the sphere's volume above it. Set per
-// particle by begin_footprint().
+// per particle, the fraction of the sphere's volume above it.
+// Each sphere adds its volume exactly. Its chord sampled at the pixel
+// centres it covers adds more or less than its volume by where it falls
+// between them (a sphere two pixels across covers two to five centres),
+// which drew the particles' lattice into the thickness as a ripple at their
+// spacing (grain on a block's face) and let a sphere narrower than a pixel
+// vanish between the centres. So the chord's profile only weights the
+// pixels of a kernel at least a pixel wide in radius (one that always holds
+// a pixel centre), and the weights share out the volume.
+const float PI = 3.14159265358979;
+
 vec2 footprint_centre;   // the silhouette's centre, in pixel indices
-vec2 footprint_scale;    // 1 / its half extents (pixels)
-float footprint_units;   // thickness units at its centre
-
-// [first, last]: the silhouette's bounds in pixel indices, grown by
-// MARGIN_PIXELS on each side; `above`: the share of the sphere's volume above
-// the floor.
-void begin_footprint_above(vec2 first, vec2 last, float reach, float above)
-{
-    footprint_centre = 0.5 * (first + last);
-    footprint_scale = 1.0 / max(0.5 * (last - first) - MARGIN_PIXELS, 1e-3);
-    float share = min(2.0 * reach * above / max_chord, 1.0);
-    footprint_units = share * units_per_chord;
-}
-
-void begin_footprint(vec2 first, vec2 last, vec3 centre, float reach)
-{
-    begin_footprint_above(first, last, reach, volume_above_floor(centre, reach));
-}
+vec2 footprint_scale;    // 1 / the kernel's half extents (pixels)
+float footprint_units;   // thickness units per unit of weight
 
 #ifdef FC_FUSED_SUN
 // The sun's thickness (FC_FUSED_SUN, below), summed as thickness_sum.
 layout(binding = 3, r32ui) uniform uimage2D sun_sum;
 #endif
 
-// `sun` (a constant where it is called, so the compiler keeps one atomic):
-// into the sun's thickness, else the camera's.
-void footprint_pixel_of(ivec2 p, bool sun)
+// Pixel p's weight in the footprint; with `add` (a constant where it is
+// called, as `sun`, so the compiler keeps one atomic), its share added into
+// the sun's thickness or the camera's.
+float footprint_pixel(ivec2 p, bool add, bool sun)
 {
     vec2 offset = (vec2(p) - footprint_centre) * footprint_scale;
-    float falloff = 1.0 - dot(offset, offset);
-    if (falloff > 0.0) {
-        uint units = uint(sqrt(falloff) * footprint_units + 0.5);
+    float weight = sqrt(max(1.0 - dot(offset, offset), 0.0));
+    if (add && weight > 0.0) {
+        uint units = uint(weight * footprint_units + 0.5);
 #ifdef FC_FUSED_SUN
         if (sun)
             imageAtomicAdd(sun_sum, p, units);
@@ -95,20 +89,59 @@ void footprint_pixel_of(ivec2 p, bool sun)
 #endif
             imageAtomicAdd(thickness_sum, p, units);
     }
+    return weight;
 }
 
-void footprint_pixel(ivec2 p)
+// The weights' sum over the box [lo, hi], each pixel's share added with
+// `add`. As splat_walk_small.glsl: the 3x3 candidates with loops the compiler
+// unrolls (on llvmpipe a loop the SIMD group runs costs more than the
+// candidates it skips), then loops over what a larger box holds beyond.
+float visit_footprint(ivec2 lo, ivec2 hi, bool add, bool sun)
 {
-    footprint_pixel_of(p, false);
+    float sum = 0.0;
+    for (int dy = 0; dy < 3; dy++)
+        for (int dx = 0; dx < 3; dx++)
+            if (all(lessThanEqual(lo + ivec2(dx, dy), hi)))
+                sum += footprint_pixel(lo + ivec2(dx, dy), add, sun);
+    for (int x = lo.x + 3; x <= hi.x; x++)
+        for (int y = lo.y; y <= min(hi.y, lo.y + 2); y++)
+            sum += footprint_pixel(ivec2(x, y), add, sun);
+    for (int y = lo.y + 3; y <= hi.y; y++)
+        for (int x = lo.x; x <= hi.x; x++)
+            sum += footprint_pixel(ivec2(x, y), add, sun);
+    return sum;
+}
+
+// Up to this half extent (pixels) the chord's samples are summed to share
+// out the volume; past it they add up to it within a few percent, as the ray
+// casts of larger sprites do.
+const float SHARED_VOLUME_MAX_PX = 4.0;
+
+// The sphere whose projected interval is x_range, y_range (NDC) into an
+// image of `size` pixels: `reach`, its radius, and `above`, the share of its
+// volume above the floor, make its volume.
+void splat_footprint_into(vec2 x_range, vec2 y_range, float reach, float above, vec2 size, bool sun)
+{
+    vec2 first = (vec2(x_range.x, y_range.x) + 1.0) * 0.5 * size - 0.5;
+    vec2 last = (vec2(x_range.y, y_range.y) + 1.0) * 0.5 * size - 0.5;
+    vec2 half_extent = max(0.5 * (last - first), vec2(1e-3));
+    vec2 kernel = max(half_extent, vec2(1.0));
+    footprint_centre = 0.5 * (first + last);
+    footprint_scale = 1.0 / kernel;
+    ivec2 lo = ivec2(ceil(footprint_centre - kernel)), hi = ivec2(floor(footprint_centre + kernel));
+    footprint_units = min(2.0 * reach * above / max_chord, 1.0) * units_per_chord;   // at the centre's chord
+    if (max(kernel.x, kernel.y) <= SHARED_VOLUME_MAX_PX) {
+        // The chord over the silhouette's ellipse integrates to 2 pi / 3
+        // times its half extents times the centre's chord: the volume. A
+        // kernel a pixel or more in radius holds a pixel centre within 0.71
+        // pixels of its middle, so the sum is at least 0.7.
+        footprint_units *= (2.0 * PI / 3.0) * half_extent.x * half_extent.y / visit_footprint(lo, hi, false, sun);
+    }
+    visit_footprint(max(lo, ivec2(0)), min(hi, ivec2(size) - 1), true, sun);
 }
 #endif
 
-#ifdef FC_THICKNESS_FOOTPRINT
-void splat_pixel(ivec2 p, vec3 centre)
-{
-    footprint_pixel(p);
-}
-#else
+#ifndef FC_THICKNESS_FOOTPRINT
 #ifdef FC_THICKNESS_ONLY
 // The thickness alone (the reduced scale, the shadow map) takes the floor's
 // share per particle too, the fraction of its volume above it, instead of
@@ -230,24 +263,7 @@ layout(location = 13) uniform vec2 thickness_viewport;   // pixels of the thickn
 
 void splat_footprint(vec2 x_range, vec2 y_range, vec3 centre, float reach)
 {
-    vec2 first = (vec2(x_range.x, y_range.x) + 1.0) * 0.5 * thickness_viewport - 0.5 - MARGIN_PIXELS;
-    vec2 last = (vec2(x_range.y, y_range.y) + 1.0) * 0.5 * thickness_viewport - 0.5 + MARGIN_PIXELS;
-    ivec2 lo = max(ivec2(ceil(first)), ivec2(0));
-    ivec2 hi = min(ivec2(floor(last)), ivec2(thickness_viewport) - 1);
-    begin_footprint(first, last, centre, reach);
-    // As splat_walk_small.glsl: the 3x3 candidates with loops the compiler
-    // unrolls (on llvmpipe a loop the SIMD group runs costs more than the
-    // candidates it skips), then loops over what a larger box holds beyond.
-    for (int dy = 0; dy < 3; dy++)
-        for (int dx = 0; dx < 3; dx++)
-            if (all(lessThanEqual(lo + ivec2(dx, dy), hi)))
-                footprint_pixel(lo + ivec2(dx, dy));
-    for (int x = lo.x + 3; x <= hi.x; x++)
-        for (int y = lo.y; y <= min(hi.y, lo.y + 2); y++)
-            footprint_pixel(ivec2(x, y));
-    for (int y = lo.y + 3; y <= hi.y; y++)
-        for (int x = lo.x; x <= hi.x; x++)
-            footprint_pixel(ivec2(x, y));
+    splat_footprint_into(x_range, y_range, reach, volume_above_floor(centre, reach), thickness_viewport, false);
 }
 #endif
 
@@ -257,9 +273,8 @@ void splat_footprint(vec2 x_range, vec2 y_range, vec3 centre, float reach)
 // camera (shadow_pass.c), without a floor, at its map's thickness
 // resolution. The same pixels and sums as that view's thickness-only splat
 // with the footprint, for the same reason as the camera's thickness above.
-// Only for sprites of at most 2x2 pixels there (splat_walk_tiny.glsl's
-// candidates, without a loop): with the camera thickness's 3x3 candidates
-// and loops the fused walk cost more than the sun's own splat.
+// Only where the sun sees sprites of at most 2x2 pixels (compute_splat.c):
+// with larger ones the fused walk cost more than the sun's own splat.
 layout(location = 15) uniform mat4 sun_matrix;      // world -> the sun's view (locations 15-18)
 layout(location = 19) uniform vec2 sun_focal;       // its P[0][0], P[1][1]
 layout(location = 20) uniform vec2 sun_viewport;    // pixels of the sun's thickness image
@@ -272,21 +287,7 @@ void splat_sun_footprint(float reach)
         return;
     vec2 x_range = projected_interval(centre.x, depth, sun_focal.x, reach);
     vec2 y_range = projected_interval(centre.y, depth, sun_focal.y, reach);
-    vec2 first = (vec2(x_range.x, y_range.x) + 1.0) * 0.5 * sun_viewport - 0.5 - MARGIN_PIXELS;
-    vec2 last = (vec2(x_range.y, y_range.y) + 1.0) * 0.5 * sun_viewport - 0.5 + MARGIN_PIXELS;
-    ivec2 lo = max(ivec2(ceil(first)), ivec2(0));
-    ivec2 hi = min(ivec2(floor(last)), ivec2(sun_viewport) - 1);
-    begin_footprint_above(first, last, reach, 1.0);
-    bvec2 second = lessThanEqual(lo + 1, hi);
-    if (all(lessThanEqual(lo, hi))) {
-        footprint_pixel_of(lo, true);
-        if (second.x)
-            footprint_pixel_of(lo + ivec2(1, 0), true);
-        if (second.y)
-            footprint_pixel_of(lo + ivec2(0, 1), true);
-        if (all(second))
-            footprint_pixel_of(lo + ivec2(1, 1), true);
-    }
+    splat_footprint_into(x_range, y_range, reach, 1.0, sun_viewport, true);
 }
 #endif
 
@@ -322,14 +323,16 @@ void main()
     ivec2 lo = max(ivec2(ceil(first)), ivec2(0));
     ivec2 hi = min(ivec2(floor(last)), ivec2(viewport) - 1);
 #ifdef FC_THICKNESS_FOOTPRINT
-    begin_footprint(first, last, centre, reach);
-#elif defined(FC_THICKNESS_ONLY)
+    splat_footprint_into(x_range, y_range, reach, volume_above_floor(centre, reach), viewport, false);
+#else
+#ifdef FC_THICKNESS_ONLY
     particle_above_floor = volume_above_floor(centre, reach);
 #endif
 #ifdef FC_DEPTH_ONLY
     if (walked_in_this_phase(centre, depth, reach, lo, hi))
 #endif
         walk_pixels(lo, hi, centre, reach);
+#endif
 #ifdef FC_FUSED_THICKNESS
     if (cull_phase != CULL_NEAR)
         splat_footprint(x_range, y_range, centre, reach);

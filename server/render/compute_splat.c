@@ -164,9 +164,13 @@ static fc_code build_splats(const char *shader_dir, fc_splat_output output, bool
                             GLuint programs[FC_SPLAT_WALKS], fc_error *err)
 {
     for (int w = 0; w < FC_SPLAT_WALKS; w++) {
-        const char *tail[] = {WALKS[w], "surface_splat.comp.glsl"};
         const char *defines = splat_defines(output, ellipsoids, (fc_splat_walk)w);
-        fc_code code = build_shaped(shader_dir, defines, ellipsoids, tail, 2, &programs[w], err);
+        const char *tail[2];
+        size_t files = 0;
+        if (defines != FOOTPRINT_DEFINES)   /* the footprint visits its own kernel's pixels */
+            tail[files++] = WALKS[w];
+        tail[files++] = "surface_splat.comp.glsl";
+        fc_code code = build_shaped(shader_dir, defines, ellipsoids, tail, files, &programs[w], err);
         if (code != FC_OK)
             return code;
     }

@@ -65,7 +65,7 @@ static void test_defaults(void)
     CHECK(s.radius == 0.0f && s.smoothing == FC_SMOOTHING_NARROW && s.iterations == fc_smoothing_default_iterations(FC_SMOOTHING_NARROW));
     CHECK(s.filter_radius == 0 && s.smooth_scale == 1.0f);
     CHECK(s.ior == 1.33f && s.refraction == 0.25f && s.specular == 1.5f && s.shininess == 400.0f);
-    CHECK(s.thickness_scale == 0.5f && s.thickness_blur == 2);
+    CHECK(s.thickness_scale == 0.25f && s.thickness_blur == 2);
     CHECK(s.noise == 0.0f && s.foam == 0.0f && s.foam_tau == 0.5f && s.foam_decay == 0.85f);
     CHECK(s.density_threshold == 0.0f);
     CHECK(s.kernel == FC_KERNEL_SPHERE && s.shadow == 1 && s.exposure == 0.0f);
@@ -93,7 +93,7 @@ static void expect_smooth_scale(fc_settings *s) { s->smooth_scale = 0.25f; }
 static void expect_refraction(fc_settings *s) { s->refraction = 250.0f; }
 static void expect_specular(fc_settings *s) { s->specular = 2.5f; }
 static void expect_shininess(fc_settings *s) { s->shininess = 512.0f; }
-static void expect_thickness_scale(fc_settings *s) { s->thickness_scale = 0.25f; }
+static void expect_thickness_scale(fc_settings *s) { s->thickness_scale = 0.5f; }
 static void expect_thickness_blur(fc_settings *s) { s->thickness_blur = 9; }
 static void expect_noise(fc_settings *s) { s->noise = 0.75f; }
 static void expect_foam(fc_settings *s) { s->foam = 3.0f; }
@@ -127,7 +127,7 @@ static const key_case key_cases[] = {
     {9, 1, {0x437A0000u}, expect_refraction},                         /* 250f */
     {10, 1, {0x40200000u}, expect_specular},                          /* 2.5f */
     {11, 1, {0x44000000u}, expect_shininess},                         /* 512f */
-    {12, 1, {0x3E800000u}, expect_thickness_scale},                   /* 0.25f */
+    {12, 1, {0x3F000000u}, expect_thickness_scale},                   /* 0.5f */
     {13, 1, {9}, expect_thickness_blur},
     {14, 1, {0x3F400000u}, expect_noise},                             /* 0.75f */
     {15, 1, {0x40400000u}, expect_foam},                              /* 3f */
