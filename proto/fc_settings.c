@@ -56,7 +56,7 @@ static const fc_setting_spec table[] = {
     {FIELD(4, fluid_color, FC_SETTING_FLOAT, 3), .initial = {0.02f, 0.15f, 0.28f}, .min = 0, .max = 1,
      .separator = ',', .group = FC_GROUP_SHADING, .option = "--color", .metavar = "R,G,B",
      .help = "linear colour of a thick layer"},
-    {FIELD(5, absorption, FC_SETTING_FLOAT, 3), .initial = {0.012f, 0.0042f, 0.0021f}, .min = 0, .max = 1e6,
+    {FIELD(5, absorption, FC_SETTING_FLOAT, 3), .initial = {0.02f, 0.007f, 0.0035f}, .min = 0, .max = 1e6,
      .separator = ',', .group = FC_GROUP_SHADING, .option = "--absorption", .metavar = "R,G,B",
      .help = "Beer-Lambert absorption per particle radius of thickness, per channel"},
     {FIELD(6, ior, FC_SETTING_FLOAT, 1), .initial = {1.33f}, .min = 1, .max = 3, .group = FC_GROUP_SHADING,
@@ -145,7 +145,7 @@ static const fc_setting_spec table[] = {
      .group = FC_GROUP_SHADING, .option = "--contact-shadow", .metavar = "S",
      .help = "how much the water darkens where it meets the built-in floor (within 2.5 particle radii), so its "
              "foot shows on a floor of its own grey; 0 = off"},
-    {FIELD(58, depth_dimming, FC_SETTING_FLOAT, 1), .initial = {0.3f}, .min = 0, .max = 1,
+    {FIELD(58, depth_dimming, FC_SETTING_FLOAT, 1), .initial = {0.1f}, .min = 0, .max = 1,
      .group = FC_GROUP_SHADING, .option = "--depth-dimming", .metavar = "D",
      .help = "how much what shows through thick water dims (63% of it at 12 particle radii of thickness), so a "
              "body's far faces read; 0 = off"},

@@ -33,7 +33,7 @@ options:
   --mesh-scale S     the meshing spheres' radius over R (default 2)
   --voxel-scale V    the voxel size over R (default 0.5)
   --smooth N         passes of vertex smoothing on the mesh (default 30)
-  --absorption R,G,B absorption per world unit (default 0.012,0.0042,0.0021 per radius)
+  --absorption R,G,B absorption per world unit (default 0.02,0.007,0.0035 per radius)
   --threads N        render threads (default 2; the machine is shared)
   --keep-blend       also write IMAGE.png.blend, the scene, to look at in Blender
   -h, --help         this help

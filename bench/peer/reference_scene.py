@@ -59,7 +59,7 @@ FOG_DISTANCE_IN_CHECKERS = 200.0
 # fluidcast's default IOR (proto/fc_settings.c)
 IOR = 1.33
 # Weak absorption: fluidcast's default (proto/fc_settings.c).
-DEFAULT_ABSORPTION_PER_RADIUS = (0.012, 0.0042, 0.0021)
+DEFAULT_ABSORPTION_PER_RADIUS = (0.02, 0.007, 0.0035)
 
 
 def vec3(text):
@@ -84,7 +84,7 @@ def parse_args():
     p.add_argument("--mesh-scale", type=float, default=2.0)
     p.add_argument("--voxel-scale", type=float, default=0.5)
     p.add_argument("--smooth", type=int, default=30, help="passes of vertex smoothing")
-    p.add_argument("--absorption", type=vec3, help="per world unit (default: 0.012,0.0042,0.0021 per radius)")
+    p.add_argument("--absorption", type=vec3, help="per world unit (default: 0.02,0.007,0.0035 per radius)")
     p.add_argument("--threads", type=int, default=0, help="0: Blender's choice")
     p.add_argument("--blend", help="also save the scene to this .blend file")
     args = p.parse_args(argv)

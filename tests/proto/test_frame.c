@@ -125,7 +125,7 @@ static void test_settings_default_and_domains(void)
     fc_settings_default(&d);
     CHECK(d.radius == 0 && d.smoothing == FC_SMOOTHING_NARROW && d.iterations == 4);
     CHECK(d.fluid_color[0] == 0.02f && d.fluid_color[1] == 0.15f && d.fluid_color[2] == 0.28f);
-    CHECK(d.absorption[0] == 0.012f && d.absorption[1] == 0.0042f && d.absorption[2] == 0.0021f);
+    CHECK(d.absorption[0] == 0.02f && d.absorption[1] == 0.007f && d.absorption[2] == 0.0035f);
     CHECK(d.ior == 1.33f);
     CHECK_CODE(fc_settings_validate(&d, &err), FC_OK);
 

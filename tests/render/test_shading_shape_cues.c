@@ -201,6 +201,7 @@ static void test_depth_dimming(render_fixture *f)
     fc_settings_default(&settings);
     settings.radius = RADIUS;
     settings.specular = 0.0f;
+    settings.depth_dimming = 0.3f;   /* the cue's own effect, at three times the default */
     fc_scene_textures *scene = grey_scene(f);
     if (!scene)
         return;
