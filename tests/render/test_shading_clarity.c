@@ -178,10 +178,10 @@ static void test_deep_layer_transmits(render_fixture *f)
     /* The layer covers the view's middle (its sides are 3.1 units at a
      * distance of 5, a view of 3.6): compare its middle half, all its rows
      * (whatever the particles' rows fall on), with the view's top rows. */
-    const uint32_t x0 = SIZE / 4, x1 = 3 * SIZE / 4;
+    const uint32_t lo = SIZE / 4, hi = 3 * SIZE / 4;
     for (uint32_t c = 0; c < 3; c++) {
-        double open = stripe_contrast(&img, 0, 2, x0, x1, c);
-        double through = stripe_contrast(&img, x0, x1, x0, x1, c);
+        double open = stripe_contrast(&img, 0, 2, lo, hi, c);
+        double through = stripe_contrast(&img, lo, hi, lo, hi, c);
         CHECK_MSG(open > 0.1, "channel %u: background contrast %g", c, open);
         CHECK_MSG(through >= 0.5 * open, "channel %u: the layer lets %g of the contrast through", c,
                   through / open);
