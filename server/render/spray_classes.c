@@ -137,6 +137,8 @@ fc_code fc_spray_classes_compute(fc_spray_classes *c, const fc_frame *frame, uin
     fc_code code = reserve(c, frame->count, cells, err);
     if (code != FC_OK)
         return code;
+    c->cells = 0;
+    c->support = 0.0f;
     float support = FC_ANISOTROPY_SUPPORT_SPACINGS * fc_frame_estimate_radius(frame) / ESTIMATED_RADIUS_PER_SPACING;
     /* Frames with their own radii are left to the density threshold: their
      * sizes differ, so one spacing does not tell who is isolated. */
@@ -147,6 +149,8 @@ fc_code fc_spray_classes_compute(fc_spray_classes *c, const fc_frame *frame, uin
     }
     float per_cell = 1.0f / support;
     bucket(c, frame, per_cell, cells);
+    c->cells = cells;
+    c->support = support;
     uint64_t spray = 0;
     for (uint64_t i = 0; i < frame->count; i++) {
         uint32_t n = neighbours_of(c, frame, i, support, per_cell, cells, spray_neighbours);
@@ -160,6 +164,13 @@ fc_code fc_spray_classes_compute(fc_spray_classes *c, const fc_frame *frame, uin
         for (uint64_t i = 0; i < frame->count; i++)
             c->keys[i] = surface_key(frame, i);
     return FC_OK;
+}
+
+uint32_t fc_spray_classes_cell(const fc_spray_classes *c, const float *p, int dx, int dy, int dz)
+{
+    int64_t home[3];
+    cell_of(p, 1.0f / c->support, home);
+    return cell_hash(home[0] + dx, home[1] + dy, home[2] + dz, c->cells);
 }
 
 float fc_spray_classes_threshold(const fc_settings *settings)

@@ -1,0 +1,130 @@
+/* foam_classes.c — see foam_classes.h. */
+#include "foam_classes.h"
+
+#include <math.h>
+#include <stdbool.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "fc_error.h"
+
+/* I_ta must pass this share of the frame's rms speed: velocity noise in a
+ * near-calm frame stays below it. */
+#define FOAM_MIN_SHARE_OF_RMS_SPEED 0.1
+
+static fc_code reserve(fc_foam_classes *f, uint64_t count, fc_error *err)
+{
+    if (count <= f->capacity)
+        return FC_OK;
+    uint8_t *foam = realloc(f->foam, count * sizeof *foam);
+    if (foam)
+        f->foam = foam;
+    float *potential = foam ? realloc(f->potential, count * sizeof *potential) : NULL;
+    if (!potential)
+        return fc_error_set(err, FC_ERR_NOMEM, "out of memory classifying %llu particles as foam",
+                            (unsigned long long)count);
+    f->potential = potential;
+    f->capacity = count;
+    return FC_OK;
+}
+
+/* One neighbour's share of particle i's trapped-air potential: large when
+ * the two approach (v_ij against x_ij), zero when they move apart. */
+static double trapped_air_term(const float *xi, const float *vi, const float *xj, const float *vj, float support)
+{
+    double x[3], v[3], xx = 0.0, vv = 0.0, xv = 0.0;
+    for (int k = 0; k < 3; k++) {
+        x[k] = (double)xi[k] - xj[k];
+        v[k] = (double)vi[k] - vj[k];
+        xx += x[k] * x[k];
+        vv += v[k] * v[k];
+        xv += x[k] * v[k];
+    }
+    if (!(xx > 0.0) || !(vv > 0.0))
+        return 0.0;
+    double d = sqrt(xx), speed = sqrt(vv);
+    double weight = 1.0 - d / support;
+    return weight > 0.0 ? speed * (1.0 - xv / (d * speed)) * weight : 0.0;
+}
+
+/* Particle i's trapped-air potential over its neighbours within the
+ * support, and how many there are (*neighbours). */
+static double potential_of(const fc_spray_classes *s, const fc_frame *frame, uint64_t i, uint32_t *neighbours)
+{
+    const float *p = frame->positions + 3 * i, *v = frame->velocity + 3 * i;
+    float support_sq = s->support * s->support;
+    uint32_t seen[27], visited = 0;
+    double sum = 0.0;
+    *neighbours = 0;
+    for (int dz = -1; dz <= 1; dz++)
+        for (int dy = -1; dy <= 1; dy++)
+            for (int dx = -1; dx <= 1; dx++) {
+                uint32_t h = fc_spray_classes_cell(s, p, dx, dy, dz);
+                /* Two cells hashed to one slot hold the same particles: walk it once. */
+                bool again = false;
+                for (uint32_t k = 0; k < visited; k++)
+                    again |= seen[k] == h;
+                if (again)
+                    continue;
+                seen[visited++] = h;
+                for (uint32_t slot = s->cell_start[h]; slot < s->cell_start[h + 1]; slot++) {
+                    uint32_t j = s->sorted[slot];
+                    const float *q = frame->positions + 3 * (size_t)j;
+                    float d[3] = {q[0] - p[0], q[1] - p[1], q[2] - p[2]};
+                    if (j == i || d[0] * d[0] + d[1] * d[1] + d[2] * d[2] >= support_sq)
+                        continue;
+                    ++*neighbours;
+                    sum += trapped_air_term(p, v, q, frame->velocity + 3 * (size_t)j, s->support);
+                }
+            }
+    return sum;
+}
+
+static double rms_speed(const fc_frame *frame)
+{
+    double sum = 0.0;
+    for (uint64_t i = 0; i < 3 * frame->count; i++)
+        sum += (double)frame->velocity[i] * frame->velocity[i];
+    return sqrt(sum / (double)frame->count);
+}
+
+fc_code fc_foam_classes_compute(fc_foam_classes *f, const fc_spray_classes *spray, const fc_frame *frame,
+                                fc_error *err)
+{
+    fc_code code = reserve(f, frame->count, err);
+    if (code != FC_OK)
+        return code;
+    f->count = 0;
+    if (frame->count > 0)
+        memset(f->foam, 0, frame->count * sizeof *f->foam);
+    if (!frame->velocity || spray->cells == 0 || frame->count == 0)
+        return FC_OK;
+    /* The candidates' mean and spread of I_ta, in one pass. */
+    double sum = 0.0, sum_sq = 0.0;
+    uint64_t candidates = 0;
+    for (uint64_t i = 0; i < frame->count; i++) {
+        uint32_t n = 0;
+        double ta = spray->keys[i] == 0.0f ? 0.0 : potential_of(spray, frame, i, &n);
+        bool candidate = spray->keys[i] != 0.0f && n < FC_FOAM_MAX_NEIGHBOURS;
+        f->potential[i] = candidate ? (float)ta : 0.0f;
+        f->foam[i] = candidate;
+        candidates += candidate;
+        sum += candidate ? ta : 0.0;
+        sum_sq += candidate ? ta * ta : 0.0;
+    }
+    double mean = candidates ? sum / (double)candidates : 0.0;
+    double spread = candidates ? sqrt(fmax(sum_sq / (double)candidates - mean * mean, 0.0)) : 0.0;
+    double threshold = fmax(mean + spread, FOAM_MIN_SHARE_OF_RMS_SPEED * rms_speed(frame));
+    for (uint64_t i = 0; i < frame->count; i++) {
+        f->foam[i] = f->foam[i] && spread > 0.0 && (double)f->potential[i] > threshold;
+        f->count += f->foam[i];
+    }
+    return FC_OK;
+}
+
+void fc_foam_classes_free(fc_foam_classes *f)
+{
+    free(f->foam);
+    free(f->potential);
+    *f = (fc_foam_classes){0};
+}
