@@ -11,6 +11,10 @@
 /* I_ta must pass this share of the frame's rms speed: velocity noise in a
  * near-calm frame stays below it. */
 #define FOAM_MIN_SHARE_OF_RMS_SPEED 0.1
+/* ... and stand this many standard deviations above the candidates' mean:
+ * the few where the flow traps the most air (an impact, a breaking crown),
+ * not the whole stirred pool. */
+#define FOAM_SPREADS 1.5
 
 static fc_code reserve(fc_foam_classes *f, uint64_t count, fc_error *err)
 {
@@ -20,10 +24,13 @@ static fc_code reserve(fc_foam_classes *f, uint64_t count, fc_error *err)
     if (foam)
         f->foam = foam;
     float *potential = foam ? realloc(f->potential, count * sizeof *potential) : NULL;
-    if (!potential)
+    if (potential)
+        f->potential = potential;
+    uint8_t *company = potential ? realloc(f->company, count * sizeof *company) : NULL;
+    if (!company)
         return fc_error_set(err, FC_ERR_NOMEM, "out of memory classifying %llu particles as foam",
                             (unsigned long long)count);
-    f->potential = potential;
+    f->company = company;
     f->capacity = count;
     return FC_OK;
 }
@@ -47,15 +54,22 @@ static double trapped_air_term(const float *xi, const float *vi, const float *xj
     return weight > 0.0 ? speed * (1.0 - xv / (d * speed)) * weight : 0.0;
 }
 
-/* Particle i's trapped-air potential over its neighbours within the
- * support, and how many there are (*neighbours). */
-static double potential_of(const fc_spray_classes *s, const fc_frame *frame, uint64_t i, uint32_t *neighbours)
+/* What a walk over a particle's neighbours adds up. */
+typedef struct neighbour_sums {
+    double potential;     /* I_ta */
+    uint32_t neighbours;  /* within the support */
+    uint32_t foam;        /* of them foam (the second walk, once foam is known) */
+} neighbour_sums;
+
+/* Walks particle i's neighbours within the support on the grid of `s`:
+ * with `foam`, counts the foam among them, else sums I_ta. */
+static neighbour_sums walk_neighbours(const fc_spray_classes *s, const fc_frame *frame, uint64_t i,
+                                      const uint8_t *foam)
 {
     const float *p = frame->positions + 3 * i, *v = frame->velocity + 3 * i;
     float support_sq = s->support * s->support;
     uint32_t seen[27], visited = 0;
-    double sum = 0.0;
-    *neighbours = 0;
+    neighbour_sums sums = {0.0, 0, 0};
     for (int dz = -1; dz <= 1; dz++)
         for (int dy = -1; dy <= 1; dy++)
             for (int dx = -1; dx <= 1; dx++) {
@@ -73,11 +87,14 @@ static double potential_of(const fc_spray_classes *s, const fc_frame *frame, uin
                     float d[3] = {q[0] - p[0], q[1] - p[1], q[2] - p[2]};
                     if (j == i || d[0] * d[0] + d[1] * d[1] + d[2] * d[2] >= support_sq)
                         continue;
-                    ++*neighbours;
-                    sum += trapped_air_term(p, v, q, frame->velocity + 3 * (size_t)j, s->support);
+                    sums.neighbours++;
+                    if (foam)
+                        sums.foam += foam[j];
+                    else
+                        sums.potential += trapped_air_term(p, v, q, frame->velocity + 3 * (size_t)j, s->support);
                 }
             }
-    return sum;
+    return sums;
 }
 
 static double rms_speed(const fc_frame *frame)
@@ -95,17 +112,22 @@ fc_code fc_foam_classes_compute(fc_foam_classes *f, const fc_spray_classes *spra
     if (code != FC_OK)
         return code;
     f->count = 0;
-    if (frame->count > 0)
+    f->threshold = 0.0f;
+    if (frame->count > 0) {
         memset(f->foam, 0, frame->count * sizeof *f->foam);
+        memset(f->company, 0, frame->count * sizeof *f->company);
+    }
     if (!frame->velocity || spray->cells == 0 || frame->count == 0)
         return FC_OK;
     /* The candidates' mean and spread of I_ta, in one pass. */
     double sum = 0.0, sum_sq = 0.0;
     uint64_t candidates = 0;
     for (uint64_t i = 0; i < frame->count; i++) {
-        uint32_t n = 0;
-        double ta = spray->keys[i] == 0.0f ? 0.0 : potential_of(spray, frame, i, &n);
-        bool candidate = spray->keys[i] != 0.0f && n < FC_FOAM_MAX_NEIGHBOURS;
+        neighbour_sums sums = {0.0, 0, 0};
+        if (spray->keys[i] != 0.0f)
+            sums = walk_neighbours(spray, frame, i, NULL);
+        double ta = sums.potential;
+        bool candidate = spray->keys[i] != 0.0f && sums.neighbours < FC_FOAM_MAX_NEIGHBOURS;
         f->potential[i] = candidate ? (float)ta : 0.0f;
         f->foam[i] = candidate;
         candidates += candidate;
@@ -114,11 +136,14 @@ fc_code fc_foam_classes_compute(fc_foam_classes *f, const fc_spray_classes *spra
     }
     double mean = candidates ? sum / (double)candidates : 0.0;
     double spread = candidates ? sqrt(fmax(sum_sq / (double)candidates - mean * mean, 0.0)) : 0.0;
-    double threshold = fmax(mean + spread, FOAM_MIN_SHARE_OF_RMS_SPEED * rms_speed(frame));
+    double threshold = fmax(mean + FOAM_SPREADS * spread, FOAM_MIN_SHARE_OF_RMS_SPEED * rms_speed(frame));
     for (uint64_t i = 0; i < frame->count; i++) {
         f->foam[i] = f->foam[i] && spread > 0.0 && (double)f->potential[i] > threshold;
         f->count += f->foam[i];
     }
+    f->threshold = f->count ? (float)threshold : 0.0f;
+    for (uint64_t i = 0; i < frame->count; i++)
+        f->company[i] = f->foam[i] ? (uint8_t)fmin(walk_neighbours(spray, frame, i, f->foam).foam, 255.0) : 0;
     return FC_OK;
 }
 
@@ -126,5 +151,6 @@ void fc_foam_classes_free(fc_foam_classes *f)
 {
     free(f->foam);
     free(f->potential);
+    free(f->company);
     *f = (fc_foam_classes){0};
 }

@@ -7,12 +7,14 @@
  * A foam particle is a surface particle, not spray (spray_classes.h), with
  * fewer than FC_FOAM_MAX_NEIGHBOURS neighbours (no bulk particle deep in the
  * body), whose I_ta stands out of the frame's own spread: above the mean plus
- * one standard deviation of the candidates' I_ta, and above a tenth of the
+ * 1.5 standard deviations of the candidates' I_ta, and above a tenth of the
  * frame's root-mean-square speed (so a near-calm frame's noise is no foam).
  * Both bounds are the frame's own, so the default needs no tuning in any
  * unit. I_ta depends on velocity differences only: water at rest or moving
  * as one body (a uniform velocity) has I_ta 0 everywhere and no foam, by
- * construction. A frame without velocities has no foam.
+ * construction. A frame without velocities has no foam. Each foam
+ * particle's count of foam neighbours (`company`) tells a patch from a lone
+ * particle, for the foam pass (foam_pass.h).
  *
  * Walks the hashed grid fc_spray_classes_compute built (one support wide),
  * so it runs after it and only where it built one (spray_neighbours > 0, a
@@ -35,8 +37,10 @@
 typedef struct fc_foam_classes {
     uint8_t *foam;       /* per particle, frame order: 1 foam, 0 not */
     float *potential;    /* per particle: I_ta (world units per frame); 0 for spray and bulk */
+    uint8_t *company;    /* per foam particle: how many of its neighbours are foam too (at most 255); 0 else */
     uint64_t capacity;
     uint64_t count;      /* foam particles of the last frame */
+    float threshold;     /* the I_ta a foam particle passed in the last frame; 0: none was found */
 } fc_foam_classes;
 
 /* Fills f->foam for `frame` from the grid and spray keys of `spray`, which
