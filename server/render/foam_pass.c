@@ -12,7 +12,7 @@ enum { LOC_LIGHT_VIEW = 10 };
 #define LOOKS_BINDING 18
 /* A foam disc's radius per particle radius, before its own size: a little
  * wider than the particle, so neighbouring discs merge into one patch. */
-#define FOAM_RADIUS_FRACTION 1.5f
+#define FOAM_RADIUS_FRACTION 1.7f
 /* The sizes of the discs, as factors of that radius: [smallest, largest). */
 #define FOAM_SMALLEST 0.6f
 #define FOAM_LARGEST 1.4f
@@ -20,15 +20,15 @@ enum { LOC_LIGHT_VIEW = 10 };
  * potential (in thresholds) at which a disc is as opaque as the setting
  * allows: the patch fades out where the flow traps less air. */
 #define FOAM_FAINTEST 0.0f
-#define FOAM_FULL_AT 1.5f
+#define FOAM_FULL_AT 1.25f
 /* Foam is a patch, not flecks: a foam particle with at most FOAM_LONE foam
  * neighbours is not drawn (a lone disc would be a ghost blob), one with
  * FOAM_CROWD more than that at full opacity, fainter in proportion between. */
 #define FOAM_LONE 1u
-#define FOAM_CROWD 3.0f
+#define FOAM_CROWD 2.0f
 /* The most a single disc covers at its centre, at strength 1: a patch is
  * white where several overlap. */
-#define FOAM_DISC_OPACITY 0.85f
+#define FOAM_DISC_OPACITY 0.9f
 
 fc_code fc_foam_pass_create(const char *shader_dir, fc_foam_pass *pass, fc_error *err)
 {
