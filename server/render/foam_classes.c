@@ -97,6 +97,35 @@ static neighbour_sums walk_neighbours(const fc_spray_classes *s, const fc_frame 
     return sums;
 }
 
+/* Whether particle i has FC_FOAM_MAX_NEIGHBOURS neighbours or more: inside
+ * the body, no foam. Counted from its own cell on and stopped there, so a
+ * bulk particle, most of a pool, reads a cell or two instead of 27 with
+ * the potential's terms. */
+static bool in_bulk(const fc_spray_classes *s, const fc_frame *frame, uint64_t i)
+{
+    const float *p = frame->positions + 3 * i;
+    float support_sq = s->support * s->support;
+    uint32_t own = fc_spray_classes_cell(s, p, 0, 0, 0), found = 0, seen[27], visited = 0;
+    for (int c = -1; c < 27; c++) {
+        /* The own cell first (c = -1); two cells hashed to one slot hold the same particles: walk it once. */
+        uint32_t h = c < 0 ? own : fc_spray_classes_cell(s, p, c % 3 - 1, c / 3 % 3 - 1, c / 9 - 1);
+        bool again = false;
+        for (uint32_t k = 0; k < visited; k++)
+            again |= seen[k] == h;
+        if (again)
+            continue;
+        seen[visited++] = h;
+        for (uint32_t slot = s->cell_start[h]; slot < s->cell_start[h + 1]; slot++) {
+            const float *q = frame->positions + 3 * (size_t)s->sorted[slot];
+            float d[3] = {q[0] - p[0], q[1] - p[1], q[2] - p[2]};
+            found += s->sorted[slot] != i && d[0] * d[0] + d[1] * d[1] + d[2] * d[2] < support_sq;
+            if (found >= FC_FOAM_MAX_NEIGHBOURS)
+                return true;
+        }
+    }
+    return false;
+}
+
 static double rms_speed(const fc_frame *frame)
 {
     double sum = 0.0;
@@ -123,8 +152,8 @@ fc_code fc_foam_classes_compute(fc_foam_classes *f, const fc_spray_classes *spra
     double sum = 0.0, sum_sq = 0.0;
     uint64_t candidates = 0;
     for (uint64_t i = 0; i < frame->count; i++) {
-        neighbour_sums sums = {0.0, 0, 0};
-        if (spray->keys[i] != 0.0f)
+        neighbour_sums sums = {0.0, FC_FOAM_MAX_NEIGHBOURS, 0};
+        if (spray->keys[i] != 0.0f && !in_bulk(spray, frame, i))
             sums = walk_neighbours(spray, frame, i, NULL);
         double ta = sums.potential;
         bool candidate = spray->keys[i] != 0.0f && sums.neighbours < FC_FOAM_MAX_NEIGHBOURS;
