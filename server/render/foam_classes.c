@@ -57,73 +57,38 @@ static double trapped_air_term(const float *xi, const float *vi, const float *xj
 /* What a walk over a particle's neighbours adds up. */
 typedef struct neighbour_sums {
     double potential;     /* I_ta */
-    uint32_t neighbours;  /* within the support */
+    uint32_t neighbours;  /* within the support; the walk stops at FC_FOAM_MAX_NEIGHBOURS: inside the body */
     uint32_t foam;        /* of them foam (the second walk, once foam is known) */
 } neighbour_sums;
 
-/* Walks particle i's neighbours within the support on the grid of `s`:
- * with `foam`, counts the foam among them, else sums I_ta. */
+/* Walks particle i's neighbours within the support on the grid of `s`,
+ * the cell holding it first: with `foam`, counts the foam among them, else
+ * sums I_ta, stopping as soon as the particle has FC_FOAM_MAX_NEIGHBOURS
+ * (a bulk particle, most of a pool, reads a cell or two). */
 static neighbour_sums walk_neighbours(const fc_spray_classes *s, const fc_frame *frame, uint64_t i,
                                       const uint8_t *foam)
 {
     const float *p = frame->positions + 3 * i, *v = frame->velocity + 3 * i;
     float support_sq = s->support * s->support;
-    uint32_t seen[27], visited = 0;
+    uint32_t cells[27], count = fc_spray_classes_cells_around(s, p, cells);
     neighbour_sums sums = {0.0, 0, 0};
-    for (int dz = -1; dz <= 1; dz++)
-        for (int dy = -1; dy <= 1; dy++)
-            for (int dx = -1; dx <= 1; dx++) {
-                uint32_t h = fc_spray_classes_cell(s, p, dx, dy, dz);
-                /* Two cells hashed to one slot hold the same particles: walk it once. */
-                bool again = false;
-                for (uint32_t k = 0; k < visited; k++)
-                    again |= seen[k] == h;
-                if (again)
-                    continue;
-                seen[visited++] = h;
-                for (uint32_t slot = s->cell_start[h]; slot < s->cell_start[h + 1]; slot++) {
-                    uint32_t j = s->sorted[slot];
-                    const float *q = frame->positions + 3 * (size_t)j;
-                    float d[3] = {q[0] - p[0], q[1] - p[1], q[2] - p[2]};
-                    if (j == i || d[0] * d[0] + d[1] * d[1] + d[2] * d[2] >= support_sq)
-                        continue;
-                    sums.neighbours++;
-                    if (foam)
-                        sums.foam += foam[j];
-                    else
-                        sums.potential += trapped_air_term(p, v, q, frame->velocity + 3 * (size_t)j, s->support);
-                }
-            }
-    return sums;
-}
-
-/* Whether particle i has FC_FOAM_MAX_NEIGHBOURS neighbours or more: inside
- * the body, no foam. Counted from its own cell on and stopped there, so a
- * bulk particle, most of a pool, reads a cell or two instead of 27 with
- * the potential's terms. */
-static bool in_bulk(const fc_spray_classes *s, const fc_frame *frame, uint64_t i)
-{
-    const float *p = frame->positions + 3 * i;
-    float support_sq = s->support * s->support;
-    uint32_t own = fc_spray_classes_cell(s, p, 0, 0, 0), found = 0, seen[27], visited = 0;
-    for (int c = -1; c < 27; c++) {
-        /* The own cell first (c = -1); two cells hashed to one slot hold the same particles: walk it once. */
-        uint32_t h = c < 0 ? own : fc_spray_classes_cell(s, p, c % 3 - 1, c / 3 % 3 - 1, c / 9 - 1);
-        bool again = false;
-        for (uint32_t k = 0; k < visited; k++)
-            again |= seen[k] == h;
-        if (again)
-            continue;
-        seen[visited++] = h;
-        for (uint32_t slot = s->cell_start[h]; slot < s->cell_start[h + 1]; slot++) {
-            const float *q = frame->positions + 3 * (size_t)s->sorted[slot];
+    for (uint32_t c = 0; c < count; c++)
+        for (uint32_t slot = s->cell_start[cells[c]]; slot < s->cell_start[cells[c] + 1]; slot++) {
+            uint32_t j = s->sorted[slot];
+            const float *q = frame->positions + 3 * (size_t)j;
             float d[3] = {q[0] - p[0], q[1] - p[1], q[2] - p[2]};
-            found += s->sorted[slot] != i && d[0] * d[0] + d[1] * d[1] + d[2] * d[2] < support_sq;
-            if (found >= FC_FOAM_MAX_NEIGHBOURS)
-                return true;
+            if (j == i || d[0] * d[0] + d[1] * d[1] + d[2] * d[2] >= support_sq)
+                continue;
+            sums.neighbours++;
+            if (foam) {
+                sums.foam += foam[j];
+                continue;
+            }
+            if (sums.neighbours >= FC_FOAM_MAX_NEIGHBOURS)
+                return sums;
+            sums.potential += trapped_air_term(p, v, q, frame->velocity + 3 * (size_t)j, s->support);
         }
-    }
-    return false;
+    return sums;
 }
 
 static double rms_speed(const fc_frame *frame)
@@ -153,7 +118,7 @@ fc_code fc_foam_classes_compute(fc_foam_classes *f, const fc_spray_classes *spra
     uint64_t candidates = 0;
     for (uint64_t i = 0; i < frame->count; i++) {
         neighbour_sums sums = {0.0, FC_FOAM_MAX_NEIGHBOURS, 0};
-        if (spray->keys[i] != 0.0f && !in_bulk(spray, frame, i))
+        if (spray->keys[i] != 0.0f)
             sums = walk_neighbours(spray, frame, i, NULL);
         double ta = sums.potential;
         bool candidate = spray->keys[i] != 0.0f && sums.neighbours < FC_FOAM_MAX_NEIGHBOURS;

@@ -166,11 +166,23 @@ fc_code fc_spray_classes_compute(fc_spray_classes *c, const fc_frame *frame, uin
     return FC_OK;
 }
 
-uint32_t fc_spray_classes_cell(const fc_spray_classes *c, const float *p, int dx, int dy, int dz)
+uint32_t fc_spray_classes_cells_around(const fc_spray_classes *c, const float *p, uint32_t cells[27])
 {
     int64_t home[3];
     cell_of(p, 1.0f / c->support, home);
-    return cell_hash(home[0] + dx, home[1] + dy, home[2] + dz, c->cells);
+    uint32_t own = cell_hash(home[0], home[1], home[2], c->cells), count = 0;
+    cells[count++] = own;
+    for (int dz = -1; dz <= 1; dz++)
+        for (int dy = -1; dy <= 1; dy++)
+            for (int dx = -1; dx <= 1; dx++) {
+                uint32_t h = cell_hash(home[0] + dx, home[1] + dy, home[2] + dz, c->cells);
+                bool again = false;
+                for (uint32_t k = 0; k < count; k++)
+                    again |= cells[k] == h;
+                if (!again)
+                    cells[count++] = h;
+            }
+    return count;
 }
 
 float fc_spray_classes_threshold(const fc_settings *settings)

@@ -51,9 +51,11 @@ fc_code fc_spray_classes_compute(fc_spray_classes *c, const fc_frame *frame, uin
  * alone, 0 when neither asks for spray. */
 float fc_spray_classes_threshold(const fc_settings *settings);
 
-/* The hashed cell of the last grid that holds position p, for passes that
- * walk the same neighbourhoods (foam_classes.h); c->cells must be > 0. */
-uint32_t fc_spray_classes_cell(const fc_spray_classes *c, const float *p, int dx, int dy, int dz);
+/* The hashed cells of the last grid a neighbourhood of position p lies in
+ * (the cell holding p and the 26 around it), each once, the one holding p
+ * first, for passes that walk the same neighbourhoods (foam_classes.h);
+ * returns how many (1 to 27). c->cells must be > 0. */
+uint32_t fc_spray_classes_cells_around(const fc_spray_classes *c, const float *p, uint32_t cells[27]);
 
 void fc_spray_classes_free(fc_spray_classes *c);
 
