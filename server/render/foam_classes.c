@@ -27,10 +27,13 @@ static fc_code reserve(fc_foam_classes *f, uint64_t count, fc_error *err)
     if (potential)
         f->potential = potential;
     uint8_t *company = potential ? realloc(f->company, count * sizeof *company) : NULL;
-    if (!company)
+    if (company)
+        f->company = company;
+    float *gathered = company ? realloc(f->gathered, 6 * count * sizeof *gathered) : NULL;
+    if (!gathered)
         return fc_error_set(err, FC_ERR_NOMEM, "out of memory classifying %llu particles as foam",
                             (unsigned long long)count);
-    f->company = company;
+    f->gathered = gathered;
     f->capacity = count;
     return FC_OK;
 }
@@ -61,34 +64,47 @@ typedef struct neighbour_sums {
     uint32_t foam;        /* of them foam (the second walk, once foam is known) */
 } neighbour_sums;
 
-/* Walks particle i's neighbours within the support on the grid of `s`,
- * the cell holding it first: with `foam`, counts the foam among them, else
- * sums I_ta, stopping as soon as the particle has FC_FOAM_MAX_NEIGHBOURS
- * (a bulk particle, most of a pool, reads a cell or two). */
-static neighbour_sums walk_neighbours(const fc_spray_classes *s, const fc_frame *frame, uint64_t i,
+/* Walks the neighbours within the support of the particle in grid slot
+ * `self` on the grid of `s`, the cell holding it first, reading positions and
+ * velocities gathered in slot order (6 floats a slot: cells are contiguous):
+ * with `foam`, counts the foam among them, else sums I_ta, stopping as soon
+ * as the particle has FC_FOAM_MAX_NEIGHBOURS (a bulk particle, most of a
+ * pool, reads a cell or two). */
+static neighbour_sums walk_neighbours(const fc_spray_classes *s, const float *gathered, uint32_t self,
                                       const uint8_t *foam)
 {
-    const float *p = frame->positions + 3 * i, *v = frame->velocity + 3 * i;
+    const float *p = gathered + 6 * (size_t)self, *v = p + 3;
     float support_sq = s->support * s->support;
     uint32_t cells[27], count = fc_spray_classes_cells_around(s, p, cells);
     neighbour_sums sums = {0.0, 0, 0};
     for (uint32_t c = 0; c < count; c++)
         for (uint32_t slot = s->cell_start[cells[c]]; slot < s->cell_start[cells[c] + 1]; slot++) {
-            uint32_t j = s->sorted[slot];
-            const float *q = frame->positions + 3 * (size_t)j;
+            const float *q = gathered + 6 * (size_t)slot;
             float d[3] = {q[0] - p[0], q[1] - p[1], q[2] - p[2]};
-            if (j == i || d[0] * d[0] + d[1] * d[1] + d[2] * d[2] >= support_sq)
+            if (slot == self || d[0] * d[0] + d[1] * d[1] + d[2] * d[2] >= support_sq)
                 continue;
             sums.neighbours++;
             if (foam) {
-                sums.foam += foam[j];
+                sums.foam += foam[s->sorted[slot]];
                 continue;
             }
             if (sums.neighbours >= FC_FOAM_MAX_NEIGHBOURS)
                 return sums;
-            sums.potential += trapped_air_term(p, v, q, frame->velocity + 3 * (size_t)j, s->support);
+            sums.potential += trapped_air_term(p, v, q, q + 3, s->support);
         }
     return sums;
+}
+
+/* The frame's positions and velocities in the grid's slot order. */
+static void gather(const fc_spray_classes *s, const fc_frame *frame, float *gathered)
+{
+    for (uint64_t slot = 0; slot < frame->count; slot++) {
+        uint32_t i = s->sorted[slot];
+        for (int k = 0; k < 3; k++) {
+            gathered[6 * slot + k] = frame->positions[3 * (size_t)i + k];
+            gathered[6 * slot + 3 + k] = frame->velocity[3 * (size_t)i + k];
+        }
+    }
 }
 
 static double rms_speed(const fc_frame *frame)
@@ -113,13 +129,15 @@ fc_code fc_foam_classes_compute(fc_foam_classes *f, const fc_spray_classes *spra
     }
     if (!frame->velocity || spray->cells == 0 || frame->count == 0)
         return FC_OK;
-    /* The candidates' mean and spread of I_ta, in one pass. */
+    gather(spray, frame, f->gathered);
+    /* The candidates' mean and spread of I_ta, in one pass, in the grid's order. */
     double sum = 0.0, sum_sq = 0.0;
     uint64_t candidates = 0;
-    for (uint64_t i = 0; i < frame->count; i++) {
+    for (uint32_t slot = 0; slot < frame->count; slot++) {
+        uint32_t i = spray->sorted[slot];
         neighbour_sums sums = {0.0, FC_FOAM_MAX_NEIGHBOURS, 0};
         if (spray->keys[i] != 0.0f)
-            sums = walk_neighbours(spray, frame, i, NULL);
+            sums = walk_neighbours(spray, f->gathered, slot, NULL);
         double ta = sums.potential;
         bool candidate = spray->keys[i] != 0.0f && sums.neighbours < FC_FOAM_MAX_NEIGHBOURS;
         f->potential[i] = candidate ? (float)ta : 0.0f;
@@ -136,8 +154,11 @@ fc_code fc_foam_classes_compute(fc_foam_classes *f, const fc_spray_classes *spra
         f->count += f->foam[i];
     }
     f->threshold = f->count ? (float)threshold : 0.0f;
-    for (uint64_t i = 0; i < frame->count; i++)
-        f->company[i] = f->foam[i] ? (uint8_t)fmin(walk_neighbours(spray, frame, i, f->foam).foam, 255.0) : 0;
+    for (uint32_t slot = 0; slot < frame->count; slot++) {
+        uint32_t i = spray->sorted[slot];
+        f->company[i] = f->foam[i] ? (uint8_t)fmin(walk_neighbours(spray, f->gathered, slot, f->foam).foam, 255.0)
+                                   : 0;
+    }
     return FC_OK;
 }
 
@@ -146,5 +167,6 @@ void fc_foam_classes_free(fc_foam_classes *f)
     free(f->foam);
     free(f->potential);
     free(f->company);
+    free(f->gathered);
     *f = (fc_foam_classes){0};
 }

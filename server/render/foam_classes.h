@@ -38,6 +38,7 @@ typedef struct fc_foam_classes {
     uint8_t *foam;       /* per particle, frame order: 1 foam, 0 not */
     float *potential;    /* per particle: I_ta (world units per frame); 0 for spray and bulk */
     uint8_t *company;    /* per foam particle: how many of its neighbours are foam too (at most 255); 0 else */
+    float *gathered;     /* scratch: positions and velocities in the grid's slot order, 6 floats a slot */
     uint64_t capacity;
     uint64_t count;      /* foam particles of the last frame */
     float threshold;     /* the I_ta a foam particle passed in the last frame; 0: none was found */
