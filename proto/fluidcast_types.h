@@ -203,6 +203,8 @@ typedef struct fc_settings {
                                   built-in floor, so that its foot shows on a floor of its own grey; 0 = off */
     float depth_dimming;       /* how much what shows through thick water dims (63% of it at 12 particle radii
                                   of thickness), so that a body's far faces read; 0 = off */
+    float aerated_foam;        /* how opaque the white foam is where the flow traps air (Ihmsen et al. 2012's
+                                  trapped-air potential; needs velocities and spray_neighbours > 0); 0 = off */
 } fc_settings;
 
 /* ---- Meshes ---------------------------------------------------------------

@@ -424,7 +424,7 @@ class Client:
         thickness_blur, noise, foam, foam_tau, foam_decay, density_threshold,
         kernel, shadow, exposure, color_by, colormap, color_range,
         jpeg_subsampling, surface, surface_cell, surface_kernel, surface_smoothing,
-        contact_shadow, depth_dimming (see
+        contact_shadow, depth_dimming, aerated_foam (see
         fluidcast_types.h for each one's meaning and domain). ``smoothing``,
         ``kernel``, ``color_by``, ``colormap``, ``jpeg_subsampling``, ``surface`` and ``surface_kernel`` take a :class:`Smoothing`,
         :class:`Kernel`, :class:`ColorBy`, :class:`Colormap`, :class:`JpegSubsampling`, :class:`SurfaceMode`,

@@ -17,6 +17,8 @@
 #include "fc_colormap.h"
 #include "fc_error.h"
 #include "fc_frame.h"
+#include "foam_classes.h"
+#include "foam_pass.h"
 #include "gl_util.h"
 #include "mesh_pass.h"
 #include "noise_pass.h"
@@ -47,6 +49,12 @@ struct fc_pipeline {
     fc_particle_buffer particles;         /* in draw order: the frame's, or surface particles first, then spray */
     fc_particle_attributes attributes;
     fc_spray_classes spray_classes;       /* the sort keys that split the spray off (spray_classes.h) */
+    uint64_t classes_upload;              /* the upload spray_classes was computed for; 0: none */
+    uint32_t classes_neighbours;          /* and its spray_neighbours */
+    fc_foam_classes foam_classes;         /* the aerated surface particles (foam_classes.h) */
+    uint64_t foam_upload;                 /* the upload foam_classes was computed for; 0: none */
+    uint32_t foam_neighbours;             /* and its spray_neighbours */
+    uint64_t foam_generation;             /* counts the foam classes computed: what the foam pass was filled from */
     fc_color_values color_values;         /* the attribute colour_by names, for renders that colour */
     uint64_t uploads;                     /* frames uploaded so far: what the colour values were filled for */
     fc_anisotropy anisotropy;             /* the particles' ellipsoids, for FC_KERNEL_ANISOTROPIC */
@@ -60,6 +68,7 @@ struct fc_pipeline {
     fc_background_pass background;
     fc_composite_pass composite;
     fc_spray_pass spray;
+    fc_foam_pass foam;
     fc_shadow_pass shadow;
     fc_mesh_pass mesh;
     fc_stage_timer timer;
@@ -139,6 +148,8 @@ static fc_code create_passes(fc_pipeline *p, const char *dir, bool flat, fc_erro
         code = fc_composite_pass_create(dir, flat, &p->composite, err);
     if (code == FC_OK)
         code = fc_spray_pass_create(dir, &p->spray, err);
+    if (code == FC_OK)
+        code = fc_foam_pass_create(dir, &p->foam, err);
     if (code == FC_OK)
         code = fc_stage_timer_create(&p->timer, err);
     if (code == FC_OK)
@@ -377,6 +388,11 @@ static fc_code composite_stage(fc_pipeline *p, const render_job *job, const fc_r
         code = fc_composite_pass_run(&p->composite, &inputs, job->view, &env, job->settings, want_u8, result, err);
         fc_pass_profile_end(profile);
     }
+    if (code == FC_OK && p->foam.particles.count > 0) {
+        fc_pass_profile_begin(profile, "foam");
+        code = fc_foam_pass_run(&p->foam, job->view, &job->env, job->settings->radius, *result, err);
+        fc_pass_profile_end(profile);
+    }
     if (code == FC_OK) {
         fc_pass_profile_begin(profile, "spray");
         code = fc_spray_pass_run(&p->spray, &p->particles, job->surface.count, &p->attributes, &p->frame, job->view,
@@ -489,6 +505,18 @@ static fc_code upload_frame(fc_pipeline *p, const fc_frame *frame, fc_error *err
     return code;
 }
 
+/* The neighbour classes of the uploaded frame, and the grid they were
+ * counted on (which the foam classes walk too). */
+static fc_code compute_spray_classes(fc_pipeline *p, uint32_t spray_neighbours, fc_error *err)
+{
+    fc_pass_profile_begin(&p->profile, "spray classes");
+    fc_code code = fc_spray_classes_compute(&p->spray_classes, &p->frame, spray_neighbours, err);
+    fc_pass_profile_end(&p->profile);
+    p->classes_upload = code == FC_OK ? p->uploads : 0;
+    p->classes_neighbours = spray_neighbours;
+    return code;
+}
+
 /* A density threshold or the neighbour classes (spray_classes.h) split the
  * surface from the spray at a prefix of the density order: the uploaded
  * frame is put in that order at the first render that asks for spray, and
@@ -501,9 +529,7 @@ static fc_code order_for(fc_pipeline *p, const fc_settings *settings, fc_error *
     if (!(fc_spray_classes_threshold(settings) > 0.0f) || !a->reorderable ||
         (a->by_density && a->ordered_classes == settings->spray_neighbours))
         return FC_OK;
-    fc_pass_profile_begin(&p->profile, "spray classes");
-    fc_code code = fc_spray_classes_compute(&p->spray_classes, &p->frame, settings->spray_neighbours, err);
-    fc_pass_profile_end(&p->profile);
+    fc_code code = compute_spray_classes(p, settings->spray_neighbours, err);
     /* Waits for the draws still reading the positions, as well as the records. */
     if (code == FC_OK)
         code = fc_particle_attributes_order_by_density(a, &p->frame, p->spray_classes.keys,
@@ -511,6 +537,35 @@ static fc_code order_for(fc_pipeline *p, const fc_settings *settings, fc_error *
     if (code == FC_OK)
         fc_particle_buffer_fill(&p->particles, &p->frame, fc_particle_attributes_draw_order(a));
     return code;
+}
+
+/* The foam of a colour image with aerated_foam (foam_classes.h, foam_pass.h):
+ * classified once per upload on the neighbour classes' grid (counted here
+ * when the order did not need them), and handed to the foam pass. None
+ * (the pass emptied, nothing computed) when the setting is 0, for other
+ * images, without velocities, or without neighbour classes. */
+static fc_code foam_for(fc_pipeline *p, const fc_settings *settings, fc_aov aov, fc_error *err)
+{
+    uint32_t neighbours = settings->spray_neighbours;
+    if (!(settings->aerated_foam > 0.0f) || aov != FC_AOV_COLOR || !p->frame.velocity || neighbours == 0) {
+        fc_foam_pass_clear(&p->foam);
+        return FC_OK;
+    }
+    if (p->foam_upload != p->uploads || p->foam_neighbours != neighbours) {
+        fc_code code = FC_OK;
+        if (p->classes_upload != p->uploads || p->classes_neighbours != neighbours)
+            code = compute_spray_classes(p, neighbours, err);
+        fc_pass_profile_begin(&p->profile, "foam classes");
+        if (code == FC_OK)
+            code = fc_foam_classes_compute(&p->foam_classes, &p->spray_classes, &p->frame, err);
+        fc_pass_profile_end(&p->profile);
+        if (code != FC_OK)
+            return code;
+        p->foam_upload = p->uploads;
+        p->foam_neighbours = neighbours;
+        p->foam_generation++;
+    }
+    return fc_foam_pass_fill(&p->foam, &p->foam_classes, &p->frame, p->foam_generation, settings->aerated_foam, err);
 }
 
 /* The particles' shape for a render: their ellipsoids (computed once per
@@ -650,6 +705,8 @@ void fc_pipeline_destroy(fc_pipeline *p)
     fc_pass_profile_destroy(&p->profile);
     fc_stage_timer_destroy(&p->timer);
     fc_spray_pass_destroy(&p->spray);
+    fc_foam_pass_destroy(&p->foam);
+    fc_foam_classes_free(&p->foam_classes);
     fc_spray_classes_free(&p->spray_classes);
     fc_composite_pass_destroy(&p->composite);
     fc_background_pass_destroy(&p->background);
@@ -792,6 +849,8 @@ fc_code fc_pipeline_render_with(fc_pipeline *p, const fc_camera *camera, const f
         code = shape_particles(p, settings, err);
     if (code == FC_OK)
         code = color_particles(p, settings, aov, err);
+    if (code == FC_OK)
+        code = foam_for(p, settings, aov, err);
     if (code != FC_OK)
         return code;
     /* The frame's amplitudes were given after the upload, or are calm. */

@@ -137,6 +137,8 @@ fc_code fc_spray_classes_compute(fc_spray_classes *c, const fc_frame *frame, uin
     fc_code code = reserve(c, frame->count, cells, err);
     if (code != FC_OK)
         return code;
+    c->cells = 0;
+    c->support = 0.0f;
     float support = FC_ANISOTROPY_SUPPORT_SPACINGS * fc_frame_estimate_radius(frame) / ESTIMATED_RADIUS_PER_SPACING;
     /* Frames with their own radii are left to the density threshold: their
      * sizes differ, so one spacing does not tell who is isolated. */
@@ -147,6 +149,8 @@ fc_code fc_spray_classes_compute(fc_spray_classes *c, const fc_frame *frame, uin
     }
     float per_cell = 1.0f / support;
     bucket(c, frame, per_cell, cells);
+    c->cells = cells;
+    c->support = support;
     uint64_t spray = 0;
     for (uint64_t i = 0; i < frame->count; i++) {
         uint32_t n = neighbours_of(c, frame, i, support, per_cell, cells, spray_neighbours);
@@ -160,6 +164,25 @@ fc_code fc_spray_classes_compute(fc_spray_classes *c, const fc_frame *frame, uin
         for (uint64_t i = 0; i < frame->count; i++)
             c->keys[i] = surface_key(frame, i);
     return FC_OK;
+}
+
+uint32_t fc_spray_classes_cells_around(const fc_spray_classes *c, const float *p, uint32_t cells[27])
+{
+    int64_t home[3];
+    cell_of(p, 1.0f / c->support, home);
+    uint32_t own = cell_hash(home[0], home[1], home[2], c->cells), count = 0;
+    cells[count++] = own;
+    for (int dz = -1; dz <= 1; dz++)
+        for (int dy = -1; dy <= 1; dy++)
+            for (int dx = -1; dx <= 1; dx++) {
+                uint32_t h = cell_hash(home[0] + dx, home[1] + dy, home[2] + dz, c->cells);
+                bool again = false;
+                for (uint32_t k = 0; k < count; k++)
+                    again |= cells[k] == h;
+                if (!again)
+                    cells[count++] = h;
+            }
+    return count;
 }
 
 float fc_spray_classes_threshold(const fc_settings *settings)

@@ -31,6 +31,8 @@ typedef struct fc_spray_classes {
     uint32_t *sorted;       /* particle indices grouped by hashed cell */
     uint64_t capacity;      /* particles the arrays hold */
     uint64_t cell_capacity;
+    uint64_t cells;         /* hashed cells of the last grid (a power of two); 0 when none was built */
+    float support;          /* the neighbourhood's radius the grid's cells are wide, world units */
 } fc_spray_classes;
 
 /* The smallest density threshold that splits off the neighbour classes'
@@ -48,6 +50,12 @@ fc_code fc_spray_classes_compute(fc_spray_classes *c, const fc_frame *frame, uin
  * its density threshold, or FC_SPRAY_KEY_THRESHOLD for the neighbour classes
  * alone, 0 when neither asks for spray. */
 float fc_spray_classes_threshold(const fc_settings *settings);
+
+/* The hashed cells of the last grid a neighbourhood of position p lies in
+ * (the cell holding p and the 26 around it), each once, the one holding p
+ * first, for passes that walk the same neighbourhoods (foam_classes.h);
+ * returns how many (1 to 27). c->cells must be > 0. */
+uint32_t fc_spray_classes_cells_around(const fc_spray_classes *c, const float *p, uint32_t cells[27]);
 
 void fc_spray_classes_free(fc_spray_classes *c);
 

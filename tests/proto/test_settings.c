@@ -114,6 +114,7 @@ static void expect_surface_kernel(fc_settings *s) { s->surface_kernel = FC_SURFA
 static void expect_surface_smoothing(fc_settings *s) { s->surface_smoothing = 10; }
 static void expect_contact_shadow(fc_settings *s) { s->contact_shadow = 0.25f; }
 static void expect_depth_dimming(fc_settings *s) { s->depth_dimming = 0.5f; }
+static void expect_aerated_foam(fc_settings *s) { s->aerated_foam = 0.5f; }
 
 static const key_case key_cases[] = {
     {1, 1, {0x3E000000u}, expect_radius},                             /* 0.125f */
@@ -148,6 +149,7 @@ static const key_case key_cases[] = {
     {48, 1, {10}, expect_surface_smoothing},
     {57, 1, {0x3E800000u}, expect_contact_shadow},                   /* 0.25f */
     {58, 1, {0x3F000000u}, expect_depth_dimming},                    /* 0.5f */
+    {59, 1, {0x3F000000u}, expect_aerated_foam},                     /* 0.5f */
 };
 #define KEY_COUNT (sizeof key_cases / sizeof key_cases[0])
 
@@ -179,8 +181,8 @@ static void test_encoder_layout(void)
     fc_buf_init(&b);
     fc_error err;
     CHECK_CODE(fc_wire_write_settings(&b, 9, &s, &err), FC_OK);
-    /* 37 words: two colours of 3, twenty-nine of 1, a range of 2 */
-    const size_t payload_size = 4 + KEY_COUNT * 4 + 4 * 37;
+    /* 38 words: two colours of 3, thirty of 1, a range of 2 */
+    const size_t payload_size = 4 + KEY_COUNT * 4 + 4 * 38;
     CHECK_MSG(b.len == FC_WIRE_HEADER_SIZE + payload_size, "%zu bytes", b.len);
     if (b.len != FC_WIRE_HEADER_SIZE + payload_size) {
         fc_buf_free(&b);

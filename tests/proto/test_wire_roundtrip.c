@@ -351,7 +351,8 @@ static void test_settings_roundtrip(void)
                       .color_range = {-1e30f, 2.5f}, .jpeg_subsampling = FC_JPEG_SUBSAMPLING_YUV420,
                       .surface = FC_SURFACE_MODE_MESH, .surface_cell = 4.0f,
                       .surface_kernel = FC_SURFACE_KERNEL_ANISOTROPIC, .surface_smoothing = 100,
-                      .spray_neighbours = 64, .contact_shadow = 1.0f, .depth_dimming = 0.125f};
+                      .spray_neighbours = 64, .contact_shadow = 1.0f, .depth_dimming = 0.125f,
+                      .aerated_foam = 0.25f};
     fc_settings out;
     fc_settings_default(&out);
     fc_buf b;
@@ -360,7 +361,7 @@ static void test_settings_roundtrip(void)
     CHECK_CODE(fc_wire_write_settings(&b, 4, &in, &err), FC_OK);
     size_t n;
     const uint8_t *p = single_payload(&b, FC_MSG_SETTINGS, 4, &n);
-    CHECK(n == 4 + 32 * 4 + 37 * 4);
+    CHECK(n == 4 + 33 * 4 + 38 * 4);
     CHECK_CODE(fc_wire_read_settings(p, n, &out, &err), FC_OK);
     CHECK(memcmp(&in, &out, sizeof in) == 0);
     fc_buf_free(&b);

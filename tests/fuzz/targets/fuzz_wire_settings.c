@@ -14,7 +14,7 @@
 
 /* Every field of fc_settings: a key the codec forgets to carry shows up here.
  * The size check makes a field added later fail the build until it is compared. */
-_Static_assert(sizeof(fc_settings) == 37 * 4, "fc_settings changed: compare its new fields in settings_equal");
+_Static_assert(sizeof(fc_settings) == 38 * 4, "fc_settings changed: compare its new fields in settings_equal");
 static bool settings_equal(const fc_settings *a, const fc_settings *b)
 {
     bool equal = a->radius == b->radius && a->smoothing == b->smoothing && a->iterations == b->iterations &&
@@ -29,7 +29,8 @@ static bool settings_equal(const fc_settings *a, const fc_settings *b)
                  a->jpeg_subsampling == b->jpeg_subsampling && a->spray_neighbours == b->spray_neighbours &&
                  a->surface == b->surface && a->surface_cell == b->surface_cell &&
                  a->surface_kernel == b->surface_kernel && a->surface_smoothing == b->surface_smoothing &&
-                 a->contact_shadow == b->contact_shadow && a->depth_dimming == b->depth_dimming;
+                 a->contact_shadow == b->contact_shadow && a->depth_dimming == b->depth_dimming &&
+                 a->aerated_foam == b->aerated_foam;
     for (int c = 0; c < 3; c++)
         equal = equal && a->fluid_color[c] == b->fluid_color[c] && a->absorption[c] == b->absorption[c];
     return equal;
