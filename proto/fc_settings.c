@@ -150,7 +150,7 @@ static const fc_setting_spec table[] = {
      .help = "how much what shows through thick water dims (63% of it at 12 particle radii of thickness), so a "
              "body's far faces read; 0 = off"},
     /* 1: a disc as opaque as foam_pass.c allows; the threshold is the frame's own (foam_classes.h). */
-    {FIELD(59, aerated_foam, FC_SETTING_FLOAT, 1), .initial = {1.0f}, .min = 0, .max = 1,
+    {FIELD(59, aerated_foam, FC_SETTING_FLOAT, 1), .initial = {0.0f}, .min = 0, .max = 1,
      .group = FC_GROUP_SURFACE, .option = "--aerated-foam", .metavar = "S",
      .help = "white foam, soft-edged, where the flow traps air (converging neighbours, Ihmsen et al. 2012; "
              "needs velocities and --spray-neighbours > 0), this opaque; 0 = off"},
