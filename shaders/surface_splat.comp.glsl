@@ -60,9 +60,14 @@ const float MARGIN_PIXELS = 0.25;
 // which drew the particles' lattice into the thickness as a ripple at their
 // spacing (grain on a block's face) and let a sphere narrower than a pixel
 // vanish between the centres. So the chord's profile only weights the
-// pixels of a kernel at least a pixel wide in radius (one that always holds
+// pixels of a kernel at least KERNEL_MIN_PX in radius (one that always holds
 // a pixel centre), and the weights share out the volume.
 const float PI = 3.14159265358979;
+// Every point of the plane has a pixel centre within 0.71 pixels; a little
+// more and the nearest centre weighs at least a third. A wider minimum
+// spreads a tiny sphere smoother but onto more pixels: a radius of 1 cost
+// 1M particles (0.6 px at a quarter of 1024x768) 8% more (bench/RESULTS.md).
+const float KERNEL_MIN_PX = 0.75;
 
 vec2 footprint_centre;   // the silhouette's centre, in pixel indices
 vec2 footprint_scale;    // 1 / the kernel's half extents (pixels)
@@ -125,16 +130,15 @@ void splat_footprint_into(vec2 x_range, vec2 y_range, float reach, float above, 
     vec2 first = (vec2(x_range.x, y_range.x) + 1.0) * 0.5 * size - 0.5;
     vec2 last = (vec2(x_range.y, y_range.y) + 1.0) * 0.5 * size - 0.5;
     vec2 half_extent = max(0.5 * (last - first), vec2(1e-3));
-    vec2 kernel = max(half_extent, vec2(1.0));
+    vec2 kernel = max(half_extent, vec2(KERNEL_MIN_PX));
     footprint_centre = 0.5 * (first + last);
     footprint_scale = 1.0 / kernel;
     ivec2 lo = ivec2(ceil(footprint_centre - kernel)), hi = ivec2(floor(footprint_centre + kernel));
     footprint_units = min(2.0 * reach * above / max_chord, 1.0) * units_per_chord;   // at the centre's chord
     if (max(kernel.x, kernel.y) <= SHARED_VOLUME_MAX_PX) {
         // The chord over the silhouette's ellipse integrates to 2 pi / 3
-        // times its half extents times the centre's chord: the volume. A
-        // kernel a pixel or more in radius holds a pixel centre within 0.71
-        // pixels of its middle, so the sum is at least 0.7.
+        // times its half extents times the centre's chord: the volume
+        // (the sum is at least a third, KERNEL_MIN_PX).
         footprint_units *= (2.0 * PI / 3.0) * half_extent.x * half_extent.y / visit_footprint(lo, hi, false, sun);
     }
     visit_footprint(max(lo, ivec2(0)), min(hi, ivec2(size) - 1), true, sun);
