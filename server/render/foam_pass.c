@@ -144,16 +144,8 @@ fc_code fc_foam_pass_run(fc_foam_pass *pass, const fc_view *view, const fc_envir
 {
     if (pass->particles.count == 0)
         return FC_OK;
-    fc_render_target_bind(target);
     /* Hidden behind fluid or floor; discs do not hide one another, they blend. */
-    glEnable(GL_DEPTH_TEST);
-    glDepthFunc(GL_LESS);
-    glDepthMask(GL_FALSE);
-    glEnable(GL_BLEND);
-    glBlendEquation(GL_FUNC_ADD);
-    glBlendFuncSeparate(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA, GL_ZERO, GL_ONE);
-    if (target->color_format == GL_SRGB8_ALPHA8)
-        glEnable(GL_FRAMEBUFFER_SRGB);
+    fc_render_target_bind_overlay(target);
     glProgramUniform3fv(fc_sphere_sprites_program(&pass->sprites, &pass->particles), LOC_LIGHT_VIEW, 1,
                         env->light_view);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, LOOKS_BINDING, pass->looks);

@@ -81,6 +81,19 @@ void fc_render_target_bind(const fc_render_target *t)
     glViewport(0, 0, (GLsizei)t->width, (GLsizei)t->height);
 }
 
+void fc_render_target_bind_overlay(const fc_render_target *t)
+{
+    fc_render_target_bind(t);
+    glEnable(GL_DEPTH_TEST);
+    glDepthFunc(GL_LESS);
+    glDepthMask(GL_FALSE);
+    glEnable(GL_BLEND);
+    glBlendEquation(GL_FUNC_ADD);
+    glBlendFuncSeparate(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA, GL_ZERO, GL_ONE);
+    if (t->color_format == GL_SRGB8_ALPHA8)
+        glEnable(GL_FRAMEBUFFER_SRGB);
+}
+
 void fc_render_target_release(fc_render_target *t)
 {
     delete_attachments(t);

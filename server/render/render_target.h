@@ -42,6 +42,12 @@ fc_code fc_render_target_resize(fc_render_target *t, uint32_t width, uint32_t he
 /* Binds the framebuffer for drawing and sets the viewport to the image in use. */
 void fc_render_target_bind(const fc_render_target *t);
 
+/* fc_render_target_bind for sprites drawn over what the target holds (the
+ * spray's droplets, the foam's discs): hidden behind its depth, writing
+ * none, blended "over" its colour without touching its alpha, and encoded
+ * to sRGB where the target stores sRGB. */
+void fc_render_target_bind_overlay(const fc_render_target *t);
+
 /* Frees the attachments; the next resize allocates them at its size. */
 void fc_render_target_release(fc_render_target *t);
 

@@ -112,16 +112,8 @@ fc_code fc_spray_pass_run(fc_spray_pass *pass, const fc_particle_buffer *particl
         if (code != FC_OK)
             return code;
     }
-    fc_render_target_bind(target);
     /* Hidden behind fluid or floor; droplets do not hide one another, they blend. */
-    glEnable(GL_DEPTH_TEST);
-    glDepthFunc(GL_LESS);
-    glDepthMask(GL_FALSE);
-    glEnable(GL_BLEND);
-    glBlendEquation(GL_FUNC_ADD);
-    glBlendFuncSeparate(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA, GL_ZERO, GL_ONE);
-    if (target->color_format == GL_SRGB8_ALPHA8)
-        glEnable(GL_FRAMEBUFFER_SRGB);
+    fc_render_target_bind_overlay(target);
     set_uniforms(fc_sphere_sprites_program(&pass->sprites, particles), env, settings, first, mean, room);
     fc_particle_attributes_bind(attributes);
     fc_sphere_sprites_draw_range(&pass->sprites, particles, first, count, view,
