@@ -53,10 +53,16 @@ mat3 shape_of(uint p)
     return mat3(a.x, a.y, a.z, a.y, a.w, b.x, a.z, b.x, b.y);
 }
 
+// The bin x lies in, unclamped (a sample may lie past the last bin).
+ivec3 bin_of(vec3 x)
+{
+    return ivec3(floor((x - origin) / bin));
+}
+
 // The bins around x: [lo, hi] per axis, empty where lo > hi.
 void bins_around(vec3 x, out ivec3 lo, out ivec3 hi)
 {
-    ivec3 centre = ivec3(floor((x - origin) / bin));
+    ivec3 centre = bin_of(x);
     lo = max(centre - int(BIN_SPLIT), ivec3(0));
     hi = min(centre + int(BIN_SPLIT), ivec3(bins) - 1);
 }
@@ -84,6 +90,69 @@ float field_value(vec3 x)
             }
         }
     return f;
+}
+
+// The particles of the bins [lo, hi] (clamped to the grid's): at most this many terms in the field
+// of a point whose bins_around lie within them.
+uint particles_in(ivec3 lo, ivec3 hi)
+{
+    lo = max(lo, ivec3(0));
+    hi = min(hi, ivec3(bins) - 1);
+    uint n = 0u;
+    for (int z = lo.z; z <= hi.z; z++)
+        for (int y = lo.y; y <= hi.y && lo.x <= hi.x; y++) {
+            uvec2 run = row_run(lo, hi, y, z);
+            n += run.y - run.x;
+        }
+    return n;
+}
+
+// The sum of the weights at x of the particles p0 <= p < p1, added to f
+// until it reaches `threshold`.
+float add_weights(vec3 x, uint p0, uint p1, float f, float threshold)
+{
+    float slope;
+    for (uint p = p0; p < p1 && f < threshold; p++) {
+        vec4 particle = particles[p];
+        vec3 d = x - particle.xyz;
+        f += weight(kernel == 2 ? shape_of(p) * d : d, particle.w, slope);
+    }
+    return f;
+}
+
+// Whether the field at x reaches `threshold`: field_value's terms, the 3^3
+// bins next to x's own first (where the nearest particles lie: inside a body of
+// fluid they alone reach it), then the rest, stopping once the sum does. Every
+// weight is at least 0 and the order differs from field_value's, so the two
+// sums differ by rounding alone: `threshold` carries the margin for it
+// (surface_field.comp.glsl).
+bool field_reaches(vec3 x, float threshold)
+{
+    ivec3 centre = bin_of(x), lo, hi;
+    bins_around(x, lo, hi);
+    ivec3 near_lo = max(lo, centre - 1), near_hi = min(hi, centre + 1);
+    float f = 0.0;
+    for (int z = near_lo.z; z <= near_hi.z && f < threshold; z++)
+        for (int y = near_lo.y; y <= near_hi.y && near_lo.x <= near_hi.x; y++) {
+            uvec2 run = row_run(near_lo, near_hi, y, z);
+            f = add_weights(x, run.x, run.y, f, threshold);
+        }
+    for (int z = lo.z; z <= hi.z && f < threshold; z++)
+        for (int y = lo.y; y <= hi.y && lo.x <= hi.x; y++) {
+            bool near_row = abs(z - centre.z) <= 1 && abs(y - centre.y) <= 1 && near_lo.x <= near_hi.x;
+            if (!near_row) {
+                uvec2 run = row_run(lo, hi, y, z);
+                f = add_weights(x, run.x, run.y, f, threshold);
+                continue;
+            }
+            uvec2 below = row_run(lo, ivec3(near_lo.x - 1), y, z);   // the row's bins below the near ones
+            uvec2 above = row_run(ivec3(near_hi.x + 1), hi, y, z);   // and above them
+            if (lo.x < near_lo.x)
+                f = add_weights(x, below.x, below.y, f, threshold);
+            if (near_hi.x < hi.x)
+                f = add_weights(x, above.x, above.y, f, threshold);
+        }
+    return f >= threshold;
 }
 
 // The field's gradient at x: all a vertex takes when the frame has no
