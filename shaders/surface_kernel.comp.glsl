@@ -74,15 +74,36 @@ uvec2 row_run(ivec3 lo, ivec3 hi, int y, int z)
     return uvec2(bin_starts[row + uint(lo.x)], bin_starts[row + uint(hi.x) + 1u]);
 }
 
+// The run of row (y, z)'s particles, of the bins lo.x..hi.x, that x's field
+// may reach, `at` being x in bins ((x - origin) / bin, bin_of's expression).
+// The field reaches at most BIN_SPLIT bins (the grid's reach / bin <= BIN_SPLIT
+// / 1.001, surface_grid.c), so a bin farther from x than that, 1% more for
+// rounding, holds only particles whose weight at x is 0: dropping them from the
+// ends of the row leaves the sum's bits as they were and skips most of the
+// corners of the (2 BIN_SPLIT + 1)^3 bins.
+uvec2 reached_run(vec3 at, ivec3 lo, ivec3 hi, int y, int z)
+{
+    float cut = float(BIN_SPLIT) * 1.01;
+    float dy = max(max(float(y) - at.y, at.y - float(y + 1)), 0.0);
+    float dz = max(max(float(z) - at.z, at.z - float(z + 1)), 0.0);
+    float rest = cut * cut - dy * dy - dz * dz;
+    if (rest <= 0.0)
+        return uvec2(0u);
+    float s = sqrt(rest);
+    int x0 = max(lo.x, int(floor(at.x - s))), x1 = min(hi.x, int(floor(at.x + s)));
+    return x0 <= x1 ? row_run(ivec3(x0), ivec3(x1), y, z) : uvec2(0u);
+}
+
 // The field at x: the value only, as the samples need it.
 float field_value(vec3 x)
 {
     ivec3 lo, hi;
     bins_around(x, lo, hi);
+    vec3 at = (x - origin) / bin;
     float f = 0.0, slope;
     for (int z = lo.z; z <= hi.z; z++)
         for (int y = lo.y; y <= hi.y && lo.x <= hi.x; y++) {
-            uvec2 run = row_run(lo, hi, y, z);
+            uvec2 run = reached_run(at, lo, hi, y, z);
             for (uint p = run.x; p < run.y; p++) {
                 vec4 particle = particles[p];
                 vec3 d = x - particle.xyz;
