@@ -152,12 +152,16 @@ bool field_reaches(vec3 x, float threshold)
     ivec3 centre = bin_of(x), lo, hi;
     bins_around(x, lo, hi);
     ivec3 near_lo = max(lo, centre - 1), near_hi = min(hi, centre + 1);
+    const ivec2 near_rows[9] = ivec2[9](ivec2(0, 0), ivec2(-1, 0), ivec2(1, 0), ivec2(0, -1), ivec2(0, 1),
+                                        ivec2(-1, -1), ivec2(1, -1), ivec2(-1, 1), ivec2(1, 1));
     float f = 0.0;
-    for (int z = near_lo.z; z <= near_hi.z && f < threshold; z++)
-        for (int y = near_lo.y; y <= near_hi.y && near_lo.x <= near_hi.x; y++) {
-            uvec2 run = row_run(near_lo, near_hi, y, z);
-            f = add_weights(x, run.x, run.y, f, threshold);
-        }
+    for (int k = 0; k < 9 && f < threshold && near_lo.x <= near_hi.x; k++) {
+        int y = centre.y + near_rows[k].x, z = centre.z + near_rows[k].y;
+        if (y < near_lo.y || y > near_hi.y || z < near_lo.z || z > near_hi.z)
+            continue;
+        uvec2 run = row_run(near_lo, near_hi, y, z);
+        f = add_weights(x, run.x, run.y, f, threshold);
+    }
     for (int z = lo.z; z <= hi.z && f < threshold; z++)
         for (int y = lo.y; y <= hi.y && lo.x <= hi.x; y++) {
             bool near_row = abs(z - centre.z) <= 1 && abs(y - centre.y) <= 1 && near_lo.x <= near_hi.x;

@@ -24,7 +24,7 @@
 
 /* Uniform locations of surface_*.comp.glsl. */
 enum { LOC_BLOCKS = 0, LOC_ORIGIN = 1, LOC_CELL = 2, LOC_ISO = 3, LOC_KERNEL = 4, LOC_EMIT = 5, LOC_BIN = 6,
-       LOC_BINS = 7, LOC_WITH_ATTRIBUTES = 8, LOC_VERTEX_COUNT = 9 };
+       LOC_BINS = 7, LOC_WITH_ATTRIBUTES = 8, LOC_VERTEX_COUNT = 9, LOC_STAGE = 10 };
 /* Shader storage bindings of surface_*.comp.glsl. */
 enum { BIND_PARTICLES = 0, BIND_ATTRIBUTES = 1, BIND_IDS = 2, BIND_KEYS = 3, BIND_BIN_STARTS = 4,
        BIND_CROSSED = 5, BIND_FIELD = 6, BIND_VERTEX_EDGES = 7, BIND_CUBES = 8, BIND_SHAPES = 9, BIND_EDGES = 10,
@@ -193,9 +193,14 @@ static void run_program(const fc_surface_passes *s, GLuint program, unsigned use
     fc_surface_dispatch_blocks(s, x->grid.block_count);
 }
 
+/* The field pass's two stages (surface_field.comp.glsl): the samples each block owns proven at or above the
+ * iso value where they are, then the field of every block not solid. */
 static void run_field(const fc_surface_passes *s, const extraction *x)
 {
-    run_program(s, s->field_program, USES_PLACE | USES_ISO | USES_KERNEL | USES_BINS, x, 0);
+    for (int stage = 0; stage < 2; stage++) {
+        glProgramUniform1i(s->field_program, LOC_STAGE, stage);
+        run_program(s, s->field_program, USES_PLACE | USES_ISO | USES_KERNEL | USES_BINS, x, 0);
+    }
 }
 
 static void run_crossed(const fc_surface_passes *s, const extraction *x)
