@@ -33,6 +33,7 @@ uvec3 block_coordinates(uint key);
 uint block_key(uvec3 coordinates);
 uint find_block(uint key);
 uvec3 unpack_point(uint point);
+uint sample_index(uvec3 local);
 ivec3 bin_of(vec3 x);
 uint particles_in(ivec3 lo, ivec3 hi);
 float field_value(vec3 x);
@@ -47,9 +48,21 @@ vec3 sample_position(uvec3 base, uvec3 local)
     return origin + vec3(base + local) * cell;
 }
 
-uvec3 sample_local(uint s)
+// The block's sample number t in an order that keeps rows of BLOCK along x together (an invocation's lanes
+// then read the same rows of bins): the BLOCK^3 it owns, then the upper y face's rows (x < BLOCK), the upper
+// z face's (x, y < BLOCK), and the upper x face.
+uvec3 sample_local(uint t)
 {
-    return uvec3(s % (BLOCK + 1u), (s / (BLOCK + 1u)) % (BLOCK + 1u), s / ((BLOCK + 1u) * (BLOCK + 1u)));
+    const uint owned = BLOCK * BLOCK * BLOCK, face_rows = (BLOCK + 1u) + BLOCK;
+    if (t < owned)
+        return unpack_point(t);
+    t -= owned;
+    if (t < face_rows * BLOCK) {
+        uint row = t / BLOCK, x = t % BLOCK;
+        return row <= BLOCK ? uvec3(x, BLOCK, row) : uvec3(x, row - (BLOCK + 1u), BLOCK);
+    }
+    t -= face_rows * BLOCK;
+    return uvec3(BLOCK, t % (BLOCK + 1u), t / (BLOCK + 1u));
 }
 
 // iso raised by a margin for rounding: field_reaches sums a subset of field_value's
@@ -130,6 +143,8 @@ void main()
     if (gl_LocalInvocationID.x == 0u)
         is_solid = solid(block, coordinates);
     barrier();
-    for (uint s = gl_LocalInvocationID.x; s < BLOCK_SAMPLES; s += gl_WorkGroupSize.x)
-        field[block * BLOCK_SAMPLES + s] = is_solid ? iso : field_value(sample_position(base, sample_local(s)));
+    for (uint t = gl_LocalInvocationID.x; t < BLOCK_SAMPLES; t += gl_WorkGroupSize.x) {
+        uvec3 local = sample_local(t);
+        field[block * BLOCK_SAMPLES + sample_index(local)] = is_solid ? iso : field_value(sample_position(base, local));
+    }
 }
