@@ -53,10 +53,16 @@ mat3 shape_of(uint p)
     return mat3(a.x, a.y, a.z, a.y, a.w, b.x, a.z, b.x, b.y);
 }
 
+// The bin x lies in, unclamped (a sample may lie past the last bin).
+ivec3 bin_of(vec3 x)
+{
+    return ivec3(floor((x - origin) / bin));
+}
+
 // The bins around x: [lo, hi] per axis, empty where lo > hi.
 void bins_around(vec3 x, out ivec3 lo, out ivec3 hi)
 {
-    ivec3 centre = ivec3(floor((x - origin) / bin));
+    ivec3 centre = bin_of(x);
     lo = max(centre - int(BIN_SPLIT), ivec3(0));
     hi = min(centre + int(BIN_SPLIT), ivec3(bins) - 1);
 }
@@ -68,15 +74,36 @@ uvec2 row_run(ivec3 lo, ivec3 hi, int y, int z)
     return uvec2(bin_starts[row + uint(lo.x)], bin_starts[row + uint(hi.x) + 1u]);
 }
 
+// The run of row (y, z)'s particles, of the bins lo.x..hi.x, that x's field
+// may reach, `at` being x in bins ((x - origin) / bin, bin_of's expression).
+// The field reaches at most BIN_SPLIT bins (the grid's reach / bin <= BIN_SPLIT
+// / 1.001, surface_grid.c), so a bin farther from x than that, 1% more for
+// rounding, holds only particles whose weight at x is 0: dropping them from the
+// ends of the row leaves the sum's bits as they were and skips most of the
+// corners of the (2 BIN_SPLIT + 1)^3 bins.
+uvec2 reached_run(vec3 at, ivec3 lo, ivec3 hi, int y, int z)
+{
+    float cut = float(BIN_SPLIT) * 1.01;
+    float dy = max(max(float(y) - at.y, at.y - float(y + 1)), 0.0);
+    float dz = max(max(float(z) - at.z, at.z - float(z + 1)), 0.0);
+    float rest = cut * cut - dy * dy - dz * dz;
+    if (rest <= 0.0)
+        return uvec2(0u);
+    float s = sqrt(rest);
+    int x0 = max(lo.x, int(floor(at.x - s))), x1 = min(hi.x, int(floor(at.x + s)));
+    return x0 <= x1 ? row_run(ivec3(x0), ivec3(x1), y, z) : uvec2(0u);
+}
+
 // The field at x: the value only, as the samples need it.
 float field_value(vec3 x)
 {
     ivec3 lo, hi;
     bins_around(x, lo, hi);
+    vec3 at = (x - origin) / bin;
     float f = 0.0, slope;
     for (int z = lo.z; z <= hi.z; z++)
         for (int y = lo.y; y <= hi.y && lo.x <= hi.x; y++) {
-            uvec2 run = row_run(lo, hi, y, z);
+            uvec2 run = reached_run(at, lo, hi, y, z);
             for (uint p = run.x; p < run.y; p++) {
                 vec4 particle = particles[p];
                 vec3 d = x - particle.xyz;
@@ -84,6 +111,73 @@ float field_value(vec3 x)
             }
         }
     return f;
+}
+
+// The particles of the bins [lo, hi] (clamped to the grid's): at most this many terms in the field
+// of a point whose bins_around lie within them.
+uint particles_in(ivec3 lo, ivec3 hi)
+{
+    lo = max(lo, ivec3(0));
+    hi = min(hi, ivec3(bins) - 1);
+    uint n = 0u;
+    for (int z = lo.z; z <= hi.z; z++)
+        for (int y = lo.y; y <= hi.y && lo.x <= hi.x; y++) {
+            uvec2 run = row_run(lo, hi, y, z);
+            n += run.y - run.x;
+        }
+    return n;
+}
+
+// The sum of the weights at x of the particles p0 <= p < p1, added to f
+// until it reaches `threshold`.
+float add_weights(vec3 x, uint p0, uint p1, float f, float threshold)
+{
+    float slope;
+    for (uint p = p0; p < p1 && f < threshold; p++) {
+        vec4 particle = particles[p];
+        vec3 d = x - particle.xyz;
+        f += weight(kernel == 2 ? shape_of(p) * d : d, particle.w, slope);
+    }
+    return f;
+}
+
+// Whether the field at x reaches `threshold`: field_value's terms, the 3^3
+// bins next to x's own first (where the nearest particles lie: inside a body of
+// fluid they alone reach it), then the rest, stopping once the sum does. Every
+// weight is at least 0 and the order differs from field_value's, so the two
+// sums differ by rounding alone: `threshold` carries the margin for it
+// (surface_field.comp.glsl).
+bool field_reaches(vec3 x, float threshold)
+{
+    ivec3 centre = bin_of(x), lo, hi;
+    bins_around(x, lo, hi);
+    ivec3 near_lo = max(lo, centre - 1), near_hi = min(hi, centre + 1);
+    const ivec2 near_rows[9] = ivec2[9](ivec2(0, 0), ivec2(-1, 0), ivec2(1, 0), ivec2(0, -1), ivec2(0, 1),
+                                        ivec2(-1, -1), ivec2(1, -1), ivec2(-1, 1), ivec2(1, 1));
+    float f = 0.0;
+    for (int k = 0; k < 9 && f < threshold && near_lo.x <= near_hi.x; k++) {
+        int y = centre.y + near_rows[k].x, z = centre.z + near_rows[k].y;
+        if (y < near_lo.y || y > near_hi.y || z < near_lo.z || z > near_hi.z)
+            continue;
+        uvec2 run = row_run(near_lo, near_hi, y, z);
+        f = add_weights(x, run.x, run.y, f, threshold);
+    }
+    for (int z = lo.z; z <= hi.z && f < threshold; z++)
+        for (int y = lo.y; y <= hi.y && lo.x <= hi.x; y++) {
+            bool near_row = abs(z - centre.z) <= 1 && abs(y - centre.y) <= 1 && near_lo.x <= near_hi.x;
+            if (!near_row) {
+                uvec2 run = row_run(lo, hi, y, z);
+                f = add_weights(x, run.x, run.y, f, threshold);
+                continue;
+            }
+            uvec2 below = row_run(lo, ivec3(near_lo.x - 1), y, z);   // the row's bins below the near ones
+            uvec2 above = row_run(ivec3(near_hi.x + 1), hi, y, z);   // and above them
+            if (lo.x < near_lo.x)
+                f = add_weights(x, below.x, below.y, f, threshold);
+            if (near_hi.x < hi.x)
+                f = add_weights(x, above.x, above.y, f, threshold);
+        }
+    return f >= threshold;
 }
 
 // The field's gradient at x: all a vertex takes when the frame has no

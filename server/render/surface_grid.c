@@ -62,31 +62,9 @@ static uint32_t key_of(uint32_t x, uint32_t y, uint32_t z)
     return x | y << FC_SURFACE_KEY_BITS | z << (2 * FC_SURFACE_KEY_BITS);
 }
 
-/* A pair is key << PARTICLE_BITS | particle: a block key (30 bits) over a
- * particle index of PARTICLE_BITS (FC_SURFACE_MAX_PARTICLES). */
-#define PARTICLE_BITS 28u
-
-/* Stable LSD radix sort of the pairs by their key's `key_bits`, 8 bits a pass. */
-static fc_code sort_pairs(uint64_t *pairs, uint64_t n, unsigned key_bits, fc_error *err)
-{
-    uint64_t *tmp = malloc((n ? n : 1) * sizeof *tmp);
-    if (!tmp)
-        return fc_error_set(err, FC_ERR_NOMEM, "cannot allocate %llu surface grid pairs", (unsigned long long)n);
-    for (unsigned shift = PARTICLE_BITS; shift < PARTICLE_BITS + key_bits; shift += 8) {
-        uint64_t counts[257] = {0};
-        for (uint64_t i = 0; i < n; i++)
-            counts[((pairs[i] >> shift) & 0xffu) + 1]++;
-        for (int d = 0; d < 256; d++)
-            counts[d + 1] += counts[d];
-        for (uint64_t i = 0; i < n; i++)
-            tmp[counts[(pairs[i] >> shift) & 0xffu]++] = pairs[i];
-        memcpy(pairs, tmp, n * sizeof *pairs);
-    }
-    free(tmp);
-    return FC_OK;
-}
-
-/* Counts the pairs and checks the budget before anything large is allocated. */
+/* Counts the pairs of a particle and a block it reaches (the blocks' marking
+ * work, collect_blocks) and checks the budget, which counts 12 bytes a pair
+ * (the particle lists they once were), before anything large is allocated. */
 static fc_code count_pairs(const fc_surface_grid *g, const float *positions, uint64_t count, float reach,
                            uint64_t *pairs, fc_error *err)
 {
@@ -104,42 +82,59 @@ static fc_code count_pairs(const fc_surface_grid *g, const float *positions, uin
     return FC_OK;
 }
 
-static void fill_pairs(const fc_surface_grid *g, const float *positions, uint64_t count, float reach,
-                       uint64_t *pairs)
+/* The blocks reached (each particle's range, blocks_reached) as bits over the
+ * box of block coordinates they span, bit x + span[0] (y + span[1] z): in
+ * ascending order of the bits their keys ascend too (x | y << 10 | z << 20),
+ * so one scan lists the unique keys in order. At most 1023^3 bits (128 MiB),
+ * far less than a pair per particle and block it reaches. */
+static fc_code collect_blocks(const float *positions, uint64_t count, float reach, uint64_t n, fc_surface_grid *g,
+                              fc_error *err)
 {
-    uint64_t n = 0;
+    uint32_t span[3] = {1, 1, 1};
+    for (uint64_t i = 0; i < count; i++) {
+        block_range r = blocks_reached(g, positions + 3 * i, reach);
+        for (int a = 0; a < 3; a++)
+            span[a] = r.hi[a] + 1 > span[a] ? r.hi[a] + 1 : span[a];
+    }
+    uint64_t bits = (uint64_t)span[0] * span[1] * span[2], words = (bits + 63) / 64;
+    uint64_t *reached = calloc(words, sizeof *reached);
+    if (!reached)
+        return fc_error_set(err, FC_ERR_NOMEM, "cannot allocate the surface grid's %llu block flags",
+                            (unsigned long long)bits);
     for (uint64_t i = 0; i < count; i++) {
         block_range r = blocks_reached(g, positions + 3 * i, reach);
         for (uint32_t z = r.lo[2]; z <= r.hi[2]; z++)
             for (uint32_t y = r.lo[1]; y <= r.hi[1]; y++)
-                for (uint32_t x = r.lo[0]; x <= r.hi[0]; x++)
-                    pairs[n++] = (uint64_t)key_of(x, y, z) << PARTICLE_BITS | i;
+                for (uint32_t x = r.lo[0]; x <= r.hi[0]; x++) {
+                    uint64_t b = x + (uint64_t)span[0] * (y + (uint64_t)span[1] * z);
+                    reached[b / 64] |= (uint64_t)1 << (b % 64);
+                }
     }
-}
-
-/* The sorted block pairs -> the unique block keys. */
-static fc_code collect_blocks(const uint64_t *pairs, uint64_t n, fc_surface_grid *g, fc_error *err)
-{
     uint64_t blocks = 0;
-    for (uint64_t i = 0; i < n; i++)
-        blocks += i == 0 || pairs[i] >> PARTICLE_BITS != pairs[i - 1] >> PARTICLE_BITS;
+    for (uint64_t w = 0; w < words; w++)
+        blocks += (uint64_t)__builtin_popcountll(reached[w]);
+    fc_code code = FC_OK;
     if (blocks * FC_SURFACE_FIELD_BLOCK_BYTES + n * 12u > FC_SURFACE_GRID_BUDGET)
-        return fc_error_set(err, FC_ERR_LIMIT,
+        code = fc_error_set(err, FC_ERR_LIMIT,
                             "the surface grid would need %llu blocks (%llu MiB), over its budget of %llu MiB: "
                             "raise surface_cell",
                             (unsigned long long)blocks,
                             (unsigned long long)((blocks * FC_SURFACE_FIELD_BLOCK_BYTES + n * 12u) >> 20),
                             (unsigned long long)(FC_SURFACE_GRID_BUDGET >> 20));
-    g->block_keys = malloc((blocks ? blocks : 1) * sizeof *g->block_keys);
-    if (!g->block_keys)
-        return fc_error_set(err, FC_ERR_NOMEM, "cannot allocate the surface grid's %llu blocks",
+    if (code == FC_OK && !(g->block_keys = malloc((blocks ? blocks : 1) * sizeof *g->block_keys)))
+        code = fc_error_set(err, FC_ERR_NOMEM, "cannot allocate the surface grid's %llu blocks",
                             (unsigned long long)blocks);
-    uint32_t b = 0;
-    for (uint64_t i = 0; i < n; i++)
-        if (i == 0 || pairs[i] >> PARTICLE_BITS != pairs[i - 1] >> PARTICLE_BITS)
-            g->block_keys[b++] = (uint32_t)(pairs[i] >> PARTICLE_BITS);
-    g->block_count = b;
-    return FC_OK;
+    uint32_t k = 0;
+    for (uint64_t w = 0; code == FC_OK && w < words; w++)
+        for (uint64_t word = reached[w]; word; word &= word - 1) {
+            uint64_t b = w * 64 + (uint64_t)__builtin_ctzll(word);
+            uint32_t x = (uint32_t)(b % span[0]), y = (uint32_t)(b / span[0] % span[1]),
+                     z = (uint32_t)(b / span[0] / span[1]);
+            g->block_keys[k++] = key_of(x, y, z);
+        }
+    g->block_count = k;
+    free(reached);
+    return code;
 }
 
 /* The bin edge: the field's reach over FC_SURFACE_BIN_SPLIT (a little more,
@@ -222,14 +217,7 @@ fc_code fc_surface_grid_build(const float *positions, uint64_t count, float reac
         code = count_pairs(out, positions, count, reach, &n, err);
     if (code != FC_OK)
         return code;
-    uint64_t *pairs = malloc((n ? n : 1) * sizeof *pairs);
-    if (!pairs)
-        return fc_error_set(err, FC_ERR_NOMEM, "cannot allocate %llu surface grid pairs", (unsigned long long)n);
-    fill_pairs(out, positions, count, reach, pairs);
-    code = sort_pairs(pairs, n, 3 * FC_SURFACE_KEY_BITS, err);
-    if (code == FC_OK)
-        code = collect_blocks(pairs, n, out, err);
-    free(pairs);
+    code = collect_blocks(positions, count, reach, n, out, err);
     if (code == FC_OK)
         code = build_bins(positions, count, reach, out, err);
     if (code != FC_OK)

@@ -4,8 +4,9 @@
  * wide (Janisz's "particle lookup cache", after Rosenberg & Birdwell 2008):
  * a sample sums the particles of the bins within FC_SURFACE_BIN_SPLIT of its own, so every
  * particle is listed once whatever the cell size, and a sample tests a few
- * dozen particles rather than all those of a block. Built on the CPU by
- * stable sorts, so that equal input gives equal bins in particle order.
+ * dozen particles rather than all those of a block. Built on the CPU: the
+ * blocks by marking those each particle reaches in a bitmap, the bins by a
+ * stable counting sort, so that equal input gives equal bins in particle order.
  *
  * A block holds (FC_SURFACE_BLOCK + 1)^3 samples: its cells' corners, the
  * upper faces included. Neighbouring blocks so evaluate the same lattice

@@ -24,7 +24,7 @@
 
 /* Uniform locations of surface_*.comp.glsl. */
 enum { LOC_BLOCKS = 0, LOC_ORIGIN = 1, LOC_CELL = 2, LOC_ISO = 3, LOC_KERNEL = 4, LOC_EMIT = 5, LOC_BIN = 6,
-       LOC_BINS = 7, LOC_WITH_ATTRIBUTES = 8, LOC_VERTEX_COUNT = 9 };
+       LOC_BINS = 7, LOC_WITH_ATTRIBUTES = 8, LOC_VERTEX_COUNT = 9, LOC_STAGE = 10 };
 /* Shader storage bindings of surface_*.comp.glsl. */
 enum { BIND_PARTICLES = 0, BIND_ATTRIBUTES = 1, BIND_IDS = 2, BIND_KEYS = 3, BIND_BIN_STARTS = 4,
        BIND_CROSSED = 5, BIND_FIELD = 6, BIND_VERTEX_EDGES = 7, BIND_CUBES = 8, BIND_SHAPES = 9, BIND_EDGES = 10,
@@ -193,9 +193,14 @@ static void run_program(const fc_surface_passes *s, GLuint program, unsigned use
     fc_surface_dispatch_blocks(s, x->grid.block_count);
 }
 
+/* The field pass's two stages (surface_field.comp.glsl): the samples each block owns proven at or above the
+ * iso value where they are, then the field of every block not solid. */
 static void run_field(const fc_surface_passes *s, const extraction *x)
 {
-    run_program(s, s->field_program, USES_PLACE | USES_KERNEL | USES_BINS, x, 0);
+    for (int stage = 0; stage < 2; stage++) {
+        glProgramUniform1i(s->field_program, LOC_STAGE, stage);
+        run_program(s, s->field_program, USES_PLACE | USES_ISO | USES_KERNEL | USES_BINS, x, 0);
+    }
 }
 
 static void run_crossed(const fc_surface_passes *s, const extraction *x)
@@ -489,8 +494,9 @@ static fc_code ellipsoid_centres(const fc_ellipsoid *ellipsoids, uint64_t count,
     return FC_OK;
 }
 
-static fc_code extract(const fc_surface_passes *s, const fc_frame *frame, const fc_ellipsoid *ellipsoids,
-                       const fc_settings *settings, fc_surface_mesh *out, extraction *x, fc_error *err)
+/* The grid of the frame, its particles uploaded and its blocks' buffers allocated: what the field pass reads. */
+static fc_code prepare_grid(const fc_frame *frame, const fc_ellipsoid *ellipsoids, const fc_settings *settings,
+                            extraction *x, fc_error *err)
 {
     float radius;
     const float *per_particle;
@@ -517,6 +523,13 @@ static fc_code extract(const fc_surface_passes *s, const fc_frame *frame, const 
     free(centres);
     if (code == FC_OK)
         code = allocate_grid(x, err);
+    return code;
+}
+
+static fc_code extract(const fc_surface_passes *s, const fc_frame *frame, const fc_ellipsoid *ellipsoids,
+                       const fc_settings *settings, fc_surface_mesh *out, extraction *x, fc_error *err)
+{
+    fc_code code = prepare_grid(frame, ellipsoids, settings, x, err);
     if (code == FC_OK)
         code = count_mesh(s, x, err);
     if (code == FC_OK)
@@ -550,5 +563,37 @@ fc_code fc_surface_mesher_run(const fc_surface_passes *passes, const fc_frame *f
     release(&x);
     if (code != FC_OK)
         fc_surface_mesh_free(out);
+    return code;
+}
+
+fc_code fc_surface_mesher_field(const fc_surface_passes *passes, const fc_frame *frame, const fc_settings *settings,
+                                fc_surface_grid *grid, float **field, float *iso, fc_error *err)
+{
+    memset(grid, 0, sizeof *grid);
+    *field = NULL;
+    extraction x = {0};
+    fc_code code = fc_surface_mesher_check(frame, settings, err);
+    if (code == FC_OK && settings->surface_kernel == FC_SURFACE_KERNEL_ANISOTROPIC)
+        code = fc_error_set(err, FC_ERR_USAGE, "the field alone is for the isotropic kernels");
+    if (code == FC_OK && frame->count > 0)
+        code = prepare_grid(frame, NULL, settings, &x, err);
+    size_t bytes = (size_t)x.grid.block_count * FC_SURFACE_BLOCK_SAMPLES * 4;
+    if (code == FC_OK && !(*field = malloc(bytes + 1)))
+        code = fc_error_set(err, FC_ERR_NOMEM, "cannot read back %u blocks' field", x.grid.block_count);
+    if (code == FC_OK && bytes) {
+        run_field(passes, &x);
+        glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+        glGetNamedBufferSubData(x.buffers[BIND_FIELD], 0, (GLsizeiptr)bytes, *field);
+        code = fc_gl_check("reading the surface field back", err);
+    }
+    *iso = x.iso;
+    if (code == FC_OK) {
+        *grid = x.grid;
+        memset(&x.grid, 0, sizeof x.grid);
+    } else {
+        free(*field);
+        *field = NULL;
+    }
+    release(&x);
     return code;
 }

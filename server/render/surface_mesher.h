@@ -8,6 +8,7 @@
 #include "anisotropy.h"
 #include "fc_surface_mesh.h"
 #include "fluidcast_types.h"
+#include "surface_grid.h"
 #include "surface_passes.h"
 
 /* How far a particle's field reaches, in its radii (its ellipsoid's longest
@@ -40,5 +41,13 @@ fc_code fc_surface_mesher_check(const fc_frame *frame, const fc_settings *settin
  * of no particles gives the empty mesh. On failure *out is empty. */
 fc_code fc_surface_mesher_run(const fc_surface_passes *passes, const fc_frame *frame, const fc_ellipsoid *ellipsoids,
                               const fc_settings *settings, fc_surface_mesh *out, fc_error *err);
+
+/* The field pass alone (tests/surface/test_surface_solid.c checks what it
+ * proves): the grid of a frame (metaball or sph kernel) and the field at every
+ * sample of each of its blocks, FC_SURFACE_BLOCK_SAMPLES a block in key order,
+ * malloc'd, with the iso value; a solid block's samples hold the iso value
+ * itself (surface_field.comp.glsl). The caller frees the grid and the field. */
+fc_code fc_surface_mesher_field(const fc_surface_passes *passes, const fc_frame *frame, const fc_settings *settings,
+                                fc_surface_grid *grid, float **field, float *iso, fc_error *err);
 
 #endif
