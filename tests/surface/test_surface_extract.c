@@ -14,6 +14,7 @@
 
 #include "fc_frame.h"
 #include "fc_settings.h"
+#include "field_check.h"
 #include "mesh_check.h"
 #include "render_fixture.h"
 #include "surface_extract.h"
@@ -73,24 +74,10 @@ static fc_settings mesh_settings(fc_surface_kernel kernel, float cell, uint32_t 
 
 /* ---- the field, independently: a metaball or cubic-spline sum in double ---- */
 
-static double kernel_weight(fc_surface_kernel kernel, double radius, double d)
-{
-    double reach = (kernel == FC_SURFACE_KERNEL_SPH ? FC_SURFACE_SPH_REACH_RADII : FC_SURFACE_METABALL_REACH_RADII) *
-                   radius;
-    if (d >= reach)
-        return 0.0;
-    if (kernel == FC_SURFACE_KERNEL_METABALL) {
-        double q = 1.0 - d * d / (reach * reach);
-        return q * q * q;
-    }
-    double q = d / (0.5 * reach);
-    return q < 1.0 ? 1.0 - 1.5 * q * q + 0.75 * q * q * q : 0.25 * (2.0 - q) * (2.0 - q) * (2.0 - q);
-}
-
 /* A lone particle's field at one radius: its surface is its sphere. */
 static double iso_of(fc_surface_kernel kernel, double radius)
 {
-    return kernel_weight(kernel, radius, radius);
+    return field_check_weight(kernel, radius, radius);
 }
 
 static double field_at(const points *p, fc_surface_kernel kernel, double radius, const double x[3])
@@ -102,7 +89,7 @@ static double field_at(const points *p, fc_surface_kernel kernel, double radius,
             double d = x[a] - p->xyz[3 * i + a];
             d2 += d * d;
         }
-        f += kernel_weight(kernel, radius, sqrt(d2));
+        f += field_check_weight(kernel, radius, sqrt(d2));
     }
     return f;
 }

@@ -13,6 +13,7 @@
 #include <stdlib.h>
 
 #include "fc_settings.h"
+#include "field_check.h"
 #include "pipeline_internal.h"
 #include "render_fixture.h"
 #include "surface_grid.h"
@@ -43,20 +44,6 @@ static float *body_at_rest(uint64_t *count)
     return xyz;
 }
 
-/* The kernel's weight in double, as surface_kernel.comp.glsl's weight(). */
-static double kernel_weight(fc_surface_kernel kernel, double d)
-{
-    double reach = fc_surface_kernel_reach_radii(kernel) * RADIUS;
-    if (d >= reach)
-        return 0.0;
-    if (kernel == FC_SURFACE_KERNEL_METABALL) {
-        double q = 1.0 - d * d / (reach * reach);
-        return q * q * q;
-    }
-    double q = d / (0.5 * reach);
-    return q < 1.0 ? 1.0 - 1.5 * q * q + 0.75 * q * q * q : 0.25 * (2.0 - q) * (2.0 - q) * (2.0 - q);
-}
-
 /* The field at x in double, from the particles of every bin within reach. */
 static double field_at(const fc_surface_grid *g, const float *xyz, fc_surface_kernel kernel, const double x[3])
 {
@@ -77,7 +64,7 @@ static double field_at(const fc_surface_grid *g, const float *xyz, fc_surface_ke
                     double d2 = 0.0;
                     for (int a = 0; a < 3; a++)
                         d2 += (x[a] - p[a]) * (x[a] - p[a]);
-                    f += kernel_weight(kernel, sqrt(d2));
+                    f += field_check_weight(kernel, RADIUS, sqrt(d2));
                 }
             }
     return f;
