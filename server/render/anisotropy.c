@@ -246,22 +246,15 @@ static void run_passes(fc_anisotropy *a, const fc_particle_buffer *particles, co
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
 }
 
-/* r_s: the frame's typical spacing (the median nearest-neighbour distance of
- * a sample, found exactly) times the support in spacings. */
-static float support_radius(const fc_frame *frame)
+float fc_anisotropy_support(float estimated_radius)
 {
-    return FC_ANISOTROPY_SUPPORT_SPACINGS * fc_frame_estimate_radius(frame) / ESTIMATED_RADIUS_PER_SPACING;
+    return FC_ANISOTROPY_SUPPORT_SPACINGS * estimated_radius / ESTIMATED_RADIUS_PER_SPACING;
 }
 
-fc_code fc_anisotropy_update(fc_anisotropy *a, const fc_particle_buffer *particles, const fc_frame *frame,
-                             fc_error *err)
+fc_code fc_anisotropy_update(fc_anisotropy *a, const fc_particle_buffer *particles, float support, fc_error *err)
 {
     if (a->ellipsoids && a->generation == particles->generation && a->count == particles->count)
         return FC_OK;
-    if (frame->count != particles->count)
-        return fc_error_set(err, FC_ERR_USAGE, "fc_anisotropy_update: a frame of %llu particles for %llu",
-                            (unsigned long long)frame->count, (unsigned long long)particles->count);
-    float support = support_radius(frame);
     grid g = plan_grid(particles, support);
     scan_plan s = plan_scan(g.total);
     fc_code code = reserve(a, particles->count, (uint64_t)s.offset[s.levels] + 1, err);

@@ -82,13 +82,16 @@ void fc_anisotropy_destroy(fc_anisotropy *a);
 /* Frees the buffers; the next update allocates and computes them again. */
 void fc_anisotropy_trim(fc_anisotropy *a);
 
-/* Computes the ellipsoids of the particles (every slot of the buffer),
- * `frame` being the same particles in any order (for their spacing), unless
+/* r_s of a frame whose fc_frame_estimate_radius is `estimated_radius`
+ * (0.9 spacings): FC_ANISOTROPY_SUPPORT_SPACINGS of its spacing. */
+float fc_anisotropy_support(float estimated_radius);
+
+/* Computes the ellipsoids of the particles (every slot of the buffer) over
+ * neighbourhoods of radius `support` (r_s, fc_anisotropy_support), unless
  * they are already those of this upload (particles->generation): a new
  * camera, radius or render re-uses them. The ellipsoids are shapes relative
  * to the render radius, whatever it is. */
-fc_code fc_anisotropy_update(fc_anisotropy *a, const fc_particle_buffer *particles, const fc_frame *frame,
-                             fc_error *err);
+fc_code fc_anisotropy_update(fc_anisotropy *a, const fc_particle_buffer *particles, float support, fc_error *err);
 
 /* Reads the ellipsoids of slots [0, count) back into out (tests). */
 fc_code fc_anisotropy_read(const fc_anisotropy *a, uint64_t count, fc_ellipsoid *out, fc_error *err);

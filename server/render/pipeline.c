@@ -57,6 +57,8 @@ struct fc_pipeline {
     uint64_t foam_generation;             /* counts the foam classes computed: what the foam pass was filled from */
     fc_color_values color_values;         /* the attribute colour_by names, for renders that colour */
     uint64_t uploads;                     /* frames uploaded so far: what the colour values were filled for */
+    float estimated_radius;               /* fc_frame_estimate_radius of the uploaded frame, */
+    uint64_t estimated_upload;            /* for this upload; 0: none yet */
     fc_anisotropy anisotropy;             /* the particles' ellipsoids, for FC_KERNEL_ANISOTROPIC */
     bool uploaded;
     fc_frame frame;                       /* the uploaded frame's arrays, which the caller keeps (pipeline.h) */
@@ -505,12 +507,29 @@ static fc_code upload_frame(fc_pipeline *p, const fc_frame *frame, fc_error *err
     return code;
 }
 
+float fc_pipeline_estimated_radius(fc_pipeline *p)
+{
+    if (p->estimated_upload != p->uploads) {
+        p->estimated_radius = fc_frame_estimate_radius(&p->frame);
+        p->estimated_upload = p->uploads;
+    }
+    return p->estimated_radius;
+}
+
+/* The neighbourhoods of the spray classes and the anisotropy: the uploaded
+ * frame's own spacing, whatever the render radius. */
+static float neighbourhood_support(fc_pipeline *p)
+{
+    return fc_anisotropy_support(fc_pipeline_estimated_radius(p));
+}
+
 /* The neighbour classes of the uploaded frame, and the grid they were
  * counted on (which the foam classes walk too). */
 static fc_code compute_spray_classes(fc_pipeline *p, uint32_t spray_neighbours, fc_error *err)
 {
+    float support = spray_neighbours > 0 && !p->frame.radius ? neighbourhood_support(p) : 0.0f;
     fc_pass_profile_begin(&p->profile, "spray classes");
-    fc_code code = fc_spray_classes_compute(&p->spray_classes, &p->frame, spray_neighbours, err);
+    fc_code code = fc_spray_classes_compute(&p->spray_classes, &p->frame, support, spray_neighbours, err);
     fc_pass_profile_end(&p->profile);
     p->classes_upload = code == FC_OK ? p->uploads : 0;
     p->classes_neighbours = spray_neighbours;
@@ -578,7 +597,7 @@ static fc_code shape_particles(fc_pipeline *p, const fc_settings *settings, fc_e
     if (settings->kernel != FC_KERNEL_ANISOTROPIC)
         return FC_OK;
     fc_pass_profile_begin(&p->profile, "anisotropy");
-    fc_code code = fc_anisotropy_update(&p->anisotropy, &p->particles, &p->frame, err);
+    fc_code code = fc_anisotropy_update(&p->anisotropy, &p->particles, neighbourhood_support(p), err);
     fc_pass_profile_end(&p->profile);
     if (code == FC_OK)
         p->particles.shapes = p->anisotropy.ellipsoids;
@@ -945,7 +964,7 @@ fc_code fc_pipeline_frame_ellipsoids(fc_pipeline *p, const fc_frame *frame, fc_e
 {
     fc_code code = fc_pipeline_upload(p, frame, NULL, err);
     if (code == FC_OK)
-        code = fc_anisotropy_update(&p->anisotropy, &p->particles, &p->frame, err);
+        code = fc_anisotropy_update(&p->anisotropy, &p->particles, neighbourhood_support(p), err);
     if (code == FC_OK)
         code = fc_anisotropy_read(&p->anisotropy, frame->count, out, err);
     return code;

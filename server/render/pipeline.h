@@ -44,6 +44,12 @@ void fc_pipeline_destroy(fc_pipeline *p);
  * until the last render of the frame. */
 fc_code fc_pipeline_upload(fc_pipeline *p, const fc_frame *frame, float *stage_ms, fc_error *err);
 
+/* fc_frame_estimate_radius of the uploaded frame, estimated at most once per
+ * upload however often it is asked for: the render radius "auto" resolves to
+ * it, and the spray classes and the anisotropy take their neighbourhoods
+ * from it. */
+float fc_pipeline_estimated_radius(fc_pipeline *p);
+
 /* Renders the uploaded frame and reads back the image the request asks for:
  * FC_AOV_COLOR as RGBA (FC_PIXEL_U8 sRGB when `want_u8`, else FC_PIXEL_F32
  * linear), FC_AOV_NORMAL as three float channels (xyz), the other AOVs as one

@@ -7,13 +7,17 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "anisotropy.h"
 #include "fc_error.h"
 
-/* fc_frame_estimate_radius's radius per nearest-neighbour distance (fc_radius.c). */
-#define ESTIMATED_RADIUS_PER_SPACING 0.9f
-/* Hashed cells per particle: few collisions, and the table stays small. */
-#define CELLS_PER_PARTICLE 2u
+/* The table has at most this many slots per particle (a power of two at
+ * least as large): beyond it, cells wrap onto each other. */
+#define SLOTS_PER_PARTICLE 2u
+/* At least 2^2 slots per axis, so the 3 x 3 x 3 cells around any cell fall
+ * in 27 different slots. */
+#define MIN_AXIS_BITS 2
+/* Cell coordinates are clamped here (the offset from the box's minimum is
+ * never negative; a far droplet shares the last cells, a distance test away). */
+#define MAX_CELL_COORD 0x1p40f
 
 static fc_code out_of_memory(fc_error *err, uint64_t count)
 {
@@ -21,104 +25,136 @@ static fc_code out_of_memory(fc_error *err, uint64_t count)
                         (unsigned long long)count);
 }
 
-static fc_code reserve(fc_spray_classes *c, uint64_t count, uint64_t cells, fc_error *err)
+static bool grow(void **array, uint64_t count, size_t size)
+{
+    void *grown = realloc(*array, count * size);
+    if (grown)
+        *array = grown;
+    return grown != NULL;
+}
+
+static fc_code reserve(fc_spray_classes *c, uint64_t count, uint64_t slots, fc_error *err)
 {
     if (count > c->capacity) {
-        float *keys = realloc(c->keys, count * sizeof *keys);
-        if (keys)
-            c->keys = keys;
-        uint32_t *sorted = keys ? realloc(c->sorted, count * sizeof *sorted) : NULL;
-        if (!sorted)
+        if (!grow((void **)&c->keys, count, sizeof *c->keys) || !grow((void **)&c->sorted, count, sizeof *c->sorted) ||
+            !grow((void **)&c->slot_of, count, sizeof *c->slot_of) ||
+            !grow((void **)&c->gathered, count, 3 * sizeof *c->gathered))
             return out_of_memory(err, count);
-        c->sorted = sorted;
         c->capacity = count;
     }
-    if (cells + 1 > c->cell_capacity) {
-        uint32_t *starts = realloc(c->cell_start, (cells + 1) * sizeof *starts);
-        if (!starts)
+    if (slots + 1 > c->cell_capacity) {
+        if (!grow((void **)&c->cell_start, slots + 1, sizeof *c->cell_start))
             return out_of_memory(err, count);
-        c->cell_start = starts;
-        c->cell_capacity = cells + 1;
+        c->cell_capacity = slots + 1;
     }
     return FC_OK;
 }
 
-/* A cell's slot in the table of `cells` (a power of two): cells far apart
- * may share one, which costs distance tests, never a wrong count. */
-static uint32_t cell_hash(int64_t x, int64_t y, int64_t z, uint64_t cells)
+static uint32_t ceil_log2(uint64_t n)
 {
-    uint64_t h = (uint64_t)x * 73856093u ^ (uint64_t)y * 19349663u ^ (uint64_t)z * 83492791u;
-    h ^= h >> 29;
-    h *= 0xBF58476D1CE4E5B9ull;
-    h ^= h >> 32;
-    return (uint32_t)(h & (cells - 1));
+    uint32_t bits = 0;
+    while (bits < 63 && (UINT64_C(1) << bits) < n)
+        bits++;
+    return bits;
 }
 
-static void cell_of(const float *p, float per_cell, int64_t c[3])
+/* Slot bits per axis: as many as the box's cells need, so that within the
+ * box no two cells share a slot, while the table stays within
+ * SLOTS_PER_PARTICLE; a box too large for that (a droplet flung far away)
+ * gives up bits on its longest axes, where cells then wrap. */
+static void plan_slots(fc_spray_classes *c, const fc_frame *frame, float per_cell)
 {
-    for (int k = 0; k < 3; k++)
-        c[k] = (int64_t)floorf(p[k] * per_cell);
-}
-
-/* Counting sort of the particles by hashed cell into c->sorted. */
-static void bucket(fc_spray_classes *c, const fc_frame *frame, float per_cell, uint64_t cells)
-{
-    memset(c->cell_start, 0, (cells + 1) * sizeof *c->cell_start);
-    for (uint64_t i = 0; i < frame->count; i++) {
-        int64_t cell[3];
-        cell_of(frame->positions + 3 * i, per_cell, cell);
-        c->cell_start[cell_hash(cell[0], cell[1], cell[2], cells) + 1]++;
+    float hi[3];
+    fc_frame_bounds(frame, c->lo, hi);
+    uint32_t budget = ceil_log2(SLOTS_PER_PARTICLE * frame->count), total = 0;
+    budget = budget < 3 * MIN_AXIS_BITS ? 3 * MIN_AXIS_BITS : budget;
+    for (int k = 0; k < 3; k++) {
+        float cells = fminf((hi[k] - c->lo[k]) * per_cell, MAX_CELL_COORD) + 1.0f;
+        c->bits[k] = ceil_log2((uint64_t)cells);
+        c->bits[k] = c->bits[k] < MIN_AXIS_BITS ? MIN_AXIS_BITS : c->bits[k];
+        total += c->bits[k];
     }
-    for (uint64_t h = 0; h < cells; h++)
+    while (total > budget) {
+        int longest = c->bits[1] > c->bits[0] ? 1 : 0;
+        longest = c->bits[2] > c->bits[longest] ? 2 : longest;
+        c->bits[longest]--;
+        total--;
+    }
+    c->cells = UINT64_C(1) << total;
+}
+
+static void cell_of(const fc_spray_classes *c, const float *p, uint64_t cell[3])
+{
+    float per_cell = 1.0f / c->support;
+    for (int k = 0; k < 3; k++) {
+        /* Clamped to [0, MAX_CELL_COORD] (NaN to 0), so truncation is floor. */
+        float x = (p[k] - c->lo[k]) * per_cell;
+        cell[k] = x > 0.0f ? (uint64_t)(x < MAX_CELL_COORD ? x : MAX_CELL_COORD) : 0;
+    }
+}
+
+/* The cell's slot: its coordinates modulo 2^bits, packed. Cells a multiple of
+ * 2^bits apart share a slot, which costs distance tests, never a wrong count. */
+static uint32_t slot_of_cell(const fc_spray_classes *c, uint64_t x, uint64_t y, uint64_t z)
+{
+    uint64_t mx = (UINT64_C(1) << c->bits[0]) - 1, my = (UINT64_C(1) << c->bits[1]) - 1;
+    uint64_t mz = (UINT64_C(1) << c->bits[2]) - 1;
+    return (uint32_t)((x & mx) | (y & my) << c->bits[0] | (z & mz) << (c->bits[0] + c->bits[1]));
+}
+
+/* Counting sort of the particles by slot into c->sorted, their positions
+ * gathered in the same order, so that a cell's particles lie together. */
+static void bucket(fc_spray_classes *c, const fc_frame *frame)
+{
+    memset(c->cell_start, 0, (c->cells + 1) * sizeof *c->cell_start);
+    for (uint64_t i = 0; i < frame->count; i++) {
+        uint64_t cell[3];
+        cell_of(c, frame->positions + 3 * i, cell);
+        c->slot_of[i] = slot_of_cell(c, cell[0], cell[1], cell[2]);
+        c->cell_start[c->slot_of[i] + 1]++;
+    }
+    for (uint64_t h = 0; h < c->cells; h++)
         c->cell_start[h + 1] += c->cell_start[h];
     /* Each start advances past its cell's particles as they are placed. */
     for (uint64_t i = 0; i < frame->count; i++) {
-        int64_t cell[3];
-        cell_of(frame->positions + 3 * i, per_cell, cell);
-        uint32_t h = cell_hash(cell[0], cell[1], cell[2], cells);
-        c->sorted[c->cell_start[h]++] = (uint32_t)i;
+        uint32_t at = c->cell_start[c->slot_of[i]]++;
+        c->sorted[at] = (uint32_t)i;
+        memcpy(c->gathered + 3 * (size_t)at, frame->positions + 3 * i, 3 * sizeof *c->gathered);
     }
     /* The increments moved each start to the next cell's: shift back. */
-    memmove(c->cell_start + 1, c->cell_start, cells * sizeof *c->cell_start);
+    memmove(c->cell_start + 1, c->cell_start, c->cells * sizeof *c->cell_start);
     c->cell_start[0] = 0;
 }
 
-/* Adds to *found the particles of hashed cell h other than i within `support`
- * of p; true once there are `enough`. */
-static bool count_in_cell(const fc_spray_classes *c, const fc_frame *frame, uint64_t i, const float *p, uint32_t h,
-                          float support_sq, uint32_t enough, uint32_t *found)
+/* Adds to *found the particles of slot h other than the one at entry `self`
+ * within `support` of p; true once there are `enough`. */
+static bool count_in_slot(const fc_spray_classes *c, uint32_t self, const float *p, uint32_t h, float support_sq,
+                          uint32_t enough, uint32_t *found)
 {
     for (uint32_t s = c->cell_start[h]; s < c->cell_start[h + 1]; s++) {
-        uint32_t j = c->sorted[s];
-        const float *q = frame->positions + 3 * (size_t)j;
+        const float *q = c->gathered + 3 * (size_t)s;
         float d[3] = {q[0] - p[0], q[1] - p[1], q[2] - p[2]};
-        if (j != i && d[0] * d[0] + d[1] * d[1] + d[2] * d[2] < support_sq && ++*found >= enough)
+        if (s != self && d[0] * d[0] + d[1] * d[1] + d[2] * d[2] < support_sq && ++*found >= enough)
             return true;
     }
     return false;
 }
 
-/* How many other particles lie within `support` of particle i, counted up to
- * `enough`: its own cell first, where a particle inside the fluid finds them
- * all, so most particles read one cell, not 27. */
-static uint32_t neighbours_of(const fc_spray_classes *c, const fc_frame *frame, uint64_t i, float support,
-                              float per_cell, uint64_t cells, uint32_t enough)
+/* How many other particles lie within the support of the particle at entry
+ * `self` of slot `own`, counted up to `enough`: its own cell first, where a
+ * particle inside the fluid finds them all, so most particles read one cell,
+ * not 27. */
+static uint32_t neighbours_of(const fc_spray_classes *c, uint32_t self, uint32_t own, uint32_t enough)
 {
-    const float *p = frame->positions + 3 * i;
-    float support_sq = support * support;
-    int64_t home[3];
-    cell_of(p, per_cell, home);
-    uint32_t found = 0, own = cell_hash(home[0], home[1], home[2], cells);
-    if (count_in_cell(c, frame, i, p, own, support_sq, enough, &found))
+    const float *p = c->gathered + 3 * (size_t)self;
+    float support_sq = c->support * c->support;
+    uint32_t found = 0;
+    if (count_in_slot(c, self, p, own, support_sq, enough, &found))
         return found;
-    for (int dz = -1; dz <= 1; dz++)
-        for (int dy = -1; dy <= 1; dy++)
-            for (int dx = -1; dx <= 1; dx++) {
-                uint32_t h = cell_hash(home[0] + dx, home[1] + dy, home[2] + dz, cells);
-                /* The own cell is counted; another cell hashed to its slot holds the same particles. */
-                if (h != own && count_in_cell(c, frame, i, p, h, support_sq, enough, &found))
-                    return found;
-            }
+    uint32_t cells[27], count = fc_spray_classes_cells_around(c, p, cells);
+    for (uint32_t k = 1; k < count; k++)
+        if (count_in_slot(c, self, p, cells[k], support_sq, enough, &found))
+            return found;
     return found;
 }
 
@@ -128,60 +164,61 @@ static float surface_key(const fc_frame *frame, uint64_t i)
     return frame->density ? fmaxf(frame->density[i], FLT_MIN) : FLT_MAX;
 }
 
-fc_code fc_spray_classes_compute(fc_spray_classes *c, const fc_frame *frame, uint32_t spray_neighbours,
+static void keys_without_spray(fc_spray_classes *c, const fc_frame *frame)
+{
+    for (uint64_t i = 0; i < frame->count; i++)
+        c->keys[i] = surface_key(frame, i);
+}
+
+fc_code fc_spray_classes_compute(fc_spray_classes *c, const fc_frame *frame, float support, uint32_t spray_neighbours,
                                  fc_error *err)
 {
-    uint64_t cells = 16;
-    while (cells < CELLS_PER_PARTICLE * frame->count)
-        cells *= 2;
-    fc_code code = reserve(c, frame->count, cells, err);
+    fc_code code = reserve(c, frame->count, 0, err);
     if (code != FC_OK)
         return code;
     c->cells = 0;
     c->support = 0.0f;
-    float support = FC_ANISOTROPY_SUPPORT_SPACINGS * fc_frame_estimate_radius(frame) / ESTIMATED_RADIUS_PER_SPACING;
     /* Frames with their own radii are left to the density threshold: their
      * sizes differ, so one spacing does not tell who is isolated. */
-    if (spray_neighbours == 0 || frame->radius || !(support > 0.0f) || !isfinite(support)) {
-        for (uint64_t i = 0; i < frame->count; i++)
-            c->keys[i] = surface_key(frame, i);
+    if (spray_neighbours == 0 || frame->radius || frame->count == 0 || !(support > 0.0f) || !isfinite(support)) {
+        keys_without_spray(c, frame);
         return FC_OK;
     }
-    float per_cell = 1.0f / support;
-    bucket(c, frame, per_cell, cells);
-    c->cells = cells;
     c->support = support;
-    uint64_t spray = 0;
-    for (uint64_t i = 0; i < frame->count; i++) {
-        uint32_t n = neighbours_of(c, frame, i, support, per_cell, cells, spray_neighbours);
-        spray += n < spray_neighbours;
-        c->keys[i] = n < spray_neighbours ? 0.0f : surface_key(frame, i);
+    plan_slots(c, frame, 1.0f / support);
+    if ((code = reserve(c, frame->count, c->cells, err)) != FC_OK) {
+        c->cells = 0;
+        return code;
     }
+    bucket(c, frame);
+    uint64_t spray = 0;
+    for (uint64_t h = 0; h < c->cells; h++)
+        for (uint32_t s = c->cell_start[h]; s < c->cell_start[h + 1]; s++) {
+            uint32_t i = c->sorted[s];
+            bool isolated = neighbours_of(c, s, (uint32_t)h, spray_neighbours) < spray_neighbours;
+            spray += isolated;
+            c->keys[i] = isolated ? 0.0f : surface_key(frame, i);
+        }
     /* Spray is what breaks off a body of fluid: where most particles are
      * isolated (a few particles placed by hand, a sparse point cloud) there is
      * no body, and every particle stays surface. */
     if (2 * spray > frame->count)
-        for (uint64_t i = 0; i < frame->count; i++)
-            c->keys[i] = surface_key(frame, i);
+        keys_without_spray(c, frame);
     return FC_OK;
 }
 
 uint32_t fc_spray_classes_cells_around(const fc_spray_classes *c, const float *p, uint32_t cells[27])
 {
-    int64_t home[3];
-    cell_of(p, 1.0f / c->support, home);
-    uint32_t own = cell_hash(home[0], home[1], home[2], c->cells), count = 0;
-    cells[count++] = own;
+    uint64_t home[3];
+    cell_of(c, p, home);
+    uint32_t count = 0;
+    cells[count++] = slot_of_cell(c, home[0], home[1], home[2]);
     for (int dz = -1; dz <= 1; dz++)
         for (int dy = -1; dy <= 1; dy++)
-            for (int dx = -1; dx <= 1; dx++) {
-                uint32_t h = cell_hash(home[0] + dx, home[1] + dy, home[2] + dz, c->cells);
-                bool again = false;
-                for (uint32_t k = 0; k < count; k++)
-                    again |= cells[k] == h;
-                if (!again)
-                    cells[count++] = h;
-            }
+            for (int dx = -1; dx <= 1; dx++)
+                if (dx || dy || dz)
+                    cells[count++] = slot_of_cell(c, home[0] + (uint64_t)dx, home[1] + (uint64_t)dy,
+                                                  home[2] + (uint64_t)dz);
     return count;
 }
 
@@ -196,6 +233,8 @@ void fc_spray_classes_free(fc_spray_classes *c)
 {
     free(c->keys);
     free(c->sorted);
+    free(c->slot_of);
+    free(c->gathered);
     free(c->cell_start);
     *c = (fc_spray_classes){0};
 }

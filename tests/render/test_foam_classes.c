@@ -5,6 +5,7 @@
 #include <stdbool.h>
 #include <stdint.h>
 
+#include "anisotropy.h"
 #include "foam_classes.h"
 #include "spray_classes.h"
 #include "test_util.h"
@@ -57,7 +58,7 @@ static uint64_t foam_in(const fc_foam_classes *f, int first, int count)
 
 static void classify(fc_spray_classes *spray, fc_foam_classes *foam, const fc_frame *frame)
 {
-    CHECK_CODE(fc_spray_classes_compute(spray, frame, 2, NULL), FC_OK);
+    CHECK_CODE(fc_spray_classes_compute(spray, frame, fc_anisotropy_support(fc_frame_estimate_radius(frame)), 2, NULL), FC_OK);
     CHECK_CODE(fc_foam_classes_compute(foam, spray, frame, NULL), FC_OK);
 }
 
@@ -106,7 +107,7 @@ static void test_calm_frames_have_no_foam(void)
     CHECK(foam.count == 0 && foam_in(&foam, 0, COUNT) == 0);
     /* Spray off: no grid, no foam. */
     frame.velocity = v;
-    CHECK_CODE(fc_spray_classes_compute(&spray, &frame, 0, NULL), FC_OK);
+    CHECK_CODE(fc_spray_classes_compute(&spray, &frame, fc_anisotropy_support(fc_frame_estimate_radius(&frame)), 0, NULL), FC_OK);
     CHECK_CODE(fc_foam_classes_compute(&foam, &spray, &frame, NULL), FC_OK);
     CHECK(foam.count == 0);
     fc_spray_classes_free(&spray);

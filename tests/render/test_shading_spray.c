@@ -11,6 +11,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "anisotropy.h"
 #include "density_order.h"
 #include "spray_classes.h"
 #include "pipeline_internal.h"
@@ -279,13 +280,81 @@ static void make_classes_frame(float *x, bool isolated_in_view)
     }
 }
 
+static float frame_support(const fc_frame *frame)
+{
+    return fc_anisotropy_support(fc_frame_estimate_radius(frame));
+}
+
+static uint32_t lcg(uint32_t *state)
+{
+    *state = *state * 1664525u + 1013904223u;
+    return *state >> 8;
+}
+
+static float uniform(uint32_t *state)
+{
+    return (float)lcg(state) / (float)(1u << 24);
+}
+
+/* Every particle in the class its neighbours, counted pair by pair, give it:
+ * a jittered block, a ring of droplets around it, pairs and threes, and
+ * droplets flung so far (1e4 supports) that the grid's cells wrap around its
+ * table, on negative coordinates too. */
+static void test_neighbour_classes_match_pairs(void)
+{
+    enum { BLOCK = 12, COUNT_MAX = BLOCK * BLOCK * BLOCK + 400 };
+    static float x[3 * COUNT_MAX];
+    uint32_t state = 12345u, n = 0;
+    const float spacing = 0.01f;
+    for (int k = 0; k < BLOCK; k++)
+        for (int j = 0; j < BLOCK; j++)
+            for (int i = 0; i < BLOCK; i++, n++) {
+                int at[3] = {i, j, k};
+                for (int a = 0; a < 3; a++)
+                    x[3 * n + a] = -0.05f + spacing * ((float)at[a] + 0.3f * (uniform(&state) - 0.5f));
+            }
+    while (n < COUNT_MAX - 8) {
+        /* A droplet, some with a partner or two a little over a spacing away. */
+        float centre[3] = {0.3f * (uniform(&state) - 0.5f), 0.3f * (uniform(&state) - 0.5f), 0.3f * uniform(&state)};
+        uint32_t company = lcg(&state) % 3;
+        for (uint32_t m = 0; m <= company && n < COUNT_MAX - 8; m++, n++)
+            for (int a = 0; a < 3; a++)
+                x[3 * n + a] = centre[a] + 0.015f * (float)m * (a == 0 ? 1.0f : 0.5f);
+    }
+    const float far[8][3] = {{400, 0, 0}, {400, 0.012f, 0}, {-400, 3, 5}, {0, 0, -300}, {0.02f, 0.01f, -300},
+                             {250, -250, 250}, {250, -250, 250.011f}, {-0.2f, 600, 0}};
+    for (int m = 0; m < 8; m++, n++)
+        memcpy(x + 3 * n, far[m], sizeof far[m]);
+    fc_frame frame = {.count = n, .positions = x};
+    float support = frame_support(&frame);
+    fc_spray_classes classes = {0};
+    for (uint32_t enough = 1; enough <= 4; enough++) {
+        CHECK_CODE(fc_spray_classes_compute(&classes, &frame, support, enough, NULL), FC_OK);
+        CHECK(classes.cells > 0 && classes.cells <= 2 * 4096);
+        int wrong = 0, spray = 0;
+        for (uint32_t i = 0; i < n; i++) {
+            uint32_t found = 0;
+            for (uint32_t j = 0; j < n; j++) {
+                const float *p = x + 3 * i, *q = x + 3 * j;
+                float d[3] = {q[0] - p[0], q[1] - p[1], q[2] - p[2]};
+                found += j != i && d[0] * d[0] + d[1] * d[1] + d[2] * d[2] < support * support;
+            }
+            spray += found < enough;
+            wrong += (classes.keys[i] == 0.0f) != (found < enough);
+        }
+        CHECK_MSG(wrong == 0 && spray > 20, "%d particles in the wrong class of %d spray (%u neighbours)", wrong,
+                  spray, enough);
+    }
+    fc_spray_classes_free(&classes);
+}
+
 static void test_neighbour_classes(void)
 {
     float x[3 * CLASS_COUNT];
     make_classes_frame(x, true);
     fc_frame frame = {.count = CLASS_COUNT, .positions = x};
     fc_spray_classes classes = {0};
-    CHECK_CODE(fc_spray_classes_compute(&classes, &frame, 2, NULL), FC_OK);
+    CHECK_CODE(fc_spray_classes_compute(&classes, &frame, frame_support(&frame), 2, NULL), FC_OK);
     int wrong = 0;
     for (int i = 0; i < CLASS_COUNT; i++)
         wrong += (classes.keys[i] == 0.0f) != (i >= CLASS_BLOCK + CLASS_ROW);
@@ -293,10 +362,10 @@ static void test_neighbour_classes(void)
     /* Two isolated particles alone (one neighbour each at their own
      * spacing) are no body of fluid: neither is spray. */
     fc_frame pair = {.count = 2, .positions = x + 3 * (CLASS_BLOCK + CLASS_ROW)};
-    CHECK_CODE(fc_spray_classes_compute(&classes, &pair, 2, NULL), FC_OK);
+    CHECK_CODE(fc_spray_classes_compute(&classes, &pair, frame_support(&pair), 2, NULL), FC_OK);
     CHECK(classes.keys[0] > 0.0f && classes.keys[1] > 0.0f);
     /* Off: nobody is spray. */
-    CHECK_CODE(fc_spray_classes_compute(&classes, &frame, 0, NULL), FC_OK);
+    CHECK_CODE(fc_spray_classes_compute(&classes, &frame, frame_support(&frame), 0, NULL), FC_OK);
     for (int i = 0; i < CLASS_COUNT; i++)
         CHECK(classes.keys[i] > 0.0f);
     fc_spray_classes_free(&classes);
@@ -423,6 +492,7 @@ int main(void)
 {
     test_density_order();
     test_neighbour_classes();
+    test_neighbour_classes_match_pairs();
     render_fixture f;
     if (!fixture_open(&f))
         return 1;

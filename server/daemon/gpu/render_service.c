@@ -52,13 +52,15 @@ struct fc_render_service {
 
 /* Radius 0 means "auto": each particle's own radius on a frame that has them
  * (the pipeline sizes them, PROTOCOL.md 5), else estimated once per frame,
- * however often it is rendered. */
-static float resolve_radius(fc_render_job *job)
+ * however often it is rendered: by the pipeline when the frame is the one
+ * uploaded (`uploaded`; its spray classes use the same estimate). */
+static float resolve_radius(fc_render_job *job, fc_pipeline *uploaded)
 {
     if (fc_radius_source_of(&job->settings, job->frame->frame.radius != NULL) != FC_RADIUS_ESTIMATED)
         return job->settings.radius;
     if (job->frame->estimated_radius <= 0.0f)
-        job->frame->estimated_radius = fc_frame_estimate_radius(&job->frame->frame);
+        job->frame->estimated_radius = uploaded ? fc_pipeline_estimated_radius(uploaded)
+                                                : fc_frame_estimate_radius(&job->frame->frame);
     return job->frame->estimated_radius;
 }
 
@@ -90,7 +92,7 @@ static fc_code draw(fc_gpu_state *gpu, fc_render_job *job, fc_error *err)
     if (job->auto_camera)
         fc_camera_frame_bounds(&job->frame->frame, job->camera.width, job->camera.height, &job->camera);
     fc_settings settings = job->settings;
-    settings.radius = resolve_radius(job);
+    settings.radius = resolve_radius(job, gpu->pipeline);
     /* RAW colour is RGBA8 and PNG/JPEG are 8-bit anyway; only EXR keeps linear floats. */
     int want_u8 = job->request.aov == FC_AOV_COLOR && job->request.format != FC_FORMAT_EXR;
     const fc_scene_textures *scene;
@@ -159,7 +161,7 @@ static void render_job(fc_render_service *rs, fc_render_job *job)
         return;
     }
     fc_code code = job->kind == FC_JOB_SURFACE
-                       ? fc_surface_job_run(rs->gpu.pipeline, job, resolve_radius(job), &job->error)
+                       ? fc_surface_job_run(rs->gpu.pipeline, job, resolve_radius(job, NULL), &job->error)
                        : draw(&rs->gpu, job, &job->error);
     bool simulate_loss = ++rs->renders == rs->config.lose_context_at_render;
     fc_gl_reset reset;
