@@ -164,8 +164,40 @@ fc_code fc_read_particles_mem(const uint8_t *data, size_t size, fc_file_format f
     return fc_read_particles_mem_with(data, size, format, name, NULL, frame, err);
 }
 
-fc_code fc_read_particles_mem_with(const uint8_t *data, size_t size, fc_file_format format, const char *name,
-                                   const fc_read_options *options, fc_frame *frame, fc_error *err)
+/* The cursor's data read as `format`, then the selection of its options
+ * applied; never a partial frame. */
+static fc_code read_and_select(fc_cursor *c, fc_file_format format, fc_frame *frame, fc_error *err)
+{
+    if (format == FC_FILE_UNKNOWN && fc_is_hdf5(c->data, c->size))
+        format = FC_FILE_HDF5;
+    /* Named scalars beyond the frame's attributes are kept only when a selection may need them. */
+    fc_read_extras *extras = c->options->select_count > 0 ? calloc(1, sizeof *extras) : NULL;
+    if (c->options->select_count > 0 && extras == NULL)
+        return fc_error_set(err, FC_ERR_NOMEM, "%s: out of memory", c->name);
+    c->extras = extras;
+    fc_positions64 positions64 = { NULL, 0, false };
+    fc_recentring *recentring = c->options->recentring;
+    c->positions64 = recentring != NULL ? &positions64 : NULL;
+    fc_code code = read_format(c, format, frame, err);
+    if (code == FC_OK && recentring != NULL)
+        code = finish_positions64(&positions64, recentring, frame, c->name, err);
+    free(positions64.xyz);
+    static const double no_offset[3] = { 0.0, 0.0, 0.0 };
+    const double *offset = recentring != NULL && recentring->applied ? recentring->offset : no_offset;
+    if (code == FC_OK)
+        code = fc_select_apply(frame, extras, c->options, offset, c->name, err);
+    if (extras != NULL)
+        fc_extras_free(extras);
+    free(extras);
+    if (code != FC_OK)
+        fc_frame_free(frame); /* never hand out a partial frame */
+    return code;
+}
+
+/* Reads `data` as `format`; `adoptable` is data itself when a reader may
+ * keep it as a frame's array (then set to NULL), else NULL. */
+static fc_code read_mem(const uint8_t *data, size_t size, fc_file_format format, const char *name,
+                        const fc_read_options *options, uint8_t **adoptable, fc_frame *frame, fc_error *err)
 {
     static const fc_read_options defaults; /* zero: the defaults */
     if (frame == NULL)
@@ -180,30 +212,17 @@ fc_code fc_read_particles_mem_with(const uint8_t *data, size_t size, fc_file_for
     fc_cursor c;
     fc_cursor_init(&c, data, size, name);
     c.options = options != NULL ? options : &defaults;
-    if (format == FC_FILE_UNKNOWN && fc_is_hdf5(data, size))
-        format = FC_FILE_HDF5;
-    /* Named scalars beyond the frame's attributes are kept only when a selection may need them. */
-    fc_read_extras *extras = c.options->select_count > 0 ? calloc(1, sizeof *extras) : NULL;
-    if (c.options->select_count > 0 && extras == NULL)
-        return fc_error_set(err, FC_ERR_NOMEM, "%s: out of memory", name);
-    c.extras = extras;
-    fc_positions64 positions64 = { NULL, 0, false };
-    fc_recentring *recentring = c.options->recentring;
-    c.positions64 = recentring != NULL ? &positions64 : NULL;
-    fc_code code = read_format(&c, format, frame, err);
-    if (code == FC_OK && recentring != NULL)
-        code = finish_positions64(&positions64, recentring, frame, name, err);
-    free(positions64.xyz);
-    static const double no_offset[3] = { 0.0, 0.0, 0.0 };
-    const double *offset = recentring != NULL && recentring->applied ? recentring->offset : no_offset;
-    if (code == FC_OK)
-        code = fc_select_apply(frame, extras, c.options, offset, name, err);
-    if (extras != NULL)
-        fc_extras_free(extras);
-    free(extras);
-    if (code != FC_OK)
-        fc_frame_free(frame); /* never hand out a partial frame */
+    c.adoptable = *adoptable;
+    fc_code code = read_and_select(&c, format, frame, err);
+    *adoptable = c.adoptable;
     return code;
+}
+
+fc_code fc_read_particles_mem_with(const uint8_t *data, size_t size, fc_file_format format, const char *name,
+                                   const fc_read_options *options, fc_frame *frame, fc_error *err)
+{
+    uint8_t *copy_only = NULL;
+    return read_mem(data, size, format, name, options, &copy_only, frame, err);
 }
 
 /* The first DataSet of the collection at `path`, as a path: relative names are relative to the .pvd's directory. */
@@ -268,8 +287,10 @@ fc_code fc_read_particles_with(const char *path, const fc_read_options *options,
     /* HDF5 files carry many names (.h5, .hdf5, .snap, .0, none): the signature decides. */
     if (fc_is_hdf5(data, size))
         format = FC_FILE_HDF5;
+    /* data is malloc'd: a reader may keep it as the frame's positions (then it is not freed here). */
+    uint8_t *adoptable = data;
     code = format == FC_FILE_UNKNOWN ? unknown_format(path, err)
-                                     : fc_read_particles_mem_with(data, size, format, path, options, frame, err);
-    free(data);
+                                     : read_mem(data, size, format, path, options, &adoptable, frame, err);
+    free(adoptable);
     return code;
 }

@@ -19,6 +19,7 @@ void fc_cursor_init(fc_cursor *c, const uint8_t *data, size_t size, const char *
     c->options = NULL;
     c->extras = NULL;
     c->positions64 = NULL;
+    c->adoptable = NULL;
 }
 
 size_t fc_cursor_remaining(const fc_cursor *c)

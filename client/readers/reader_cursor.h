@@ -29,6 +29,8 @@ typedef struct fc_cursor {
     const struct fc_read_options *options; /* the read's options (particle_reader.h), set for every format reader */
     struct fc_read_extras *extras;  /* where a reader keeps named scalars for --select; NULL: keep none */
     struct fc_positions64 *positions64; /* where float64 positions wait for the recentring; NULL: none */
+    uint8_t *adoptable;   /* data itself when it is a malloc'd buffer a reader may keep as a frame's array
+                             (reader_f32.c), set to NULL once kept; NULL: readers copy */
 } fc_cursor;
 
 void fc_cursor_init(fc_cursor *c, const uint8_t *data, size_t size, const char *name);

@@ -50,6 +50,29 @@ static void test_bad_sizes_and_values(void)
     bytes_free(&b);
 }
 
+/* Read from a file, the buffer the file was read into becomes the positions
+ * (reader_f32.c): the same values, the same errors, and the frame frees it
+ * (ASan's leak check and double-free check run this too). */
+static void test_from_a_file(void)
+{
+    bytes b = two_particles();
+    fc_frame frame;
+    fc_error err;
+    CHECK_CODE(fc_read_particles(write_temp_file("two.f32", &b), &frame, &err), FC_OK);
+    CHECK(frame.count == 2);
+    check_position(&frame, 0, 1.0f, -2.5f, 0.15625f);
+    check_position(&frame, 1, 0.15625f, 1.0f, -2.5f);
+    fc_frame_free(&frame);
+    memcpy(b.data + 16, NAN_BITS, 4);
+    CHECK_CODE(fc_read_particles(write_temp_file("nan.f32", &b), &frame, &err), FC_ERR_PARSE);
+    CHECK_MSG(strstr(err.message, "byte offset 16: particle 1: y = nan") != NULL, "%s", err.message);
+    CHECK(frame_is_empty(&frame));
+    b.len = 13;
+    CHECK_CODE(fc_read_particles(write_temp_file("odd.f32", &b), &frame, &err), FC_ERR_PARSE);
+    CHECK(frame_is_empty(&frame));
+    bytes_free(&b);
+}
+
 static void test_truncations(void)
 {
     bytes b = { NULL, 0, 0 };
@@ -149,6 +172,7 @@ int main(int argc, char **argv)
     test_values_little_endian();
     test_bad_sizes_and_values();
     test_truncations();
+    test_from_a_file();
     test_shared_dambreak(argc > 1 ? argv[1] : "../shared/data");
     return test_result();
 }
