@@ -1,16 +1,15 @@
 /* png_strips.c — see png_strips.h. */
-#define _GNU_SOURCE /* sched_getaffinity, CPU_COUNT */
 #include "png_strips.h"
 
 #include <limits.h>
 #include <pthread.h>
-#include <sched.h>
 #include <stdatomic.h>
 #include <stdbool.h>
 #include <stdlib.h>
 #include <string.h>
-#include <unistd.h>
 #include <zlib.h>
+
+#include "fc_parallel.h"
 
 /* PNG row filter types (PNG spec 9.2). */
 enum { FILTER_NONE = 0, FILTER_SUB = 1 };
@@ -32,22 +31,10 @@ typedef struct strip_work {
     atomic_uint next;
 } strip_work;
 
-/* The cores this process may run on: under Slurm, a container or taskset
- * that is the affinity mask, fewer than the machine's online cores. */
-static long usable_cores(void)
-{
-    cpu_set_t set;
-    if (sched_getaffinity(0, sizeof set, &set) == 0 && CPU_COUNT(&set) > 0)
-        return CPU_COUNT(&set);
-    return sysconf(_SC_NPROCESSORS_ONLN);
-}
-
 unsigned fc_png_default_threads(void)
 {
-    long cores = usable_cores();
-    if (cores < 1)
-        return 1;
-    return cores < (long)FC_PNG_MAX_THREADS ? (unsigned)cores : FC_PNG_MAX_THREADS;
+    unsigned cores = fc_usable_cores();
+    return cores < FC_PNG_MAX_THREADS ? cores : FC_PNG_MAX_THREADS;
 }
 
 /* The bytes between two pixels of the source rows. */

@@ -8,6 +8,7 @@
 #include <string.h>
 
 #include "fc_error.h"
+#include "fc_parallel.h"
 
 /* The table has at most this many slots per particle (a power of two at
  * least as large): beyond it, cells wrap onto each other. */
@@ -164,6 +165,30 @@ static float surface_key(const fc_frame *frame, uint64_t i)
     return frame->density ? fmaxf(frame->density[i], FLT_MIN) : FLT_MAX;
 }
 
+/* The classes of the particles in a range of slots, one worker's share:
+ * each particle's key is its own, and the worker counts its spray apart. */
+typedef struct classify_job {
+    fc_spray_classes *c;
+    const fc_frame *frame;
+    uint32_t enough;
+    uint64_t *spray_of;   /* per worker */
+} classify_job;
+
+static void classify_slots(void *context, unsigned worker, uint64_t begin, uint64_t end)
+{
+    const classify_job *j = context;
+    fc_spray_classes *c = j->c;
+    uint64_t spray = 0;
+    for (uint64_t h = begin; h < end; h++)
+        for (uint32_t s = c->cell_start[h]; s < c->cell_start[h + 1]; s++) {
+            uint32_t i = c->sorted[s];
+            bool isolated = neighbours_of(c, s, (uint32_t)h, j->enough) < j->enough;
+            spray += isolated;
+            c->keys[i] = isolated ? 0.0f : surface_key(j->frame, i);
+        }
+    j->spray_of[worker] = spray;
+}
+
 static void keys_without_spray(fc_spray_classes *c, const fc_frame *frame)
 {
     for (uint64_t i = 0; i < frame->count; i++)
@@ -191,14 +216,13 @@ fc_code fc_spray_classes_compute(fc_spray_classes *c, const fc_frame *frame, flo
         return code;
     }
     bucket(c, frame);
+    unsigned workers = fc_parallel_workers(frame->count);
+    uint64_t spray_of[FC_PARALLEL_MAX_WORKERS] = {0};
+    classify_job job = {c, frame, spray_neighbours, spray_of};
+    fc_parallel_for(c->cells, workers, classify_slots, &job);
     uint64_t spray = 0;
-    for (uint64_t h = 0; h < c->cells; h++)
-        for (uint32_t s = c->cell_start[h]; s < c->cell_start[h + 1]; s++) {
-            uint32_t i = c->sorted[s];
-            bool isolated = neighbours_of(c, s, (uint32_t)h, spray_neighbours) < spray_neighbours;
-            spray += isolated;
-            c->keys[i] = isolated ? 0.0f : surface_key(frame, i);
-        }
+    for (unsigned w = 0; w < workers; w++)
+        spray += spray_of[w];
     /* Spray is what breaks off a body of fluid: where most particles are
      * isolated (a few particles placed by hand, a sparse point cloud) there is
      * no body, and every particle stays surface. */

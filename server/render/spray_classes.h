@@ -19,7 +19,8 @@
  * than the fluid), with the positions gathered in slot order, so a cell and
  * its neighbours are read from a few runs of memory; a particle stops
  * counting at `spray_neighbours`, so the cost is about one pass over the
- * particles and their nearest few neighbours. */
+ * particles and their nearest few neighbours, cut into ranges of slots on
+ * the usable cores (fc_parallel.h). */
 #ifndef FC_SPRAY_CLASSES_H
 #define FC_SPRAY_CLASSES_H
 

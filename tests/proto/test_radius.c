@@ -212,6 +212,12 @@ static void test_perfect_lattices(void)
     CHECK_NEAR(fc_frame_estimate_radius(&sheet), 0.9 * 2.0, 1e-5);
     fc_frame_free(&sheet);
 
+    /* Large enough that the scan runs in ranges on several workers where the
+     * machine has the cores (fc_parallel.h): a neighbour found by any range counts. */
+    fc_frame large = jittered_lattice(64, 64, 64, 0.125, 0, 0);
+    CHECK_NEAR(fc_frame_estimate_radius(&large), 0.9 * 0.125, 1e-6);
+    fc_frame_free(&large);
+
     fc_frame line = jittered_lattice(20000, 1, 1, 0.5, 0, 0);
     CHECK_NEAR(fc_frame_estimate_radius(&line), 0.9 * 0.5, 1e-5);
     fc_frame_free(&line);
