@@ -1,6 +1,7 @@
 /* density_order.c — stable descending sort of particle densities (LSD radix). */
 #include "density_order.h"
 
+#include <stdbool.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -39,19 +40,34 @@ static fc_code reserve(fc_density_order *o, uint64_t count, fc_error *err)
     return FC_OK;
 }
 
-/* One counting-sort pass on the digit at `shift`, from (keys, index) into (keys_out, index_out). */
-static void radix_pass(const uint32_t *keys, const uint32_t *index, uint32_t *keys_out, uint32_t *index_out,
-                       uint64_t count, unsigned shift)
+/* How many keys hold each value of each pass's digit, counted in one read of the keys. */
+static void count_digits(const uint32_t *keys, uint64_t count, uint64_t (*start)[RADIX_BUCKETS])
 {
-    uint64_t start[RADIX_BUCKETS] = {0};
+    memset(start, 0, RADIX_PASSES * sizeof *start);
     for (uint64_t i = 0; i < count; i++)
-        start[(keys[i] >> shift) & (RADIX_BUCKETS - 1)]++;
+        for (unsigned pass = 0; pass < RADIX_PASSES; pass++)
+            start[pass][(keys[i] >> (pass * RADIX_BITS)) & (RADIX_BUCKETS - 1)]++;
+}
+
+/* Turns a digit's counts into the first slot of each value; false when one
+ * value holds every key (the pass would move nothing). */
+static bool digit_starts(uint64_t *start, uint64_t count)
+{
     uint64_t sum = 0;
+    bool moves = true;
     for (uint32_t b = 0; b < RADIX_BUCKETS; b++) {
         uint64_t n = start[b];
+        moves = moves && n != count;
         start[b] = sum;
         sum += n;
     }
+    return moves;
+}
+
+/* One counting-sort pass on the digit at `shift`, from (keys, index) into (keys_out, index_out). */
+static void radix_pass(const uint32_t *keys, const uint32_t *index, uint32_t *keys_out, uint32_t *index_out,
+                       uint64_t count, unsigned shift, uint64_t *start)
+{
     for (uint64_t i = 0; i < count; i++) {
         uint64_t slot = start[(keys[i] >> shift) & (RADIX_BUCKETS - 1)]++;
         keys_out[slot] = keys[i];
@@ -71,18 +87,28 @@ fc_code fc_density_order_sort(fc_density_order *o, const float *density, uint64_
         o->keys[i] = descending_key(density[i]);
         o->index_scratch[i] = (uint32_t)i;
     }
-    /* Ping-pong between the two buffer pairs; an odd number of passes ends in
-     * (key_scratch, order), which is where the result belongs (the sorted
-     * keys stay in key_scratch for fc_density_order_count_at_least). */
+    uint64_t start[RADIX_PASSES][RADIX_BUCKETS];
+    count_digits(o->keys, count, start);
+    /* Ping-pong between the two buffer pairs, skipping the passes whose digit
+     * is the same in every key (all but one without densities, where the
+     * keys are the spray's and the rest's): the result belongs in
+     * (key_scratch, order), where the sorted keys stay for
+     * fc_density_order_count_at_least. */
     uint32_t *keys_in = o->keys, *index_in = o->index_scratch;
     uint32_t *keys_out = o->key_scratch, *index_out = o->order;
     for (unsigned pass = 0; pass < RADIX_PASSES; pass++) {
-        radix_pass(keys_in, index_in, keys_out, index_out, count, pass * RADIX_BITS);
+        if (!digit_starts(start[pass], count))
+            continue;
+        radix_pass(keys_in, index_in, keys_out, index_out, count, pass * RADIX_BITS, start[pass]);
         uint32_t *k = keys_in, *x = index_in;
         keys_in = keys_out;
         index_in = index_out;
         keys_out = k;
         index_out = x;
+    }
+    if (keys_in != o->key_scratch && count > 0) {
+        memcpy(o->key_scratch, keys_in, count * sizeof *keys_in);
+        memcpy(o->order, index_in, count * sizeof *index_in);
     }
     return FC_OK;
 }

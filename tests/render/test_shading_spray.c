@@ -6,6 +6,7 @@
  * neighbours (spray_classes.h), isolated particles are spray and a block and
  * a jet are not, and the droplets differ in size and are shaded within; with
  * velocities each droplet is a streak along its velocity across the view. */
+#include <float.h>
 #include <math.h>
 #include <stdbool.h>
 #include <stdlib.h>
@@ -70,6 +71,27 @@ static void test_density_order(void)
     for (int i = 0; i < 9; i++)
         CHECK_MSG(order.order[i] == expected[i], "slot %d: particle %u, expected %u", i, order.order[i],
                   expected[i]);
+    /* The spray classes' keys alone (0 and FLT_MAX: the sort skips the
+     * digits every key shares), then every key equal (it moves nothing):
+     * still the order sorted, ties in frame order. */
+    enum { N = 1000 };
+    static float keys[N];
+    for (int i = 0; i < N; i++)
+        keys[i] = i % 7 == 3 ? 0.0f : FLT_MAX;
+    CHECK_CODE(fc_density_order_sort(&order, keys, N, NULL), FC_OK);
+    int wrong = 0;
+    for (int i = 1; i < N; i++) {
+        uint32_t a = order.order[i - 1], b = order.order[i];
+        wrong += keys[a] < keys[b] || (keys[a] == keys[b] && a > b);
+    }
+    CHECK_MSG(wrong == 0 && fc_density_order_count_at_least(&order, N, FLT_MIN) == N - (N + 3) / 7,
+              "%d slots out of order", wrong);
+    for (int i = 0; i < N; i++)
+        keys[i] = 2.0f;
+    CHECK_CODE(fc_density_order_sort(&order, keys, N, NULL), FC_OK);
+    for (int i = 0; i < N; i++)
+        wrong += order.order[i] != (uint32_t)i;
+    CHECK_MSG(wrong == 0 && fc_density_order_count_at_least(&order, N, 2.0f) == N, "%d slots moved", wrong);
     fc_density_order_free(&order);
 }
 
