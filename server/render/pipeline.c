@@ -509,7 +509,7 @@ static fc_code upload_frame(fc_pipeline *p, const fc_frame *frame, fc_error *err
 
 float fc_pipeline_estimated_radius(fc_pipeline *p)
 {
-    if (p->estimated_upload != p->uploads) {
+    if (p->estimated_upload != p->uploads || !p->uploaded) {
         p->estimated_radius = fc_frame_estimate_radius(&p->frame);
         p->estimated_upload = p->uploads;
     }
