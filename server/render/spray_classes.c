@@ -26,26 +26,30 @@ static fc_code out_of_memory(fc_error *err, uint64_t count)
                         (unsigned long long)count);
 }
 
-static bool grow(void **array, uint64_t count, size_t size)
-{
-    void *grown = realloc(*array, count * size);
-    if (grown)
-        *array = grown;
-    return grown != NULL;
-}
-
 static fc_code reserve(fc_spray_classes *c, uint64_t count, uint64_t slots, fc_error *err)
 {
+    /* Each array is kept as soon as it has grown, so a failure leaks none. */
     if (count > c->capacity) {
-        if (!grow((void **)&c->keys, count, sizeof *c->keys) || !grow((void **)&c->sorted, count, sizeof *c->sorted) ||
-            !grow((void **)&c->slot_of, count, sizeof *c->slot_of) ||
-            !grow((void **)&c->gathered, count, 3 * sizeof *c->gathered))
+        float *keys = realloc(c->keys, count * sizeof *keys);
+        if (keys)
+            c->keys = keys;
+        uint32_t *sorted = keys ? realloc(c->sorted, count * sizeof *sorted) : NULL;
+        if (sorted)
+            c->sorted = sorted;
+        uint32_t *slot_of = sorted ? realloc(c->slot_of, count * sizeof *slot_of) : NULL;
+        if (slot_of)
+            c->slot_of = slot_of;
+        float *gathered = slot_of ? realloc(c->gathered, 3 * count * sizeof *gathered) : NULL;
+        if (!gathered)
             return out_of_memory(err, count);
+        c->gathered = gathered;
         c->capacity = count;
     }
     if (slots + 1 > c->cell_capacity) {
-        if (!grow((void **)&c->cell_start, slots + 1, sizeof *c->cell_start))
+        uint32_t *starts = realloc(c->cell_start, (slots + 1) * sizeof *starts);
+        if (!starts)
             return out_of_memory(err, count);
+        c->cell_start = starts;
         c->cell_capacity = slots + 1;
     }
     return FC_OK;
